@@ -1,0 +1,47 @@
+# Small helpers shared by the folders: one library per folder, one test
+# executable per *_test.cc, one benchmark executable per *_benchmark.cc.
+
+set(BEAMID_WARNINGS -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor)
+
+# beamid_add_folder_library(NAME <target> FOLDER <dir> [DEPS ...])
+# Compiles every .cc of the folder (and its internal/) into one library, so a
+# new concept is one new file and no list needs editing.
+function(beamid_add_folder_library)
+  cmake_parse_arguments(ARG "" "NAME;FOLDER" "DEPS" ${ARGN})
+  file(GLOB sources CONFIGURE_DEPENDS ${ARG_FOLDER}/*.cc ${ARG_FOLDER}/internal/*.cc)
+  if(NOT sources)
+    # A folder whose concepts are all header-only still gets its target.
+    add_library(${ARG_NAME} INTERFACE)
+    target_include_directories(${ARG_NAME} INTERFACE ${PROJECT_SOURCE_DIR})
+    target_link_libraries(${ARG_NAME} INTERFACE ${ARG_DEPS})
+    return()
+  endif()
+  add_library(${ARG_NAME} STATIC ${sources})
+  target_include_directories(${ARG_NAME} PUBLIC ${PROJECT_SOURCE_DIR})
+  target_compile_options(${ARG_NAME} PRIVATE ${BEAMID_WARNINGS})
+  target_link_libraries(${ARG_NAME} PUBLIC ${ARG_DEPS})
+endfunction()
+
+# beamid_add_test(<source> LIBS ...): one GoogleTest executable named after the
+# file. Files named *_slow_test.cc get the ctest label "slow", all others
+# "fast" (the sanitizer CI job runs the fast ones).
+function(beamid_add_test source)
+  cmake_parse_arguments(ARG "" "" "LIBS" ${ARGN})
+  get_filename_component(name ${source} NAME_WE)
+  get_filename_component(folder ${source} DIRECTORY)
+  get_filename_component(folder ${folder} NAME)
+  set(target ${folder}_${name})
+  add_executable(${target} ${source})
+  target_compile_options(${target} PRIVATE ${BEAMID_WARNINGS} -Werror)
+  target_include_directories(${target} PRIVATE ${PROJECT_SOURCE_DIR})
+  target_link_libraries(${target} PRIVATE ${ARG_LIBS} GTest::gtest GTest::gtest_main)
+  if(name MATCHES "_slow_test$")
+    set(label slow)
+  else()
+    set(label fast)
+  endif()
+  gtest_discover_tests(${target}
+    WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
+    PROPERTIES LABELS ${label}
+    DISCOVERY_TIMEOUT 60)
+endfunction()

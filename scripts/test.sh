@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Builds beamid and runs its whole test suite, then rebuilds with
+# AddressSanitizer + UBSan and runs the fast tests under them.
+# Usage: bash scripts/test.sh            (what CI runs)
+#        SKIP_SANITIZERS=1 bash scripts/test.sh
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh
+jobs=$(nproc)
+
+cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build build/release -j"$jobs"
+ctest --test-dir build/release -j"$jobs" --output-on-failure --timeout 600
+
+if [ "${SKIP_SANITIZERS:-0}" != "1" ]; then
+  cmake -S . -B build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBEAMID_SANITIZE=ON -DBUILD_BENCHMARKS=OFF >/dev/null
+  cmake --build build/sanitize -j"$jobs"
+  ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+    ctest --test-dir build/sanitize -j"$jobs" -L fast --output-on-failure --timeout 600
+fi

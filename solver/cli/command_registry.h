@@ -1,0 +1,44 @@
+// The beamid program is a set of subcommands, one per file in solver/cli/.
+// Each file registers itself with BEAMID_REGISTER_COMMAND, so adding a command
+// never touches main.cc. Exit codes: 0 success, 1 internal error, 2 bad input
+// (std::invalid_argument and its subclasses: the user can fix it), 3 a
+// numerical failure (no convergence), reported with what was tried.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+namespace beamid::cli {
+
+inline constexpr int kExitBadInput = 2;
+inline constexpr int kExitNoConvergence = 3;
+
+// Options every subcommand understands.
+struct GlobalOptions {
+  bool quiet = false;  // no progress output on stderr
+};
+
+using CommandSetup = std::function<void(CLI::App& app, const GlobalOptions& global)>;
+
+struct CommandEntry {
+  std::string name;
+  CommandSetup setup;
+};
+
+std::vector<CommandEntry>& CommandRegistry();
+
+inline bool RegisterCommand(std::string name, CommandSetup setup) {
+  CommandRegistry().push_back({std::move(name), std::move(setup)});
+  return true;
+}
+
+}  // namespace beamid::cli
+
+#define BEAMID_CONCAT_INNER(a, b) a##b
+#define BEAMID_CONCAT(a, b) BEAMID_CONCAT_INNER(a, b)
+#define BEAMID_REGISTER_COMMAND(name, setup) \
+  static const bool BEAMID_CONCAT(beamid_command_registered_, __LINE__) = \
+      ::beamid::cli::RegisterCommand(name, setup)
