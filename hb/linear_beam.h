@@ -34,6 +34,8 @@ struct LinearBeamModel {
   double support_damping_Nms_rad = 0.0;
 };
 
+struct BeamMesh;  // hb/internal/beam_mesh.h
+
 // A complex steady-state deflection shape at one angular frequency, valid at
 // every x in [0, L] (evaluated exactly inside each segment).
 class BeamDeflection {
@@ -44,16 +46,24 @@ class BeamDeflection {
 
  private:
   friend class LinearBeam;
-  std::shared_ptr<const struct BeamMesh> mesh_;
-  Complex lambda4_per_m4_{};            // λ⁴ of this frequency
+  std::shared_ptr<const BeamMesh> mesh_;
+  double omega_rad_s_ = 0.0;
   Eigen::VectorXcd nodal_;              // [y, y'] at every node
   Complex Evaluate(double position_m, int derivative) const;
+};
+
+struct LinearBeamOptions {
+  // Highest frequency at which results must be exact to ~1e-10 [Hz]. Segments
+  // are kept shorter than 12/λ(max) so that cosh(λℓ) stays below ~1e5 and the
+  // segment matrices keep their accuracy; above it precision degrades
+  // gradually (about one digit per further 2.3 of λℓ).
+  double max_frequency_hz = 5000.0;
 };
 
 class LinearBeam {
  public:
   // force_position_m: where the shaker acts (a node of the segmentation).
-  LinearBeam(const LinearBeamModel& model, double force_position_m);
+  LinearBeam(const LinearBeamModel& model, double force_position_m, const LinearBeamOptions& options = {});
 
   const LinearBeamModel& model() const { return model_; }
   double force_position_m() const { return force_position_m_; }
