@@ -1,0 +1,199 @@
+#include "signal/campaign.h"
+
+#include <cmath>
+#include <fstream>
+#include <initializer_list>
+#include <set>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "signal/input_error.h"
+#include "signal/internal/text.h"
+
+namespace beamid::signal {
+namespace {
+
+using nlohmann::json;
+
+// Validation context: the file and the path of the JSON entry being read
+// (e.g. "sensors[2]"), so every message points at the offending entry.
+class Reader {
+ public:
+  explicit Reader(std::string source) : source_(std::move(source)) {}
+
+  [[noreturn]] void Fail(const std::string& where, const std::string& channel, const std::string& problem,
+                         const std::string& fix) const {
+    throw InputError(source_, channel, (where.empty() ? "" : where + ": ") + problem, fix);
+  }
+
+  void RequireObject(const json& value, const std::string& where) const {
+    if (!value.is_object()) Fail(where, "", "must be a JSON object {...}", "see the campaign format spec");
+  }
+
+  void OnlyKeys(const json& object, const std::string& where, std::initializer_list<std::string_view> keys) const {
+    for (const auto& [key, unused] : object.items()) {
+      bool known = false;
+      for (auto k : keys) known = known || key == k;
+      if (known) continue;
+      std::string accepted;
+      for (auto k : keys) accepted += (accepted.empty() ? "" : ", ") + std::string(k);
+      Fail(where, "", "unknown key '" + key + "'", "use only the keys " + accepted + " (check the spelling)");
+    }
+  }
+
+  const json& Member(const json& object, const std::string& where, const std::string& key) const {
+    auto it = object.find(key);
+    if (it == object.end()) Fail(where, "", "missing key '" + key + "'", "add \"" + key + "\"");
+    return *it;
+  }
+
+  std::string String(const json& object, const std::string& where, const std::string& key) const {
+    const json& value = Member(object, where, key);
+    if (!value.is_string() || value.get<std::string>().empty())
+      Fail(where, "", "'" + key + "' must be a non-empty string", "write it as \"" + key + "\": \"...\"");
+    return value.get<std::string>();
+  }
+
+  // A finite number, > 0 (or >= 0 when zero_allowed).
+  double Number(const json& object, const std::string& where, const std::string& key, bool zero_allowed = false,
+                const std::string& channel = "") const {
+    const json& value = Member(object, where, key);
+    if (!value.is_number())
+      Fail(where, channel, "'" + key + "' must be a number", "write a plain number in SI, e.g. \"" + key + "\": 0.5");
+    double x = value.get<double>();
+    if (!std::isfinite(x) || x < 0.0 || (!zero_allowed && x == 0.0))
+      Fail(where, channel, "'" + key + "' = " + internal::FormatNumber(x) + " is not physical",
+           std::string("give a ") + (zero_allowed ? "non-negative" : "positive") + " value");
+    return x;
+  }
+
+  ChannelSpec Channel(const json& entry, const std::string& where, bool is_excitation, double length_m) const {
+    RequireObject(entry, where);
+    if (is_excitation)
+      OnlyKeys(entry, where, {"channel", "position_m", "quantity", "unit"});
+    else
+      OnlyKeys(entry, where, {"channel", "position_m", "quantity", "unit", "mass_kg"});
+    ChannelSpec spec;
+    spec.channel = String(entry, where, "channel");
+    if (spec.channel == "time_s")
+      Fail(where, spec.channel, "'time_s' is the time column, not a channel", "rename the channel");
+    spec.position_m = Number(entry, where, "position_m", /*zero_allowed=*/true, spec.channel);
+    if (spec.position_m > length_m)
+      Fail(where, spec.channel,
+           "position_m = " + internal::FormatNumber(spec.position_m) + " lies beyond the beam end (length_m = " +
+               internal::FormatNumber(length_m) + ")",
+           "measure x from the clamp, in metres");
+    std::string quantity_name = String(entry, where, "quantity");
+    auto quantity = ParseQuantity(quantity_name);
+    if (is_excitation && quantity != Quantity::kForce)
+      Fail(where, spec.channel, "the excitation quantity is '" + quantity_name + "'", "the excitation must be \"force\"");
+    if (!is_excitation && (!quantity || *quantity == Quantity::kForce))
+      Fail(where, spec.channel, "unknown sensor quantity '" + quantity_name + "'",
+           "use \"acceleration\", \"velocity\" or \"displacement\"");
+    spec.quantity = *quantity;
+    spec.unit = String(entry, where, "unit");
+    auto factor = UnitToSiFactor(spec.quantity, spec.unit);
+    if (!factor)
+      Fail(where, spec.channel,
+           "unit '" + spec.unit + "' is not accepted for a " + std::string(QuantityName(spec.quantity)),
+           "use one of " + AcceptedUnits(spec.quantity) + " (all accepted units: N, m/s^2, g, m/s, mm/s, m, mm)");
+    spec.to_si_factor = *factor;
+    if (!is_excitation && entry.contains("mass_kg"))
+      spec.mass_kg = Number(entry, where, "mass_kg", /*zero_allowed=*/true, spec.channel);
+    return spec;
+  }
+
+ private:
+  std::string source_;
+};
+
+}  // namespace
+
+std::vector<const ChannelSpec*> Campaign::Channels() const {
+  std::vector<const ChannelSpec*> channels{&excitation};
+  for (const auto& sensor : sensors) channels.push_back(&sensor);
+  return channels;
+}
+
+Campaign ParseCampaign(std::string_view json_text, const std::filesystem::path& folder, const std::string& source) {
+  Reader reader(source);
+  json root;
+  try {
+    root = json::parse(json_text);
+  } catch (const json::parse_error& e) {
+    reader.Fail("", "", std::string("not valid JSON (") + e.what() + ")", "correct the JSON syntax at that byte");
+  }
+  reader.RequireObject(root, "");
+  reader.OnlyKeys(root, "", {"format", "name", "beam", "excitation", "sensors", "steps", "sample_rate_Hz"});
+
+  Campaign campaign;
+  campaign.folder = folder;
+  std::string format = reader.String(root, "", "format");
+  if (format != kCampaignFormat)
+    reader.Fail("", "", "format '" + format + "' is not supported",
+                "this beamid reads \"format\": \"" + std::string(kCampaignFormat) + "\"");
+  if (root.contains("name")) campaign.name = reader.String(root, "", "name");
+
+  const json& beam = reader.Member(root, "", "beam");
+  reader.RequireObject(beam, "beam");
+  reader.OnlyKeys(beam, "beam", {"length_m", "width_m", "thickness_m", "youngs_modulus_Pa", "density_kg_m3"});
+  campaign.beam.length_m = reader.Number(beam, "beam", "length_m");
+  campaign.beam.width_m = reader.Number(beam, "beam", "width_m");
+  campaign.beam.thickness_m = reader.Number(beam, "beam", "thickness_m");
+  campaign.beam.youngs_modulus_Pa = reader.Number(beam, "beam", "youngs_modulus_Pa");
+  campaign.beam.density_kg_m3 = reader.Number(beam, "beam", "density_kg_m3");
+
+  campaign.excitation =
+      reader.Channel(reader.Member(root, "", "excitation"), "excitation", true, campaign.beam.length_m);
+
+  const json& sensors = reader.Member(root, "", "sensors");
+  if (!sensors.is_array() || sensors.empty())
+    reader.Fail("", "", "'sensors' must be a non-empty array", "list at least one response channel");
+  std::set<std::string> names{campaign.excitation.channel};
+  for (std::size_t i = 0; i < sensors.size(); ++i) {
+    std::string where = "sensors[" + std::to_string(i) + "]";
+    campaign.sensors.push_back(reader.Channel(sensors[i], where, false, campaign.beam.length_m));
+    if (!names.insert(campaign.sensors.back().channel).second)
+      reader.Fail(where, campaign.sensors.back().channel, "the channel name is used twice",
+                  "give every channel its own column name");
+  }
+
+  const json& steps = reader.Member(root, "", "steps");
+  if (!steps.is_array() || steps.empty())
+    reader.Fail("", "", "'steps' must be a non-empty array", "list one entry per recording");
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    std::string where = "steps[" + std::to_string(i) + "]";
+    reader.RequireObject(steps[i], where);
+    reader.OnlyKeys(steps[i], where, {"file", "frequency_Hz", "level"});
+    Step step;
+    step.file = reader.String(steps[i], where, "file");
+    step.frequency_hz = reader.Number(steps[i], where, "frequency_Hz");
+    step.level = reader.String(steps[i], where, "level");
+    campaign.steps.push_back(std::move(step));
+  }
+  if (root.contains("sample_rate_Hz")) campaign.sample_rate_hz = reader.Number(root, "", "sample_rate_Hz");
+  return campaign;
+}
+
+Campaign ReadCampaign(const std::filesystem::path& folder) {
+  const std::filesystem::path file = folder / "campaign.json";
+  std::ifstream stream(file, std::ios::binary);
+  if (!stream)
+    throw InputError(file.string(), "", "cannot open the campaign description",
+                     "give the folder that holds campaign.json (and check read permissions)");
+  std::ostringstream text;
+  text << stream.rdbuf();
+  Campaign campaign = ParseCampaign(text.str(), folder, file.string());
+  for (std::size_t i = 0; i < campaign.steps.size(); ++i) {
+    const auto path = campaign.StepPath(campaign.steps[i]);
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(path, error))
+      throw InputError(path.string(), "",
+                       "recording of steps[" + std::to_string(i) + "] is missing (named in " + file.string() + ")",
+                       "copy the recording into the campaign folder or correct its \"file\" entry");
+  }
+  return campaign;
+}
+
+}  // namespace beamid::signal

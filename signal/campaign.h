@@ -1,0 +1,74 @@
+// A stepped-sine campaign (/work/shared/spec/campaign-format.md, format
+// "stepped-sine-campaign/1"): the beam's nominal properties, the force channel,
+// the response channels and the list of steps (one recording per nominal
+// generator frequency and level). ReadCampaign validates campaign.json
+// strictly — unknown keys, missing or non-physical values, unknown quantities
+// or units, duplicate channels, missing recording files — and throws
+// InputError (a std::invalid_argument) naming the file, the entry and the fix.
+// Values are stored in SI; each channel keeps its unit's factor to SI, which
+// the recording reader applies.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "signal/quantity.h"
+
+namespace beamid::signal {
+
+inline constexpr std::string_view kCampaignFormat = "stepped-sine-campaign/1";
+
+// Nominal uniform Euler–Bernoulli beam, clamped at x = 0, on the support at x = L.
+struct BeamNominal {
+  double length_m = 0.0;
+  double width_m = 0.0;
+  double thickness_m = 0.0;
+  double youngs_modulus_Pa = 0.0;
+  double density_kg_m3 = 0.0;
+};
+
+// One channel of the recordings: the force transducer or a response sensor.
+struct ChannelSpec {
+  std::string channel;        // column name in the recording files
+  double position_m = 0.0;    // x from the clamp
+  Quantity quantity = Quantity::kForce;
+  std::string unit;           // unit in the files, as written in campaign.json
+  double to_si_factor = 1.0;  // SI value = factor · file value
+  std::optional<double> mass_kg;  // sensor mass, when the engineer knows it
+};
+
+struct Step {
+  std::string file;           // relative to the campaign folder
+  double frequency_hz = 0.0;  // nominal generator frequency ("frequency_Hz")
+  std::string level;          // label grouping the steps of one sweep
+};
+
+struct Campaign {
+  std::filesystem::path folder;
+  std::string name;
+  BeamNominal beam;
+  ChannelSpec excitation;
+  std::vector<ChannelSpec> sensors;
+  std::vector<Step> steps;  // in the order they were run
+  std::optional<double> sample_rate_hz;  // "sample_rate_Hz", when given
+
+  // The force channel first, then the sensors in campaign order: the column
+  // order of every Recording.
+  std::vector<const ChannelSpec*> Channels() const;
+  // Full path of a step's recording.
+  std::filesystem::path StepPath(const Step& step) const { return folder / step.file; }
+};
+
+// Reads and validates folder/campaign.json; also checks that every step's
+// recording exists. Throws InputError.
+Campaign ReadCampaign(const std::filesystem::path& folder);
+
+// The same validation on campaign.json text already in memory; source names
+// the file in messages. Recording files are not checked.
+Campaign ParseCampaign(std::string_view json_text, const std::filesystem::path& folder,
+                       const std::string& source);
+
+}  // namespace beamid::signal

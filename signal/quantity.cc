@@ -1,0 +1,80 @@
+#include "signal/quantity.h"
+
+#include <array>
+#include <stdexcept>
+
+namespace beamid::signal {
+namespace {
+
+struct UnitEntry {
+  Quantity quantity;
+  std::string_view unit;
+  double to_si;
+};
+
+constexpr double kStandardGravity_m_s2 = 9.80665;
+
+constexpr std::array<UnitEntry, 7> kUnits = {{
+    {Quantity::kForce, "N", 1.0},
+    {Quantity::kAcceleration, "m/s^2", 1.0},
+    {Quantity::kAcceleration, "g", kStandardGravity_m_s2},
+    {Quantity::kVelocity, "m/s", 1.0},
+    {Quantity::kVelocity, "mm/s", 1e-3},
+    {Quantity::kDisplacement, "m", 1.0},
+    {Quantity::kDisplacement, "mm", 1e-3},
+}};
+
+constexpr std::array<std::pair<Quantity, std::string_view>, 4> kNames = {{
+    {Quantity::kForce, "force"},
+    {Quantity::kAcceleration, "acceleration"},
+    {Quantity::kVelocity, "velocity"},
+    {Quantity::kDisplacement, "displacement"},
+}};
+
+}  // namespace
+
+std::string_view QuantityName(Quantity quantity) {
+  for (const auto& [q, name] : kNames)
+    if (q == quantity) return name;
+  return "unknown";
+}
+
+std::optional<Quantity> ParseQuantity(std::string_view name) {
+  for (const auto& [q, n] : kNames)
+    if (n == name) return q;
+  return std::nullopt;
+}
+
+std::string_view SiUnit(Quantity quantity) {
+  for (const auto& entry : kUnits)
+    if (entry.quantity == quantity && entry.to_si == 1.0) return entry.unit;
+  return "";
+}
+
+std::optional<double> UnitToSiFactor(Quantity quantity, std::string_view unit) {
+  for (const auto& entry : kUnits)
+    if (entry.quantity == quantity && entry.unit == unit) return entry.to_si;
+  return std::nullopt;
+}
+
+std::string AcceptedUnits(Quantity quantity) {
+  std::string list;
+  for (const auto& entry : kUnits) {
+    if (entry.quantity != quantity) continue;
+    if (!list.empty()) list += ", ";
+    list += entry.unit;
+  }
+  return list;
+}
+
+int DerivativeOrder(Quantity quantity) {
+  switch (quantity) {
+    case Quantity::kDisplacement: return 0;
+    case Quantity::kVelocity: return 1;
+    case Quantity::kAcceleration: return 2;
+    case Quantity::kForce: break;
+  }
+  throw std::invalid_argument("a force is not a time derivative of a displacement; it cannot be converted");
+}
+
+}  // namespace beamid::signal

@@ -1,0 +1,35 @@
+// Physical quantities a campaign channel carries and the units the campaign
+// format (stepped-sine-campaign/1) accepts for each:
+//     force N;  acceleration m/s^2, g (= 9.80665 m/s^2);  velocity m/s, mm/s;
+//     displacement m, mm.
+// A value v in unit u is v·UnitToSiFactor(q, u) in SI. Inside beamid every
+// number is SI.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace beamid::signal {
+
+enum class Quantity { kForce, kAcceleration, kVelocity, kDisplacement };
+
+// "force", "acceleration", "velocity", "displacement" (the campaign's words).
+std::string_view QuantityName(Quantity quantity);
+std::optional<Quantity> ParseQuantity(std::string_view name);
+
+// The SI unit every value of the quantity is stored in: "N", "m/s^2", "m/s", "m".
+std::string_view SiUnit(Quantity quantity);
+
+// Factor to SI, or nullopt when the unit is not one the format accepts for
+// this quantity (e.g. "mm" for an acceleration).
+std::optional<double> UnitToSiFactor(Quantity quantity, std::string_view unit);
+
+// "m/s^2, g": the accepted units of a quantity, for error messages.
+std::string AcceptedUnits(Quantity quantity);
+
+// Number of time derivatives from displacement: displacement 0, velocity 1,
+// acceleration 2. Force has none (throws std::invalid_argument).
+int DerivativeOrder(Quantity quantity);
+
+}  // namespace beamid::signal

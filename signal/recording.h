@@ -1,0 +1,43 @@
+// One step's recording: uniformly sampled channels in SI units, read from the
+// campaign's CSV format (header "time_s,<channel>,..." in any column order,
+// "." decimal mark). Columns are reordered to Campaign::Channels() order:
+// the force first, then the sensors as campaign.json lists them.
+// ReadRecording parses with std::from_chars (no per-value allocation) and
+// validates the file (signal/recording_validator.h); every problem is an
+// InputError naming the file, the channel and the line.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "signal/campaign.h"
+#include "signal/recording_validator.h"
+
+namespace beamid::signal {
+
+struct Recording {
+  std::string file;                   // where it came from, for messages
+  std::vector<std::string> channels;  // force first, then sensors
+  double sample_rate_hz = 0.0;
+  double start_time_s = 0.0;          // time_s of the first sample
+  Eigen::MatrixXd samples;            // SI; rows = samples, one column per channel
+
+  int NumSamples() const { return static_cast<int>(samples.rows()); }
+  double Duration_s() const { return NumSamples() / sample_rate_hz; }
+  // Column of a channel, or -1.
+  int ChannelIndex(std::string_view channel) const;
+};
+
+// Reads and validates campaign.folder/step.file.
+Recording ReadRecording(const Campaign& campaign, const Step& step, const RecordingChecks& checks = {});
+
+// Parses CSV text already in memory (source names it in messages) and
+// validates it like ReadRecording.
+Recording ParseRecording(std::string_view csv_text, const Campaign& campaign, const Step& step,
+                         const std::string& source, const RecordingChecks& checks = {});
+
+}  // namespace beamid::signal

@@ -1,0 +1,43 @@
+// Checks that a recording can represent its step, before any estimation:
+//  - time: strictly increasing and uniform (every t_n within
+//    max_time_deviation_samples·Δt of t_0 + n·Δt, Δt from the end points), and
+//    consistent with the campaign's sample_rate_Hz when that is given;
+//  - length: at least min_periods periods of the nominal frequency;
+//  - per channel: no clipping (a run of identical samples at the channel's
+//    extreme value) and no dropout (a run of identical samples elsewhere,
+//    e.g. exact zeros). A run counts when it is at least
+//    max(min_run_samples, min_run_fraction_of_period · samples per period)
+//    long: a sine quantised to 4 significant digits repeats a value over less
+//    than 0.5 % of a period at its peak, a clipped or dropped signal for far
+//    longer.
+// NaN/Inf values are rejected while parsing (signal/recording.h).
+#pragma once
+
+#include <span>
+#include <string>
+
+#include <Eigen/Core>
+
+namespace beamid::signal {
+
+struct RecordingChecks {
+  double min_periods = 10.0;
+  double max_time_deviation_samples = 0.1;
+  double sample_rate_tolerance_rel = 1e-3;
+  int min_run_samples = 4;
+  double min_run_fraction_of_period = 0.02;
+};
+
+// Returns the sample rate [Hz] implied by the time column; throws InputError.
+// expected_sample_rate_hz <= 0 means "not given". first_line is the file line
+// of time_s[0], for messages.
+double ValidateTimeColumn(std::span<const double> time_s, double expected_sample_rate_hz, const std::string& file,
+                          int first_line, const RecordingChecks& checks);
+
+// Length, clipping and dropout checks of every column (channel names in
+// column order); throws InputError naming the channel, the time and the fix.
+void ValidateChannels(const Eigen::MatrixXd& samples, std::span<const std::string> channels, double sample_rate_hz,
+                      double start_time_s, double nominal_frequency_hz, const std::string& file,
+                      const RecordingChecks& checks);
+
+}  // namespace beamid::signal

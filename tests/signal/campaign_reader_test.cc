@@ -1,0 +1,306 @@
+// Campaign and recording reader: unit conversion, column order, and one test
+// per bad input of the format, each checking that the error names the file,
+// the channel and a fix.
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "signal/campaign.h"
+#include "signal/input_error.h"
+#include "signal/recording.h"
+
+namespace beamid::signal {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kRateHz = 1000.0;
+constexpr double kFrequencyHz = 50.0;
+
+std::string CampaignJson(const std::string& acc_unit = "g", const std::string& extra_step_key = "") {
+  return R"({
+  "format": "stepped-sine-campaign/1",
+  "name": "reader test",
+  "beam": {"length_m": 0.6, "width_m": 0.04, "thickness_m": 0.005, "youngs_modulus_Pa": 2.1e11, "density_kg_m3": 7850},
+  "excitation": {"channel": "force", "position_m": 0.57, "quantity": "force", "unit": "N"},
+  "sensors": [
+    {"channel": "acc1", "position_m": 0.1, "quantity": "acceleration", "unit": ")" +
+         acc_unit + R"("},
+    {"channel": "vel2", "position_m": 0.3, "quantity": "velocity", "unit": "mm/s", "mass_kg": 0.004}
+  ],
+  "steps": [{"file": "step_000.csv", "frequency_Hz": 50.0, "level": "low")" +
+         extra_step_key + R"(}]
+})";
+}
+
+// Force = sin, acc1 (in g) = 2 cos, vel2 (in mm/s) = 300 sin(2·), columns in
+// a different order than campaign.json.
+std::string RecordingCsv(int num_samples = 1000, double acc_clip_g = 1e9) {
+  std::string csv = "acc1,time_s, vel2 ,force\n";
+  char line[160];
+  for (int n = 0; n < num_samples; ++n) {
+    const double t = n / kRateHz;
+    const double phase = 2.0 * std::numbers::pi * kFrequencyHz * t;
+    std::snprintf(line, sizeof line, "%.9f,%.7f,%.6f,%.9f\r\n", std::clamp(2.0 * std::cos(phase), -acc_clip_g, acc_clip_g), t, 300.0 * std::sin(2 * phase),
+                  std::sin(phase) + 0.1);
+    csv += line;
+  }
+  return csv;
+}
+
+class CampaignReaderTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    folder_ = fs::temp_directory_path() /
+              ("beamid_reader_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(folder_);
+    fs::create_directories(folder_);
+    Write("campaign.json", CampaignJson());
+    Write("step_000.csv", RecordingCsv());
+  }
+  void TearDown() override { fs::remove_all(folder_); }
+
+  void Write(const std::string& name, const std::string& text) { std::ofstream(folder_ / name) << text; }
+
+  // Reads the campaign and its one recording; returns the InputError thrown.
+  InputError ExpectError() {
+    try {
+      Campaign campaign = ReadCampaign(folder_);
+      ReadRecording(campaign, campaign.steps.front());
+    } catch (const InputError& e) {
+      return e;
+    }
+    ADD_FAILURE() << "no InputError thrown";
+    return InputError("", "", "", "");
+  }
+
+  // Replaces sample rows [first, last) of the recording by a transform of
+  // their values (column index as in the CSV: acc1, time_s, vel2, force).
+  void EditRecording(int first, int last, int column, const std::string& value) {
+    std::string csv = RecordingCsv();
+    std::string out;
+    std::size_t pos = 0;
+    int row = -1;
+    while (pos < csv.size()) {
+      std::size_t eol = csv.find('\n', pos);
+      std::string line = csv.substr(pos, eol - pos + 1);
+      if (row >= first && row < last) {
+        std::vector<std::string> fields;
+        std::size_t p = 0, q;
+        while ((q = line.find(',', p)) != std::string::npos) {
+          fields.push_back(line.substr(p, q - p));
+          p = q + 1;
+        }
+        fields.push_back(line.substr(p, line.size() - p - 2));
+        fields[static_cast<std::size_t>(column)] = value;
+        line.clear();
+        for (std::size_t i = 0; i < fields.size(); ++i) line += (i ? "," : "") + fields[i];
+        line += "\n";
+      }
+      out += line;
+      pos = eol + 1;
+      ++row;
+    }
+    Write("step_000.csv", out);
+  }
+
+  std::string StepFile() const { return (folder_ / "step_000.csv").string(); }
+  std::string CampaignFile() const { return (folder_ / "campaign.json").string(); }
+
+  fs::path folder_;
+};
+
+// The error's message names the file, the channel and gives a fix.
+void ExpectNames(const InputError& e, const std::string& file, const std::string& channel, const std::string& problem) {
+  const std::string message = e.what();
+  EXPECT_EQ(e.file(), file) << message;
+  EXPECT_EQ(e.channel(), channel) << message;
+  EXPECT_NE(message.find(file), std::string::npos) << message;
+  if (!channel.empty()) {
+    EXPECT_NE(message.find("'" + channel + "'"), std::string::npos) << message;
+  }
+  EXPECT_NE(message.find(problem), std::string::npos) << message;
+  EXPECT_NE(message.find("Fix: "), std::string::npos) << message;
+}
+
+TEST_F(CampaignReaderTest, ReadsCampaignAndConvertsUnitsToSi) {
+  Campaign campaign = ReadCampaign(folder_);
+  EXPECT_EQ(campaign.name, "reader test");
+  EXPECT_DOUBLE_EQ(campaign.beam.youngs_modulus_Pa, 2.1e11);
+  ASSERT_EQ(campaign.sensors.size(), 2u);
+  EXPECT_EQ(campaign.sensors[0].quantity, Quantity::kAcceleration);
+  EXPECT_EQ(campaign.sensors[1].mass_kg.value_or(-1.0), 0.004);
+  EXPECT_FALSE(campaign.sensors[0].mass_kg.has_value());
+  ASSERT_EQ(campaign.steps.size(), 1u);
+  EXPECT_DOUBLE_EQ(campaign.steps[0].frequency_hz, 50.0);
+
+  Recording recording = ReadRecording(campaign, campaign.steps[0]);
+  ASSERT_EQ(recording.channels, (std::vector<std::string>{"force", "acc1", "vel2"}));
+  EXPECT_EQ(recording.NumSamples(), 1000);
+  EXPECT_NEAR(recording.sample_rate_hz, kRateHz, 1e-6);
+  for (int n : {0, 3, 517, 999}) {
+    const double phase = 2.0 * std::numbers::pi * kFrequencyHz * n / kRateHz;
+    EXPECT_NEAR(recording.samples(n, 0), std::sin(phase) + 0.1, 1e-9);
+    EXPECT_NEAR(recording.samples(n, 1), 2.0 * 9.80665 * std::cos(phase), 1e-8);  // g -> m/s^2
+    EXPECT_NEAR(recording.samples(n, 2), 0.3 * std::sin(2 * phase), 1e-9);        // mm/s -> m/s
+  }
+}
+
+TEST_F(CampaignReaderTest, MissingCampaignJson) {
+  fs::remove(folder_ / "campaign.json");
+  ExpectNames(ExpectError(), CampaignFile(), "", "cannot open");
+}
+
+TEST_F(CampaignReaderTest, InvalidJson) {
+  Write("campaign.json", "{\"format\": ");
+  ExpectNames(ExpectError(), CampaignFile(), "", "not valid JSON");
+}
+
+TEST_F(CampaignReaderTest, WrongFormatString) {
+  std::string json = CampaignJson();
+  json.replace(json.find("campaign/1"), 10, "campaign/2");
+  Write("campaign.json", json);
+  ExpectNames(ExpectError(), CampaignFile(), "", "stepped-sine-campaign/2");
+}
+
+TEST_F(CampaignReaderTest, UnknownUnitNamesChannelAndAcceptedUnits) {
+  Write("campaign.json", CampaignJson("ft/s^2"));
+  InputError e = ExpectError();
+  ExpectNames(e, CampaignFile(), "acc1", "unit 'ft/s^2'");
+  EXPECT_NE(std::string(e.what()).find("m/s^2, g"), std::string::npos) << e.what();
+}
+
+TEST_F(CampaignReaderTest, UnitOfWrongQuantity) {
+  Write("campaign.json", CampaignJson("mm"));
+  ExpectNames(ExpectError(), CampaignFile(), "acc1", "not accepted for a acceleration");
+}
+
+TEST_F(CampaignReaderTest, UnknownKeyIsReportedWithAcceptedKeys) {
+  Write("campaign.json", CampaignJson("g", R"(, "frequncy": 3)"));
+  InputError e = ExpectError();
+  ExpectNames(e, CampaignFile(), "", "steps[0]: unknown key 'frequncy'");
+  EXPECT_NE(std::string(e.what()).find("frequency_Hz"), std::string::npos);
+}
+
+TEST_F(CampaignReaderTest, NonPhysicalBeamValue) {
+  std::string json = CampaignJson();
+  json.replace(json.find("\"density_kg_m3\": 7850"), 21, "\"density_kg_m3\": -1");
+  Write("campaign.json", json);
+  ExpectNames(ExpectError(), CampaignFile(), "", "beam: 'density_kg_m3' = -1 is not physical");
+}
+
+TEST_F(CampaignReaderTest, MissingRecordingFile) {
+  fs::remove(folder_ / "step_000.csv");
+  InputError e = ExpectError();
+  ExpectNames(e, StepFile(), "", "steps[0] is missing");
+}
+
+TEST_F(CampaignReaderTest, UnknownColumnInRecording) {
+  std::string csv = RecordingCsv();
+  csv.replace(0, 4, "acc9");
+  Write("step_000.csv", csv);
+  ExpectNames(ExpectError(), StepFile(), "acc9", "unknown column");
+}
+
+TEST_F(CampaignReaderTest, ChannelMissingFromRecording) {
+  std::string csv = RecordingCsv();
+  csv.replace(csv.find("vel2"), 4, "time");
+  Write("step_000.csv", csv);
+  // "time" is unknown: the reader stops at the first wrong header entry.
+  ExpectNames(ExpectError(), StepFile(), "time", "unknown column");
+  std::string json = CampaignJson();
+  json.replace(json.find("\"vel2\""), 6, "\"vel3\"");
+  Write("campaign.json", json);
+  Write("step_000.csv", RecordingCsv());
+  ExpectNames(ExpectError(), StepFile(), "vel2", "unknown column");
+}
+
+TEST_F(CampaignReaderTest, CampaignChannelWithoutColumn) {
+  std::string csv = "acc1,time_s,force\n";
+  for (int n = 0; n < 1000; ++n) csv += std::to_string(std::sin(n)) + "," + std::to_string(n / kRateHz) + ",1\n";
+  Write("step_000.csv", csv);
+  ExpectNames(ExpectError(), StepFile(), "vel2", "missing from the header");
+}
+
+TEST_F(CampaignReaderTest, NaNSample) {
+  EditRecording(412, 413, 2, "nan");
+  ExpectNames(ExpectError(), StepFile(), "vel2", "NaN or infinite value at line 414");
+}
+
+TEST_F(CampaignReaderTest, UnreadableNumber) {
+  EditRecording(20, 21, 0, "1,5");
+  InputError e = ExpectError();
+  EXPECT_EQ(e.file(), StepFile());
+  EXPECT_NE(std::string(e.what()).find("line 22"), std::string::npos) << e.what();
+  EditRecording(20, 21, 3, "0.5V");
+  ExpectNames(ExpectError(), StepFile(), "force", "cannot read '0.5V' at line 22");
+}
+
+TEST_F(CampaignReaderTest, NonIncreasingTime) {
+  EditRecording(100, 101, 1, "0.0985");
+  ExpectNames(ExpectError(), StepFile(), "time_s", "time does not increase at line 102");
+}
+
+TEST_F(CampaignReaderTest, NonUniformTime) {
+  // A missing sample: the time stamps after row 500 jump by two periods.
+  std::string csv = RecordingCsv();
+  std::size_t row500 = 0;
+  for (int i = 0; i < 501; ++i) row500 = csv.find('\n', row500) + 1;
+  std::size_t row501 = csv.find('\n', row500) + 1;
+  csv.erase(row500, row501 - row500);
+  Write("step_000.csv", csv);
+  ExpectNames(ExpectError(), StepFile(), "time_s", "non-uniform sampling at line");
+}
+
+TEST_F(CampaignReaderTest, TooShortRecord) {
+  Write("step_000.csv", RecordingCsv(150));  // 7.5 periods of 50 Hz
+  ExpectNames(ExpectError(), StepFile(), "", "too short");
+}
+
+TEST_F(CampaignReaderTest, ClippedChannel) {
+  // acc1 = 2 cos through an amplifier that saturates at 1.5 g: every peak
+  // is flat over 4-5 samples.
+  Write("step_000.csv", RecordingCsv(1000, 1.5));
+  ExpectNames(ExpectError(), StepFile(), "acc1", "clipped: ");
+}
+
+TEST_F(CampaignReaderTest, Dropout) {
+  EditRecording(600, 610, 3, "0");
+  ExpectNames(ExpectError(), StepFile(), "force", "dropout: 10 identical samples (0) from t = 0.6 s");
+}
+
+TEST_F(CampaignReaderTest, DisconnectedChannel) {
+  EditRecording(0, 1000, 2, "0");
+  ExpectNames(ExpectError(), StepFile(), "vel2", "constant");
+}
+
+TEST_F(CampaignReaderTest, WrongNumberOfValues) {
+  EditRecording(30, 31, 2, "1,2");
+  ExpectNames(ExpectError(), StepFile(), "force", "line 32 does not have one value per header column");
+}
+
+TEST_F(CampaignReaderTest, SampleRateDisagreesWithCampaign) {
+  std::string json = CampaignJson();
+  json.insert(json.rfind('}'), ", \"sample_rate_Hz\": 1024");
+  Write("campaign.json", json);
+  ExpectNames(ExpectError(), StepFile(), "time_s", "sample_rate_Hz = 1024");
+}
+
+TEST(QuantityTest, UnitFactorsAndNames) {
+  EXPECT_EQ(UnitToSiFactor(Quantity::kAcceleration, "g").value(), 9.80665);
+  EXPECT_EQ(UnitToSiFactor(Quantity::kDisplacement, "mm").value(), 1e-3);
+  EXPECT_FALSE(UnitToSiFactor(Quantity::kVelocity, "m").has_value());
+  EXPECT_EQ(ParseQuantity("velocity"), Quantity::kVelocity);
+  EXPECT_FALSE(ParseQuantity("jerk").has_value());
+  EXPECT_EQ(SiUnit(Quantity::kAcceleration), "m/s^2");
+  EXPECT_EQ(DerivativeOrder(Quantity::kAcceleration), 2);
+  EXPECT_THROW(DerivativeOrder(Quantity::kForce), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace beamid::signal
