@@ -1,0 +1,243 @@
+#include "hb/multiple_scales.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <stdexcept>
+#include <string>
+
+namespace beamid::hb {
+namespace {
+
+// Within this relative distance of ω0 the non-resonant receptance (a
+// difference of two large numbers) is interpolated from both sides.
+constexpr double kResonanceGuard = 1e-4;
+
+// Positive real roots of c3·s³ + c2·s² + c1·s + c0 with c0 < 0 < c3: the
+// cubic is split into monotone pieces at its critical points and each piece
+// with a sign change is bisected. Robust where the roots nearly merge (fold).
+std::vector<double> PositiveCubicRoots(double c3, double c2, double c1, double c0) {
+  auto p = [&](double s) { return ((c3 * s + c2) * s + c1) * s + c0; };
+  std::vector<double> breaks = {0.0};
+  const double qa = 3.0 * c3, qb = 2.0 * c2, qc = c1;
+  const double discriminant = qb * qb - 4.0 * qa * qc;
+  if (discriminant > 0.0) {
+    const double q = -0.5 * (qb + std::copysign(std::sqrt(discriminant), qb));
+    for (double s : {q / qa, q != 0.0 ? qc / q : 0.0})
+      if (s > 0.0) breaks.push_back(s);
+    std::sort(breaks.begin(), breaks.end());
+  }
+  double upper = std::max(breaks.back(), std::cbrt(std::abs(c0) / c3));
+  if (c1 > 0.0) upper = std::max(upper, std::abs(c0) / c1);
+  while (p(upper) <= 0.0) upper *= 2.0;
+  breaks.push_back(upper);
+  std::vector<double> roots;
+  for (std::size_t i = 0; i + 1 < breaks.size(); ++i) {
+    double a = breaks[i], b = breaks[i + 1];
+    double fa = p(a);
+    const double fb = p(b);
+    if (fa == 0.0 && a > 0.0) roots.push_back(a);
+    if ((fa > 0.0) == (fb > 0.0) || fa == 0.0) continue;
+    for (int iteration = 0; iteration < 400; ++iteration) {
+      const double m = 0.5 * (a + b);
+      if (m == a || m == b) break;
+      const double fm = p(m);
+      if ((fm > 0.0) == (fa > 0.0)) {
+        a = m;
+        fa = fm;
+      } else {
+        b = m;
+      }
+    }
+    roots.push_back(0.5 * (a + b));
+  }
+  return roots;
+}
+
+}  // namespace
+
+MultipleScalesModel::MultipleScalesModel(const BeamProperties& beam,
+                                         const PolynomialSupportLaw::Coefficients& support,
+                                         double force_position_m, const Options& options)
+    : beam_(beam),
+      support_(support),
+      force_position_m_(force_position_m),
+      options_(options),
+      closed_form_(beam, support.k1_Nm_rad) {
+  for (double value : {support.k2_Nm_rad2, support.k3_Nm_rad3, support.c_Nms_rad})
+    if (!std::isfinite(value))
+      throw std::invalid_argument("multiple-scales model: the support coefficients k2, k3 and c must be finite");
+  if (support.c_Nms_rad < 0.0)
+    throw std::invalid_argument("multiple-scales model: the support damping c must be >= 0 N*m*s/rad");
+  if (!(force_position_m >= 0.0 && force_position_m <= beam.length_m))
+    throw std::invalid_argument("multiple-scales model: the force position " + std::to_string(force_position_m) +
+                                " m lies outside the beam [0, " + std::to_string(beam.length_m) + "] m");
+  mode_ = closed_form_.ModeShape(0);
+  omega0_rad_s_ = closed_form_.NaturalFrequencies_rad_s(1).front();
+  modal_mass_kg_ = beam.MassPerLength_kg_m() * mode_.SquareIntegral(0);
+  modal_loss_stiffness_N_m_ = beam.loss_factor * beam.BendingStiffness_Nm2() * mode_.SquareIntegral(2);
+  support_slope_per_m_ = mode_.Value(beam.length_m, 1);
+  mode_at_force_ = mode_.Value(force_position_m);
+  static_rotation_per_moment_rad_Nm_ = closed_form_.RotationPerEndMoment_rad_Nm(0.0);
+}
+
+double MultipleScalesModel::HarmonicBase_rad_s(double omega_rad_s) const {
+  if (!(std::isfinite(omega_rad_s) && omega_rad_s > 0.0))
+    throw std::invalid_argument("multiple-scales model: the excitation frequency must be a positive number of rad/s");
+  return options_.harmonic_frequency == HarmonicFrequency::kExcitation ? omega_rad_s : omega0_rad_s_;
+}
+
+Complex MultipleScalesModel::ModalDynamicStiffness_N_m(double omega_rad_s) const {
+  const double w0 = omega0_rad_s_;
+  const double detuning = options_.harmonic_frequency == HarmonicFrequency::kExcitation
+                              ? w0 * w0 - omega_rad_s * omega_rad_s
+                              : 2.0 * w0 * (w0 - omega_rad_s);
+  return {modal_mass_kg_ * detuning, modal_loss_stiffness_N_m_};
+}
+
+double MultipleScalesModel::CubicCoefficient_N_m3(double omega_rad_s) const {
+  const double base = HarmonicBase_rad_s(omega_rad_s);
+  const double g2 = closed_form_.RotationPerEndMoment_rad_Nm(2.0 * base);
+  const double k2 = support_.k2_Nm_rad2;
+  const double slope2 = support_slope_per_m_ * support_slope_per_m_;
+  const double gamma =
+      (2.0 * k2 * k2 * (2.0 * static_rotation_per_moment_rad_Nm_ + g2) - 3.0 * support_.k3_Nm_rad3) * slope2 * slope2;
+  if (!std::isfinite(gamma))
+    throw std::runtime_error("multiple-scales model: 2*Omega = " + std::to_string(2.0 * base) +
+                             " rad/s is a natural frequency of the linear beam (internal resonance)");
+  return gamma;
+}
+
+Complex MultipleScalesModel::SupportMomentFirstHarmonic_Nm(Complex modal_phasor_m, double omega_rad_s) const {
+  const double base = HarmonicBase_rad_s(omega_rad_s);
+  const double k2 = support_.k2_Nm_rad2;
+  const Complex theta0 = modal_phasor_m * support_slope_per_m_;
+  const double theta0_abs2 = std::norm(theta0);
+  const double theta_static = -k2 * theta0_abs2 * static_rotation_per_moment_rad_Nm_ / 2.0;
+  const Complex theta2 = -k2 * theta0 * theta0 * closed_form_.RotationPerEndMoment_rad_Nm(2.0 * base) / 2.0;
+  return Complex(0.0, base * support_.c_Nms_rad) * theta0 + 0.75 * support_.k3_Nm_rad3 * theta0_abs2 * theta0 +
+         2.0 * k2 * (theta0 * theta_static + std::conj(theta0) * theta2 / 2.0);
+}
+
+Complex MultipleScalesModel::SolvabilityResidual_N(Complex modal_phasor_m, double omega_rad_s,
+                                                  Complex force_phasor_N) const {
+  return ModalDynamicStiffness_N_m(omega_rad_s) * modal_phasor_m - force_phasor_N * mode_at_force_ +
+         support_slope_per_m_ * SupportMomentFirstHarmonic_Nm(modal_phasor_m, omega_rad_s);
+}
+
+std::vector<Complex> MultipleScalesModel::Solve(double omega_rad_s, Complex force_phasor_N) const {
+  const double base = HarmonicBase_rad_s(omega_rad_s);
+  const Complex force_modal = force_phasor_N * mode_at_force_;
+  if (!std::isfinite(std::abs(force_modal)))
+    throw std::invalid_argument("multiple-scales model: the force phasor must be finite");
+  if (force_modal == 0.0) return {Complex(0.0)};
+  const double slope2 = support_slope_per_m_ * support_slope_per_m_;
+  const Complex linear = ModalDynamicStiffness_N_m(omega_rad_s) + Complex(0.0, base * support_.c_Nms_rad * slope2);
+  const double gamma = CubicCoefficient_N_m3(omega_rad_s);
+  // |linear − Γ·s/4|²·s = |F1·w(x_F)|², s = a².
+  const double f2 = std::norm(force_modal);
+  std::vector<double> squares;
+  if (gamma == 0.0) {
+    if (std::norm(linear) == 0.0)
+      throw std::runtime_error("multiple-scales model: undamped linear beam forced at its natural frequency");
+    squares.push_back(f2 / std::norm(linear));
+  } else {
+    squares = PositiveCubicRoots(gamma * gamma / 16.0, -gamma * linear.real() / 2.0, std::norm(linear), -f2);
+  }
+  std::vector<Complex> solutions;
+  for (double s : squares) solutions.push_back(force_modal / (linear - gamma * s / 4.0));
+  std::sort(solutions.begin(), solutions.end(), [](Complex a, Complex b) { return std::abs(a) < std::abs(b); });
+  return solutions;
+}
+
+std::vector<MultipleScalesModel::SweepPoint> MultipleScalesModel::Sweep(const std::vector<double>& omegas_rad_s,
+                                                                        Complex force_phasor_N) const {
+  std::vector<SweepPoint> points;
+  points.reserve(omegas_rad_s.size());
+  for (double omega : omegas_rad_s) points.push_back({omega, Solve(omega, force_phasor_N)});
+  return points;
+}
+
+double MultipleScalesModel::DisplacementPerEndMoment_m_Nm(double position_m, double omega_rad_s) const {
+  const double value = closed_form_.EndMomentShape(omega_rad_s).Value(position_m) / beam_.BendingStiffness_Nm2();
+  if (!std::isfinite(value))
+    throw std::runtime_error("multiple-scales model: " + std::to_string(omega_rad_s) +
+                             " rad/s is a natural frequency of the linear beam (internal resonance)");
+  return value;
+}
+
+namespace {
+
+// f(Ω) − (modal term), evaluated away from ω0 and interpolated across it.
+double SmoothThroughResonance(const std::function<double(double)>& rest, double omega, double omega0) {
+  const double relative = omega / omega0 - 1.0;
+  if (std::abs(relative) >= kResonanceGuard) return rest(omega);
+  const double below = rest(omega0 * (1.0 - kResonanceGuard));
+  const double above = rest(omega0 * (1.0 + kResonanceGuard));
+  const double t = 0.5 * (relative / kResonanceGuard + 1.0);
+  return (1.0 - t) * below + t * above;
+}
+
+}  // namespace
+
+double MultipleScalesModel::NonResonantForce_m_N(double position_m, double omega_rad_s) const {
+  const double ei = beam_.BendingStiffness_Nm2();
+  const double mode_x = mode_.Value(position_m);
+  auto rest = [&](double omega) {
+    const double exact = closed_form_.PointForceShape(omega, force_position_m_).Value(position_m) / ei;
+    return exact - mode_x * mode_at_force_ / (modal_mass_kg_ * (omega0_rad_s_ * omega0_rad_s_ - omega * omega));
+  };
+  return SmoothThroughResonance(rest, omega_rad_s, omega0_rad_s_);
+}
+
+double MultipleScalesModel::NonResonantMoment_m_Nm(double position_m, double omega_rad_s) const {
+  const double mode_x = mode_.Value(position_m);
+  auto rest = [&](double omega) {
+    return DisplacementPerEndMoment_m_Nm(position_m, omega) -
+           mode_x * support_slope_per_m_ / (modal_mass_kg_ * (omega0_rad_s_ * omega0_rad_s_ - omega * omega));
+  };
+  return SmoothThroughResonance(rest, omega_rad_s, omega0_rad_s_);
+}
+
+MultipleScalesModel::Harmonics MultipleScalesModel::Response(double position_m, Complex modal_phasor_m,
+                                                             double omega_rad_s, Complex force_phasor_N) const {
+  if (!(position_m >= 0.0 && position_m <= beam_.length_m))
+    throw std::invalid_argument("multiple-scales model: the response position " + std::to_string(position_m) +
+                                " m lies outside the beam [0, " + std::to_string(beam_.length_m) + "] m");
+  const double base = HarmonicBase_rad_s(omega_rad_s);
+  const Complex u = modal_phasor_m;
+  const double slope = support_slope_per_m_;
+  const double k2 = support_.k2_Nm_rad2;
+  Harmonics h;
+  h.h0_m = -(k2 * slope * slope / 2.0) * std::norm(u) * DisplacementPerEndMoment_m_Nm(position_m, 0.0);
+  h.h1_m = u * mode_.Value(position_m) + force_phasor_N * NonResonantForce_m_N(position_m, base) -
+           SupportMomentFirstHarmonic_Nm(u, omega_rad_s) * NonResonantMoment_m_Nm(position_m, base);
+  h.h2_m = -(k2 * slope * slope / 2.0) * u * u * DisplacementPerEndMoment_m_Nm(position_m, 2.0 * base);
+  const double g2 = closed_form_.RotationPerEndMoment_rad_Nm(2.0 * base);
+  h.h3_m = -(u * u * u * slope * slope * slope / 4.0) * (support_.k3_Nm_rad3 - 2.0 * k2 * k2 * g2) *
+           DisplacementPerEndMoment_m_Nm(position_m, 3.0 * base);
+  return h;
+}
+
+double MultipleScalesModel::Backbone_rad_s(double amplitude_m) const {
+  if (!(amplitude_m >= 0.0 && std::isfinite(amplitude_m)))
+    throw std::invalid_argument("multiple-scales model: the backbone amplitude must be a finite number >= 0 m");
+  const double w0 = omega0_rad_s_;
+  const double shift = amplitude_m * amplitude_m / (4.0 * modal_mass_kg_);
+  if (options_.harmonic_frequency == HarmonicFrequency::kNatural)
+    return w0 - CubicCoefficient_N_m3(w0) * shift / (2.0 * w0);  // 2ω0·(ω0 − Ω) = Γ·a²/4
+  double omega = w0;
+  for (int iteration = 0; iteration < 200; ++iteration) {
+    const double square = w0 * w0 - CubicCoefficient_N_m3(omega) * shift;
+    if (!(square > 0.0))
+      throw std::runtime_error("multiple-scales model: no backbone frequency at amplitude " +
+                               std::to_string(amplitude_m) + " m (softening beyond the model's range)");
+    const double next = std::sqrt(square);
+    if (std::abs(next - omega) <= 1e-14 * w0) return next;
+    omega = next;
+  }
+  throw std::runtime_error("multiple-scales model: the backbone fixed point did not converge at amplitude " +
+                           std::to_string(amplitude_m) + " m");
+}
+
+}  // namespace beamid::hb

@@ -1,0 +1,132 @@
+// The seed's multiple-scales model of the first mode, corrected and
+// generalised to a point force (docs/derivation.md, which numbers every
+// equation against the seed and lists its typos).
+//
+// Beam: EI·y'''' + ρA·ÿ = F(t)·δ(x − x_F); y(0) = y'(0) = 0, y(L) = 0 and
+// EI·y''(L) = −M with M = K1·θ + K2·θ² + K3·θ³ + C·θ̇, θ = y'(L). Ordering
+// K2 ~ ε; K3, C, F ~ ε²; Ω = ω0 + ε²σ. With the modal phasor U (first mode w,
+// max|w| = 1, so y ≈ Re(U·e^{iΩt})·w(x) + …, docs/fourier-convention.md) the
+// solvability condition (corrected Eq. 40) is the complex scalar equation
+//     m_eff·(ω0² − Ω²)·U = F1·w(x_F) − w'(L)·M1(U, Ω),     m_eff = ρA·∫w² dx,
+// where M1 is the first-harmonic phasor of K2·θ² + K3·θ³ + C·θ̇ evaluated on
+// the rotation up to order ε:
+//     θ0 = U·w'(L),  θ_static = −K2·|θ0|²·G(0)/2,  θ_2 = −K2·θ0²·G(2Ω)/2,
+//     M1 = iΩ·C·θ0 + ¾·K3·|θ0|²·θ0 + 2·K2·(θ0·θ_static + conj(θ0)·θ_2/2),
+// G(Ω) = G_θM(Ω) the end rotation per end moment of the plain beam with K1
+// (undamped). The amplitude–frequency relation (a = |U|) follows:
+//     |m_eff·(ω0² − Ω²) − Γ·a²/4 + iΩ·C·w'(L)²|·a = |F1·w(x_F)|,
+//     Γ(Ω) = [2·K2²·(2·G(0) + G(2Ω)) − 3·K3]·w'(L)⁴          [N/m³],
+// a cubic in a² with one or three positive roots; the backbone is
+// Ω² = ω0² − Γ(Ω)·a²/(4·m_eff). K3 > 0 hardens; K2 always softens while
+// 2·G(0) + G(2Ω) > 0 (the seed omits the static term G(0), Eq. 23).
+//
+// Only the force's first harmonic F1 enters (higher force harmonics are
+// outside the ordering). The beam's loss factor η enters the resonant modal
+// term only, as the modal stiffness m_eff·ω0² + iη·EI·∫w''² dx; the
+// non-resonant receptances are undamped.
+#pragma once
+
+#include <complex>
+#include <vector>
+
+#include "hb/beam_properties.h"
+#include "hb/closed_form_beam.h"
+#include "hb/support_law.h"
+
+namespace beamid::hb {
+
+using Complex = std::complex<double>;
+
+// Where the harmonic receptances and the damping moment are evaluated.
+enum class MultipleScalesHarmonicFrequency {
+  // Generalised (default): at Ω, 2Ω, 3Ω and iΩ·C, detuning ω0² − Ω². Exact
+  // in the linear limit at any Ω.
+  kExcitation,
+  // The seed's strict first-order form: at ω0, 2ω0 (λ√2), 3ω0 (λ√3) and
+  // iω0·C, detuning 2ω0·(ω0 − Ω). Agrees with kExcitation to O(ε²).
+  kNatural,
+};
+
+struct MultipleScalesOptions {
+  MultipleScalesHarmonicFrequency harmonic_frequency = MultipleScalesHarmonicFrequency::kExcitation;
+};
+
+class MultipleScalesModel {
+ public:
+  using HarmonicFrequency = MultipleScalesHarmonicFrequency;
+  using Options = MultipleScalesOptions;
+
+  // Displacement phasors at one position [m]: h0 the mean, h1…h3 the
+  // harmonics (x(t) = h0 + Σ Re(h_k·e^{ikΩt})).
+  struct Harmonics {
+    double h0_m = 0.0;
+    Complex h1_m, h2_m, h3_m;
+  };
+  // The steady states at one excitation frequency: one or three modal
+  // phasors U [m], ascending in |U|.
+  struct SweepPoint {
+    double omega_rad_s = 0.0;
+    std::vector<Complex> modal_phasors_m;
+  };
+
+  // Throws std::invalid_argument for a non-physical beam, K1 < 0, C < 0, a
+  // non-finite coefficient or a force position outside [0, L].
+  MultipleScalesModel(const BeamProperties& beam, const PolynomialSupportLaw::Coefficients& support,
+                      double force_position_m, const Options& options = {});
+
+  double NaturalFrequency_rad_s() const { return omega0_rad_s_; }          // ω0
+  double ModalMass_kg() const { return modal_mass_kg_; }                   // m_eff
+  double ModeShape(double position_m) const { return mode_.Value(position_m); }  // w(x)
+  double SupportSlope_per_m() const { return support_slope_per_m_; }     // w'(L)
+  const ClosedFormBeam& linear_beam() const { return closed_form_; }
+
+  // Γ(Ω) [N/m³] of the amplitude–frequency relation.
+  double CubicCoefficient_N_m3(double omega_rad_s) const;
+  // M1(U, Ω) [N·m]: first harmonic of the nonlinear and damping support moment.
+  Complex SupportMomentFirstHarmonic_Nm(Complex modal_phasor_m, double omega_rad_s) const;
+  // m_eff·(ω0² − Ω²)·U − F1·w(x_F) + w'(L)·M1 [N]; zero on a solution.
+  Complex SolvabilityResidual_N(Complex modal_phasor_m, double omega_rad_s, Complex force_phasor_N) const;
+
+  // All steady states U at Ω (the roots of the amplitude–frequency relation,
+  // with their phase), ascending in |U|.
+  std::vector<Complex> Solve(double omega_rad_s, Complex force_phasor_N) const;
+  std::vector<SweepPoint> Sweep(const std::vector<double>& omegas_rad_s, Complex force_phasor_N) const;
+
+  // Displacement harmonics at position_m for the steady state U:
+  //   h0 = −(K2·w'²/2)·|U|²·G_xM(x, 0)
+  //   h1 = U·w(x) + F1·G_rest(x; x_F, Ω) − M1·G_rest,M(x; Ω)
+  //   h2 = −(K2·w'²/2)·U²·G_xM(x, 2Ω)
+  //   h3 = −(U³·w'³/4)·(K3 − 2·K2²·G(2Ω))·G_xM(x, 3Ω)
+  // G_xM: displacement per end moment; G_rest: the exact receptance minus the
+  // first mode's own term w(x)·w(·)/(m_eff·(ω0² − Ω²)) (the seed's N(x)).
+  Harmonics Response(double position_m, Complex modal_phasor_m, double omega_rad_s,
+                     Complex force_phasor_N) const;
+
+  // Undamped, unforced: Ω(a) with Ω² = ω0² − Γ(Ω)·a²/(4·m_eff), a = |U| [m].
+  // Throws std::runtime_error where no real Ω exists (amplitude far outside
+  // the model's range) or the fixed point does not converge.
+  double Backbone_rad_s(double amplitude_m) const;
+
+ private:
+  double HarmonicBase_rad_s(double omega_rad_s) const;
+  Complex ModalDynamicStiffness_N_m(double omega_rad_s) const;  // m_eff·(ω0² − Ω²) + iη…
+  double DisplacementPerEndMoment_m_Nm(double position_m, double omega_rad_s) const;
+  // Exact receptance minus the first mode's term; smooth through ω0.
+  double NonResonantForce_m_N(double position_m, double omega_rad_s) const;
+  double NonResonantMoment_m_Nm(double position_m, double omega_rad_s) const;
+
+  BeamProperties beam_;
+  PolynomialSupportLaw::Coefficients support_;
+  double force_position_m_;
+  Options options_;
+  ClosedFormBeam closed_form_;
+  ClosedFormShape mode_;
+  double omega0_rad_s_ = 0.0;
+  double modal_mass_kg_ = 0.0;
+  double modal_loss_stiffness_N_m_ = 0.0;  // η·EI·∫w''²
+  double support_slope_per_m_ = 0.0;
+  double mode_at_force_ = 0.0;             // w(x_F)
+  double static_rotation_per_moment_rad_Nm_ = 0.0;  // G(0)
+};
+
+}  // namespace beamid::hb
