@@ -33,7 +33,10 @@ BackboneSummary TraceBackbone(const HarmonicBalance& balance, const BackboneOpti
     for (int iteration = 0; iteration < 40; ++iteration) {
       const double omega = (*u)[m - 2], force = (*u)[m - 1];
       const LinearHarmonics linear = balance.Linear(omega);
-      balance.Residual(assemble_z(*u, amplitude), linear, force * shape, &r, &jz, &dr_domega);
+      // ∂R/∂ω is frozen after the first iterate (chord in ω): it costs a
+      // second linear evaluation and changes little within one point.
+      balance.Residual(assemble_z(*u, amplitude), linear, force * shape, &r, &jz,
+                       iteration == 0 ? &dr_domega : nullptr);
       Eigen::MatrixXd j(m, m);
       j.col(0) = jz.col(0);
       j.middleCols(1, m - 3) = jz.rightCols(m - 3);

@@ -52,14 +52,16 @@ ContinuationSummary TraceFrequencyResponse(const HarmonicBalance& balance, const
     *z = y.head(m) * z_ref;
     return y[m] * omega_ref;
   };
-  auto evaluate = [&](const Eigen::VectorXd& y, Eigen::VectorXd* r, PathPoint* point) {
+  // ∂R/∂ω costs a second linear evaluation: the corrector reuses the one of
+  // its first iterate (a chord step in ω), converged points get a fresh one.
+  auto evaluate = [&](const Eigen::VectorXd& y, Eigen::VectorXd* r, PathPoint* point, bool with_omega) {
     Eigen::VectorXd z;
     const double omega = unscale(y, &z);
     const LinearHarmonics linear = balance.Linear(omega);
-    balance.Residual(z, linear, force_N, r, &point->jacobian_z, &point->jacobian_omega);
+    balance.Residual(z, linear, force_N, r, &point->jacobian_z, with_omega ? &point->jacobian_omega : nullptr);
     // Chain rule into scaled coordinates.
     point->jacobian_z *= z_ref;
-    point->jacobian_omega *= omega_ref;
+    if (with_omega) point->jacobian_omega *= omega_ref;
   };
   auto tangent_at = [&](const PathPoint& point, const Eigen::VectorXd& previous) {
     Eigen::MatrixXd bordered(m + 1, m + 1);
@@ -83,7 +85,7 @@ ContinuationSummary TraceFrequencyResponse(const HarmonicBalance& balance, const
   current.y.resize(m + 1);
   current.y << z0 / z_ref, options.omega_start_rad_s / omega_ref;
   Eigen::VectorXd r;
-  evaluate(current.y, &r, &current);
+  evaluate(current.y, &r, &current, true);
   const int reference_sign = det_sign(current.jacobian_z);
   record(current, reference_sign);
   Eigen::VectorXd previous_tangent = Eigen::VectorXd::Zero(m + 1);
@@ -99,7 +101,7 @@ ContinuationSummary TraceFrequencyResponse(const HarmonicBalance& balance, const
     bool converged = false;
     int iterations = 0;
     for (; iterations < options.max_iterations; ++iterations) {
-      evaluate(next.y, &r, &next);
+      evaluate(next.y, &r, &next, iterations == 0);
       Eigen::MatrixXd bordered(m + 1, m + 1);
       bordered << next.jacobian_z, next.jacobian_omega, tangent.transpose();
       Eigen::VectorXd rhs(m + 1);
@@ -109,7 +111,7 @@ ContinuationSummary TraceFrequencyResponse(const HarmonicBalance& balance, const
       next.y += delta;
       if (delta.norm() <= options.tolerance * (1.0 + next.y.norm())) {
         converged = true;
-        evaluate(next.y, &r, &next);
+        evaluate(next.y, &r, &next, true);
         break;
       }
     }

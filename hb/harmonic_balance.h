@@ -74,8 +74,8 @@ class HarmonicBalance {
 
   LinearHarmonics Linear(double omega_rad_s) const;
 
-  // R(z) and, when asked, ∂R/∂z and ∂R/∂ω (the latter by central differences
-  // of the linear part, which is smooth in ω, plus the exact θ̇ term).
+  // R(z) and, when asked, ∂R/∂z and ∂R/∂ω (the latter by a forward
+  // difference of the linear part, which is smooth in ω, plus the exact θ̇ term).
   void Residual(const Eigen::VectorXd& z, const LinearHarmonics& linear, const Eigen::VectorXcd& force_N,
                 Eigen::VectorXd* residual, Eigen::MatrixXd* d_residual_d_z = nullptr,
                 Eigen::VectorXd* d_residual_d_omega = nullptr) const;
