@@ -108,45 +108,67 @@ double MultipleScalesModel::CubicCoefficient_N_m3(double omega_rad_s) const {
   return gamma;
 }
 
-Complex MultipleScalesModel::SupportMomentFirstHarmonic_Nm(Complex modal_phasor_m, double omega_rad_s) const {
+MultipleScalesModel::LinearCoupling MultipleScalesModel::Coupling(double omega_rad_s, Complex force_phasor_N) const {
+  const Complex damper(0.0, HarmonicBase_rad_s(omega_rad_s) * support_.c_Nms_rad);  // iΩ·C
+  if (options_.harmonic_frequency == HarmonicFrequency::kNatural) return {damper, 1.0, 0.0};
+  const double rest_compliance = NonResonantMoment_m_Nm(beam_.length_m, omega_rad_s, 1);  // G_rest,θM
+  const Complex damping = damper / (1.0 + damper * rest_compliance);
+  return {damping, 1.0 - damping * rest_compliance,
+          force_phasor_N * NonResonantForce_m_N(beam_.length_m, omega_rad_s, 1)};
+}
+
+Complex MultipleScalesModel::ForcedRotation_rad(double omega_rad_s, Complex force_phasor_N) const {
+  return Coupling(omega_rad_s, force_phasor_N).forced_rotation_rad;
+}
+
+Complex MultipleScalesModel::NonlinearMomentFirstHarmonic_Nm(Complex modal_phasor_m, double omega_rad_s) const {
   const double base = HarmonicBase_rad_s(omega_rad_s);
   const double k2 = support_.k2_Nm_rad2;
   const Complex theta0 = modal_phasor_m * support_slope_per_m_;
   const double theta0_abs2 = std::norm(theta0);
   const double theta_static = -k2 * theta0_abs2 * static_rotation_per_moment_rad_Nm_ / 2.0;
   const Complex theta2 = -k2 * theta0 * theta0 * closed_form_.RotationPerEndMoment_rad_Nm(2.0 * base) / 2.0;
-  return Complex(0.0, base * support_.c_Nms_rad) * theta0 + 0.75 * support_.k3_Nm_rad3 * theta0_abs2 * theta0 +
+  return 0.75 * support_.k3_Nm_rad3 * theta0_abs2 * theta0 +
          2.0 * k2 * (theta0 * theta_static + std::conj(theta0) * theta2 / 2.0);
+}
+
+Complex MultipleScalesModel::SupportMomentFirstHarmonic_Nm(Complex modal_phasor_m, double omega_rad_s,
+                                                          Complex force_phasor_N) const {
+  const LinearCoupling coupling = Coupling(omega_rad_s, force_phasor_N);
+  return coupling.damping_Nm_rad * (modal_phasor_m * support_slope_per_m_ + coupling.forced_rotation_rad) +
+         coupling.nonlinear_factor * NonlinearMomentFirstHarmonic_Nm(modal_phasor_m, omega_rad_s);
 }
 
 Complex MultipleScalesModel::SolvabilityResidual_N(Complex modal_phasor_m, double omega_rad_s,
                                                   Complex force_phasor_N) const {
   return ModalDynamicStiffness_N_m(omega_rad_s) * modal_phasor_m - force_phasor_N * mode_at_force_ +
-         support_slope_per_m_ * SupportMomentFirstHarmonic_Nm(modal_phasor_m, omega_rad_s);
+         support_slope_per_m_ * SupportMomentFirstHarmonic_Nm(modal_phasor_m, omega_rad_s, force_phasor_N);
 }
 
 std::vector<Complex> MultipleScalesModel::Solve(double omega_rad_s, Complex force_phasor_N) const {
-  const double base = HarmonicBase_rad_s(omega_rad_s);
-  const Complex force_modal = force_phasor_N * mode_at_force_;
-  if (!std::isfinite(std::abs(force_modal)))
+  if (!std::isfinite(std::abs(force_phasor_N)))
     throw std::invalid_argument("multiple-scales model: the force phasor must be finite");
+  const LinearCoupling coupling = Coupling(omega_rad_s, force_phasor_N);
+  const double slope = support_slope_per_m_;
+  // (α − β·a²)·U = f with
+  const Complex alpha = ModalDynamicStiffness_N_m(omega_rad_s) + coupling.damping_Nm_rad * slope * slope;
+  const Complex beta = coupling.nonlinear_factor * CubicCoefficient_N_m3(omega_rad_s) / 4.0;
+  const Complex force_modal =
+      force_phasor_N * mode_at_force_ - slope * coupling.damping_Nm_rad * coupling.forced_rotation_rad;
   if (force_modal == 0.0) return {Complex(0.0)};
-  const double slope2 = support_slope_per_m_ * support_slope_per_m_;
-  const Complex linear = ModalDynamicStiffness_N_m(omega_rad_s) + Complex(0.0, base * support_.c_Nms_rad * slope2);
-  const double gamma = CubicCoefficient_N_m3(omega_rad_s);
-  // |linear − Γ·s/4|²·s = |F1·w(x_F)|², s = a².
+  // |α − β·s|²·s = |f|², s = a²: a cubic in s.
   const double f2 = std::norm(force_modal);
   std::vector<double> squares;
-  if (gamma == 0.0) {
-    if (std::norm(linear) == 0.0)
+  if (beta == 0.0) {
+    if (std::norm(alpha) == 0.0)
       throw std::runtime_error("multiple-scales model: undamped linear beam forced at its natural frequency");
-    squares.push_back(f2 / std::norm(linear));
+    squares.push_back(f2 / std::norm(alpha));
   } else {
-    squares = PositiveCubicRoots(gamma * gamma / 16.0, -gamma * linear.real() / 2.0, std::norm(linear), -f2);
+    squares = PositiveCubicRoots(std::norm(beta), -2.0 * (alpha * std::conj(beta)).real(), std::norm(alpha), -f2);
   }
   std::vector<Complex> solutions;
-  for (double s : squares) solutions.push_back(force_modal / (linear - gamma * s / 4.0));
-  std::sort(solutions.begin(), solutions.end(), [](Complex a, Complex b) { return std::abs(a) < std::abs(b); });
+  for (double s : squares) solutions.push_back(force_modal / (alpha - beta * s));
+  std::sort(solutions.begin(), solutions.end(), [](Complex x, Complex y) { return std::abs(x) < std::abs(y); });
   return solutions;
 }
 
@@ -180,20 +202,25 @@ double SmoothThroughResonance(const std::function<double(double)>& rest, double 
 
 }  // namespace
 
-double MultipleScalesModel::NonResonantForce_m_N(double position_m, double omega_rad_s) const {
+double MultipleScalesModel::NonResonantForce_m_N(double position_m, double omega_rad_s, int derivative) const {
   const double ei = beam_.BendingStiffness_Nm2();
-  const double mode_x = mode_.Value(position_m);
+  const double mode_x = mode_.Value(position_m, derivative);
   auto rest = [&](double omega) {
-    const double exact = closed_form_.PointForceShape(omega, force_position_m_).Value(position_m) / ei;
+    const double exact = closed_form_.PointForceShape(omega, force_position_m_).Value(position_m, derivative) / ei;
     return exact - mode_x * mode_at_force_ / (modal_mass_kg_ * (omega0_rad_s_ * omega0_rad_s_ - omega * omega));
   };
   return SmoothThroughResonance(rest, omega_rad_s, omega0_rad_s_);
 }
 
-double MultipleScalesModel::NonResonantMoment_m_Nm(double position_m, double omega_rad_s) const {
-  const double mode_x = mode_.Value(position_m);
+double MultipleScalesModel::NonResonantMoment_m_Nm(double position_m, double omega_rad_s, int derivative) const {
+  const double ei = beam_.BendingStiffness_Nm2();
+  const double mode_x = mode_.Value(position_m, derivative);
   auto rest = [&](double omega) {
-    return DisplacementPerEndMoment_m_Nm(position_m, omega) -
+    const double exact = closed_form_.EndMomentShape(omega).Value(position_m, derivative) / ei;
+    if (!std::isfinite(exact))
+      throw std::runtime_error("multiple-scales model: " + std::to_string(omega) +
+                               " rad/s is a natural frequency of the linear beam (internal resonance)");
+    return exact -
            mode_x * support_slope_per_m_ / (modal_mass_kg_ * (omega0_rad_s_ * omega0_rad_s_ - omega * omega));
   };
   return SmoothThroughResonance(rest, omega_rad_s, omega0_rad_s_);
@@ -211,7 +238,7 @@ MultipleScalesModel::Harmonics MultipleScalesModel::Response(double position_m, 
   Harmonics h;
   h.h0_m = -(k2 * slope * slope / 2.0) * std::norm(u) * DisplacementPerEndMoment_m_Nm(position_m, 0.0);
   h.h1_m = u * mode_.Value(position_m) + force_phasor_N * NonResonantForce_m_N(position_m, base) -
-           SupportMomentFirstHarmonic_Nm(u, omega_rad_s) * NonResonantMoment_m_Nm(position_m, base);
+           SupportMomentFirstHarmonic_Nm(u, omega_rad_s, force_phasor_N) * NonResonantMoment_m_Nm(position_m, base);
   h.h2_m = -(k2 * slope * slope / 2.0) * u * u * DisplacementPerEndMoment_m_Nm(position_m, 2.0 * base);
   const double g2 = closed_form_.RotationPerEndMoment_rad_Nm(2.0 * base);
   h.h3_m = -(u * u * u * slope * slope * slope / 4.0) * (support_.k3_Nm_rad3 - 2.0 * k2 * k2 * g2) *

@@ -8,17 +8,27 @@
 // max|w| = 1, so y ≈ Re(U·e^{iΩt})·w(x) + …, docs/fourier-convention.md) the
 // solvability condition (corrected Eq. 40) is the complex scalar equation
 //     m_eff·(ω0² − Ω²)·U = F1·w(x_F) − w'(L)·M1(U, Ω),     m_eff = ρA·∫w² dx,
-// where M1 is the first-harmonic phasor of K2·θ² + K3·θ³ + C·θ̇ evaluated on
-// the rotation up to order ε:
+// where M1 is the first-harmonic phasor of K2·θ² + K3·θ³ + C·θ̇. Its
+// nonlinear part is evaluated on the rotation up to order ε:
 //     θ0 = U·w'(L),  θ_static = −K2·|θ0|²·G(0)/2,  θ_2 = −K2·θ0²·G(2Ω)/2,
-//     M1 = iΩ·C·θ0 + ¾·K3·|θ0|²·θ0 + 2·K2·(θ0·θ_static + conj(θ0)·θ_2/2),
+//     N1 = ¾·K3·|θ0|²·θ0 + 2·K2·(θ0·θ_static + conj(θ0)·θ_2/2),
 // G(Ω) = G_θM(Ω) the end rotation per end moment of the plain beam with K1
-// (undamped). The amplitude–frequency relation (a = |U|) follows:
-//     |m_eff·(ω0² − Ω²) − Γ·a²/4 + iΩ·C·w'(L)²|·a = |F1·w(x_F)|,
-//     Γ(Ω) = [2·K2²·(2·G(0) + G(2Ω)) − 3·K3]·w'(L)⁴          [N/m³],
-// a cubic in a² with one or three positive roots; the backbone is
-// Ω² = ω0² − Γ(Ω)·a²/(4·m_eff). K3 > 0 hardens; K2 always softens while
-// 2·G(0) + G(2Ω) > 0 (the seed omits the static term G(0), Eq. 23).
+// (undamped). The seed's form (kNatural) is M1 = iω0·C·θ0 + N1. The
+// generalised form (kExcitation, default) keeps the linear support exact:
+// the damper also acts on the rotation outside the first mode, i.e. on the
+// rotation θ_F = F1·G_rest,θF(Ω) forced directly by the shaker (formally
+// O(ε²) smaller, but a quarter of θ0 at 0.95·ω0 with the shaker 3 cm from
+// the support) and on the non-resonant rotation −M1·G_rest,θM(Ω) of the
+// support moment itself. Solving that linear relation for θ gives
+//     M1 = d·(θ0 + θ_F) + (1 − d·G_rest,θM)·N1,   d = iΩ·C/(1 + iΩ·C·G_rest,θM),
+// which makes the model exact in the linear limit (K2 = K3 = 0) at every Ω.
+// With a = |U| and f = F1·w(x_F) − w'(L)·d·θ_F the amplitude–frequency
+// relation is a cubic in a² with one or three positive roots:
+//     |m_eff·(ω0² − Ω²) + d·w'(L)² − (1 − d·G_rest,θM)·Γ·a²/4|·a = |f|,
+//     Γ(Ω) = [2·K2²·(2·G(0) + G(2Ω)) − 3·K3]·w'(L)⁴          [N/m³].
+// The backbone (C = 0, F = 0) is Ω² = ω0² − Γ(Ω)·a²/(4·m_eff). K3 > 0
+// hardens; K2 always softens while 2·G(0) + G(2Ω) > 0 (the seed omits the
+// static term G(0), Eq. 23).
 //
 // Only the force's first harmonic F1 enters (higher force harmonics are
 // outside the ordering). The beam's loss factor η enters the resonant modal
@@ -82,8 +92,11 @@ class MultipleScalesModel {
 
   // Γ(Ω) [N/m³] of the amplitude–frequency relation.
   double CubicCoefficient_N_m3(double omega_rad_s) const;
-  // M1(U, Ω) [N·m]: first harmonic of the nonlinear and damping support moment.
-  Complex SupportMomentFirstHarmonic_Nm(Complex modal_phasor_m, double omega_rad_s) const;
+  // M1 [N·m]: first harmonic of the nonlinear and damping support moment.
+  Complex SupportMomentFirstHarmonic_Nm(Complex modal_phasor_m, double omega_rad_s, Complex force_phasor_N) const;
+  // θ_F = F1·G_rest,θF(Ω) [rad]: the non-resonant end rotation forced directly
+  // by F1 (large when x_F is near the support); 0 in the seed's form.
+  Complex ForcedRotation_rad(double omega_rad_s, Complex force_phasor_N) const;
   // m_eff·(ω0² − Ω²)·U − F1·w(x_F) + w'(L)·M1 [N]; zero on a solution.
   Complex SolvabilityResidual_N(Complex modal_phasor_m, double omega_rad_s, Complex force_phasor_N) const;
 
@@ -112,8 +125,16 @@ class MultipleScalesModel {
   Complex ModalDynamicStiffness_N_m(double omega_rad_s) const;  // m_eff·(ω0² − Ω²) + iη…
   double DisplacementPerEndMoment_m_Nm(double position_m, double omega_rad_s) const;
   // Exact receptance minus the first mode's term; smooth through ω0.
-  double NonResonantForce_m_N(double position_m, double omega_rad_s) const;
-  double NonResonantMoment_m_Nm(double position_m, double omega_rad_s) const;
+  double NonResonantForce_m_N(double position_m, double omega_rad_s, int derivative = 0) const;
+  double NonResonantMoment_m_Nm(double position_m, double omega_rad_s, int derivative = 0) const;
+  // The linear support terms of the first harmonic (see the file comment).
+  struct LinearCoupling {
+    Complex damping_Nm_rad;         // d = iΩ·C/(1 + iΩ·C·G_rest,θM)
+    Complex nonlinear_factor;       // 1 − d·G_rest,θM
+    Complex forced_rotation_rad;    // θ_F
+  };
+  LinearCoupling Coupling(double omega_rad_s, Complex force_phasor_N) const;
+  Complex NonlinearMomentFirstHarmonic_Nm(Complex modal_phasor_m, double omega_rad_s) const;
 
   BeamProperties beam_;
   PolynomialSupportLaw::Coefficients support_;
