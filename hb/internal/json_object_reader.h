@@ -1,0 +1,109 @@
+// Internal: strict reading of JSON objects for beamid's input files. Every
+// error names the file, the field's path and what to fix, and a field nobody
+// asked for is an error, so a typo never falls back silently to a default.
+#pragma once
+
+#include <cmath>
+#include <exception>
+#include <set>
+#include <stdexcept>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "hb/beam_properties.h"
+
+namespace beamid::hb::internal {
+
+using Json = nlohmann::json;
+
+// Reads the fields of one JSON object, naming file and path in every error,
+// and rejects fields it was not asked about.
+class ObjectReader {
+ public:
+  // format_doc: where the user reads the file format, named in errors.
+  ObjectReader(const Json& object, std::string source, std::string path,
+               std::string format_doc = "docs/simulator.md")
+      : object_(object), source_(std::move(source)), path_(std::move(path)), format_doc_(std::move(format_doc)) {
+    if (!object_.is_object()) Fail("must be a JSON object");
+  }
+  ObjectReader(const ObjectReader&) = delete;
+  ~ObjectReader() noexcept(false) {
+    if (std::uncaught_exceptions() > 0) return;
+    for (const auto& [key, value] : object_.items())
+      if (!read_.count(key)) Fail("has an unknown field '" + key + "' (see " + format_doc_ + ")");
+  }
+
+  bool Has(const std::string& key) const { return object_.contains(key); }
+  // Accepts a field that this reader deliberately does not use.
+  void Ignore(const std::string& key) { read_.insert(key); }
+  const Json& Raw(const std::string& key) {
+    read_.insert(key);
+    if (!object_.contains(key)) Fail("needs the field '" + key + "'");
+    return object_.at(key);
+  }
+  double Number(const std::string& key) {
+    const Json& v = Raw(key);
+    if (!v.is_number() || !std::isfinite(v.get<double>())) FailField(key, "must be a finite number");
+    return v.get<double>();
+  }
+  double Number(const std::string& key, double fallback) { return Has(key) ? Number(key) : (read_.insert(key), fallback); }
+  double Positive(const std::string& key, double fallback) {
+    const double v = Number(key, fallback);
+    if (!(v > 0.0)) FailField(key, "must be positive");
+    return v;
+  }
+  double NonNegative(const std::string& key, double fallback) {
+    const double v = Number(key, fallback);
+    if (!(v >= 0.0)) FailField(key, "must not be negative");
+    return v;
+  }
+  std::string String(const std::string& key, const std::string& fallback) {
+    read_.insert(key);
+    if (!Has(key)) return fallback;
+    if (!object_.at(key).is_string()) FailField(key, "must be a string");
+    return object_.at(key).get<std::string>();
+  }
+  bool Bool(const std::string& key, bool fallback) {
+    read_.insert(key);
+    if (!Has(key)) return fallback;
+    if (!object_.at(key).is_boolean()) FailField(key, "must be true or false");
+    return object_.at(key).get<bool>();
+  }
+  const Json& Array(const std::string& key) {
+    const Json& v = Raw(key);
+    if (!v.is_array()) FailField(key, "must be a JSON array");
+    return v;
+  }
+  std::string PathOf(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+  const std::string& source() const { return source_; }
+
+  [[noreturn]] void FailField(const std::string& key, const std::string& what) const {
+    throw std::invalid_argument(source_ + ": " + PathOf(key) + " " + what);
+  }
+  [[noreturn]] void Fail(const std::string& what) const {
+    throw std::invalid_argument(source_ + ": " + (path_.empty() ? "the file" : path_) + " " + what);
+  }
+
+ private:
+  const Json& object_;
+  std::string source_;
+  std::string path_;
+  std::string format_doc_;
+  std::set<std::string> read_;
+};
+
+inline void ReadBeam(ObjectReader& r, BeamProperties& beam, bool all_required) {
+  auto field = [&](const char* key, double& value) {
+    if (all_required || r.Has(key)) value = r.Positive(key, value);
+  };
+  field("length_m", beam.length_m);
+  field("width_m", beam.width_m);
+  field("thickness_m", beam.thickness_m);
+  field("youngs_modulus_Pa", beam.youngs_modulus_Pa);
+  field("density_kg_m3", beam.density_kg_m3);
+  beam.loss_factor = r.NonNegative("loss_factor", beam.loss_factor);
+}
+
+
+}  // namespace beamid::hb::internal

@@ -1,0 +1,102 @@
+#include "hb/model_file.h"
+
+#include <fstream>
+#include <sstream>
+
+#include "hb/internal/json_object_reader.h"
+
+namespace beamid::hb {
+
+using internal::Json;
+using internal::ObjectReader;
+
+std::unique_ptr<SupportLaw> ModelFile::MakeSupportLaw() const {
+  auto polynomial_law = std::make_unique<PolynomialSupportLaw>(polynomial);
+  if (!jenkins) return polynomial_law;
+  auto composite = std::make_unique<CompositeSupportLaw>();
+  composite->Add(std::move(polynomial_law));
+  composite->Add(std::make_unique<JenkinsSupportLaw>(*jenkins));
+  return composite;
+}
+
+ModelFile ParseModelFile(const std::string& json_text, const std::string& source) {
+  Json root;
+  try {
+    root = Json::parse(json_text);
+  } catch (const Json::parse_error& e) {
+    throw std::invalid_argument(source + ": not valid JSON (" + e.what() + ")");
+  }
+  constexpr const char* kDoc = "README.md, Model files";
+  ModelFile model;
+  ObjectReader top(root, source, "", kDoc);
+  for (const char* scenario_only : {"nominal_beam", "damping", "mesh", "hidden_positions_m", "levels", "timing", "noise"})
+    top.Ignore(scenario_only);
+  model.name = top.String("name", "beam model");
+  {
+    ObjectReader beam(top.Raw("beam"), source, "beam", kDoc);
+    internal::ReadBeam(beam, model.beam, true);
+  }
+  {
+    ObjectReader support(top.Raw("support"), source, "support", kDoc);
+    ObjectReader poly(support.Raw("polynomial"), source, "support.polynomial", kDoc);
+    model.polynomial.k1_Nm_rad = poly.NonNegative("k1_Nm_rad", 0.0);
+    model.polynomial.k2_Nm_rad2 = poly.Number("k2_Nm_rad2", 0.0);
+    model.polynomial.k3_Nm_rad3 = poly.Number("k3_Nm_rad3", 0.0);
+    model.polynomial.c_Nms_rad = poly.NonNegative("c_Nms_rad", 0.0);
+    if (support.Has("jenkins")) {
+      ObjectReader jenkins(support.Raw("jenkins"), source, "support.jenkins", kDoc);
+      model.jenkins = JenkinsSupportLaw::Parameters_{.stiffness_Nm_rad = jenkins.Positive("stiffness_Nm_rad", 0.0),
+                                                     .slip_moment_Nm = jenkins.Positive("slip_moment_Nm", 0.0)};
+    }
+  }
+  if (top.Has("attachments")) {
+    ObjectReader a(top.Raw("attachments"), source, "attachments", kDoc);
+    if (a.Has("clamp_rotational_stiffness_Nm_rad"))
+      model.attachments.clamp_rotational_stiffness_Nm_rad = a.Positive("clamp_rotational_stiffness_Nm_rad", 0.0);
+    if (a.Has("support_translational_stiffness_N_m"))
+      model.attachments.support_translational_stiffness_N_m = a.Positive("support_translational_stiffness_N_m", 0.0);
+    if (a.Has("point_masses")) {
+      const Json& masses = a.Array("point_masses");
+      for (size_t i = 0; i < masses.size(); ++i) {
+        ObjectReader m(masses[i], source, "attachments.point_masses[" + std::to_string(i) + "]", kDoc);
+        model.attachments.point_masses.push_back({m.NonNegative("position_m", 0.0), m.Positive("mass_kg", 0.0)});
+      }
+    }
+  }
+  {
+    ObjectReader e(top.Raw("excitation"), source, "excitation", kDoc);
+    e.Ignore("channel");
+    e.Ignore("distortion");
+    model.force_position_m = e.Positive("position_m", 0.0);
+  }
+  if (top.Has("sensors")) {
+    const Json& sensors = top.Array("sensors");
+    for (size_t i = 0; i < sensors.size(); ++i) {
+      ObjectReader r(sensors[i], source, "sensors[" + std::to_string(i) + "]", kDoc);
+      for (const char* unused : {"quantity", "unit"}) r.Ignore(unused);
+      ModelSensor sensor{r.String("channel", "x" + std::to_string(i + 1)), r.Positive("position_m", 0.0)};
+      const double mass = r.NonNegative("mass_kg", 0.0);
+      if (mass > 0.0) model.attachments.point_masses.push_back({sensor.position_m, mass});
+      model.sensors.push_back(sensor);
+    }
+  }
+  const double length = model.beam.length_m;
+  auto on_beam = [&](double x, const std::string& what) {
+    if (x > length) throw std::invalid_argument(source + ": " + what + " at " + std::to_string(x) +
+                                                " m lies beyond the beam's length " + std::to_string(length) + " m");
+  };
+  on_beam(model.force_position_m, "excitation.position_m");
+  for (const auto& s : model.sensors) on_beam(s.position_m, "sensor " + s.channel);
+  for (const auto& m : model.attachments.point_masses) on_beam(m.position_m, "a point mass");
+  return model;
+}
+
+ModelFile ReadModelFile(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) throw std::invalid_argument(file.string() + ": cannot open the model file (check the path)");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return ParseModelFile(text.str(), file.string());
+}
+
+}  // namespace beamid::hb
