@@ -17,8 +17,8 @@
 // generalised form (kExcitation, default) keeps the linear support exact:
 // the damper also acts on the rotation outside the first mode, i.e. on the
 // rotation θ_F = F1·G_rest,θF(Ω) forced directly by the shaker (formally
-// O(ε²) smaller, but a quarter of θ0 at 0.95·ω0 with the shaker 3 cm from
-// the support) and on the non-resonant rotation −M1·G_rest,θM(Ω) of the
+// O(ε²) smaller, but 8 % of θ0 at 0.95·ω0 with the shaker 3 cm from the
+// support) and on the non-resonant rotation −M1·G_rest,θM(Ω) of the
 // support moment itself. Solving that linear relation for θ gives
 //     M1 = d·(θ0 + θ_F) + (1 − d·G_rest,θM)·N1,   d = iΩ·C/(1 + iΩ·C·G_rest,θM),
 // which makes the model exact in the linear limit (K2 = K3 = 0) at every Ω.
