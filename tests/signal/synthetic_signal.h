@@ -93,3 +93,32 @@ inline double PhaseBound(const Eigen::MatrixXd& crb, std::complex<double> x, int
 inline double WrapPhase(double phase_rad) { return std::remainder(phase_rad, 2.0 * std::numbers::pi); }
 
 }  // namespace beamid::signal::testing
+
+#include "signal/campaign.h"
+#include "signal/recording.h"
+
+namespace beamid::signal::testing {
+
+// A campaign in memory: force "force" and sensors "acc1".."accN".
+inline Campaign SyntheticCampaign(int num_sensors, double nominal_frequency_hz) {
+  Campaign campaign;
+  campaign.name = "synthetic";
+  campaign.beam = {0.6, 0.04, 0.005, 2.1e11, 7850.0};
+  campaign.excitation = {"force", 0.57, Quantity::kForce, "N", 1.0, std::nullopt};
+  for (int s = 1; s <= num_sensors; ++s)
+    campaign.sensors.push_back({"acc" + std::to_string(s), 0.1 * s, Quantity::kAcceleration, "m/s^2", 1.0, std::nullopt});
+  campaign.steps.push_back({"step.csv", nominal_frequency_hz, "low"});
+  return campaign;
+}
+
+// A recording in memory from one column per channel.
+inline Recording SyntheticRecording(const Campaign& campaign, const Eigen::MatrixXd& samples, double sample_rate_hz) {
+  Recording recording;
+  recording.file = "synthetic.csv";
+  for (const auto* channel : campaign.Channels()) recording.channels.push_back(channel->channel);
+  recording.sample_rate_hz = sample_rate_hz;
+  recording.samples = samples;
+  return recording;
+}
+
+}  // namespace beamid::signal::testing

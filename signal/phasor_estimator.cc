@@ -1,0 +1,144 @@
+#include "signal/phasor_estimator.h"
+
+#include <cmath>
+
+#include "signal/input_error.h"
+#include "signal/internal/text.h"
+
+namespace beamid::signal {
+namespace {
+
+using internal::FormatNumber;
+
+Eigen::Matrix2d Rotation(double angle_rad) {
+  Eigen::Matrix2d r;
+  r << std::cos(angle_rad), -std::sin(angle_rad), std::sin(angle_rad), std::cos(angle_rad);
+  return r;
+}
+
+}  // namespace
+
+std::vector<ChannelPhasors> ReferencePhasors(const HarmonicFit& fit, std::size_t reference_channel,
+                                             const std::vector<const ChannelSpec*>& specs) {
+  const ChannelFit& reference = fit.channels[reference_channel];
+  const std::complex<double> f1 = reference.phasors(0);
+  const double phi = std::arg(f1);
+  const Eigen::Vector2d w(-std::sin(phi), std::cos(phi));
+  const double phase_variance = w.dot(reference.covariances[0] * w) / std::norm(f1);
+
+  std::vector<ChannelPhasors> result;
+  for (std::size_t c = 0; c < fit.channels.size(); ++c) {
+    const ChannelFit& channel_fit = fit.channels[c];
+    ChannelPhasors channel;
+    channel.channel = specs[c]->channel;
+    channel.quantity = specs[c]->quantity;
+    channel.position_m = specs[c]->position_m;
+    channel.mean = channel_fit.mean;
+    channel.noise_rms = channel_fit.residual_rms;
+    double signal_power = 0.0, harmonic_power = 0.0;
+    for (int k = 1; k <= fit.num_harmonics; ++k) {
+      const std::complex<double> x = channel_fit.phasors(k - 1);
+      HarmonicPhasor phasor;
+      phasor.harmonic = k;
+      phasor.value = x * std::polar(1.0, -k * phi);
+      const Eigen::Matrix2d& cx = channel_fit.covariances[static_cast<std::size_t>(k - 1)];
+      if (c == reference_channel && k == 1) {
+        const Eigen::Vector2d u(std::cos(phi), std::sin(phi));
+        phasor.value = std::abs(x);
+        Eigen::Matrix2d cz = Eigen::Matrix2d::Zero();
+        cz(0, 0) = u.dot(cx * u);
+        phasor.SetCovariance(cz);
+      } else {
+        const Eigen::Matrix2d r = Rotation(-k * phi);
+        const Eigen::Vector2d v(phasor.value.imag(), -phasor.value.real());
+        phasor.SetCovariance(r * cx * r.transpose() + k * k * phase_variance * v * v.transpose());
+      }
+      signal_power += 0.5 * std::norm(x);
+      if (k >= 2) harmonic_power += std::norm(x);
+      channel.harmonics.push_back(phasor);
+    }
+    channel.thd = std::abs(channel_fit.phasors(0)) > 0.0 ? std::sqrt(harmonic_power) / std::abs(channel_fit.phasors(0)) : 0.0;
+    const double noise_power = channel_fit.residual_rms * channel_fit.residual_rms;
+    channel.snr_db = noise_power > 0.0 ? 10.0 * std::log10(signal_power / noise_power) : 300.0;
+    result.push_back(std::move(channel));
+  }
+  return result;
+}
+
+StepPhasors EstimateStepPhasors(const Recording& recording, const Campaign& campaign, const Step& step,
+                                const PhasorEstimatorOptions& options) {
+  const auto specs = campaign.Channels();
+  if (recording.channels.size() != specs.size() || recording.channels.front() != campaign.excitation.channel)
+    throw std::invalid_argument(recording.file + ": the recording's channels do not follow campaign.json's");
+  const double fs = recording.sample_rate_hz;
+  const Eigen::Index n = recording.NumSamples();
+  const std::string& force_name = campaign.excitation.channel;
+  FrequencyEstimatorOptions frequency_options = options.frequency;
+  frequency_options.num_harmonics = options.num_harmonics;
+
+  // 1. Frequency on the last half, assumed steady.
+  const Eigen::Index half = n / 2;
+  FrequencyEstimate first;
+  try {
+    first = EstimateFrequency(recording.samples.col(0).tail(half), fs, step.frequency_hz, frequency_options);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(recording.file, force_name, e.what(), "check the step's frequency_Hz and the sample rate");
+  }
+  if (first.fundamental_amplitude < options.min_force_snr * first.fundamental_std)
+    throw InputError(recording.file, force_name,
+                     "no excitation near the nominal " + FormatNumber(step.frequency_hz) +
+                         " Hz (force fundamental " + FormatNumber(first.fundamental_amplitude) + " N, noise " +
+                         FormatNumber(first.fundamental_std) + " N)",
+                     "check which column holds the force and the step's frequency_Hz");
+
+  // 2. Steady state.
+  const SteadyState steady = DetectSteadyState(recording.samples, recording.channels, fs, first.frequency_hz,
+                                               options.num_harmonics, recording.file, options.steady_state);
+  const auto steady_samples = recording.samples.bottomRows(n - steady.first_sample);
+
+  // 3–4. Frequency and phasors on the steady part.
+  const FrequencyEstimate frequency =
+      EstimateFrequency(steady_samples.col(0), fs, step.frequency_hz, frequency_options, first.frequency_hz);
+  const HarmonicFit fit = FitHarmonics(steady_samples, fs, frequency.frequency_hz, options.num_harmonics);
+
+  // 5. Reference and pack.
+  std::vector<ChannelPhasors> channels = ReferencePhasors(fit, 0, specs);
+  StepPhasors result;
+  result.file = step.file;
+  result.level = step.level;
+  result.nominal_frequency_hz = step.frequency_hz;
+  result.frequency_hz = frequency.frequency_hz;
+  result.frequency_std_hz = frequency.std_hz;
+  result.force = std::move(channels.front());
+  result.responses.assign(std::make_move_iterator(channels.begin() + 1), std::make_move_iterator(channels.end()));
+
+  StepQuality& quality = result.quality;
+  quality.settled_after_s = steady.settled_after_s;
+  quality.analysed_duration_s = static_cast<double>(steady_samples.rows()) / fs;
+  quality.settling = steady.reason;
+  quality.snr_db = result.force.snr_db;
+  std::vector<const ChannelPhasors*> all{&result.force};
+  for (const auto& response : result.responses) all.push_back(&response);
+  for (const auto* channel : all) {
+    quality.snr_db = std::min(quality.snr_db, channel->snr_db);
+    if (channel->snr_db < options.warn_snr_db)
+      quality.warnings.push_back("channel '" + channel->channel + "': SNR " +
+                                 FormatNumber(std::round(channel->snr_db * 10.0) / 10.0) + " dB is below " +
+                                 FormatNumber(options.warn_snr_db) + " dB");
+  }
+  const double offset = frequency.frequency_hz / step.frequency_hz - 1.0;
+  if (std::abs(offset) > options.warn_frequency_offset_rel)
+    quality.warnings.push_back("estimated frequency " + FormatNumber(frequency.frequency_hz) + " Hz is " +
+                               FormatNumber(std::round(offset * 1e4) / 100.0) + " % from the nominal " +
+                               FormatNumber(step.frequency_hz) + " Hz");
+  if (fit.num_harmonics < options.num_harmonics)
+    quality.warnings.push_back("only harmonics 1.." + std::to_string(fit.num_harmonics) +
+                               " lie below the Nyquist frequency " + FormatNumber(0.5 * fs) + " Hz");
+  if (static_cast<double>(steady.first_sample) > options.warn_transient_fraction * static_cast<double>(n))
+    quality.warnings.push_back("the transient took " +
+                               FormatNumber(std::round(100.0 * static_cast<double>(steady.first_sample) / n)) +
+                               " % of the record; record longer");
+  return result;
+}
+
+}  // namespace beamid::signal

@@ -1,0 +1,50 @@
+// Harmonic phasors of one step (issue 4), the chain of
+//   1. frequency from the force channel on the last half of the record
+//      (signal/frequency_estimator.h), to locate the steady state;
+//   2. steady-state detection (signal/steady_state.h): the transient is dropped;
+//   3. frequency again, on the steady part (Gauss–Newton from step 1's value);
+//   4. least-squares phasors of harmonics 1..H of every channel at that
+//      frequency with their covariances (signal/harmonic_fit.h);
+//   5. phase reference: Z_k = X_k·e^{−ikφ}, φ = arg F_1, so F_1 > 0. The
+//      covariance of Z_k adds the reference's phase uncertainty:
+//          C_Z = R C_X Rᵀ + k²·var(φ)·v vᵀ,   R = rotation by −kφ,
+//          v = (Im Z_k, −Re Z_k),  var(φ) = wᵀ C_F1 w / |F_1|², w = (−sin φ, cos φ)
+//      (channels' noises independent; F_1 itself keeps only its amplitude
+//      variance). The time origin of step 4 drops out.
+// Quality: SNR per channel, THD, settling, and warnings (low SNR, frequency far
+// from nominal, harmonics cut at Nyquist, long transient).
+#pragma once
+
+#include "signal/campaign.h"
+#include "signal/frequency_estimator.h"
+#include "signal/harmonic_fit.h"
+#include "signal/phasor_set.h"
+#include "signal/recording.h"
+#include "signal/steady_state.h"
+
+namespace beamid::signal {
+
+struct PhasorEstimatorOptions {
+  int num_harmonics = 5;                   // H (the model uses 1–3, the diagnosis looks further)
+  FrequencyEstimatorOptions frequency;     // its num_harmonics is set to H
+  SteadyStateOptions steady_state;
+  double warn_snr_db = 20.0;               // warn when a channel's SNR is lower
+  double warn_frequency_offset_rel = 0.01; // warn when |f/f_nominal − 1| is larger
+  double warn_transient_fraction = 0.5;    // warn when more of the record was dropped
+  double min_force_snr = 10.0;             // |F_1|/σ(F_1) below this: no excitation found
+};
+
+// Recording columns in Campaign::Channels() order (as ReadRecording returns).
+// Throws InputError for records that cannot represent the step (no steady
+// state, no excitation at the nominal frequency), std::runtime_error when the
+// frequency iteration fails.
+StepPhasors EstimateStepPhasors(const Recording& recording, const Campaign& campaign, const Step& step,
+                                const PhasorEstimatorOptions& options = {});
+
+// Step 5 alone: rotates the fit of a set of channels to the reference
+// channel's fundamental and packs it (channel metadata from specs, same order
+// as fit.channels). Exposed for tests and for callers with their own fit.
+std::vector<ChannelPhasors> ReferencePhasors(const HarmonicFit& fit, std::size_t reference_channel,
+                                             const std::vector<const ChannelSpec*>& specs);
+
+}  // namespace beamid::signal

@@ -1,0 +1,148 @@
+#include "signal/steady_state.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <Eigen/Cholesky>
+
+#include "signal/frequency_estimator.h"
+#include "signal/input_error.h"
+#include "signal/internal/harmonic_basis.h"
+#include "signal/internal/text.h"
+
+namespace beamid::signal {
+namespace {
+
+using internal::FormatNumber;
+
+constexpr double kMinOwnFrequencySnr = 10.0;
+
+// Residual mean square per block (rows) and channel (columns) of the
+// periodic model fitted to rows [reference_start, N). Each channel uses its
+// own refined frequency: extrapolated over the record, the frequency error of
+// a noisy force would leave a residual above a clean response's noise.
+Eigen::MatrixXd BlockMeanSquares(const Eigen::Ref<const Eigen::MatrixXd>& samples, Eigen::Index reference_start,
+                                 double sample_rate_hz, double frequency_hz, int num_harmonics, Eigen::Index block) {
+  const Eigen::Index n = samples.rows();
+  const Eigen::Index reference_length = n - reference_start;
+  const Eigen::Index num_blocks = n / block;
+  Eigen::MatrixXd mean_squares(num_blocks, samples.cols());
+  FrequencyEstimatorOptions options;
+  options.num_harmonics = num_harmonics;
+  for (Eigen::Index c = 0; c < samples.cols(); ++c) {
+    double channel_frequency_hz = frequency_hz;
+    try {
+      const FrequencyEstimate own = EstimateFrequency(samples.col(c).tail(reference_length), sample_rate_hz,
+                                                      frequency_hz, options, frequency_hz);
+      const double bin_hz = sample_rate_hz / static_cast<double>(reference_length);
+      if (own.fundamental_amplitude > kMinOwnFrequencySnr * own.fundamental_std &&
+          std::abs(own.frequency_hz - frequency_hz) < bin_hz)
+        channel_frequency_hz = own.frequency_hz;
+    } catch (const std::runtime_error&) {
+      // No convergence: this channel has too little signal; keep the force's.
+    }
+    internal::HarmonicBasis basis(static_cast<int>(n), sample_rate_hz, channel_frequency_hz, num_harmonics,
+                                  static_cast<double>(reference_start) + 0.5 * static_cast<double>(reference_length - 1));
+    const auto reference_rows = basis.matrix().bottomRows(reference_length);
+    const Eigen::MatrixXd normal = reference_rows.transpose() * reference_rows;
+    const Eigen::VectorXd coefficients =
+        normal.ldlt().solve(reference_rows.transpose() * samples.col(c).tail(reference_length));
+    const Eigen::VectorXd residual = samples.col(c) - basis.matrix() * coefficients;
+    for (Eigen::Index b = 0; b < num_blocks; ++b)
+      mean_squares(b, c) = residual.segment(b * block, block).squaredNorm() / static_cast<double>(block);
+  }
+  return mean_squares;
+}
+
+double Median(std::vector<double> values) {
+  auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
+}  // namespace
+
+SteadyState DetectSteadyState(const Eigen::Ref<const Eigen::MatrixXd>& samples, std::span<const std::string> channels,
+                              double sample_rate_hz, double frequency_hz, int num_harmonics, const std::string& file,
+                              const SteadyStateOptions& options) {
+  const Eigen::Index n = samples.rows();
+  const double samples_per_period = sample_rate_hz / frequency_hz;
+  const Eigen::Index block =
+      std::clamp<Eigen::Index>(static_cast<Eigen::Index>(std::lround(samples_per_period)), 32, std::max<Eigen::Index>(n / 16, 1));
+  const Eigen::Index num_blocks = n / block;
+  const int below_nyquist = static_cast<int>(std::ceil(0.5 * sample_rate_hz / frequency_hz)) - 1;
+  const int h = std::max(1, std::min(num_harmonics, below_nyquist));
+  const double limit_factor = 1.0 + options.threshold * std::sqrt(2.0 / static_cast<double>(block));
+  const Eigen::VectorXd channel_power = samples.colwise().squaredNorm().transpose() / static_cast<double>(n);
+  const auto min_steady = static_cast<Eigen::Index>(std::ceil(options.min_steady_periods * samples_per_period));
+
+  Eigen::Index reference_start = n - static_cast<Eigen::Index>(options.reference_fraction * static_cast<double>(n));
+  SteadyState state;
+  std::string worst_channel_name;
+  for (int pass = 0; pass < options.max_passes; ++pass) {
+    if (n - reference_start < min_steady) break;
+    const Eigen::MatrixXd mean_squares =
+        BlockMeanSquares(samples, reference_start, sample_rate_hz, frequency_hz, h, block);
+    // Excess of each block over its channel's limit (> 1: not quiet).
+    Eigen::MatrixXd excess(num_blocks, samples.cols());
+    const Eigen::Index first_reference_block = (reference_start + block - 1) / block;
+    const Eigen::Index middle_reference_block = (first_reference_block + num_blocks) / 2;
+    bool reference_decays = false;
+    for (Eigen::Index c = 0; c < samples.cols(); ++c) {
+      std::vector<double> reference;
+      for (Eigen::Index b = first_reference_block; b < num_blocks; ++b) reference.push_back(mean_squares(b, c));
+      const double floor = options.relative_noise_floor * options.relative_noise_floor * channel_power(c);
+      const double noise = std::max(reference.empty() ? 0.0 : Median(reference), floor);
+      excess.col(c) = mean_squares.col(c) / (noise * limit_factor);
+      // A residual that still falls inside the reference is a slow transient
+      // taken for noise: compare the reference's halves.
+      const Eigen::Index half_blocks = num_blocks - middle_reference_block;
+      if (middle_reference_block - first_reference_block >= 1 && half_blocks >= 1) {
+        const double early =
+            mean_squares.col(c).segment(first_reference_block, middle_reference_block - first_reference_block).mean();
+        const double late = mean_squares.col(c).tail(half_blocks).mean();
+        if ((early + floor) > options.max_decay_ratio * (late + floor)) {
+          reference_decays = true;
+          worst_channel_name = channels[static_cast<std::size_t>(c)];
+          state.reason = "residual of channel '" + worst_channel_name + "' still decays by " +
+                         FormatNumber(std::round(early / late * 10.0) / 10.0) + "x between t = " +
+                         FormatNumber(static_cast<double>(reference_start) / sample_rate_hz) + " s and the end";
+        }
+      }
+    }
+    if (reference_decays) {
+      reference_start += (n - reference_start) / 2;
+      continue;
+    }
+    Eigen::Index settled_block = num_blocks;
+    int quiet_run = 0;
+    for (Eigen::Index b = 0; b < num_blocks; ++b) {
+      quiet_run = excess.row(b).maxCoeff() <= 1.0 ? quiet_run + 1 : 0;
+      if (quiet_run == options.settled_blocks || (quiet_run > 0 && b == num_blocks - 1)) {
+        settled_block = b + 1 - quiet_run;
+        break;
+      }
+    }
+    state.first_sample = settled_block * block;
+    state.settled_after_s = static_cast<double>(state.first_sample) / sample_rate_hz;
+    if (settled_block == 0) {
+      state.reason = "no transient detected";
+    } else {
+      Eigen::Index worst_block = 0, worst_channel = 0;
+      excess.topRows(std::max<Eigen::Index>(settled_block, 1)).maxCoeff(&worst_block, &worst_channel);
+      worst_channel_name = channels[static_cast<std::size_t>(worst_channel)];
+      state.reason = "transient dropped: residual of channel '" + worst_channel_name +
+                     "' up to " + FormatNumber(std::round(excess(worst_block, worst_channel) * 10.0) / 10.0) +
+                     "x the noise limit until t = " + FormatNumber(state.settled_after_s) + " s";
+    }
+    if (state.first_sample <= reference_start) return state;
+    reference_start = std::min(state.first_sample, n);
+  }
+  throw InputError(file, worst_channel_name,
+                   "no steady state: the response still changes near the end of the record (" + state.reason +
+                       "); fewer than " + FormatNumber(options.min_steady_periods) + " steady periods remain",
+                   "record longer after the frequency step, or wait longer before recording");
+}
+
+}  // namespace beamid::signal
