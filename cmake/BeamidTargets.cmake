@@ -3,7 +3,8 @@
 
 # Designated initialisers may leave members at their defaults: that is the
 # point of options structs, so that warning is off.
-set(BEAMID_WARNINGS -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wno-missing-field-initializers)
+# GCC 12 reports false -Wrestrict positives inside std::string (GCC PR 105329).
+set(BEAMID_WARNINGS -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wno-missing-field-initializers -Wno-restrict)
 
 # beamid_add_folder_library(NAME <target> FOLDER <dir> [DEPS ...])
 # Compiles every .cc of the folder (and its internal/) into one library, so a

@@ -146,6 +146,12 @@ void HarmonicBalance::Residual(const Eigen::VectorXd& z, const LinearHarmonics& 
   }
 }
 
+Eigen::MatrixXd HarmonicBalance::ParameterJacobian(const Eigen::VectorXd& z, double omega_rad_s) const {
+  const Eigen::VectorXd theta_t = synthesis_ * z;
+  const Eigen::VectorXd theta_rate_t = omega_rad_s * (synthesis_rate_ * z);
+  return analysis_ * law_->PeriodicParameterJacobian(theta_t, theta_rate_t);
+}
+
 HarmonicBalanceSolution HarmonicBalance::Solve(double omega_rad_s, const Eigen::VectorXcd& force_N,
                                                const Eigen::VectorXd& initial) const {
   const LinearHarmonics linear = Linear(omega_rad_s);

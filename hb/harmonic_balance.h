@@ -17,6 +17,7 @@
 #pragma once
 
 #include <memory>
+#include <span>
 #include <vector>
 
 #include <Eigen/Core>
@@ -79,6 +80,12 @@ class HarmonicBalance {
   void Residual(const Eigen::VectorXd& z, const LinearHarmonics& linear, const Eigen::VectorXcd& force_N,
                 Eigen::VectorXd* residual, Eigen::MatrixXd* d_residual_d_z = nullptr,
                 Eigen::VectorXd* d_residual_d_omega = nullptr) const;
+
+  // ∂R/∂p: derivatives of the residual with respect to the support law's
+  // parameters (SupportLaw::Parameters() order), (2H+1) × P.
+  Eigen::MatrixXd ParameterJacobian(const Eigen::VectorXd& z, double omega_rad_s) const;
+  // Changes the law's parameters (identification); order as Parameters().
+  void SetLawParameters(std::span<const double> values) { law_->SetParameterValues(values); }
 
   // Newton from `initial` (z layout; empty = the linear solution).
   HarmonicBalanceSolution Solve(double omega_rad_s, const Eigen::VectorXcd& force_N,

@@ -24,6 +24,27 @@ PeriodicMoment SupportLaw::EvaluatePeriodic(const Eigen::VectorXd& theta_rad,
   return out;
 }
 
+Eigen::MatrixXd SupportLaw::PeriodicParameterJacobian(const Eigen::VectorXd& theta_rad,
+                                                      const Eigen::VectorXd& theta_rate_rad_s) const {
+  const std::vector<LawParameter> parameters = Parameters();
+  std::vector<double> values;
+  for (const auto& p : parameters) values.push_back(p.value);
+  Eigen::MatrixXd jacobian(theta_rad.size(), static_cast<Eigen::Index>(values.size()));
+  std::unique_ptr<SupportLaw> probe = Clone();
+  for (std::size_t j = 0; j < values.size(); ++j) {
+    const double step = 1e-6 * std::max(std::abs(values[j]), 1e-9);
+    std::vector<double> shifted = values;
+    shifted[j] = values[j] + step;
+    probe->SetParameterValues(shifted);
+    const Eigen::VectorXd up = probe->EvaluatePeriodic(theta_rad, theta_rate_rad_s).moment_Nm;
+    shifted[j] = values[j] - step;
+    probe->SetParameterValues(shifted);
+    const Eigen::VectorXd down = probe->EvaluatePeriodic(theta_rad, theta_rate_rad_s).moment_Nm;
+    jacobian.col(static_cast<Eigen::Index>(j)) = (up - down) / (2.0 * step);
+  }
+  return jacobian;
+}
+
 // ---------------------------------------------------------------- polynomial
 
 std::unique_ptr<SupportLaw> PolynomialSupportLaw::Clone() const {
@@ -49,6 +70,16 @@ std::vector<LawParameter> PolynomialSupportLaw::Parameters() const {
 void PolynomialSupportLaw::SetParameterValues(std::span<const double> values) {
   if (values.size() != 4) throw std::invalid_argument("polynomial support law takes 4 parameters (k1, k2, k3, c)");
   coefficients_ = {values[0], values[1], values[2], values[3]};
+}
+
+Eigen::MatrixXd PolynomialSupportLaw::PeriodicParameterJacobian(const Eigen::VectorXd& theta,
+                                                                const Eigen::VectorXd& theta_rate) const {
+  Eigen::MatrixXd jacobian(theta.size(), 4);
+  jacobian.col(0) = theta;
+  jacobian.col(1) = theta.array().square();
+  jacobian.col(2) = theta.array().cube();
+  jacobian.col(3) = theta_rate;
+  return jacobian;
 }
 
 // ------------------------------------------------------------------- Jenkins
@@ -223,6 +254,23 @@ std::vector<LawParameter> CompositeSupportLaw::Parameters() const {
   for (const auto& law : laws_)
     for (auto& p : law->Parameters()) all.push_back(std::move(p));
   return all;
+}
+
+Eigen::MatrixXd CompositeSupportLaw::PeriodicParameterJacobian(const Eigen::VectorXd& theta,
+                                                               const Eigen::VectorXd& theta_rate) const {
+  std::vector<Eigen::MatrixXd> parts;
+  Eigen::Index columns = 0;
+  for (const auto& law : laws_) {
+    parts.push_back(law->PeriodicParameterJacobian(theta, theta_rate));
+    columns += parts.back().cols();
+  }
+  Eigen::MatrixXd jacobian(theta.size(), columns);
+  Eigen::Index offset = 0;
+  for (const auto& part : parts) {
+    jacobian.middleCols(offset, part.cols()) = part;
+    offset += part.cols();
+  }
+  return jacobian;
 }
 
 void CompositeSupportLaw::SetParameterValues(std::span<const double> values) {

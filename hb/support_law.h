@@ -62,6 +62,12 @@ class SupportLaw {
   virtual PeriodicMoment EvaluatePeriodic(const Eigen::VectorXd& theta_rad,
                                           const Eigen::VectorXd& theta_rate_rad_s) const;
 
+  // ∂M(t_n)/∂p_j on one steady-state period (N × number of parameters), for
+  // identification. The default differentiates EvaluatePeriodic by central
+  // differences in each parameter; laws linear in their parameters override it.
+  virtual Eigen::MatrixXd PeriodicParameterJacobian(const Eigen::VectorXd& theta_rad,
+                                                    const Eigen::VectorXd& theta_rate_rad_s) const;
+
   // Tangent stiffness and viscous damping at θ = θ̇ = 0 on first loading
   // [N·m/rad], [N·m·s/rad]: the linear behaviour at vanishing amplitude.
   virtual double InitialStiffness_Nm_rad() const = 0;
@@ -94,6 +100,9 @@ class PolynomialSupportLaw final : public SupportLaw {
   double InitialDamping_Nms_rad() const override { return coefficients_.c_Nms_rad; }
   std::vector<LawParameter> Parameters() const override;
   void SetParameterValues(std::span<const double> values) override;
+  // Exact: M is linear in (k1, k2, k3, c), the columns are θ, θ², θ³, θ̇.
+  Eigen::MatrixXd PeriodicParameterJacobian(const Eigen::VectorXd& theta_rad,
+                                            const Eigen::VectorXd& theta_rate_rad_s) const override;
 
  private:
   Coefficients coefficients_;
@@ -148,10 +157,11 @@ class CompositeSupportLaw final : public SupportLaw {
                                   const Eigen::VectorXd& theta_rate_rad_s) const override;
   double InitialStiffness_Nm_rad() const override;
   double InitialDamping_Nms_rad() const override;
-  // Parameter names are prefixed by the law's name when two laws could
-  // clash ("jenkins.slip_moment_Nm"); polynomial ones keep k1, k2, k3, c.
+  // The laws' parameters in order (names are unique across the laws).
   std::vector<LawParameter> Parameters() const override;
   void SetParameterValues(std::span<const double> values) override;
+  Eigen::MatrixXd PeriodicParameterJacobian(const Eigen::VectorXd& theta_rad,
+                                            const Eigen::VectorXd& theta_rate_rad_s) const override;
 
  private:
   std::vector<std::unique_ptr<SupportLaw>> laws_;

@@ -173,3 +173,45 @@ TEST(HarmonicBalance, JenkinsSticksLinearlyAndSlipsWithDissipation) {
 
 }  // namespace
 }  // namespace beamid::hb
+
+namespace beamid::hb {
+namespace {
+
+TEST(HarmonicBalance, ParameterJacobianMatchesCentralDifferences) {
+  // For the polynomial law (exact columns) and the Jenkins element (default
+  // differences of the periodic loop), against re-evaluated residuals.
+  BeamProperties beam = testing::PaperBeam();
+  CompositeSupportLaw law;
+  law.Add(std::make_unique<PolynomialSupportLaw>(
+      PolynomialSupportLaw::Coefficients{.k1_Nm_rad = 100.0, .k2_Nm_rad2 = 3e3, .k3_Nm_rad3 = 4e5, .c_Nms_rad = 0.02}));
+  law.Add(std::make_unique<JenkinsSupportLaw>(JenkinsSupportLaw::Parameters_{.stiffness_Nm_rad = 50.0,
+                                                                             .slip_moment_Nm = 0.02}));
+  HarmonicBalance balance(LinearBeam({.beam = beam}, testing::kForcePosition_m), law, {.num_harmonics = 5});
+  Eigen::VectorXd z = Eigen::VectorXd::Zero(balance.num_unknowns());
+  z[1] = 2e-3;
+  z[2] = -1e-3;
+  z[5] = 2e-4;
+  const double omega = 2.0 * std::numbers::pi * 54.0;
+  const LinearHarmonics linear = balance.Linear(omega);
+  Eigen::VectorXcd force = Eigen::VectorXcd::Zero(2);
+  force[1] = 1.0;
+  const Eigen::MatrixXd analytic = balance.ParameterJacobian(z, omega);
+  std::vector<double> values;
+  for (const auto& p : law.Parameters()) values.push_back(p.value);
+  for (std::size_t j = 0; j < values.size(); ++j) {
+    const double h = 1e-5 * values[j];
+    std::vector<double> up = values, down = values;
+    up[j] += h;
+    down[j] -= h;
+    Eigen::VectorXd r_up, r_down;
+    balance.SetLawParameters(up);
+    balance.Residual(z, linear, force, &r_up);
+    balance.SetLawParameters(down);
+    balance.Residual(z, linear, force, &r_down);
+    const Eigen::VectorXd numeric = (r_up - r_down) / (2 * h);
+    EXPECT_LT((numeric - analytic.col(j)).norm(), 1e-6 * (numeric.norm() + 1e-12)) << "parameter " << j;
+  }
+}
+
+}  // namespace
+}  // namespace beamid::hb
