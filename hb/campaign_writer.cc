@@ -1,0 +1,217 @@
+#include "hb/campaign_writer.h"
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace beamid::hb {
+namespace {
+
+using Json = nlohmann::json;
+
+constexpr int kCsvSignificantDigits = 9;
+
+void AppendNumber(std::string& out, double value, int precision) {
+  char buffer[64];
+  const auto result = precision > 0
+                          ? std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::general, precision)
+                          : std::to_chars(buffer, buffer + sizeof buffer, value);
+  out.append(buffer, result.ptr);
+}
+
+Json BeamJson(const BeamProperties& beam, bool with_loss) {
+  Json j = {{"length_m", beam.length_m},
+            {"width_m", beam.width_m},
+            {"thickness_m", beam.thickness_m},
+            {"youngs_modulus_Pa", beam.youngs_modulus_Pa},
+            {"density_kg_m3", beam.density_kg_m3}};
+  if (with_loss) j["loss_factor"] = beam.loss_factor;
+  return j;
+}
+
+// Infinite (rigid) stiffnesses are written as null: JSON has no infinity.
+Json StiffnessJson(double value) { return std::isfinite(value) ? Json(value) : Json(nullptr); }
+
+Json PhasorsJson(const Eigen::VectorXcd& x) {
+  Json harmonics = Json::array();
+  for (Eigen::Index k = 1; k < x.size(); ++k) harmonics.push_back({x(k).real(), x(k).imag()});
+  return {{"mean", x(0).real()}, {"harmonics", harmonics}};
+}
+
+Json NoiseJson(const ChannelNoise& n) {
+  return {{"relative_rms", n.relative_rms}, {"absolute", n.absolute}, {"adc_bits", n.adc_bits}, {"adc_range", n.adc_range}};
+}
+
+void WriteFile(const std::filesystem::path& path, const std::string& text, std::uintmax_t& bytes) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  out.close();
+  if (!out) throw std::runtime_error(path.string() + ": cannot write the file (disk full or no permission?)");
+  bytes += text.size();
+}
+
+}  // namespace
+
+CampaignWriter::CampaignWriter(const SteppedSineSimulation& simulation, const std::filesystem::path& directory,
+                               const CampaignWriterOptions& options)
+    : simulation_(simulation),
+      directory_(directory),
+      noise_(simulation.scenario().seed),
+      campaign_steps_(std::make_unique<Json>(Json::array())),
+      truth_steps_(std::make_unique<Json>(Json::array())) {
+  const Scenario& s = simulation_.scenario();
+  std::error_code error;
+  std::filesystem::create_directories(directory_, error);
+  if (error) throw std::invalid_argument(directory_.string() + ": cannot create the output directory (" + error.message() + ")");
+  if (!options.overwrite && std::filesystem::exists(directory_ / "campaign.json"))
+    throw std::invalid_argument(directory_.string() +
+                                ": holds a campaign.json already; choose another directory or pass --overwrite");
+  for (const ScenarioLevel& level : s.levels) {
+    std::filesystem::create_directories(directory_ / level.label, error);
+    if (error) throw std::invalid_argument((directory_ / level.label).string() + ": cannot create (" + error.message() + ")");
+  }
+  unit_to_si_.push_back(1.0);
+  for (const ScenarioSensor& sensor : s.sensors) unit_to_si_.push_back(UnitToSi(sensor.quantity, sensor.unit));
+}
+
+CampaignWriter::~CampaignWriter() = default;
+
+void CampaignWriter::Write(const SimulatedStep& step) {
+  const Scenario& s = simulation_.scenario();
+  const double fs = s.timing.sample_rate_hz;
+  std::vector<std::string> names{s.force_channel};
+  for (const ScenarioSensor& sensor : s.sensors) names.push_back(sensor.channel);
+
+  Eigen::MatrixXd written = step.recording;
+  for (Eigen::Index c = 0; c < written.cols(); ++c) {
+    written.col(c) /= unit_to_si_[c];
+    clipped_samples_ += noise_.Apply(s.NoiseOf(names[c]), written.col(c));
+  }
+  std::string csv = "time_s";
+  for (const std::string& name : names) csv += "," + name;
+  csv += "\n";
+  csv.reserve(static_cast<size_t>(written.rows()) * (written.cols() + 1) * 16);
+  for (Eigen::Index i = 0; i < written.rows(); ++i) {
+    AppendNumber(csv, static_cast<double>(i) / fs, 0);
+    for (Eigen::Index c = 0; c < written.cols(); ++c) {
+      csv += ',';
+      AppendNumber(csv, written(i, c), kCsvSignificantDigits);
+    }
+    csv += '\n';
+  }
+  WriteFile(directory_ / step.file, csv, bytes_written_);
+
+  campaign_steps_->push_back({{"file", step.file}, {"frequency_Hz", step.nominal_frequency_hz}, {"level", step.level}});
+
+  Json channels = Json::object();
+  channels[s.force_channel] = PhasorsJson(step.channel_phasors[0]);
+  channels[s.force_channel]["quantity"] = "force";
+  channels[s.force_channel]["unit"] = "N";
+  for (size_t i = 0; i < s.sensors.size(); ++i) {
+    const ScenarioSensor& sensor = s.sensors[i];
+    Json c = PhasorsJson(step.channel_phasors[i + 1]);
+    c["quantity"] = sensor.quantity;
+    c["unit"] = sensor.quantity == "acceleration" ? "m/s^2" : sensor.quantity == "velocity" ? "m/s" : "m";
+    channels[sensor.channel] = c;
+  }
+  Json hidden = Json::array();
+  for (size_t h = 0; h < s.hidden_positions_m.size(); ++h)
+    hidden.push_back({{"position_m", s.hidden_positions_m[h]},
+                      {"displacement_m", PhasorsJson(step.hidden_displacement_phasors[h])}});
+  truth_steps_->push_back({{"file", step.file},
+                           {"level", step.level},
+                           {"nominal_frequency_Hz", step.nominal_frequency_hz},
+                           {"frequency_Hz", step.frequency_hz},
+                           {"force_amplitude_N", step.force_amplitude_N},
+                           {"settle_s", step.settle_s},
+                           {"settled", step.settled},
+                           {"settle_change", step.settle_change},
+                           {"steady_start_s", step.transient_samples / fs},
+                           {"channels", channels},
+                           {"hidden", hidden},
+                           {"support_rotation_rad", PhasorsJson(step.support_rotation_phasors)},
+                           {"support_moment_Nm", PhasorsJson(step.support_moment_phasors)}});
+}
+
+void CampaignWriter::Finish() {
+  const Scenario& s = simulation_.scenario();
+  const TimeSimulator& sim = simulation_.simulator();
+
+  Json sensors = Json::array();
+  for (const ScenarioSensor& sensor : s.sensors) {
+    Json j = {{"channel", sensor.channel},
+              {"position_m", sensor.position_m},
+              {"quantity", sensor.quantity},
+              {"unit", sensor.unit}};
+    if (sensor.mass_kg > 0.0) j["mass_kg"] = sensor.mass_kg;
+    sensors.push_back(j);
+  }
+  const Json campaign = {
+      {"format", "stepped-sine-campaign/1"},
+      {"name", s.name},
+      {"beam", BeamJson(s.nominal_beam, false)},
+      {"excitation", {{"channel", s.force_channel}, {"position_m", s.force_position_m}, {"quantity", "force"}, {"unit", "N"}}},
+      {"sensors", sensors},
+      {"sample_rate_Hz", s.timing.sample_rate_hz},
+      {"steps", *campaign_steps_}};
+  WriteFile(directory_ / "campaign.json", campaign.dump(2) + "\n", bytes_written_);
+
+  const std::unique_ptr<SupportLaw> law = s.MakeSupportLaw();
+  Json parameters = Json::array();
+  for (const LawParameter& p : law->Parameters()) parameters.push_back({{"name", p.name}, {"value", p.value}, {"unit", p.unit}});
+  Json point_masses = Json::array();
+  for (const PointMass& m : s.attachments.point_masses)
+    point_masses.push_back({{"position_m", m.position_m}, {"mass_kg", m.mass_kg}});
+  Json distortion = Json::array();
+  for (const ForceHarmonic& h : s.force_distortion)
+    distortion.push_back({{"harmonic", h.harmonic}, {"amplitude_ratio", h.amplitude_ratio}, {"phase_rad", h.phase_rad}});
+  Json natural = Json::array();
+  for (double w : sim.fe_beam().NaturalFrequencies_rad_s(3, law->InitialStiffness_Nm_rad()))
+    natural.push_back(w / (2 * std::numbers::pi));
+  Json noise = {{"seed", s.seed}, {"default", NoiseJson(s.default_noise)}, {"channels", Json::object()}};
+  for (const auto& [channel, n] : s.channel_noise) noise["channels"][channel] = NoiseJson(n);
+
+  const Json truth = {
+      {"format", "beamid-simulation-truth/1"},
+      {"scenario", s.name},
+      {"beam", BeamJson(s.beam, true)},
+      {"nominal_beam", BeamJson(s.nominal_beam, false)},
+      {"support_law",
+       {{"name", law->Name()},
+        {"parameters", parameters},
+        {"polynomial",
+         {{"k1_Nm_rad", s.polynomial.k1_Nm_rad},
+          {"k2_Nm_rad2", s.polynomial.k2_Nm_rad2},
+          {"k3_Nm_rad3", s.polynomial.k3_Nm_rad3},
+          {"c_Nms_rad", s.polynomial.c_Nms_rad}}},
+        {"jenkins", s.jenkins ? Json{{"stiffness_Nm_rad", s.jenkins->stiffness_Nm_rad},
+                                     {"slip_moment_Nm", s.jenkins->slip_moment_Nm}}
+                              : Json(nullptr)}}},
+      {"attachments",
+       {{"clamp_rotational_stiffness_Nm_rad", StiffnessJson(s.attachments.clamp_rotational_stiffness_Nm_rad)},
+        {"support_translational_stiffness_N_m", StiffnessJson(s.attachments.support_translational_stiffness_N_m)},
+        {"point_masses", point_masses}}},
+      {"damping",
+       {{"model", "stiffness-proportional, C = beta*K"},
+        {"loss_factor", s.beam.loss_factor},
+        {"reference_frequency_Hz", sim.damping_reference_rad_s() / (2 * std::numbers::pi)},
+        {"beta_s", sim.stiffness_proportional_damping_s()}}},
+      {"excitation", {{"channel", s.force_channel}, {"position_m", s.force_position_m}, {"distortion", distortion}}},
+      {"generator_clock_offset_ppm", s.clock_offset_ppm},
+      {"sample_rate_Hz", s.timing.sample_rate_hz},
+      {"time_step_s", sim.time_step_s()},
+      {"fe_elements", sim.fe_beam().NumElements()},
+      {"natural_frequencies_Hz", natural},
+      {"hidden_positions_m", s.hidden_positions_m},
+      {"noise", noise},
+      {"clipped_samples", clipped_samples_},
+      {"steps", *truth_steps_}};
+  WriteFile(directory_ / "truth.json", truth.dump(1) + "\n", bytes_written_);
+}
+
+}  // namespace beamid::hb

@@ -1,0 +1,28 @@
+#include "hb/noise.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace beamid::hb {
+
+int MeasurementNoise::Apply(const ChannelNoise& noise, Eigen::Ref<Eigen::VectorXd> samples) {
+  if (samples.size() == 0) return 0;
+  const double rms = std::sqrt(samples.squaredNorm() / static_cast<double>(samples.size()));
+  const double sigma = noise.relative_rms * rms + noise.absolute;
+  if (sigma > 0.0) {
+    std::normal_distribution<double> gaussian(0.0, sigma);
+    for (double& x : samples) x += gaussian(rng_);
+  }
+  int clipped = 0;
+  if (noise.adc_bits > 0) {
+    const double range = noise.adc_range;
+    const double step = 2.0 * range / std::ldexp(1.0, noise.adc_bits);
+    for (double& x : samples) {
+      if (std::abs(x) > range) ++clipped;
+      x = std::clamp(std::round(x / step) * step, -range, range);
+    }
+  }
+  return clipped;
+}
+
+}  // namespace beamid::hb

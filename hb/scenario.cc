@@ -1,0 +1,312 @@
+#include "hb/scenario.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "hb/internal/json_object_reader.h"
+
+namespace beamid::hb {
+namespace {
+
+using Json = nlohmann::json;
+using internal::ObjectReader;
+using internal::ReadBeam;
+
+}  // namespace
+
+double UnitToSi(const std::string& quantity, const std::string& unit) {
+  if (quantity == "acceleration" && unit == "m/s^2") return 1.0;
+  if (quantity == "acceleration" && unit == "g") return 9.80665;
+  if (quantity == "velocity" && unit == "m/s") return 1.0;
+  if (quantity == "velocity" && unit == "mm/s") return 1e-3;
+  if (quantity == "displacement" && unit == "m") return 1.0;
+  if (quantity == "displacement" && unit == "mm") return 1e-3;
+  return 0.0;
+}
+
+namespace {
+
+ChannelNoise ReadNoise(ObjectReader& r) {
+  ChannelNoise n;
+  n.relative_rms = r.NonNegative("relative_rms", 0.0);
+  n.absolute = r.NonNegative("absolute", 0.0);
+  const double bits = r.NonNegative("adc_bits", 0.0);
+  if (bits != std::floor(bits) || bits > 32) r.FailField("adc_bits", "must be an integer from 0 to 32");
+  n.adc_bits = static_cast<int>(bits);
+  n.adc_range = r.NonNegative("adc_range", 0.0);
+  if (n.adc_bits > 0 && !(n.adc_range > 0.0)) r.FailField("adc_range", "must be positive when adc_bits is set");
+  return n;
+}
+
+std::vector<double> ReadFrequencies(ObjectReader& level) {
+  const Json& spec = level.Raw("frequencies_Hz");
+  const std::string path = level.PathOf("frequencies_Hz");
+  std::vector<double> f;
+  if (spec.is_array()) {
+    for (const Json& v : spec) {
+      if (!v.is_number()) throw std::invalid_argument(level.source() + ": " + path + " must hold numbers");
+      f.push_back(v.get<double>());
+    }
+  } else {
+    ObjectReader range(spec, level.source(), path);
+    const double start = range.Positive("start", 0.0), stop = range.Positive("stop", 0.0);
+    const double step = range.Positive("step", 0.0);
+    if (stop < start) range.FailField("stop", "must not be below start (use \"direction\": \"down\" to sweep down)");
+    const int count = static_cast<int>(std::floor((stop - start) / step + 1e-9)) + 1;
+    if (count > 100000) range.FailField("step", "gives more than 100000 steps");
+    for (int i = 0; i < count; ++i) f.push_back(start + step * i);
+  }
+  if (f.empty()) throw std::invalid_argument(level.source() + ": " + path + " holds no frequency");
+  for (double x : f)
+    if (!(x > 0.0 && std::isfinite(x))) throw std::invalid_argument(level.source() + ": " + path + " must be positive");
+  const std::string direction = level.String("direction", "up");
+  if (direction == "down") std::reverse(f.begin(), f.end());
+  else if (direction != "up") level.FailField("direction", "must be \"up\" or \"down\"");
+  return f;
+}
+
+bool IsSafeLabel(const std::string& label) {
+  if (label.empty() || label.size() > 64) return false;
+  for (char c : label)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-')) return false;
+  return true;
+}
+
+}  // namespace
+
+std::unique_ptr<SupportLaw> Scenario::MakeSupportLaw() const {
+  auto polynomial_law = std::make_unique<PolynomialSupportLaw>(polynomial);
+  if (!jenkins) return polynomial_law;
+  auto composite = std::make_unique<CompositeSupportLaw>();
+  composite->Add(std::move(polynomial_law));
+  composite->Add(std::make_unique<JenkinsSupportLaw>(*jenkins));
+  return composite;
+}
+
+LinearAttachments Scenario::TrueAttachments() const {
+  LinearAttachments all = attachments;
+  for (const ScenarioSensor& s : sensors)
+    if (s.mass_kg > 0.0) all.point_masses.push_back({s.position_m, s.mass_kg});
+  return all;
+}
+
+const ChannelNoise& Scenario::NoiseOf(const std::string& channel) const {
+  const auto it = channel_noise.find(channel);
+  return it == channel_noise.end() ? default_noise : it->second;
+}
+
+int Scenario::NumSteps() const {
+  int n = 0;
+  for (const ScenarioLevel& level : levels) n += static_cast<int>(level.frequencies_hz.size());
+  return n;
+}
+
+Scenario ParseScenario(const std::string& json_text, const std::string& source) {
+  Json root;
+  try {
+    root = Json::parse(json_text);
+  } catch (const Json::parse_error& e) {
+    throw std::invalid_argument(source + ": not valid JSON (" + e.what() + ")");
+  }
+  Scenario s;
+  ObjectReader top(root, source, "");
+  s.name = top.String("name", "simulated stepped-sine campaign");
+  {
+    ObjectReader beam(top.Raw("beam"), source, "beam");
+    ReadBeam(beam, s.beam, true);
+  }
+  s.nominal_beam = s.beam;
+  s.nominal_beam.loss_factor = 0.0;
+  if (top.Has("nominal_beam")) {
+    ObjectReader nominal(top.Raw("nominal_beam"), source, "nominal_beam");
+    ReadBeam(nominal, s.nominal_beam, false);
+  }
+  {
+    ObjectReader support(top.Raw("support"), source, "support");
+    ObjectReader poly(support.Raw("polynomial"), source, "support.polynomial");
+    s.polynomial.k1_Nm_rad = poly.Number("k1_Nm_rad");
+    s.polynomial.k2_Nm_rad2 = poly.Number("k2_Nm_rad2", 0.0);
+    s.polynomial.k3_Nm_rad3 = poly.Number("k3_Nm_rad3", 0.0);
+    s.polynomial.c_Nms_rad = poly.NonNegative("c_Nms_rad", 0.0);
+    if (support.Has("jenkins")) {
+      ObjectReader jenkins(support.Raw("jenkins"), source, "support.jenkins");
+      s.jenkins = JenkinsSupportLaw::Parameters_{.stiffness_Nm_rad = jenkins.Positive("stiffness_Nm_rad", 0.0),
+                                                 .slip_moment_Nm = jenkins.Positive("slip_moment_Nm", 0.0)};
+    }
+  }
+  if (top.Has("attachments")) {
+    ObjectReader a(top.Raw("attachments"), source, "attachments");
+    if (a.Has("clamp_rotational_stiffness_Nm_rad"))
+      s.attachments.clamp_rotational_stiffness_Nm_rad = a.Positive("clamp_rotational_stiffness_Nm_rad", 0.0);
+    if (a.Has("support_translational_stiffness_N_m"))
+      s.attachments.support_translational_stiffness_N_m = a.Positive("support_translational_stiffness_N_m", 0.0);
+    if (a.Has("point_masses")) {
+      const Json& masses = a.Array("point_masses");
+      for (size_t i = 0; i < masses.size(); ++i) {
+        ObjectReader m(masses[i], source, "attachments.point_masses[" + std::to_string(i) + "]");
+        s.attachments.point_masses.push_back({m.NonNegative("position_m", 0.0), m.Positive("mass_kg", 0.0)});
+      }
+    }
+  }
+  if (top.Has("damping")) {
+    ObjectReader d(top.Raw("damping"), source, "damping");
+    s.damping_reference_frequency_hz = d.NonNegative("reference_frequency_Hz", 0.0);
+  }
+  if (top.Has("mesh")) {
+    ObjectReader m(top.Raw("mesh"), source, "mesh");
+    const double n = m.Positive("min_elements", 20);
+    if (n != std::floor(n) || n > 2000) m.FailField("min_elements", "must be an integer from 1 to 2000");
+    s.mesh_min_elements = static_cast<int>(n);
+  }
+  {
+    ObjectReader e(top.Raw("excitation"), source, "excitation");
+    s.force_channel = e.String("channel", "force");
+    s.force_position_m = e.Positive("position_m", 0.0);
+    if (e.Has("distortion")) {
+      const Json& list = e.Array("distortion");
+      for (size_t i = 0; i < list.size(); ++i) {
+        ObjectReader h(list[i], source, "excitation.distortion[" + std::to_string(i) + "]");
+        const double k = h.Number("harmonic");
+        if (k != std::floor(k) || k < 2 || k > 20) h.FailField("harmonic", "must be an integer from 2 to 20");
+        s.force_distortion.push_back({static_cast<int>(k), h.NonNegative("amplitude_ratio", 0.0), h.Number("phase_rad", 0.0)});
+      }
+    }
+  }
+  {
+    const Json& sensors = top.Array("sensors");
+    if (sensors.empty()) top.FailField("sensors", "must list at least one sensor");
+    for (size_t i = 0; i < sensors.size(); ++i) {
+      ObjectReader r(sensors[i], source, "sensors[" + std::to_string(i) + "]");
+      ScenarioSensor sensor;
+      sensor.channel = r.String("channel", "");
+      sensor.position_m = r.Positive("position_m", 0.0);
+      sensor.quantity = r.String("quantity", "acceleration");
+      const std::string default_unit =
+          sensor.quantity == "velocity" ? "m/s" : sensor.quantity == "displacement" ? "m" : "m/s^2";
+      sensor.unit = r.String("unit", default_unit);
+      sensor.mass_kg = r.NonNegative("mass_kg", 0.0);
+      if (sensor.quantity != "acceleration" && sensor.quantity != "velocity" && sensor.quantity != "displacement")
+        r.FailField("quantity", "must be acceleration, velocity or displacement");
+      if (UnitToSi(sensor.quantity, sensor.unit) == 0.0)
+        r.FailField("unit", "'" + sensor.unit + "' is not a unit of " + sensor.quantity +
+                                " (m/s^2, g, m/s, mm/s, m, mm)");
+      s.sensors.push_back(sensor);
+    }
+  }
+  if (top.Has("hidden_positions_m")) {
+    for (const Json& v : top.Array("hidden_positions_m")) {
+      if (!v.is_number()) top.FailField("hidden_positions_m", "must hold numbers");
+      s.hidden_positions_m.push_back(v.get<double>());
+    }
+  }
+  {
+    const Json& levels = top.Array("levels");
+    if (levels.empty()) top.FailField("levels", "must list at least one level");
+    for (size_t i = 0; i < levels.size(); ++i) {
+      ObjectReader r(levels[i], source, "levels[" + std::to_string(i) + "]");
+      ScenarioLevel level;
+      level.label = r.String("label", "");
+      if (!IsSafeLabel(level.label))
+        r.FailField("label", "must be 1-64 letters, digits, '_' or '-' (it names the level's folder)");
+      level.force_amplitude_N = r.Positive("force_amplitude_N", 0.0);
+      level.frequencies_hz = ReadFrequencies(r);
+      s.levels.push_back(std::move(level));
+    }
+  }
+  if (top.Has("timing")) {
+    ObjectReader t(top.Raw("timing"), source, "timing");
+    ScenarioTiming& timing = s.timing;
+    timing.sample_rate_hz = t.Positive("sample_rate_Hz", timing.sample_rate_hz);
+    timing.max_time_step_s = t.Positive("max_time_step_s", timing.max_time_step_s);
+    timing.settle_min_s = t.NonNegative("settle_min_s", timing.settle_min_s);
+    timing.settle_max_s = t.Positive("settle_max_s", timing.settle_max_s);
+    timing.settle_tolerance = t.Positive("settle_tolerance", timing.settle_tolerance);
+    timing.transient_s = t.NonNegative("transient_s", timing.transient_s);
+    timing.record_s = t.Positive("record_s", timing.record_s);
+    timing.restart_each_level = t.Bool("restart_each_level", timing.restart_each_level);
+    if (timing.settle_max_s < timing.settle_min_s) t.FailField("settle_max_s", "must not be below settle_min_s");
+  }
+  if (top.Has("noise")) {
+    ObjectReader n(top.Raw("noise"), source, "noise");
+    const double seed = n.NonNegative("seed", 1.0);
+    if (seed != std::floor(seed) || seed > 9.0e15) n.FailField("seed", "must be a non-negative integer");
+    s.seed = static_cast<std::uint64_t>(seed);
+    s.clock_offset_ppm = n.Number("clock_offset_ppm", 0.0);
+    if (std::abs(s.clock_offset_ppm) > 1e4) n.FailField("clock_offset_ppm", "must lie within ±10000 ppm");
+    if (n.Has("default")) {
+      ObjectReader d(n.Raw("default"), source, "noise.default");
+      s.default_noise = ReadNoise(d);
+    }
+    if (n.Has("channels")) {
+      const Json& channels = n.Raw("channels");
+      if (!channels.is_object()) n.FailField("channels", "must map channel names to noise settings");
+      for (const auto& [channel, spec] : channels.items()) {
+        ObjectReader c(spec, source, "noise.channels." + channel);
+        s.channel_noise[channel] = ReadNoise(c);
+      }
+    }
+  }
+
+  // Consistency of the whole.
+  s.beam.Validate();
+  s.nominal_beam.Validate();
+  const double length = s.beam.length_m;
+  auto inside = [&](double x, const std::string& what, bool allow_ends) {
+    if (!(x >= 0.0 && x <= length) || (!allow_ends && (x <= 0.0 || x >= length)))
+      throw std::invalid_argument(source + ": " + what + " = " + std::to_string(x) + " m lies outside the beam (0, " +
+                                  std::to_string(length) + ") m");
+  };
+  inside(s.force_position_m, "excitation.position_m", false);
+  std::set<std::string> channels{s.force_channel};
+  if (s.force_channel.empty() || s.force_channel == "time_s")
+    throw std::invalid_argument(source + ": excitation.channel must be a name other than time_s");
+  for (const ScenarioSensor& sensor : s.sensors) {
+    inside(sensor.position_m, "sensor " + sensor.channel + " position_m", false);
+    if (sensor.channel.empty() || sensor.channel == "time_s" || sensor.channel.find(',') != std::string::npos)
+      throw std::invalid_argument(source + ": sensor channel '" + sensor.channel +
+                                  "' must be a non-empty name without commas, other than time_s");
+    if (!channels.insert(sensor.channel).second)
+      throw std::invalid_argument(source + ": channel name '" + sensor.channel + "' is used twice");
+  }
+  for (double x : s.hidden_positions_m) inside(x, "hidden_positions_m", true);
+  for (const PointMass& m : s.attachments.point_masses) inside(m.position_m, "attachments point mass position_m", true);
+  for (const auto& [channel, noise] : s.channel_noise)
+    if (!channels.count(channel))
+      throw std::invalid_argument(source + ": noise.channels names '" + channel + "', which is not a channel");
+  std::set<std::string> labels;
+  for (const ScenarioLevel& level : s.levels)
+    if (!labels.insert(level.label).second)
+      throw std::invalid_argument(source + ": level label '" + level.label + "' is used twice");
+  const double nyquist_hz = 0.5 * s.timing.sample_rate_hz;
+  for (const ScenarioLevel& level : s.levels)
+    for (double f : level.frequencies_hz)
+      if (5.0 * f >= nyquist_hz)
+        throw std::invalid_argument(source + ": level " + level.label + " runs " + std::to_string(f) +
+                                    " Hz, whose 5th harmonic is above the Nyquist frequency of sample_rate_Hz; "
+                                    "raise timing.sample_rate_Hz");
+  double max_frequency_hz = 0.0;
+  for (const ScenarioLevel& level : s.levels)
+    for (double f : level.frequencies_hz) max_frequency_hz = std::max(max_frequency_hz, f);
+  for (const ForceHarmonic& h : s.force_distortion)
+    if (h.harmonic * max_frequency_hz >= nyquist_hz)
+      throw std::invalid_argument(source + ": excitation.distortion harmonic " + std::to_string(h.harmonic) +
+                                  " exceeds the Nyquist frequency; raise timing.sample_rate_Hz");
+  return s;
+}
+
+Scenario ReadScenario(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) throw std::invalid_argument(file.string() + ": cannot open the scenario file");
+  std::stringstream text;
+  text << in.rdbuf();
+  return ParseScenario(text.str(), file.string());
+}
+
+}  // namespace beamid::hb

@@ -1,0 +1,203 @@
+#include "hb/stepped_sine.h"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <numbers>
+#include <stdexcept>
+#include <vector>
+
+#include "hb/time_harmonic_fit.h"
+
+namespace beamid::hb {
+namespace {
+
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+// Settling windows span whole periods and at least this long.
+constexpr double kMinSettleWindow_s = 0.04;
+
+// The last `capacity` rows pushed, oldest first on read-out.
+class SampleRing {
+ public:
+  SampleRing(int capacity, int columns) : rows_(Eigen::MatrixXd::Zero(std::max(capacity, 1), columns)), capacity_(capacity) {}
+  void Push(const Eigen::VectorXd& row) {
+    if (capacity_ == 0) return;
+    rows_.row(next_) = row.transpose();
+    next_ = (next_ + 1) % capacity_;
+    size_ = std::min(size_ + 1, capacity_);
+  }
+  int size() const { return size_; }
+  void CopyTo(Eigen::MatrixXd& out) const {
+    const int start = size_ < capacity_ ? 0 : next_;
+    for (int i = 0; i < size_; ++i) out.row(i) = rows_.row((start + i) % std::max(capacity_, 1));
+  }
+  void Clear() { size_ = next_ = 0; }
+
+ private:
+  Eigen::MatrixXd rows_;
+  int capacity_;
+  int next_ = 0;
+  int size_ = 0;
+};
+
+}  // namespace
+
+SteppedSineSimulation::SteppedSineSimulation(const Scenario& scenario)
+    : scenario_(scenario), law_(scenario.MakeSupportLaw()) {
+  const ScenarioTiming& timing = scenario_.timing;
+  const double sample_period_s = 1.0 / timing.sample_rate_hz;
+  substeps_ = std::max(1, static_cast<int>(std::ceil(sample_period_s / timing.max_time_step_s - 1e-9)));
+  TimeSimulatorModel model;
+  model.beam = scenario_.beam;
+  model.attachments = scenario_.TrueAttachments();
+  model.force_position_m = scenario_.force_position_m;
+  for (const ScenarioSensor& s : scenario_.sensors) model.output_positions_m.push_back(s.position_m);
+  for (double x : scenario_.hidden_positions_m) model.output_positions_m.push_back(x);
+  TimeSimulatorOptions options;
+  options.time_step_s = sample_period_s / substeps_;
+  options.damping_reference_rad_s = kTwoPi * scenario_.damping_reference_frequency_hz;
+  options.mesh.min_elements = scenario_.mesh_min_elements;
+  simulator_ = std::make_unique<TimeSimulator>(model, *law_, options);
+  const int outputs = simulator_->NumOutputs();
+  displacement_.resize(outputs);
+  velocity_.resize(outputs);
+  acceleration_.resize(outputs);
+}
+
+SteppedSineSimulation::~SteppedSineSimulation() = default;
+
+double SteppedSineSimulation::Force_N(double amplitude_N, double phase_rad) const {
+  double f = std::cos(phase_rad);
+  for (const ForceHarmonic& h : scenario_.force_distortion)
+    f += h.amplitude_ratio * std::cos(h.harmonic * phase_rad + h.phase_rad);
+  return amplitude_N * f;
+}
+
+void SteppedSineSimulation::ChannelValues(Eigen::Ref<Eigen::VectorXd> values) const {
+  simulator_->Outputs(displacement_, velocity_, acceleration_);
+  values(0) = simulator_->state().force_N;
+  for (size_t i = 0; i < scenario_.sensors.size(); ++i) {
+    const std::string& q = scenario_.sensors[i].quantity;
+    const Eigen::Index k = static_cast<Eigen::Index>(i);
+    values(k + 1) = q == "acceleration" ? acceleration_(k) : q == "velocity" ? velocity_(k) : displacement_(k);
+  }
+}
+
+void SteppedSineSimulation::Run(const std::function<void(const SimulatedStep&)>& sink) {
+  const ScenarioTiming& timing = scenario_.timing;
+  const double fs = timing.sample_rate_hz;
+  const double dt = simulator_->time_step_s();
+  const int num_sensors = static_cast<int>(scenario_.sensors.size());
+  const int num_channels = num_sensors + 1;
+  const int num_hidden = static_cast<int>(scenario_.hidden_positions_m.size());
+  const int transient_capacity = static_cast<int>(std::lround(timing.transient_s * fs));
+  const int record_samples = static_cast<int>(std::lround(timing.record_s * fs));
+  const double clock = 1.0 + 1e-6 * scenario_.clock_offset_ppm;
+
+  Eigen::VectorXd channels(num_channels);
+  // Monitored while settling: the sensors and θ (the force is prescribed).
+  std::vector<double> monitored(num_sensors + 1);
+  // Fitted for the truth: channels, hidden deflections, θ, M_s.
+  std::vector<double> truth_values(num_channels + num_hidden + 2);
+  SampleRing ring(transient_capacity, num_channels);
+  double phase = 0.0;
+  int index = 0;
+
+  for (size_t li = 0; li < scenario_.levels.size(); ++li) {
+    const ScenarioLevel& level = scenario_.levels[li];
+    if (li == 0 || timing.restart_each_level) {
+      phase = 0.0;
+      simulator_->Reset(Force_N(level.force_amplitude_N, phase));
+    }
+    for (size_t si = 0; si < level.frequencies_hz.size(); ++si) {
+      SimulatedStep step;
+      step.index = index++;
+      step.level_index = static_cast<int>(li);
+      step.index_in_level = static_cast<int>(si);
+      step.level = level.label;
+      char name[32];
+      std::snprintf(name, sizeof name, "step_%03d.csv", step.index_in_level);
+      step.file = level.label + "/" + name;
+      step.nominal_frequency_hz = level.frequencies_hz[si];
+      step.frequency_hz = step.nominal_frequency_hz * clock;
+      step.force_amplitude_N = level.force_amplitude_N;
+      const double omega = kTwoPi * step.frequency_hz;
+
+      // The generator's phase is continuous across the frequency change.
+      const double phase_start = std::fmod(phase, kTwoPi);
+      long substep = 0;
+      auto next_sample = [&] {
+        for (int i = 0; i < substeps_; ++i) {
+          ++substep;
+          phase = phase_start + omega * dt * static_cast<double>(substep);
+          simulator_->Advance(Force_N(level.force_amplitude_N, phase));
+        }
+        ChannelValues(channels);
+      };
+
+      // Settle.
+      const int window_periods = std::max(2, static_cast<int>(std::ceil(kMinSettleWindow_s * step.frequency_hz)));
+      const int window_samples = std::max(16, static_cast<int>(std::lround(window_periods * fs / step.frequency_hz)));
+      const long min_samples = std::lround(timing.settle_min_s * fs);
+      const long max_samples = std::max(min_samples, std::lround(timing.settle_max_s * fs));
+      TimeHarmonicFit window(kTruthHarmonics, num_sensors + 1);
+      Eigen::VectorXcd previous_fundamentals;
+      ring.Clear();
+      long samples = 0;
+      step.settle_change = 1.0;
+      while (samples < max_samples) {
+        next_sample();
+        ++samples;
+        ring.Push(channels);
+        for (int s = 0; s < num_sensors; ++s) monitored[s] = channels(s + 1);
+        monitored[num_sensors] = simulator_->SupportRotation_rad();
+        window.Add(phase, monitored);
+        if (window.NumSamples() < window_samples) continue;
+        const std::vector<Eigen::VectorXcd> phasors = window.Solve();
+        window.Clear();
+        Eigen::VectorXcd fundamentals(num_sensors + 1);
+        for (int s = 0; s <= num_sensors; ++s) fundamentals(s) = phasors[s](1);
+        if (previous_fundamentals.size() > 0) {
+          double change = 0.0;
+          for (int s = 0; s <= num_sensors; ++s) {
+            const double scale = std::abs(fundamentals(s));
+            if (scale > 0.0) change = std::max(change, std::abs(fundamentals(s) - previous_fundamentals(s)) / scale);
+          }
+          step.settle_change = change;
+          if (samples >= min_samples && change < timing.settle_tolerance) {
+            step.settled = true;
+            break;
+          }
+        }
+        previous_fundamentals = fundamentals;
+      }
+      step.settle_s = static_cast<double>(samples) / fs;
+
+      // Record: the tail of the settling, then the steady part, fitted for the truth.
+      step.transient_samples = ring.size();
+      step.recording.resize(step.transient_samples + record_samples, num_channels);
+      ring.CopyTo(step.recording);
+      TimeHarmonicFit truth(kTruthHarmonics, static_cast<int>(truth_values.size()));
+      for (int i = 0; i < record_samples; ++i) {
+        next_sample();
+        step.recording.row(step.transient_samples + i) = channels.transpose();
+        for (int c = 0; c < num_channels; ++c) truth_values[c] = channels(c);
+        for (int h = 0; h < num_hidden; ++h) truth_values[num_channels + h] = displacement_(num_sensors + h);
+        truth_values[num_channels + num_hidden] = simulator_->SupportRotation_rad();
+        truth_values[num_channels + num_hidden + 1] = simulator_->SupportMoment_Nm();
+        truth.Add(phase, truth_values);
+      }
+      std::vector<Eigen::VectorXcd> phasors = truth.Solve();
+      const std::complex<double> force_fundamental = phasors[0](1);
+      for (Eigen::VectorXcd& p : phasors) ReferenceToFundamental(force_fundamental, p);
+      step.channel_phasors.assign(phasors.begin(), phasors.begin() + num_channels);
+      step.hidden_displacement_phasors.assign(phasors.begin() + num_channels, phasors.begin() + num_channels + num_hidden);
+      step.support_rotation_phasors = phasors[num_channels + num_hidden];
+      step.support_moment_phasors = phasors[num_channels + num_hidden + 1];
+      sink(step);
+    }
+  }
+}
+
+}  // namespace beamid::hb
