@@ -1,0 +1,63 @@
+#include "signal/campaign_extractor.h"
+
+#include <algorithm>
+#include <atomic>
+#include <exception>
+#include <mutex>
+#include <stdexcept>
+#include <thread>
+#include <vector>
+
+#include "signal/input_error.h"
+#include "signal/recording.h"
+
+namespace beamid::signal {
+
+PhasorSet ExtractCampaign(const Campaign& campaign, const ExtractOptions& options) {
+  const std::size_t total = campaign.steps.size();
+  PhasorSet set;
+  set.campaign = campaign.name;
+  set.num_harmonics = options.estimator.num_harmonics;
+  set.steps.resize(total);
+  std::vector<std::exception_ptr> errors(total);
+  std::atomic<std::size_t> next{0};
+  std::atomic<bool> failed{false};
+  std::mutex progress_mutex;
+  std::size_t done = 0;
+
+  auto work = [&] {
+    for (std::size_t i = next++; i < total && !failed; i = next++) {
+      const Step& step = campaign.steps[i];
+      try {
+        const Recording recording = ReadRecording(campaign, step, options.checks);
+        try {
+          set.steps[i] = EstimateStepPhasors(recording, campaign, step, options.estimator);
+        } catch (const std::invalid_argument&) {
+          throw;
+        } catch (const std::runtime_error& e) {
+          throw std::runtime_error(recording.file + ": " + e.what());
+        }
+      } catch (...) {
+        errors[i] = std::current_exception();
+        failed = true;
+        continue;
+      }
+      if (options.progress) {
+        std::lock_guard lock(progress_mutex);
+        options.progress(++done, total, set.steps[i]);
+      }
+    }
+  };
+  const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
+  const std::size_t num_threads =
+      std::min<std::size_t>(total, options.num_threads > 0 ? static_cast<std::size_t>(options.num_threads) : hardware);
+  std::vector<std::thread> threads;
+  for (std::size_t t = 1; t < num_threads; ++t) threads.emplace_back(work);
+  work();
+  for (auto& thread : threads) thread.join();
+  for (const auto& error : errors)
+    if (error) std::rethrow_exception(error);
+  return set;
+}
+
+}  // namespace beamid::signal

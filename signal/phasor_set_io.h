@@ -1,0 +1,33 @@
+// Files of a PhasorSet (signal/phasor_set.h), written by `beamid extract` and
+// read by solver/:
+//  - JSON, format "beamid-phasors/1": per step its file, level,
+//    nominal_frequency_Hz, frequency_Hz, frequency_std_Hz, quality, and per
+//    channel (force first) quantity, SI unit, position_m, mean, thd, snr_dB,
+//    noise_rms and harmonics [{k, re, im, amplitude, phase_rad, std_re,
+//    std_im, correlation, std_amplitude, std_phase_rad}] — amplitude, phase
+//    and their stds are redundant conveniences; reading uses re, im, std_re,
+//    std_im and correlation. Numbers are written with round-trip precision.
+//  - CSV view: one row per step, channel and harmonic with the same fields.
+// Reading validates the file and throws InputError naming it.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "signal/phasor_set.h"
+
+namespace beamid::signal {
+
+inline constexpr std::string_view kPhasorFormat = "beamid-phasors/1";
+
+std::string PhasorSetToJson(const PhasorSet& set);
+PhasorSet PhasorSetFromJson(std::string_view json_text, const std::string& source);
+std::string PhasorSetToCsv(const PhasorSet& set);
+
+// File versions; throw InputError when the file cannot be written or read.
+void WritePhasorSetJson(const PhasorSet& set, const std::filesystem::path& file);
+PhasorSet ReadPhasorSetJson(const std::filesystem::path& file);
+void WritePhasorSetCsv(const PhasorSet& set, const std::filesystem::path& file);
+
+}  // namespace beamid::signal
