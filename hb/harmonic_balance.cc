@@ -84,21 +84,32 @@ HarmonicBalance::HarmonicBalance(const LinearBeam& beam, const SupportLaw& law, 
 HarmonicBalance::~HarmonicBalance() = default;
 HarmonicBalance::HarmonicBalance(HarmonicBalance&&) noexcept = default;
 
-LinearHarmonics HarmonicBalance::Linear(double omega_rad_s) const {
-  const int h = options_.num_harmonics;
+LinearHarmonics ComputeLinearHarmonics(const LinearBeam& beam, double omega_rad_s, int num_harmonics,
+                                       const std::vector<double>& positions_m) {
+  const int h = num_harmonics;
+  const auto count = static_cast<Eigen::Index>(positions_m.size());
   LinearHarmonics linear;
   linear.omega_rad_s = omega_rad_s;
   linear.rotational_stiffness.resize(h + 1);
   linear.blocked_moment_per_force.resize(h + 1);
+  linear.displacement_per_force.resize(count, h + 1);
+  linear.displacement_per_rotation.resize(count, h + 1);
   for (int k = 0; k <= h; ++k) {
-    const auto c = beam_.CondenseOnSupportRotation(k * omega_rad_s, {});
-    linear.rotational_stiffness[k] = c.rotational_stiffness_Nm_rad;
-    linear.blocked_moment_per_force[k] = c.blocked_moment_per_force_m;
+    const auto c = beam.CondenseOnSupportRotation(k * omega_rad_s, positions_m);
+    const bool real = k == 0;
+    auto part = [real](Complex v) { return real ? Complex(v.real()) : v; };
+    linear.rotational_stiffness[k] = part(c.rotational_stiffness_Nm_rad);
+    linear.blocked_moment_per_force[k] = part(c.blocked_moment_per_force_m);
+    for (Eigen::Index i = 0; i < count; ++i) {
+      linear.displacement_per_force(i, k) = part(c.displacement_per_force_m_N[i]);
+      linear.displacement_per_rotation(i, k) = part(c.displacement_per_rotation_m[i]);
+    }
   }
-  // A static load has no structural damping.
-  linear.rotational_stiffness[0] = linear.rotational_stiffness[0].real();
-  linear.blocked_moment_per_force[0] = linear.blocked_moment_per_force[0].real();
   return linear;
+}
+
+LinearHarmonics HarmonicBalance::Linear(double omega_rad_s) const {
+  return ComputeLinearHarmonics(beam_, omega_rad_s, options_.num_harmonics);
 }
 
 void HarmonicBalance::Residual(const Eigen::VectorXd& z, const LinearHarmonics& linear,
@@ -194,15 +205,10 @@ Eigen::MatrixXcd HarmonicBalance::Displacements(const HarmonicBalanceSolution& s
                                                 const Eigen::VectorXcd& force_N,
                                                 const std::vector<double>& positions_m) const {
   const int h = options_.num_harmonics;
+  const LinearHarmonics linear = ComputeLinearHarmonics(beam_, solution.omega_rad_s, h, positions_m);
   const Eigen::VectorXcd force = PadHarmonics(force_N, h);
-  Eigen::MatrixXcd out(positions_m.size(), h + 1);
-  for (int k = 0; k <= h; ++k) {
-    const auto c = beam_.CondenseOnSupportRotation(k * solution.omega_rad_s, positions_m);
-    Eigen::VectorXcd column = c.displacement_per_force_m_N * force[k] + c.displacement_per_rotation_m * solution.theta_rad[k];
-    if (k == 0) column = column.real().cast<Complex>();
-    out.col(k) = column;
-  }
-  return out;
+  return linear.displacement_per_force * force.asDiagonal() +
+         linear.displacement_per_rotation * solution.theta_rad.asDiagonal();
 }
 
 Eigen::VectorXcd HarmonicBalance::SupportMoment(const HarmonicBalanceSolution& solution) const {

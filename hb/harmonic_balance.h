@@ -49,7 +49,15 @@ struct LinearHarmonics {
   double omega_rad_s = 0.0;
   Eigen::VectorXcd rotational_stiffness;   // D(kω), k = 0..H
   Eigen::VectorXcd blocked_moment_per_force;  // B(kω)
+  // Optional, positions × (H + 1): displacement = a·F_k + b·Θ_k.
+  Eigen::MatrixXcd displacement_per_force;     // a_x(kω) [m/N]
+  Eigen::MatrixXcd displacement_per_rotation;  // b_x(kω) [m/rad]
 };
+
+// The linear part of `beam` at the harmonics 0..H of ω (static terms real:
+// a static load has no structural damping), and the transfer to positions.
+LinearHarmonics ComputeLinearHarmonics(const LinearBeam& beam, double omega_rad_s, int num_harmonics,
+                                       const std::vector<double>& positions_m = {});
 
 struct HarmonicBalanceSolution {
   double omega_rad_s = 0.0;
