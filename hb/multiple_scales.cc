@@ -117,17 +117,32 @@ MultipleScalesModel::LinearCoupling MultipleScalesModel::Coupling(double omega_r
           force_phasor_N * NonResonantForce_m_N(beam_.length_m, omega_rad_s, 1)};
 }
 
+Complex MultipleScalesModel::DamperFactor(double harmonic_omega_rad_s) const {
+  if (options_.harmonic_frequency == HarmonicFrequency::kNatural || support_.c_Nms_rad == 0.0) return 1.0;
+  // Unit end moment with the damper: θ = G·(1 − iω·C·θ), so G_C = G/(1 + iω·C·G).
+  const Complex damper(0.0, harmonic_omega_rad_s * support_.c_Nms_rad);
+  return 1.0 / (1.0 + damper * closed_form_.RotationPerEndMoment_rad_Nm(harmonic_omega_rad_s));
+}
+
+Complex MultipleScalesModel::SecondHarmonicCompliance_rad_Nm(double omega_rad_s) const {
+  const double second = 2.0 * HarmonicBase_rad_s(omega_rad_s);
+  const Complex compliance = closed_form_.RotationPerEndMoment_rad_Nm(second) * DamperFactor(second);
+  if (!std::isfinite(std::abs(compliance)))
+    throw std::runtime_error("multiple-scales model: 2*Omega = " + std::to_string(second) +
+                             " rad/s is a natural frequency of the linear beam (internal resonance)");
+  return compliance;
+}
+
 Complex MultipleScalesModel::ForcedRotation_rad(double omega_rad_s, Complex force_phasor_N) const {
   return Coupling(omega_rad_s, force_phasor_N).forced_rotation_rad;
 }
 
 Complex MultipleScalesModel::NonlinearMomentFirstHarmonic_Nm(Complex modal_phasor_m, double omega_rad_s) const {
-  const double base = HarmonicBase_rad_s(omega_rad_s);
   const double k2 = support_.k2_Nm_rad2;
   const Complex theta0 = modal_phasor_m * support_slope_per_m_;
   const double theta0_abs2 = std::norm(theta0);
   const double theta_static = -k2 * theta0_abs2 * static_rotation_per_moment_rad_Nm_ / 2.0;
-  const Complex theta2 = -k2 * theta0 * theta0 * closed_form_.RotationPerEndMoment_rad_Nm(2.0 * base) / 2.0;
+  const Complex theta2 = -k2 * theta0 * theta0 * SecondHarmonicCompliance_rad_Nm(omega_rad_s) / 2.0;
   return 0.75 * support_.k3_Nm_rad3 * theta0_abs2 * theta0 +
          2.0 * k2 * (theta0 * theta_static + std::conj(theta0) * theta2 / 2.0);
 }
@@ -152,7 +167,12 @@ std::vector<Complex> MultipleScalesModel::Solve(double omega_rad_s, Complex forc
   const double slope = support_slope_per_m_;
   // (α − β·a²)·U = f with
   const Complex alpha = ModalDynamicStiffness_N_m(omega_rad_s) + coupling.damping_Nm_rad * slope * slope;
-  const Complex beta = coupling.nonlinear_factor * CubicCoefficient_N_m3(omega_rad_s) / 4.0;
+  const double slope4 = slope * slope * slope * slope;
+  const Complex gamma = (2.0 * support_.k2_Nm_rad2 * support_.k2_Nm_rad2 *
+                             (2.0 * static_rotation_per_moment_rad_Nm_ + SecondHarmonicCompliance_rad_Nm(omega_rad_s)) -
+                         3.0 * support_.k3_Nm_rad3) *
+                        slope4;
+  const Complex beta = coupling.nonlinear_factor * gamma / 4.0;
   const Complex force_modal =
       force_phasor_N * mode_at_force_ - slope * coupling.damping_Nm_rad * coupling.forced_rotation_rad;
   if (force_modal == 0.0) return {Complex(0.0)};
@@ -226,6 +246,15 @@ double MultipleScalesModel::NonResonantMoment_m_Nm(double position_m, double ome
   return SmoothThroughResonance(rest, omega_rad_s, omega0_rad_s_);
 }
 
+Complex MultipleScalesModel::FirstHarmonicRotation_rad(Complex modal_phasor_m, double omega_rad_s,
+                                                       Complex force_phasor_N) const {
+  const Complex theta0 = modal_phasor_m * support_slope_per_m_;
+  if (options_.harmonic_frequency == HarmonicFrequency::kNatural) return theta0;
+  return theta0 + ForcedRotation_rad(omega_rad_s, force_phasor_N) -
+         SupportMomentFirstHarmonic_Nm(modal_phasor_m, omega_rad_s, force_phasor_N) *
+             NonResonantMoment_m_Nm(beam_.length_m, omega_rad_s, 1);
+}
+
 MultipleScalesModel::Harmonics MultipleScalesModel::Response(double position_m, Complex modal_phasor_m,
                                                              double omega_rad_s, Complex force_phasor_N) const {
   if (!(position_m >= 0.0 && position_m <= beam_.length_m))
@@ -233,16 +262,18 @@ MultipleScalesModel::Harmonics MultipleScalesModel::Response(double position_m, 
                                 " m lies outside the beam [0, " + std::to_string(beam_.length_m) + "] m");
   const double base = HarmonicBase_rad_s(omega_rad_s);
   const Complex u = modal_phasor_m;
-  const double slope = support_slope_per_m_;
   const double k2 = support_.k2_Nm_rad2;
+  const Complex moment1 = SupportMomentFirstHarmonic_Nm(u, omega_rad_s, force_phasor_N);
+  const Complex theta1 = FirstHarmonicRotation_rad(u, omega_rad_s, force_phasor_N);
   Harmonics h;
-  h.h0_m = -(k2 * slope * slope / 2.0) * std::norm(u) * DisplacementPerEndMoment_m_Nm(position_m, 0.0);
+  h.h0_m = -(k2 / 2.0) * std::norm(theta1) * DisplacementPerEndMoment_m_Nm(position_m, 0.0);
   h.h1_m = u * mode_.Value(position_m) + force_phasor_N * NonResonantForce_m_N(position_m, base) -
-           SupportMomentFirstHarmonic_Nm(u, omega_rad_s, force_phasor_N) * NonResonantMoment_m_Nm(position_m, base);
-  h.h2_m = -(k2 * slope * slope / 2.0) * u * u * DisplacementPerEndMoment_m_Nm(position_m, 2.0 * base);
-  const double g2 = closed_form_.RotationPerEndMoment_rad_Nm(2.0 * base);
-  h.h3_m = -(u * u * u * slope * slope * slope / 4.0) * (support_.k3_Nm_rad3 - 2.0 * k2 * k2 * g2) *
-           DisplacementPerEndMoment_m_Nm(position_m, 3.0 * base);
+           moment1 * NonResonantMoment_m_Nm(position_m, base);
+  h.h2_m = -(k2 / 2.0) * theta1 * theta1 * DisplacementPerEndMoment_m_Nm(position_m, 2.0 * base) *
+           DamperFactor(2.0 * base);
+  h.h3_m = -(theta1 * theta1 * theta1 / 4.0) *
+           (support_.k3_Nm_rad3 - 2.0 * k2 * k2 * SecondHarmonicCompliance_rad_Nm(omega_rad_s)) *
+           DisplacementPerEndMoment_m_Nm(position_m, 3.0 * base) * DamperFactor(3.0 * base);
   return h;
 }
 

@@ -13,7 +13,7 @@
 //     θ0 = U·w'(L),  θ_static = −K2·|θ0|²·G(0)/2,  θ_2 = −K2·θ0²·G(2Ω)/2,
 //     N1 = ¾·K3·|θ0|²·θ0 + 2·K2·(θ0·θ_static + conj(θ0)·θ_2/2),
 // G(Ω) = G_θM(Ω) the end rotation per end moment of the plain beam with K1
-// (undamped). The seed's form (kNatural) is M1 = iω0·C·θ0 + N1. The
+// (in the generalised form G(2Ω) includes the damper). The seed's form (kNatural) is M1 = iω0·C·θ0 + N1. The
 // generalised form (kExcitation, default) keeps the linear support exact:
 // the damper also acts on the rotation outside the first mode, i.e. on the
 // rotation θ_F = F1·G_rest,θF(Ω) forced directly by the shaker (formally
@@ -90,7 +90,8 @@ class MultipleScalesModel {
   double SupportSlope_per_m() const { return support_slope_per_m_; }     // w'(L)
   const ClosedFormBeam& linear_beam() const { return closed_form_; }
 
-  // Γ(Ω) [N/m³] of the amplitude–frequency relation.
+  // Γ(Ω) [N/m³] of the amplitude–frequency relation, undamped (the backbone's;
+  // Solve() uses G(2Ω) with the damper in the generalised form).
   double CubicCoefficient_N_m3(double omega_rad_s) const;
   // M1 [N·m]: first harmonic of the nonlinear and damping support moment.
   Complex SupportMomentFirstHarmonic_Nm(Complex modal_phasor_m, double omega_rad_s, Complex force_phasor_N) const;
@@ -100,18 +101,27 @@ class MultipleScalesModel {
   // m_eff·(ω0² − Ω²)·U − F1·w(x_F) + w'(L)·M1 [N]; zero on a solution.
   Complex SolvabilityResidual_N(Complex modal_phasor_m, double omega_rad_s, Complex force_phasor_N) const;
 
+  // θ1 [rad]: the first harmonic of the support rotation that drives the
+  // 0th, 2nd and 3rd harmonics: θ0 + θ_F − M1·G_rest,θM (generalised form;
+  // y'(L) of h1), θ0 = U·w'(L) (seed's form).
+  Complex FirstHarmonicRotation_rad(Complex modal_phasor_m, double omega_rad_s, Complex force_phasor_N) const;
+
   // All steady states U at Ω (the roots of the amplitude–frequency relation,
   // with their phase), ascending in |U|.
   std::vector<Complex> Solve(double omega_rad_s, Complex force_phasor_N) const;
   std::vector<SweepPoint> Sweep(const std::vector<double>& omegas_rad_s, Complex force_phasor_N) const;
 
   // Displacement harmonics at position_m for the steady state U:
-  //   h0 = −(K2·w'²/2)·|U|²·G_xM(x, 0)
+  //   h0 = −(K2/2)·|θ1|²·G_xM(x, 0)
   //   h1 = U·w(x) + F1·G_rest(x; x_F, Ω) − M1·G_rest,M(x; Ω)
-  //   h2 = −(K2·w'²/2)·U²·G_xM(x, 2Ω)
-  //   h3 = −(U³·w'³/4)·(K3 − 2·K2²·G(2Ω))·G_xM(x, 3Ω)
+  //   h2 = −(K2/2)·θ1²·G_xM(x, 2Ω)
+  //   h3 = −(θ1³/4)·(K3 − 2·K2²·G(2Ω))·G_xM(x, 3Ω)
   // G_xM: displacement per end moment; G_rest: the exact receptance minus the
   // first mode's own term w(x)·w(·)/(m_eff·(ω0² − Ω²)) (the seed's N(x)).
+  // Seed's form: θ1 = θ0 = U·w'(L), undamped receptances at kω0. Generalised
+  // form: θ1 = θ0 + θ_F − M1·G_rest,θM (the whole first-harmonic rotation) and
+  // the receptances at 2Ω, 3Ω include the damper (at 3Ω, 3Ω·C is a third of
+  // K1 for C = 0.05 N·m·s/rad).
   Harmonics Response(double position_m, Complex modal_phasor_m, double omega_rad_s,
                      Complex force_phasor_N) const;
 
@@ -135,6 +145,11 @@ class MultipleScalesModel {
   };
   LinearCoupling Coupling(double omega_rad_s, Complex force_phasor_N) const;
   Complex NonlinearMomentFirstHarmonic_Nm(Complex modal_phasor_m, double omega_rad_s) const;
+  // 1/(1 + iω·C·G_θM(ω)): turns an undamped end-moment receptance at a
+  // harmonic frequency ω into the one with the damper (1 in the seed's form).
+  Complex DamperFactor(double harmonic_omega_rad_s) const;
+  // G_θM at 2Ω with the damper (generalised form) or at 2ω0 (seed's form).
+  Complex SecondHarmonicCompliance_rad_Nm(double omega_rad_s) const;
 
   BeamProperties beam_;
   PolynomialSupportLaw::Coefficients support_;

@@ -63,6 +63,9 @@ TEST(MultipleScalesTest, LinearLimitEqualsExactReceptanceAcrossASweep) {
         const Complex expected = reference.Displacement_m(x);
         const double error = std::abs(h.h1_m - expected) / std::abs(expected);
         worst = std::max(worst, error);
+        const Complex rotation = reference.SupportRotation_rad();
+        EXPECT_LT(std::abs(model.FirstHarmonicRotation_rad(solutions[0], omega, 1.0) - rotation),
+                  1e-9 * std::abs(rotation));
         EXPECT_LT(error, 1e-9) << "c " << c << " Ω/ω0 " << omega / omega0 << " x " << x;
         EXPECT_LT(error, kLinearLimitTolerance);
         EXPECT_EQ(h.h0_m, 0.0);
@@ -125,32 +128,37 @@ TEST(MultipleScalesTest, QuadraticStiffnessAloneSoftens) {
 }
 
 TEST(MultipleScalesTest, HarmonicAlgebraMatchesASampledPeriodAndLinearBeamReceptances) {
-  // Redo the cascade numerically: θ(t) = θ0(t) + θ1(t) with θ1 the static and
-  // second-harmonic rotations produced by the moment K2·θ0², then sample
-  // M(t) = K2·(θ0² + 2·θ0·θ1) + K3·θ0³ (the terms of order ≤ ε²; C = 0 here,
-  // the damper is checked by the linear limit) and take its harmonics; each
-  // displacement harmonic is −M_k·G_xM(x, kΩ).
+  // Redo the cascade numerically: θ(t) = θa(t) + θb(t) with θb the static and
+  // second-harmonic rotations produced by the moment K2·θa², then sample
+  // M(t) = K2·(θa² + 2·θa·θb) + K3·θa³ (the terms of order ≤ ε²; C = 0 here,
+  // the damper is checked by the linear limit and against harmonic balance)
+  // and take its harmonics. With θa = θ0 = U·w'(L) the first harmonic is M1;
+  // with θa = θ1 (the whole first-harmonic rotation) harmonic k of M drives
+  // the displacement harmonic −M_k·G_xM(x, kΩ).
   const double k2 = 300.0, k3 = -2.0e4, c = 0.0;
   const MultipleScalesModel model(testing::PaperBeam(), Support(k2, k3, c), testing::kForcePosition_m);
   const LinearBeam exact = Exact(0.0);
   const double omega = 1.01 * model.NaturalFrequency_rad_s();
   const Complex u = std::polar(2e-3, 0.7);
-  const Complex theta0 = u * model.SupportSlope_per_m();
   const BeamDeflection static_moment = exact.RespondToSupportMoment(0.0);
   const BeamDeflection second_moment = exact.RespondToSupportMoment(2.0 * omega);
   const BeamDeflection third_moment = exact.RespondToSupportMoment(3.0 * omega);
-  const double theta_static = -(k2 * std::norm(theta0) / 2.0) * static_moment.SupportRotation_rad().real();
-  const Complex theta2 = -(k2 * theta0 * theta0 / 2.0) * second_moment.SupportRotation_rad();
-  constexpr int kSamples = 64;
-  std::vector<double> moment(kSamples);
-  for (int i = 0; i < kSamples; ++i) {
-    const Complex phase = std::polar(1.0, 2.0 * std::numbers::pi * i / kSamples);
-    const double th0 = (theta0 * phase).real();
-    const double th1 = theta_static + (theta2 * phase * phase).real();
-    moment[i] = k2 * (th0 * th0 + 2.0 * th0 * th1) + k3 * th0 * th0 * th0;
-  }
-  const Complex m1 = Harmonic(moment, 1);
+  auto sampled_moment = [&](Complex theta_a) {
+    const double theta_static = -(k2 * std::norm(theta_a) / 2.0) * static_moment.SupportRotation_rad().real();
+    const Complex theta2 = -(k2 * theta_a * theta_a / 2.0) * second_moment.SupportRotation_rad();
+    constexpr int kSamples = 64;
+    std::vector<double> moment(kSamples);
+    for (int i = 0; i < kSamples; ++i) {
+      const Complex phase = std::polar(1.0, 2.0 * std::numbers::pi * i / kSamples);
+      const double tha = (theta_a * phase).real();
+      const double thb = theta_static + (theta2 * phase * phase).real();
+      moment[i] = k2 * (tha * tha + 2.0 * tha * thb) + k3 * tha * tha * tha;
+    }
+    return moment;
+  };
+  const Complex m1 = Harmonic(sampled_moment(u * model.SupportSlope_per_m()), 1);
   EXPECT_LT(std::abs(model.SupportMomentFirstHarmonic_Nm(u, omega, 1.0) - m1), 1e-10 * std::abs(m1));
+  const std::vector<double> moment = sampled_moment(model.FirstHarmonicRotation_rad(u, omega, 1.0));
   for (double x : testing::kSensorPositions_m) {
     const MultipleScalesModel::Harmonics h = model.Response(x, u, omega, 1.0);
     const Complex h0 = -Harmonic(moment, 0) * static_moment.Displacement_m(x);
