@@ -1,0 +1,64 @@
+// What a fit sees of a campaign: per step the excitation frequency, the
+// measured force phasors (all harmonics: they drive the model) and, for each
+// fitted channel, the measured response phasors of harmonics 1..K with the
+// whitening matrices of their uncertainties. Built from signal/'s PhasorSet.
+//
+// Weighted residual of channel c, harmonic k, step i (2 reals):
+//     r = L⁻¹ (Y_model − Y_measured),   L Lᵀ = Cov(Re Y, Im Y)
+// so that Σ|r|² is χ² when the uncertainties are right.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "hb/beam_properties.h"
+#include "hb/linear_attachments.h"
+#include "signal/campaign.h"
+#include "signal/phasor_set.h"
+
+namespace beamid::solver {
+
+struct FitChannel {
+  std::string channel;
+  double position_m = 0.0;
+  int derivative_order = 2;  // 0 displacement, 1 velocity, 2 acceleration
+};
+
+struct FitStep {
+  std::string level;
+  std::string file;
+  double omega_rad_s = 0.0;
+  Eigen::VectorXcd force_N;              // F_0..F_H of the recording (F_0 = 0: transducers are AC)
+  Eigen::MatrixXcd measured;             // channels × harmonics 1..K, SI of each channel's quantity
+  std::vector<std::vector<Eigen::Matrix2d>> whitening;  // [channel][k-1]: L⁻¹
+  Eigen::MatrixXd std_amplitude;         // channels × K: σ of the real/imag parts (rms of the two)
+};
+
+struct FitData {
+  hb::BeamProperties beam;               // nominal, from campaign.json
+  double force_position_m = 0.0;
+  hb::LinearAttachments sensor_masses;   // the masses campaign.json gives
+  std::vector<FitChannel> channels;
+  int num_fit_harmonics = 3;             // K
+  std::vector<FitStep> steps;
+  std::vector<std::string> levels;       // distinct labels in campaign order
+
+  int NumResiduals() const { return static_cast<int>(2 * channels.size() * num_fit_harmonics * steps.size()); }
+};
+
+struct FitDataOptions {
+  std::vector<std::string> channels;     // response channels to fit (empty: all)
+  int num_fit_harmonics = 3;             // K: harmonics 1..K are fitted
+  // Uncertainties below this fraction of the channel's largest fundamental
+  // are raised to it: the model's own error (truncation, discretisation)
+  // is never below ~1e-4, and noise-free data must not get infinite weight.
+  double relative_uncertainty_floor = 1e-4;
+};
+
+// Throws std::invalid_argument naming an unknown channel or a missing harmonic.
+FitData MakeFitData(const signal::Campaign& campaign, const signal::PhasorSet& phasors,
+                    const FitDataOptions& options);
+
+}  // namespace beamid::solver

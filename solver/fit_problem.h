@@ -1,0 +1,52 @@
+// The interface between a model fitted to a campaign and the optimiser: a
+// constrained least-squares program in scaled variables
+//     min ½·|r(x)|²   s.t.   c(x) = 0,   l ≤ x ≤ u,
+// x = [parameters; per-step states], one block of constraints per step
+// (the model's equations there). IdentificationProblem (exact harmonic
+// balance) and MultipleScalesProblem (the seed's model) implement it;
+// solver/internal/ipopt_program.* runs Ipopt on it and solver/identify.* does
+// the rest (starts, covariance) through it alone.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace beamid::solver {
+
+class FitProblem {
+ public:
+  virtual ~FitProblem() = default;
+
+  virtual int num_parameters() const = 0;
+  virtual int num_variables() const = 0;
+  virtual int num_constraints() const = 0;
+  virtual int num_residuals() const = 0;
+
+  // Physical parameters of a scaled point.
+  virtual std::vector<double> Parameters(const Eigen::VectorXd& x) const = 0;
+  // A point with these parameters whose states satisfy the constraints as
+  // well as the model allows (the count of steps where that failed).
+  virtual Eigen::VectorXd FeasiblePoint(const std::vector<double>& parameters, int* failed_steps = nullptr) = 0;
+  virtual void Bounds(Eigen::VectorXd* lower, Eigen::VectorXd* upper) const = 0;
+
+  virtual double Objective(const Eigen::VectorXd& x) = 0;
+  virtual void Gradient(const Eigen::VectorXd& x, Eigen::VectorXd* gradient) = 0;
+  virtual void Constraints(const Eigen::VectorXd& x, Eigen::VectorXd* constraints) = 0;
+  virtual int JacobianNonZeros() const = 0;
+  virtual void JacobianStructure(int* rows, int* cols) const = 0;
+  virtual void JacobianValues(const Eigen::VectorXd& x, double* values) = 0;
+  // Hessian of σ·f + Σ λ_j c_j, lower triangle.
+  virtual int HessianNonZeros() const = 0;
+  virtual void HessianStructure(int* rows, int* cols) const = 0;
+  virtual void HessianValues(const Eigen::VectorXd& x, double objective_factor, const double* multipliers,
+                             double* values) = 0;
+
+  // Whitened residuals, and their Jacobian w.r.t. the physical parameters
+  // with the states eliminated through the constraints (for the covariance).
+  virtual Eigen::VectorXd WeightedResiduals(const Eigen::VectorXd& x) = 0;
+  virtual Eigen::MatrixXd ReducedResidualJacobian(const Eigen::VectorXd& x) = 0;
+};
+
+}  // namespace beamid::solver

@@ -1,0 +1,190 @@
+#include "solver/identify.h"
+
+#include "solver/internal/worker_processes.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <random>
+#include <thread>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+
+namespace beamid::solver {
+namespace {
+
+// Latin hypercube in [0, 1)^dimensions.
+std::vector<std::vector<double>> LatinHypercube(int count, int dimensions, unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  std::vector<std::vector<double>> points(count, std::vector<double>(dimensions));
+  for (int d = 0; d < dimensions; ++d) {
+    std::vector<int> order(count);
+    for (int i = 0; i < count; ++i) order[i] = i;
+    std::shuffle(order.begin(), order.end(), random);
+    for (int i = 0; i < count; ++i) points[i][d] = (order[i] + uniform(random)) / count;
+  }
+  return points;
+}
+
+StartOutcome RunStart(FitProblem& problem, const IdentifyOptions& options, const std::vector<double>& start,
+                      Eigen::VectorXd* x_out) {
+  const Eigen::VectorXd x0 = problem.FeasiblePoint(start);
+  const internal::IpoptOutcome outcome = internal::RunIpopt(problem, x0, options.ipopt);
+  StartOutcome result{.start = start,
+                      .parameters = problem.Parameters(outcome.x),
+                      .objective = problem.Objective(outcome.x),
+                      .success = outcome.success,
+                      .iterations = outcome.iterations,
+                      .status = outcome.status_text};
+  if (x_out) *x_out = outcome.x;
+  return result;
+}
+
+}  // namespace
+
+IdentifyResult Identify(const FitData& data, const ModelStructure& structure, const IdentifyOptions& options,
+                        const ProgressCallback& progress) {
+  // 1. Direct estimate from the reconstructed support (polynomial part).
+  if (progress) progress(0.0, "direct estimate");
+  hb::LinearBeamModel nominal{.beam = data.beam, .attachments = data.sensor_masses};
+  nominal.beam.loss_factor = options.model.beam_loss_factor;
+  const DirectEstimate direct = EstimatePolynomialDirectly(ReconstructSupport(data, structure.ApplyLinear(nominal)));
+  std::vector<double> first = structure.Values();
+  if (options.use_direct_estimate && dynamic_cast<const hb::PolynomialSupportLaw*>(structure.law.get())) {
+    first[0] = direct.k1_Nm_rad;
+    first[1] = direct.k2_Nm_rad2;
+    first[2] = direct.k3_Nm_rad3;
+    first[3] = direct.c_Nms_rad;
+    const auto bounds = structure.Bounds();
+    for (int j = 0; j < 4; ++j) first[j] = std::clamp(first[j], bounds[j].lower, bounds[j].upper);
+    // A zero damping start sits on its bound, where the interior method
+    // cannot start: nudge it inside.
+    first[3] = std::max(first[3], 1e-3 * bounds[3].typical);
+  }
+  IdentifyResult result = IdentifyWith(
+      [&] { return std::make_unique<IdentificationProblem>(data, structure, options.model); }, structure, first,
+      options, progress);
+  result.direct = direct;
+  return result;
+}
+
+IdentifyResult IdentifyWith(const ProblemFactory& make_problem, const ModelStructure& structure,
+                            const std::vector<double>& first, const IdentifyOptions& options,
+                            const ProgressCallback& progress) {
+  const auto started = std::chrono::steady_clock::now();
+  IdentifyResult result;
+  const ModelStructure& initial = structure;
+
+  // 2. Starts: the direct estimate, then a Latin hypercube around it.
+  std::vector<std::vector<double>> starts = {first};
+  const auto bounds = initial.Bounds();
+  const int num_parameters = initial.NumParameters();
+  for (const auto& u : LatinHypercube(options.num_starts, num_parameters, options.seed)) {
+    std::vector<double> start = first;
+    for (int j = 0; j < num_parameters; ++j) {
+      const double base = std::abs(first[j]) > 0 ? first[j] : bounds[j].typical;
+      const double spread = options.start_spread;
+      start[j] = bounds[j].lower >= 0.0 ? std::abs(base) * std::pow(spread, 2.0 * u[j] - 1.0)
+                                        : base + spread * std::abs(base) * (2.0 * u[j] - 1.0);
+      start[j] = std::clamp(start[j], bounds[j].lower, bounds[j].upper);
+    }
+    starts.push_back(start);
+  }
+  result.starts.resize(starts.size());
+  std::vector<Eigen::VectorXd> finals(starts.size());
+  const int workers = std::max(1, std::min<int>(options.num_threads > 0
+                                                    ? options.num_threads
+                                                    : static_cast<int>(std::thread::hardware_concurrency()),
+                                                static_cast<int>(starts.size())));
+  // Ipopt's MUMPS keeps global Fortran state and cannot run in two threads
+  // at once, so parallel starts run in worker processes.
+  internal::RunInWorkers(
+      static_cast<int>(starts.size()), workers,
+      [&](int i) {
+        const std::unique_ptr<FitProblem> problem = make_problem();
+        Eigen::VectorXd x;
+        const StartOutcome outcome = RunStart(*problem, options, starts[i], &x);
+        std::vector<double> record = {outcome.objective, outcome.success ? 1.0 : 0.0,
+                                      static_cast<double>(outcome.iterations)};
+        record.insert(record.end(), outcome.parameters.begin(), outcome.parameters.end());
+        record.insert(record.end(), x.data(), x.data() + x.size());
+        return record;
+      },
+      [&](int i, const std::vector<double>& record, const std::string& error, int done) {
+        StartOutcome& outcome = result.starts[i];
+        outcome.start = starts[i];
+        if (!error.empty()) {
+          outcome.status = "failed: " + error;
+        } else {
+          outcome.objective = record[0];
+          outcome.success = record[1] != 0.0;
+          outcome.iterations = static_cast<int>(record[2]);
+          outcome.status = outcome.success ? "solved" : "not converged";
+          outcome.parameters.assign(record.begin() + 3, record.begin() + 3 + num_parameters);
+          finals[i] = Eigen::Map<const Eigen::VectorXd>(record.data() + 3 + num_parameters,
+                                                         static_cast<Eigen::Index>(record.size()) - 3 - num_parameters);
+        }
+        if (progress)
+          progress(0.05 + 0.9 * done / starts.size(),
+                   "start " + std::to_string(done) + "/" + std::to_string(starts.size()));
+      });
+
+  // 3. The best start, and how many reached it.
+  int best = -1;
+  for (int i = 0; i < static_cast<int>(starts.size()); ++i)
+    if (result.starts[i].success && (best < 0 || result.starts[i].objective < result.starts[best].objective)) best = i;
+  if (best < 0) {
+    std::string why = result.starts[0].status;
+    throw std::runtime_error("no start converged (first start: " + why + ")");
+  }
+  result.best_start = best;
+  const double best_objective = result.starts[best].objective;
+  for (const auto& s : result.starts)
+    if (s.success && s.objective <= best_objective * (1.0 + 1e-4) + 1e-9) ++result.starts_at_best;
+  result.x = finals[best];
+
+  // 4. Covariance in the reduced space.
+  const std::unique_ptr<FitProblem> problem = make_problem();
+  // The same start sets the problem's internal scales as in the winning run.
+  problem->FeasiblePoint(starts[best]);
+  const Eigen::VectorXd x = result.x;
+  const Eigen::VectorXd residuals = problem->WeightedResiduals(x);
+  const Eigen::MatrixXd j = problem->ReducedResidualJacobian(x);
+  result.chi_square = residuals.squaredNorm();
+  result.degrees_of_freedom = std::max(1, problem->num_residuals() - num_parameters);
+  result.reduced_chi_square = result.chi_square / result.degrees_of_freedom;
+  const double variance_scale = std::max(1.0, result.reduced_chi_square);
+  const Eigen::MatrixXd information = j.transpose() * j;
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(information);
+  const Eigen::VectorXd values = eigen.eigenvalues().cwiseMax(1e-300);
+  result.covariance = variance_scale * eigen.eigenvectors() * values.cwiseInverse().asDiagonal() *
+                      eigen.eigenvectors().transpose();
+  const Eigen::VectorXd std = result.covariance.diagonal().cwiseSqrt();
+  result.correlation = std.cwiseInverse().asDiagonal() * result.covariance * std.cwiseInverse().asDiagonal();
+  const auto names = initial.Names();
+  const auto units = initial.Units();
+  const auto& p = result.starts[best].parameters;
+  for (int k = 0; k < num_parameters; ++k) {
+    result.parameters.push_back({.name = names[k], .unit = units[k], .value = p[k], .std = std[k],
+                                 .lower_95 = p[k] - 1.96 * std[k], .upper_95 = p[k] + 1.96 * std[k]});
+    if (std[k] > std::max(std::abs(p[k]), 1e-12))
+      result.warnings.push_back(names[k] + " is not identifiable from these data: its standard uncertainty (" +
+                                std::to_string(std[k]) + ") exceeds its value");
+  }
+  // Collinearity on the scale-free information matrix (the correlation's inverse).
+  const Eigen::VectorXd scale = information.diagonal().cwiseSqrt().cwiseMax(1e-300);
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> normalised(scale.cwiseInverse().asDiagonal() * information *
+                                                            scale.cwiseInverse().asDiagonal());
+  if (normalised.eigenvalues().minCoeff() < 1e-8 * normalised.eigenvalues().maxCoeff())
+    result.warnings.push_back("the parameters are nearly collinear: some combination of them is not identifiable");
+  if (result.reduced_chi_square > 4.0)
+    result.warnings.push_back("the fit is worse than the phasor uncertainties allow (reduced chi-square " +
+                              std::to_string(result.reduced_chi_square) + "): run 'beamid diagnose'");
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  if (progress) progress(1.0, "done");
+  return result;
+}
+
+}  // namespace beamid::solver

@@ -1,0 +1,91 @@
+// Identification of the support (and optional linear parameters) from a
+// whole stepped-sine campaign: a direct linear least-squares estimate from
+// the reconstructed support, then Ipopt on the constrained program of
+// solver/identification_problem.h from that estimate and from a
+// space-filling set of further starts (in parallel), then the Gauss–Newton
+// covariance in the reduced parameter space:
+//     Cov(p) = s²·(JᵀJ)⁻¹,  J = dr/dp along the constraint manifold,
+//     s² = max(1, χ²/(n − P))  (the scatter is trusted only when it is worse
+//                               than the stated phasor uncertainties).
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "solver/fit_data.h"
+#include "solver/identification_problem.h"
+#include "solver/internal/ipopt_program.h"
+#include "solver/model_structure.h"
+#include "solver/support_reconstruction.h"
+
+namespace beamid::solver {
+
+struct IdentifyOptions {
+  IdentificationProblemOptions model;
+  internal::IpoptOptions ipopt;
+  // Further starts besides the direct estimate (0: only that one).
+  int num_starts = 0;
+  // Space-filling starts cover [value/spread, value·spread] around the direct
+  // estimate for positive parameters and ±spread·|value| for signed ones.
+  double start_spread = 3.0;
+  int num_threads = 0;  // 0: one per hardware core
+  unsigned seed = 1;
+  // Start from the structure's own values instead of the direct estimate
+  // (the direct estimate needs a polynomial law).
+  bool use_direct_estimate = true;
+};
+
+struct ParameterEstimate {
+  std::string name;
+  std::string unit;
+  double value = 0.0;
+  double std = 0.0;
+  double lower_95 = 0.0;
+  double upper_95 = 0.0;
+};
+
+struct StartOutcome {
+  std::vector<double> start;
+  std::vector<double> parameters;
+  double objective = 0.0;
+  bool success = false;
+  int iterations = 0;
+  std::string status;
+};
+
+struct IdentifyResult {
+  std::vector<ParameterEstimate> parameters;
+  Eigen::MatrixXd covariance;
+  Eigen::MatrixXd correlation;
+  double chi_square = 0.0;
+  int degrees_of_freedom = 0;
+  double reduced_chi_square = 0.0;
+  DirectEstimate direct;
+  std::vector<StartOutcome> starts;   // [0]: from the direct estimate
+  int best_start = 0;
+  int starts_at_best = 0;             // starts that reached the best fit
+  std::vector<std::string> warnings;
+  Eigen::VectorXd x;                  // optimiser variables at the best fit
+  double seconds = 0.0;
+};
+
+using ProgressCallback = std::function<void(double fraction, const std::string& what)>;
+// Makes a fresh problem (each parallel start owns one).
+using ProblemFactory = std::function<std::unique_ptr<FitProblem>()>;
+
+// The exact harmonic-balance model (IdentificationProblem), started from the
+// direct estimate of the polynomial law.
+IdentifyResult Identify(const FitData& data, const ModelStructure& structure, const IdentifyOptions& options,
+                        const ProgressCallback& progress = {});
+
+// Any model: starts at `first` (physical parameters, structure order) and
+// around it; the structure gives names, units and bounds.
+IdentifyResult IdentifyWith(const ProblemFactory& make_problem, const ModelStructure& structure,
+                            const std::vector<double>& first, const IdentifyOptions& options,
+                            const ProgressCallback& progress = {});
+
+}  // namespace beamid::solver
