@@ -37,14 +37,14 @@ PhasorSet ExtractCampaign(const Campaign& campaign, const ExtractOptions& option
         } catch (const std::runtime_error& e) {
           throw std::runtime_error(recording.file + ": " + e.what());
         }
+        if (options.progress) {
+          std::lock_guard lock(progress_mutex);
+          options.progress(++done, total, set.steps[i]);
+        }
       } catch (...) {
+        // Nothing may escape a worker thread: keep the error for the caller.
         errors[i] = std::current_exception();
         failed = true;
-        continue;
-      }
-      if (options.progress) {
-        std::lock_guard lock(progress_mutex);
-        options.progress(++done, total, set.steps[i]);
       }
     }
   };

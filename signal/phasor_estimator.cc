@@ -83,6 +83,11 @@ StepPhasors EstimateStepPhasors(const Recording& recording, const Campaign& camp
     first = EstimateFrequency(recording.samples.col(0).tail(half), fs, step.frequency_hz, frequency_options);
   } catch (const std::invalid_argument& e) {
     throw InputError(recording.file, force_name, e.what(), "check the step's frequency_Hz and the sample rate");
+  } catch (const std::runtime_error& e) {
+    // No stable sine to lock on: the force column holds no excitation.
+    throw InputError(recording.file, force_name,
+                     "no excitation near the nominal " + FormatNumber(step.frequency_hz) + " Hz (" + e.what() + ")",
+                     "check which column holds the force and the step's frequency_Hz");
   }
   if (first.fundamental_amplitude < options.min_force_snr * first.fundamental_std)
     throw InputError(recording.file, force_name,

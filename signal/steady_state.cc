@@ -68,8 +68,9 @@ SteadyState DetectSteadyState(const Eigen::Ref<const Eigen::MatrixXd>& samples, 
                               const SteadyStateOptions& options) {
   const Eigen::Index n = samples.rows();
   const double samples_per_period = sample_rate_hz / frequency_hz;
-  const Eigen::Index block =
-      std::clamp<Eigen::Index>(static_cast<Eigen::Index>(std::lround(samples_per_period)), 32, std::max<Eigen::Index>(n / 16, 1));
+  // About one period, at least 32 samples, and at least 16 blocks per record.
+  const Eigen::Index block = std::min(std::max<Eigen::Index>(std::lround(samples_per_period), 32),
+                                      std::max<Eigen::Index>(n / 16, 1));
   const Eigen::Index num_blocks = n / block;
   const int below_nyquist = static_cast<int>(std::ceil(0.5 * sample_rate_hz / frequency_hz)) - 1;
   const int h = std::max(1, std::min(num_harmonics, below_nyquist));
@@ -77,7 +78,10 @@ SteadyState DetectSteadyState(const Eigen::Ref<const Eigen::MatrixXd>& samples, 
   const Eigen::VectorXd channel_power = samples.colwise().squaredNorm().transpose() / static_cast<double>(n);
   const auto min_steady = static_cast<Eigen::Index>(std::ceil(options.min_steady_periods * samples_per_period));
 
-  Eigen::Index reference_start = n - static_cast<Eigen::Index>(options.reference_fraction * static_cast<double>(n));
+  // The reference holds at least min_steady_periods: a short steady record is
+  // its own reference.
+  Eigen::Index reference_start =
+      n - std::min(n, std::max(min_steady, static_cast<Eigen::Index>(options.reference_fraction * static_cast<double>(n))));
   SteadyState state;
   std::string worst_channel_name;
   for (int pass = 0; pass < options.max_passes; ++pass) {
@@ -140,8 +144,9 @@ SteadyState DetectSteadyState(const Eigen::Ref<const Eigen::MatrixXd>& samples, 
     reference_start = std::min(state.first_sample, n);
   }
   throw InputError(file, worst_channel_name,
-                   "no steady state: the response still changes near the end of the record (" + state.reason +
-                       "); fewer than " + FormatNumber(options.min_steady_periods) + " steady periods remain",
+                   "no steady state: the response still changes near the end of the record" +
+                       (state.reason.empty() ? std::string() : " (" + state.reason + ")") + "; fewer than " +
+                       FormatNumber(options.min_steady_periods) + " steady periods remain",
                    "record longer after the frequency step, or wait longer before recording");
 }
 

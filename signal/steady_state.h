@@ -3,8 +3,9 @@
 // natural frequencies); only the periodic part that follows represents the
 // step. Method:
 //  1. Fit the periodic multi-harmonic model (signal/harmonic_fit.h basis) at
-//     the step's frequency to the last reference_fraction of the record,
-//     assumed steady, and extend it over the whole record.
+//     the step's frequency to the last reference_fraction of the record (at
+//     least min_steady_periods), assumed steady, and extend it over the whole
+//     record.
 //  2. Residual mean square per block of L ≈ one period (32 ≤ L ≤ N/16) for
 //     every channel; the noise floor σ² is the median block value inside the
 //     reference part (robust to what transient is left there).

@@ -66,7 +66,9 @@ BEAMID_REGISTER_COMMAND("extract", [](CLI::App& app, const GlobalOptions& global
       "Harmonic phasors of every step of a stepped-sine campaign: the transient is dropped, the excitation\n"
       "frequency estimated from the force, and for every channel and harmonic 1..H the complex peak phasor\n"
       "(SI units, referenced so that the force fundamental is real positive) with its standard uncertainty.\n"
-      "Example: beamid extract examples/campaign -H 5 -o out/phasors.json --csv out/phasors.csv");
+      "Example (a simulated campaign):\n"
+      "  beamid simulate examples/scenarios/paper_base.json -o out/paper_base\n"
+      "  beamid extract out/paper_base -H 5 -o out/phasors.json --csv out/phasors.csv");
   sub->add_option("campaign", options->campaign_folder, "Campaign folder (holds campaign.json)")->required();
   sub->add_option("-H,--harmonics", options->harmonics, "Harmonics per channel")->capture_default_str();
   sub->add_option("-o,--output", options->output, "Phasors file (JSON, format beamid-phasors/1)")

@@ -111,6 +111,22 @@ TEST(SteadyStateTest, SteadyNoisyRecordsKeepEverySample) {
   }
 }
 
+// Short records (10.5 periods in 256 samples: blocks shorter than 32 samples)
+// still work and keep every sample when steady.
+TEST(SteadyStateTest, ShortSteadyRecord) {
+  std::mt19937 rng(12);
+  Tone tone = RandomTone(rng, 5, 210.0);
+  tone.sample_rate_hz = kRateHz;
+  Eigen::MatrixXd samples(256, 2);
+  samples.col(0) = Synthesize(tone, 256);
+  samples.col(1) = 3.0 * samples.col(0);
+  std::normal_distribution<double> normal;
+  for (int n = 0; n < 256; ++n) samples(n, 1) += 1e-3 * normal(rng);
+  const std::vector<std::string> names{"force", "acc1"};
+  const SteadyState state = DetectSteadyState(samples, names, kRateHz, 210.0, 5, "short.csv");
+  EXPECT_EQ(state.first_sample, 0) << state.reason;
+}
+
 TEST(SteadyStateTest, RecordThatNeverSettlesIsRejected) {
   const std::vector<std::string> names{"force", "acc1", "acc2", "acc3"};
   try {
