@@ -85,4 +85,13 @@ LinearParameter LossFactor(double initial) {
           .apply = [](hb::LinearBeamModel& model, double eta) { model.beam.loss_factor = eta; }};
 }
 
+LinearParameter LinearParameterByName(const std::string& name, double value) {
+  for (LinearParameter p : {BendingStiffnessScale(), LossFactor()})
+    if (p.name == name) {
+      p.initial = value;
+      return p;
+    }
+  throw std::invalid_argument("unknown linear parameter '" + name + "' (known: EI_scale, loss_factor)");
+}
+
 }  // namespace beamid::solver

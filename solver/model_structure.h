@@ -65,4 +65,8 @@ LinearParameter BendingStiffnessScale();
 // keeps c from absorbing the beam's own damping.
 LinearParameter LossFactor(double initial = 1e-3);
 
+// The linear parameter of that name ("EI_scale", "loss_factor"), to rebuild
+// a fitted model from a result file; throws std::invalid_argument otherwise.
+LinearParameter LinearParameterByName(const std::string& name, double value);
+
 }  // namespace beamid::solver

@@ -1,0 +1,120 @@
+// beamid identify: the support's parameters from a whole stepped-sine
+// campaign (exact harmonic balance, Ipopt), with uncertainty, fit quality and
+// the prediction error at held-out channels.
+#include <cmath>
+
+#include <fmt/core.h>
+
+#include "signal/campaign.h"
+#include "signal/campaign_extractor.h"
+#include "signal/phasor_set_io.h"
+#include "solver/cli/cli_output.h"
+#include "solver/cli/command_registry.h"
+#include "solver/identification_report.h"
+#include "solver/identify.h"
+
+namespace beamid::cli {
+namespace {
+
+struct IdentifyCommandOptions {
+  std::string campaign_folder;
+  std::vector<std::string> fit_channels;
+  std::vector<std::string> validate_channels;
+  std::string model = "hb";
+  std::string phasors_file;  // reuse `beamid extract` output
+  int harmonics = 5;
+  int fit_harmonics = 3;
+  int starts = 0;
+  int threads = 0;
+  bool fit_ei_scale = false;
+  double beam_loss_factor = 0.0;
+  std::string output = "result.json";
+};
+
+void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& global) {
+  if (options.model != "hb")
+    throw std::invalid_argument("--model " + options.model + " is not available in this build (use hb)");
+  const signal::Campaign campaign = signal::ReadCampaign(options.campaign_folder);
+  signal::PhasorSet phasors;
+  if (!options.phasors_file.empty()) {
+    phasors = signal::ReadPhasorSetJson(options.phasors_file);
+  } else {
+    Progress progress("extract", global.quiet);
+    signal::ExtractOptions extract;
+    extract.estimator.num_harmonics = std::max(5, options.fit_harmonics);
+    extract.progress = [&](std::size_t done, std::size_t total, const signal::StepPhasors&) {
+      progress.Update(static_cast<double>(done) / total);
+    };
+    phasors = signal::ExtractCampaign(campaign, extract);
+  }
+  const solver::FitData fit =
+      solver::MakeFitData(campaign, phasors, {.channels = options.fit_channels, .num_fit_harmonics = options.fit_harmonics});
+  const solver::FitData validation =
+      options.validate_channels.empty()
+          ? solver::FitData{}
+          : solver::MakeFitData(campaign, phasors,
+                                {.channels = options.validate_channels, .num_fit_harmonics = options.fit_harmonics});
+  solver::ModelStructure structure = solver::PolynomialModel({.k1_Nm_rad = 100.0});
+  if (options.fit_ei_scale) structure.linear.push_back(solver::BendingStiffnessScale());
+  solver::IdentifyOptions identify;
+  identify.model.num_harmonics = options.harmonics;
+  identify.model.beam_loss_factor = options.beam_loss_factor;
+  identify.num_starts = options.starts;
+  identify.num_threads = options.threads;
+  Progress progress("identify", global.quiet);
+  const solver::IdentifyResult result =
+      solver::Identify(fit, structure, identify, [&](double fraction, const std::string&) { progress.Update(fraction); });
+  progress.Done();
+
+  solver::IdentificationProblem problem(fit, structure, identify.model);
+  problem.FeasiblePoint(result.starts[result.best_start].start);  // the winning run's scales
+  solver::FitData fit_with_loss = fit;
+  fit_with_loss.beam.loss_factor = options.beam_loss_factor;
+  const nlohmann::json report = solver::IdentificationReport(
+      fit_with_loss, validation, problem, result,
+      {.campaign_folder = options.campaign_folder, .campaign_name = campaign.name, .model_kind = options.model});
+  WriteTextFile(options.output, report.dump(1));
+
+  if (!global.quiet) {
+    fmt::print("identified from {} steps, {} channel(s), harmonics 1..{} in {:.2f} s ({} of {} starts reached the best fit)\n",
+               fit.steps.size(), fit.channels.size(), fit.num_fit_harmonics, result.seconds, result.starts_at_best,
+               result.starts.size());
+    for (const auto& p : result.parameters)
+      fmt::print("  {:<10} = {:>12.6g} ± {:<10.3g} {}   (95 %: {:.6g} … {:.6g})\n", p.name, p.value, p.std, p.unit,
+                 p.lower_95, p.upper_95);
+    fmt::print("  reduced chi-square {:.3g} ({} residuals)\n", result.reduced_chi_square, result.degrees_of_freedom);
+    if (report.contains("validation"))
+      for (const auto& [channel, v] : report["validation"].items())
+        fmt::print("  held-out {}: worst error {:.2f} % on the 1st harmonic, {:.2f} % on the 3rd\n", channel,
+                   100.0 * v["worst_h1_relative_error"].get<double>(), 100.0 * v["worst_h3_relative_error"].get<double>());
+    for (const auto& w : result.warnings) fmt::print("  warning: {}\n", w);
+    fmt::print("wrote {}\n", options.output);
+  }
+}
+
+BEAMID_REGISTER_COMMAND("identify", [](CLI::App& app, const GlobalOptions& global) {
+  auto options = std::make_shared<IdentifyCommandOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "identify",
+      "Identify the support (k1, k2, k3, c) from a stepped-sine campaign.\n"
+      "Example: beamid identify campaign/ --fit acc1,acc2 --validate acc3 -o result.json");
+  sub->add_option("campaign", options->campaign_folder, "Campaign folder (holds campaign.json)")->required();
+  sub->add_option("--fit", options->fit_channels, "Response channels to fit (default: all)")->delimiter(',');
+  sub->add_option("--validate", options->validate_channels, "Held-out channels to predict and compare")
+      ->delimiter(',');
+  sub->add_option("--model", options->model, "Model: hb (exact harmonic balance)")->capture_default_str();
+  sub->add_option("--phasors", options->phasors_file, "Use phasors from 'beamid extract' instead of extracting");
+  sub->add_option("-H,--harmonics", options->harmonics, "Harmonics of the model")->capture_default_str();
+  sub->add_option("--fit-harmonics", options->fit_harmonics, "Harmonics 1..K fitted")->capture_default_str();
+  sub->add_option("--starts", options->starts, "Further starts besides the direct estimate")->capture_default_str();
+  sub->add_option("--threads", options->threads, "Parallel starts (0: one per core)")->capture_default_str();
+  sub->add_flag("--fit-ei-scale", options->fit_ei_scale, "Also fit a scale of the nominal bending stiffness EI");
+  sub->add_option("--beam-loss-factor", options->beam_loss_factor,
+                  "The beam's known structural loss factor (default 0; steel ~1e-4)")
+      ->capture_default_str();
+  sub->add_option("-o,--output", options->output, "Result file (JSON)")->capture_default_str();
+  sub->callback([options, &global] { RunIdentify(*options, global); });
+});
+
+}  // namespace
+}  // namespace beamid::cli
