@@ -16,6 +16,8 @@
 #include "hb/stepped_sine.h"
 #include "signal/campaign.h"
 #include "signal/campaign_extractor.h"
+#include "solver/identification_report.h"
+#include "solver/prediction.h"
 
 namespace beamid::solver {
 namespace {
@@ -166,6 +168,34 @@ TEST_F(IdentifyOnSimulatedCampaign, ThePapersOwnFlowOneStepTwoAccelerometers) {
   std::printf("one step at %.2f Hz: acc3 predicted %.4g%+.4gi, measured %.4g%+.4gi\n", omega / (2 * std::numbers::pi),
               acc3.real(), acc3.imag(), measured.real(), measured.imag());
   EXPECT_LT(std::abs(acc3 - measured), 0.02 * std::abs(measured));
+}
+
+TEST_F(IdentifyOnSimulatedCampaign, PredictFromTheResultFileMatchesTheTruthWithItsBand) {
+  // result.json written, read back, and the model re-solved per step at a
+  // position that is in no campaign file: the truth file's 0.45 m.
+  const FitData fit = Fit({"acc1", "acc2"});
+  const ModelStructure structure = PolynomialModel({.k1_Nm_rad = 100.0});
+  const IdentifyResult result = Identify(fit, structure, {});
+  IdentificationProblem problem(fit, structure, {});
+  problem.FeasiblePoint(result.starts[result.best_start].start);
+  const auto file = *folder_ / "result.json";
+  std::ofstream(file) << IdentificationReport(fit, FitData{}, problem, result, {}).dump();
+  const IdentifiedModel model = ReadIdentifiedModel(file);
+  const std::vector<PredictedStep> predicted = PredictAt(model, 0.45);
+  ASSERT_EQ(predicted.size(), fit.steps.size());
+  double worst = 0.0;
+  for (std::size_t i = 0; i < predicted.size(); ++i) {
+    ASSERT_TRUE(predicted[i].converged);
+    const auto& h1 = (*truth_)["steps"][i]["hidden"][0]["displacement_m"]["harmonics"][0];
+    const std::complex<double> truth(h1[0].get<double>(), h1[1].get<double>());
+    worst = std::max(worst, std::abs(predicted[i].displacement_m[1] - truth) / std::abs(truth));
+    // The band is a real spread: positive, and far below the amplitude.
+    EXPECT_GT(predicted[i].std_real_m[1] + predicted[i].std_imag_m[1], 0.0);
+    EXPECT_LT(predicted[i].std_real_m[1] + predicted[i].std_imag_m[1], 0.05 * std::abs(truth));
+  }
+  EXPECT_LT(worst, 0.02);
+  EXPECT_THROW(PredictAt(model, 0.8), std::invalid_argument);
+  EXPECT_THROW(ReadIdentifiedModel(*folder_ / "missing.json"), std::invalid_argument);
 }
 
 }  // namespace

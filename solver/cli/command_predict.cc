@@ -1,0 +1,109 @@
+// beamid predict: the identified model's steady state at any position of the
+// beam, for every step of the fit, with uncertainty bands; compared with a
+// campaign's sensor there when one is given.
+#include <cmath>
+#include <numbers>
+
+#include <fmt/core.h>
+
+#include "signal/campaign.h"
+#include "signal/campaign_extractor.h"
+#include "solver/cli/cli_output.h"
+#include "solver/cli/command_registry.h"
+#include "solver/fit_data.h"
+#include "solver/prediction.h"
+
+namespace beamid::cli {
+namespace {
+
+struct PredictOptions {
+  std::string result_file;
+  std::string campaign_folder;
+  double position_m = 0.0;
+  std::string output = "prediction.json";
+};
+
+void RunPredict(const PredictOptions& options, const GlobalOptions& global) {
+  const solver::IdentifiedModel model = solver::ReadIdentifiedModel(options.result_file);
+  Progress progress("predict", global.quiet);
+  const std::vector<solver::PredictedStep> steps = solver::PredictAt(model, options.position_m);
+  progress.Done();
+  // A campaign sensor within 1 mm of x is compared with the prediction.
+  std::string compared;
+  std::vector<Eigen::VectorXcd> measured;
+  if (!options.campaign_folder.empty()) {
+    const signal::Campaign campaign = signal::ReadCampaign(options.campaign_folder);
+    for (const auto& s : campaign.sensors)
+      if (std::abs(s.position_m - options.position_m) < 1e-3) compared = s.channel;
+    if (!compared.empty()) {
+      const signal::PhasorSet phasors = signal::ExtractCampaign(campaign);
+      const solver::FitData data = solver::MakeFitData(campaign, phasors, {.channels = {compared}});
+      for (const solver::PredictedStep& p : steps) {
+        Eigen::VectorXcd m;
+        for (const auto& s : data.steps)
+          if (s.file == p.file) m = s.measured.row(0).transpose();
+        measured.push_back(m);
+      }
+    }
+  }
+  nlohmann::json out_steps = nlohmann::json::array();
+  double worst = 0.0;
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    const solver::PredictedStep& p = steps[i];
+    const double omega = 2 * std::numbers::pi * p.frequency_hz;
+    nlohmann::json harmonics = nlohmann::json::array();
+    for (Eigen::Index k = 1; k < p.displacement_m.size(); ++k) {
+      const std::complex<double> acc = -std::pow(k * omega, 2) * p.displacement_m[k];
+      nlohmann::json h = {{"k", k},
+                          {"displacement_m", {p.displacement_m[k].real(), p.displacement_m[k].imag()}},
+                          {"displacement_std_m", {p.std_real_m[k], p.std_imag_m[k]}},
+                          {"acceleration_m_s2", {acc.real(), acc.imag()}},
+                          {"acceleration_amplitude_m_s2", std::abs(acc)}};
+      if (!measured.empty() && measured[i].size() >= k) {
+        const auto m = measured[i][k - 1];
+        h["measured_acceleration_m_s2"] = {m.real(), m.imag()};
+        h["relative_error"] = std::abs(acc - m) / std::max(std::abs(m), 1e-300);
+        if (k == 1) worst = std::max(worst, h["relative_error"].get<double>());
+      }
+      harmonics.push_back(h);
+    }
+    out_steps.push_back({{"level", p.level},
+                         {"file", p.file},
+                         {"frequency_Hz", p.frequency_hz},
+                         {"converged", p.converged},
+                         {"harmonics", harmonics},
+                         {"time_s", std::vector<double>(p.time_s.data(), p.time_s.data() + p.time_s.size())},
+                         {"acceleration_m_s2", std::vector<double>(p.acceleration_m_s2.data(),
+                                                                   p.acceleration_m_s2.data() + p.acceleration_m_s2.size())},
+                         {"acceleration_std_m_s2",
+                          std::vector<double>(p.acceleration_std_m_s2.data(),
+                                              p.acceleration_std_m_s2.data() + p.acceleration_std_m_s2.size())}});
+  }
+  const nlohmann::json out = {{"command", "predict"},
+                              {"result", options.result_file},
+                              {"position_m", options.position_m},
+                              {"compared_channel", compared},
+                              {"steps", out_steps}};
+  WriteTextFile(options.output, out.dump(1));
+  if (!global.quiet) {
+    fmt::print("predicted {} steps at x = {:.3f} m\n", steps.size(), options.position_m);
+    if (!compared.empty()) fmt::print("  against {}: worst first-harmonic error {:.2f} %\n", compared, 100 * worst);
+    fmt::print("wrote {}\n", options.output);
+  }
+}
+
+BEAMID_REGISTER_COMMAND("predict", [](CLI::App& app, const GlobalOptions& global) {
+  auto options = std::make_shared<PredictOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "predict",
+      "Predict the steady state at any position from an identified model, with uncertainty bands.\n"
+      "Example: beamid predict result.json --campaign campaign/ --x 0.45 -o pred.json");
+  sub->add_option("result", options->result_file, "result.json of 'beamid identify'")->required();
+  sub->add_option("--x", options->position_m, "Position on the beam [m]")->required();
+  sub->add_option("--campaign", options->campaign_folder, "Campaign to compare with (a sensor at x)");
+  sub->add_option("-o,--output", options->output, "Output file (JSON)")->capture_default_str();
+  sub->callback([options, &global] { RunPredict(*options, global); });
+});
+
+}  // namespace
+}  // namespace beamid::cli

@@ -1,0 +1,56 @@
+// Prediction from an identified model (result.json of `beamid identify`):
+// for every step of the fit, the harmonic-balance steady state driven by that
+// step's measured force, evaluated at any position x, with its uncertainty
+// propagated from the parameter covariance,
+//     Cov(Y) = J·Cov(p)·Jᵀ,   J = ∂Y/∂p by central differences (each
+//     perturbed model solved again),
+// and the steady-state time history over one period with a 95 % band.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+
+#include "hb/harmonic_balance.h"
+#include "solver/model_structure.h"
+
+namespace beamid::solver {
+
+struct IdentifiedStep {
+  std::string level;
+  std::string file;
+  double omega_rad_s = 0.0;
+  Eigen::VectorXcd force_N;
+  Eigen::VectorXcd theta_rad;
+};
+
+struct IdentifiedModel {
+  hb::LinearBeamModel beam;  // nominal beam with sensor masses, before linear parameters
+  double force_position_m = 0.0;
+  int num_harmonics = 5;
+  ModelStructure structure;  // values = identified
+  Eigen::MatrixXd covariance;
+  std::vector<IdentifiedStep> steps;
+};
+
+// Throws std::invalid_argument naming the file and the missing field.
+IdentifiedModel ReadIdentifiedModel(const std::filesystem::path& result_file);
+
+struct PredictedStep {
+  std::string level;
+  std::string file;
+  double frequency_hz = 0.0;
+  Eigen::VectorXcd displacement_m;       // Y_0..Y_H at x
+  Eigen::VectorXd std_real_m, std_imag_m;  // standard uncertainty of Re, Im
+  Eigen::VectorXd time_s;                // one period
+  Eigen::VectorXd acceleration_m_s2;     // steady-state history at x
+  Eigen::VectorXd acceleration_std_m_s2; // its standard uncertainty
+  bool converged = true;
+};
+
+std::vector<PredictedStep> PredictAt(const IdentifiedModel& model, double position_m, int samples_per_period = 64);
+
+}  // namespace beamid::solver
