@@ -11,7 +11,7 @@
 namespace beamid::solver::internal {
 
 struct IpoptOptions {
-  int max_iterations = 400;
+  int max_iterations = 200;  // a good start needs < 30; a start on another branch of the response stalls
   double tolerance = 1e-8;          // Ipopt's scaled NLP error
   double constraint_tolerance = 1e-10;  // on the residual of the balance [N·m]
   int print_level = 0;              // 0 silent … 5 Ipopt's default output
