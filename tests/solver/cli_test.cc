@@ -12,6 +12,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "tests/support/temp_path.h"
+
 namespace {
 
 using ::testing::HasSubstr;
@@ -22,7 +24,7 @@ struct ProgramRun {
 };
 
 ProgramRun Beamid(const std::string& arguments) {
-  const auto log = std::filesystem::temp_directory_path() / "beamid_cli_test.log";
+  const auto log = beamid::testing::UniqueTempPath("beamid_cli_test") += ".log";
   const std::string command = std::string(BEAMID_EXECUTABLE) + " " + arguments + " > " + log.string() + " 2>&1";
   const int status = std::system(command.c_str());
   std::ifstream in(log);
@@ -41,7 +43,7 @@ std::string ReadFile(const std::filesystem::path& path) {
 class CommandLine : public ::testing::Test {
  protected:
   void SetUp() override {
-    folder_ = std::filesystem::temp_directory_path() / "beamid_cli_test";
+    folder_ = beamid::testing::UniqueTempPath("beamid_cli_test");
     std::filesystem::remove_all(folder_);
     std::filesystem::create_directories(folder_);
   }

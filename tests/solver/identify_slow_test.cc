@@ -18,6 +18,7 @@
 #include "signal/campaign_extractor.h"
 #include "solver/identification_report.h"
 #include "solver/prediction.h"
+#include "tests/support/temp_path.h"
 
 namespace beamid::solver {
 namespace {
@@ -45,7 +46,7 @@ const std::string kScenario = R"({
 class IdentifyOnSimulatedCampaign : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    folder_ = new std::filesystem::path(std::filesystem::temp_directory_path() / "beamid_identify_slow_test");
+    folder_ = new std::filesystem::path(beamid::testing::UniqueTempPath("beamid_identify_slow_test"));
     std::filesystem::remove_all(*folder_);
     const hb::Scenario scenario = hb::ParseScenario(kScenario, "identify_slow_test scenario");
     hb::SteppedSineSimulation simulation(scenario);
