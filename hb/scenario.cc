@@ -120,6 +120,9 @@ Scenario ParseScenario(const std::string& json_text, const std::string& source) 
   s.name = top.String("name", "simulated stepped-sine campaign");
   {
     ObjectReader beam(top.Raw("beam"), source, "beam");
+    // The true beam is spelled out: a default would hide a forgotten field.
+    for (const char* key : {"length_m", "width_m", "thickness_m", "youngs_modulus_Pa", "density_kg_m3"})
+      if (!beam.Has(key)) beam.FailField(key, "is required (the true beam)");
     ReadBeam(beam, s.beam, true);
   }
   s.nominal_beam = s.beam;

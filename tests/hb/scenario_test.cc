@@ -76,6 +76,7 @@ TEST(ScenarioTest, RejectsMistakesWithFileAndField) {
   ExpectRejected(With("\"label\": \"high\"", "\"label\": \"a/b\""), "levels[0].label");
   ExpectRejected(With("\"direction\": \"down\"", "\"direction\": \"sideways\""), "direction");
   ExpectRejected(With("\"k1_Nm_rad\": 150, ", ""), "needs the field 'k1_Nm_rad'");
+  ExpectRejected(With("\"width_m\": 0.04, ", ""), "beam.width_m is required");
   ExpectRejected(With("\"channel\": \"acc3\"", "\"channel\": \"force\""), "used twice");
   ExpectRejected(With("\"start\": 50, \"stop\": 51", "\"start\": 50, \"stop\": 600"), "Nyquist");
   ExpectRejected(With("\"force_amplitude_N\": 2", "\"force_amplitude_N\": -2"), "force_amplitude_N must be positive");
