@@ -14,12 +14,13 @@
 #include "hb/stepped_sine.h"
 #include "signal/campaign.h"
 #include "signal/recording.h"
+#include "tests/support/temp_path.h"
 
 namespace beamid::hb {
 namespace {
 
 TEST(CampaignWriterExamplesTest, PaperBaseCampaignValidatesAndReachesFiveG) {
-  const std::filesystem::path directory = std::filesystem::temp_directory_path() / "beamid_paper_base_slow_test";
+  const std::filesystem::path directory = beamid::testing::UniqueTempPath("beamid_paper_base_slow_test");
   std::filesystem::remove_all(directory);
   const Scenario scenario = ReadScenario("examples/scenarios/paper_base.json");
   SteppedSineSimulation simulation(scenario);

@@ -18,6 +18,7 @@
 #include "hb/time_harmonic_fit.h"
 #include "signal/campaign.h"
 #include "signal/recording.h"
+#include "tests/support/temp_path.h"
 
 namespace beamid::hb {
 namespace {
@@ -47,8 +48,7 @@ const std::string kScenario = R"({
 class CampaignWriterTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    directory_ = std::filesystem::temp_directory_path() /
-                 ("beamid_campaign_writer_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+    directory_ = beamid::testing::UniqueTempPath("beamid_campaign_writer_test");
     std::filesystem::remove_all(directory_);
   }
   void TearDown() override { std::filesystem::remove_all(directory_); }
