@@ -8,6 +8,8 @@
 #include <fstream>
 #include <random>
 
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include "signal/campaign_extractor.h"
@@ -28,7 +30,10 @@ constexpr int kSamples = 4096;
 class CampaignExtractorTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    folder_ = fs::temp_directory_path() / "beamid_extractor_test";
+    // One folder per test and process: ctest runs tests in parallel.
+    folder_ = fs::temp_directory_path() /
+              ("beamid_extractor_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
+               "_" + std::to_string(::getpid()));
     fs::remove_all(folder_);
     fs::create_directories(folder_ / "low");
     std::ofstream(folder_ / "campaign.json") << R"({

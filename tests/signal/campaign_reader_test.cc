@@ -8,6 +8,8 @@
 #include <numbers>
 #include <string>
 
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include "signal/campaign.h"
@@ -57,7 +59,8 @@ class CampaignReaderTest : public ::testing::Test {
  protected:
   void SetUp() override {
     folder_ = fs::temp_directory_path() /
-              ("beamid_reader_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+              ("beamid_reader_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+               std::to_string(::getpid()));
     fs::remove_all(folder_);
     fs::create_directories(folder_);
     Write("campaign.json", CampaignJson());
