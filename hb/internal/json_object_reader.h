@@ -95,7 +95,12 @@ class ObjectReader {
 
 inline void ReadBeam(ObjectReader& r, BeamProperties& beam, bool all_required) {
   auto field = [&](const char* key, double& value) {
-    if (all_required || r.Has(key)) value = r.Positive(key, value);
+    if (all_required) {
+      value = r.Number(key);  // throws, naming the field, when it is missing
+      if (!(value > 0.0)) r.FailField(key, "must be positive");
+    } else if (r.Has(key)) {
+      value = r.Positive(key, value);
+    }
   };
   field("length_m", beam.length_m);
   field("width_m", beam.width_m);
