@@ -10,14 +10,7 @@ namespace beamid::hb {
 using internal::Json;
 using internal::ObjectReader;
 
-std::unique_ptr<SupportLaw> ModelFile::MakeSupportLaw() const {
-  auto polynomial_law = std::make_unique<PolynomialSupportLaw>(polynomial);
-  if (!jenkins) return polynomial_law;
-  auto composite = std::make_unique<CompositeSupportLaw>();
-  composite->Add(std::move(polynomial_law));
-  composite->Add(std::make_unique<JenkinsSupportLaw>(*jenkins));
-  return composite;
-}
+std::unique_ptr<SupportLaw> ModelFile::MakeSupportLaw() const { return MakePolynomialSupportLaw(polynomial, jenkins); }
 
 ModelFile ParseModelFile(const std::string& json_text, const std::string& source) {
   Json root;
@@ -36,33 +29,8 @@ ModelFile ParseModelFile(const std::string& json_text, const std::string& source
     ObjectReader beam(top.Raw("beam"), source, "beam", kDoc);
     internal::ReadBeam(beam, model.beam, true);
   }
-  {
-    ObjectReader support(top.Raw("support"), source, "support", kDoc);
-    ObjectReader poly(support.Raw("polynomial"), source, "support.polynomial", kDoc);
-    model.polynomial.k1_Nm_rad = poly.NonNegative("k1_Nm_rad", 0.0);
-    model.polynomial.k2_Nm_rad2 = poly.Number("k2_Nm_rad2", 0.0);
-    model.polynomial.k3_Nm_rad3 = poly.Number("k3_Nm_rad3", 0.0);
-    model.polynomial.c_Nms_rad = poly.NonNegative("c_Nms_rad", 0.0);
-    if (support.Has("jenkins")) {
-      ObjectReader jenkins(support.Raw("jenkins"), source, "support.jenkins", kDoc);
-      model.jenkins = JenkinsSupportLaw::Parameters_{.stiffness_Nm_rad = jenkins.Positive("stiffness_Nm_rad", 0.0),
-                                                     .slip_moment_Nm = jenkins.Positive("slip_moment_Nm", 0.0)};
-    }
-  }
-  if (top.Has("attachments")) {
-    ObjectReader a(top.Raw("attachments"), source, "attachments", kDoc);
-    if (a.Has("clamp_rotational_stiffness_Nm_rad"))
-      model.attachments.clamp_rotational_stiffness_Nm_rad = a.Positive("clamp_rotational_stiffness_Nm_rad", 0.0);
-    if (a.Has("support_translational_stiffness_N_m"))
-      model.attachments.support_translational_stiffness_N_m = a.Positive("support_translational_stiffness_N_m", 0.0);
-    if (a.Has("point_masses")) {
-      const Json& masses = a.Array("point_masses");
-      for (size_t i = 0; i < masses.size(); ++i) {
-        ObjectReader m(masses[i], source, "attachments.point_masses[" + std::to_string(i) + "]", kDoc);
-        model.attachments.point_masses.push_back({m.NonNegative("position_m", 0.0), m.Positive("mass_kg", 0.0)});
-      }
-    }
-  }
+  internal::ReadSupport(top, kDoc, model.polynomial, model.jenkins);
+  internal::ReadAttachments(top, kDoc, model.attachments);
   {
     ObjectReader e(top.Raw("excitation"), source, "excitation", kDoc);
     e.Ignore("channel");

@@ -81,14 +81,7 @@ bool IsSafeLabel(const std::string& label) {
 
 }  // namespace
 
-std::unique_ptr<SupportLaw> Scenario::MakeSupportLaw() const {
-  auto polynomial_law = std::make_unique<PolynomialSupportLaw>(polynomial);
-  if (!jenkins) return polynomial_law;
-  auto composite = std::make_unique<CompositeSupportLaw>();
-  composite->Add(std::move(polynomial_law));
-  composite->Add(std::make_unique<JenkinsSupportLaw>(*jenkins));
-  return composite;
-}
+std::unique_ptr<SupportLaw> Scenario::MakeSupportLaw() const { return MakePolynomialSupportLaw(polynomial, jenkins); }
 
 LinearAttachments Scenario::TrueAttachments() const {
   LinearAttachments all = attachments;
@@ -131,33 +124,8 @@ Scenario ParseScenario(const std::string& json_text, const std::string& source) 
     ObjectReader nominal(top.Raw("nominal_beam"), source, "nominal_beam");
     ReadBeam(nominal, s.nominal_beam, false);
   }
-  {
-    ObjectReader support(top.Raw("support"), source, "support");
-    ObjectReader poly(support.Raw("polynomial"), source, "support.polynomial");
-    s.polynomial.k1_Nm_rad = poly.Number("k1_Nm_rad");
-    s.polynomial.k2_Nm_rad2 = poly.Number("k2_Nm_rad2", 0.0);
-    s.polynomial.k3_Nm_rad3 = poly.Number("k3_Nm_rad3", 0.0);
-    s.polynomial.c_Nms_rad = poly.NonNegative("c_Nms_rad", 0.0);
-    if (support.Has("jenkins")) {
-      ObjectReader jenkins(support.Raw("jenkins"), source, "support.jenkins");
-      s.jenkins = JenkinsSupportLaw::Parameters_{.stiffness_Nm_rad = jenkins.Positive("stiffness_Nm_rad", 0.0),
-                                                 .slip_moment_Nm = jenkins.Positive("slip_moment_Nm", 0.0)};
-    }
-  }
-  if (top.Has("attachments")) {
-    ObjectReader a(top.Raw("attachments"), source, "attachments");
-    if (a.Has("clamp_rotational_stiffness_Nm_rad"))
-      s.attachments.clamp_rotational_stiffness_Nm_rad = a.Positive("clamp_rotational_stiffness_Nm_rad", 0.0);
-    if (a.Has("support_translational_stiffness_N_m"))
-      s.attachments.support_translational_stiffness_N_m = a.Positive("support_translational_stiffness_N_m", 0.0);
-    if (a.Has("point_masses")) {
-      const Json& masses = a.Array("point_masses");
-      for (size_t i = 0; i < masses.size(); ++i) {
-        ObjectReader m(masses[i], source, "attachments.point_masses[" + std::to_string(i) + "]");
-        s.attachments.point_masses.push_back({m.NonNegative("position_m", 0.0), m.Positive("mass_kg", 0.0)});
-      }
-    }
-  }
+  internal::ReadSupport(top, "docs/simulator.md", s.polynomial, s.jenkins);
+  internal::ReadAttachments(top, "docs/simulator.md", s.attachments);
   if (top.Has("damping")) {
     ObjectReader d(top.Raw("damping"), source, "damping");
     s.damping_reference_frequency_hz = d.NonNegative("reference_frequency_Hz", 0.0);

@@ -285,4 +285,14 @@ void CompositeSupportLaw::SetParameterValues(std::span<const double> values) {
   if (offset != values.size()) throw std::invalid_argument("CompositeSupportLaw: too many parameter values");
 }
 
+std::unique_ptr<SupportLaw> MakePolynomialSupportLaw(const PolynomialSupportLaw::Coefficients& polynomial,
+                                                     const std::optional<JenkinsSupportLaw::Parameters_>& jenkins) {
+  auto polynomial_law = std::make_unique<PolynomialSupportLaw>(polynomial);
+  if (!jenkins) return polynomial_law;
+  auto composite = std::make_unique<CompositeSupportLaw>();
+  composite->Add(std::move(polynomial_law));
+  composite->Add(std::make_unique<JenkinsSupportLaw>(*jenkins));
+  return composite;
+}
+
 }  // namespace beamid::hb

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -166,5 +167,9 @@ class CompositeSupportLaw final : public SupportLaw {
  private:
   std::vector<std::unique_ptr<SupportLaw>> laws_;
 };
+
+// The polynomial law, with a Jenkins element in parallel when one is given.
+std::unique_ptr<SupportLaw> MakePolynomialSupportLaw(const PolynomialSupportLaw::Coefficients& polynomial,
+                                                     const std::optional<JenkinsSupportLaw::Parameters_>& jenkins);
 
 }  // namespace beamid::hb

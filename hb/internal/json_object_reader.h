@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <exception>
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -12,6 +13,8 @@
 #include <nlohmann/json.hpp>
 
 #include "hb/beam_properties.h"
+#include "hb/linear_attachments.h"
+#include "hb/support_law.h"
 
 namespace beamid::hb::internal {
 
@@ -110,5 +113,41 @@ inline void ReadBeam(ObjectReader& r, BeamProperties& beam, bool all_required) {
   beam.loss_factor = r.NonNegative("loss_factor", beam.loss_factor);
 }
 
+
+// "support": {"polynomial": {k1_Nm_rad, k2_Nm_rad2, k3_Nm_rad3, c_Nms_rad},
+//             "jenkins": {stiffness_Nm_rad, slip_moment_Nm}} (jenkins optional).
+inline void ReadSupport(ObjectReader& top, const std::string& format_doc, PolynomialSupportLaw::Coefficients& polynomial,
+                        std::optional<JenkinsSupportLaw::Parameters_>& jenkins) {
+  ObjectReader support(top.Raw("support"), top.source(), "support", format_doc);
+  ObjectReader poly(support.Raw("polynomial"), top.source(), "support.polynomial", format_doc);
+  polynomial.k1_Nm_rad = poly.Number("k1_Nm_rad");  // required: a support without it is a typo
+  if (polynomial.k1_Nm_rad < 0.0) poly.FailField("k1_Nm_rad", "must not be negative");
+  polynomial.k2_Nm_rad2 = poly.Number("k2_Nm_rad2", 0.0);
+  polynomial.k3_Nm_rad3 = poly.Number("k3_Nm_rad3", 0.0);
+  polynomial.c_Nms_rad = poly.NonNegative("c_Nms_rad", 0.0);
+  if (support.Has("jenkins")) {
+    ObjectReader j(support.Raw("jenkins"), top.source(), "support.jenkins", format_doc);
+    jenkins = JenkinsSupportLaw::Parameters_{.stiffness_Nm_rad = j.Positive("stiffness_Nm_rad", 0.0),
+                                             .slip_moment_Nm = j.Positive("slip_moment_Nm", 0.0)};
+  }
+}
+
+// "attachments": {clamp_rotational_stiffness_Nm_rad, support_translational_stiffness_N_m,
+//                 point_masses: [{position_m, mass_kg}]} (all optional).
+inline void ReadAttachments(ObjectReader& top, const std::string& format_doc, LinearAttachments& attachments) {
+  if (!top.Has("attachments")) return;
+  ObjectReader a(top.Raw("attachments"), top.source(), "attachments", format_doc);
+  if (a.Has("clamp_rotational_stiffness_Nm_rad"))
+    attachments.clamp_rotational_stiffness_Nm_rad = a.Positive("clamp_rotational_stiffness_Nm_rad", 0.0);
+  if (a.Has("support_translational_stiffness_N_m"))
+    attachments.support_translational_stiffness_N_m = a.Positive("support_translational_stiffness_N_m", 0.0);
+  if (a.Has("point_masses")) {
+    const Json& masses = a.Array("point_masses");
+    for (size_t i = 0; i < masses.size(); ++i) {
+      ObjectReader m(masses[i], top.source(), "attachments.point_masses[" + std::to_string(i) + "]", format_doc);
+      attachments.point_masses.push_back({m.NonNegative("position_m", 0.0), m.Positive("mass_kg", 0.0)});
+    }
+  }
+}
 
 }  // namespace beamid::hb::internal
