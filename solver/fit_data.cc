@@ -8,6 +8,18 @@
 #include <Eigen/LU>
 
 namespace beamid::solver {
+namespace {
+
+bool IsSignificant(const signal::HarmonicPhasor& h, double chi2_threshold) {
+  const Eigen::Vector2d x(h.value.real(), h.value.imag());
+  const Eigen::Matrix2d covariance = h.Covariance();
+  // A phasor without an uncertainty (noise-free data) is taken as it is.
+  if (!(covariance.trace() > 0.0)) return true;
+  return x.dot(covariance.ldlt().solve(x)) >= chi2_threshold;
+}
+
+}  // namespace
+
 
 FitData MakeFitData(const signal::Campaign& campaign, const signal::PhasorSet& phasors,
                     const FitDataOptions& options) {
@@ -54,7 +66,10 @@ FitData MakeFitData(const signal::Campaign& campaign, const signal::PhasorSet& p
     fit.file = step.file;
     fit.omega_rad_s = step.Omega_rad_s();
     fit.force_N = Eigen::VectorXcd::Zero(phasors.num_harmonics + 1);
-    for (const auto& h : step.force.harmonics) fit.force_N[h.harmonic] = h.value;
+    for (const auto& h : step.force.harmonics) {
+      if (h.harmonic >= 2 && !IsSignificant(h, options.force_harmonic_chi2_threshold)) continue;
+      fit.force_N[h.harmonic] = h.value;
+    }
     fit.measured.resize(channels, k_max);
     fit.std_amplitude.resize(channels, k_max);
     fit.whitening.resize(channels);

@@ -55,6 +55,11 @@ struct FitDataOptions {
   // are raised to it: the model's own error (truncation, discretisation)
   // is never below ~1e-4, and noise-free data must not get infinite weight.
   double relative_uncertainty_floor = 1e-4;
+  // Force harmonics k ≥ 2 whose squared whitened magnitude |L⁻¹F_k|² is
+  // below this (χ² with 2 dof; 13.8 ⇔ p = 0.001) are transducer noise, not
+  // force on the beam: the model is driven with 0 there. Driving it with the
+  // noise would put spurious harmonics into every predicted response.
+  double force_harmonic_chi2_threshold = 13.8;
 };
 
 // Throws std::invalid_argument naming an unknown channel or a missing harmonic.

@@ -139,7 +139,13 @@ nlohmann::json IdentificationReport(const FitData& fit, const FitData& validatio
     nlohmann::json held_out = nlohmann::json::object();
     for (std::size_t c = 0; c < validation.channels.size(); ++c) {
       nlohmann::json steps = nlohmann::json::array();
+      // A harmonic at the noise floor has a relative error of order one
+      // whatever the model: the worst errors are taken where the
+      // measurement resolves a kMeasurable error (its own relative
+      // uncertainty below that), and the count of such steps is given.
+      constexpr double kMeasurable = 0.01;
       double worst_h1 = 0.0, worst_h3 = 0.0;
+      int measurable_h1 = 0, measurable_h3 = 0;
       for (std::size_t i = 0; i < validation.steps.size(); ++i) {
         const FitStep& s = validation.steps[i];
         nlohmann::json step = {{"level", s.level}, {"file", s.file},
@@ -147,17 +153,23 @@ nlohmann::json IdentificationReport(const FitData& fit, const FitData& validatio
         for (int k = 1; k <= validation.num_fit_harmonics; ++k) {
           const double error = std::abs(predicted[i](c, k - 1) - s.measured(c, k - 1)) /
                                std::max(std::abs(s.measured(c, k - 1)), 1e-300);
+          const double relative_std = s.std_amplitude(c, k - 1) / std::max(std::abs(s.measured(c, k - 1)), 1e-300);
           step["h" + std::to_string(k) + "_relative_error"] = error;
+          step["h" + std::to_string(k) + "_measured_relative_std"] = relative_std;
           step["h" + std::to_string(k) + "_predicted"] = {predicted[i](c, k - 1).real(), predicted[i](c, k - 1).imag()};
           step["h" + std::to_string(k) + "_measured"] = {s.measured(c, k - 1).real(), s.measured(c, k - 1).imag()};
-          if (k == 1) worst_h1 = std::max(worst_h1, error);
-          if (k == 3) worst_h3 = std::max(worst_h3, error);
+          if (relative_std > kMeasurable) continue;
+          if (k == 1) worst_h1 = std::max(worst_h1, error), ++measurable_h1;
+          if (k == 3) worst_h3 = std::max(worst_h3, error), ++measurable_h3;
         }
         steps.push_back(step);
       }
       held_out[validation.channels[c].channel] = {{"position_m", validation.channels[c].position_m},
                                                   {"worst_h1_relative_error", worst_h1},
                                                   {"worst_h3_relative_error", worst_h3},
+                                                  {"measurable_relative_std", kMeasurable},
+                                                  {"measurable_steps_h1", measurable_h1},
+                                                  {"measurable_steps_h3", measurable_h3},
                                                   {"steps", steps}};
     }
     out["validation"] = held_out;

@@ -1,5 +1,6 @@
 #include "solver/identify.h"
 
+#include "solver/internal/ipopt_program.h"
 #include "solver/internal/worker_processes.h"
 
 #include <algorithm>
@@ -37,9 +38,33 @@ StartOutcome RunStart(FitProblem& problem, const IdentifyOptions& options, const
                       .objective = problem.Objective(outcome.x),
                       .success = outcome.success,
                       .iterations = outcome.iterations,
-                      .status = outcome.status_text};
+                      .status = outcome.status_text,
+                      .status_code = outcome.status};
   if (x_out) *x_out = outcome.x;
   return result;
+}
+
+// Physical bounds on k2 and k3 from the data: over the rotations the test
+// reached, the nonlinear terms cannot change the support's stiffness by more
+// than kMaxStiffnessChange times the beam's own rotational stiffness EI/L (a
+// support that much stiffer acts as a clamp; the data could not tell more).
+// Without them a start far from the optimum can run off to |k3| ~ 1e11.
+ModelStructure WithDataBounds(const ModelStructure& structure, const hb::BeamProperties& beam, double max_rotation_rad) {
+  constexpr double kMaxStiffnessChange = 100.0;
+  ModelStructure bounded = structure;
+  if (!dynamic_cast<const hb::PolynomialSupportLaw*>(structure.law.get()) || !(max_rotation_rad > 0.0)) return bounded;
+  const double beam_stiffness_Nm_rad = beam.BendingStiffness_Nm2() / beam.length_m;
+  const double k2_limit = kMaxStiffnessChange * beam_stiffness_Nm_rad / max_rotation_rad;
+  const double k3_limit = k2_limit / max_rotation_rad;
+  const std::vector<double> values = structure.Values();
+  for (auto [j, limit] : {std::pair{1, k2_limit}, std::pair{2, k3_limit}}) {
+    ParameterBounds& b = bounded.law_bounds[j];
+    // Never exclude the caller's own start.
+    const double reach = std::max(limit, 2.0 * std::abs(values[j]));
+    b.lower = std::max(b.lower, -reach);
+    b.upper = std::min(b.upper, reach);
+  }
+  return bounded;
 }
 
 }  // namespace
@@ -51,20 +76,21 @@ IdentifyResult Identify(const FitData& data, const ModelStructure& structure, co
   hb::LinearBeamModel nominal{.beam = data.beam, .attachments = data.sensor_masses};
   nominal.beam.loss_factor = options.model.beam_loss_factor;
   const DirectEstimate direct = EstimatePolynomialDirectly(ReconstructSupport(data, structure.ApplyLinear(nominal)));
+  const ModelStructure bounded = WithDataBounds(structure, nominal.beam, direct.max_rotation_rad);
   std::vector<double> first = structure.Values();
   if (options.use_direct_estimate && dynamic_cast<const hb::PolynomialSupportLaw*>(structure.law.get())) {
     first[0] = direct.k1_Nm_rad;
     first[1] = direct.k2_Nm_rad2;
     first[2] = direct.k3_Nm_rad3;
     first[3] = direct.c_Nms_rad;
-    const auto bounds = structure.Bounds();
+    const auto bounds = bounded.Bounds();
     for (int j = 0; j < 4; ++j) first[j] = std::clamp(first[j], bounds[j].lower, bounds[j].upper);
     // A zero damping start sits on its bound, where the interior method
     // cannot start: nudge it inside.
     first[3] = std::max(first[3], 1e-3 * bounds[3].typical);
   }
   IdentifyResult result = IdentifyWith(
-      [&] { return std::make_unique<IdentificationProblem>(data, structure, options.model); }, structure, first,
+      [&] { return std::make_unique<IdentificationProblem>(data, bounded, options.model); }, bounded, first,
       options, progress);
   result.direct = direct;
   return result;
@@ -106,8 +132,10 @@ IdentifyResult IdentifyWith(const ProblemFactory& make_problem, const ModelStruc
         const std::unique_ptr<FitProblem> problem = make_problem();
         Eigen::VectorXd x;
         const StartOutcome outcome = RunStart(*problem, options, starts[i], &x);
+        // Worker processes send doubles: the Ipopt status travels as its code.
         std::vector<double> record = {outcome.objective, outcome.success ? 1.0 : 0.0,
-                                      static_cast<double>(outcome.iterations)};
+                                      static_cast<double>(outcome.iterations),
+                                      static_cast<double>(outcome.status_code)};
         record.insert(record.end(), outcome.parameters.begin(), outcome.parameters.end());
         record.insert(record.end(), x.data(), x.data() + x.size());
         return record;
@@ -121,10 +149,12 @@ IdentifyResult IdentifyWith(const ProblemFactory& make_problem, const ModelStruc
           outcome.objective = record[0];
           outcome.success = record[1] != 0.0;
           outcome.iterations = static_cast<int>(record[2]);
-          outcome.status = outcome.success ? "solved" : "not converged";
-          outcome.parameters.assign(record.begin() + 3, record.begin() + 3 + num_parameters);
-          finals[i] = Eigen::Map<const Eigen::VectorXd>(record.data() + 3 + num_parameters,
-                                                         static_cast<Eigen::Index>(record.size()) - 3 - num_parameters);
+          outcome.status_code = static_cast<int>(record[3]);
+          outcome.status = internal::IpoptStatusText(outcome.status_code);
+          constexpr int kHead = 4;
+          outcome.parameters.assign(record.begin() + kHead, record.begin() + kHead + num_parameters);
+          finals[i] = Eigen::Map<const Eigen::VectorXd>(
+              record.data() + kHead + num_parameters, static_cast<Eigen::Index>(record.size()) - kHead - num_parameters);
         }
         if (progress)
           progress(0.05 + 0.9 * done / starts.size(),

@@ -54,7 +54,8 @@ struct StartOutcome {
   double objective = 0.0;
   bool success = false;
   int iterations = 0;
-  std::string status;
+  std::string status;   // Ipopt's outcome in words
+  int status_code = 0;  // Ipopt's ApplicationReturnStatus
 };
 
 struct IdentifyResult {

@@ -54,6 +54,7 @@ DirectEstimate EstimatePolynomialDirectly(const std::vector<ReconstructedStep>& 
   Eigen::MatrixXd a(rows, 4);
   Eigen::VectorXd b(rows);
   int row = 0;
+  double max_rotation = 0.0;
   for (const auto& s : steps) {
     Eigen::MatrixXd block(kSamples, 4);
     Eigen::VectorXd moment(kSamples);
@@ -67,6 +68,7 @@ DirectEstimate EstimatePolynomialDirectly(const std::vector<ReconstructedStep>& 
         m += std::real(s.moment_Nm[k] * e);
       }
       block.row(n) << theta, theta * theta, theta * theta * theta, rate;
+      max_rotation = std::max(max_rotation, std::abs(theta));
       moment[n] = m;
     }
     block.rowwise() -= block.colwise().mean();
@@ -99,7 +101,8 @@ DirectEstimate EstimatePolynomialDirectly(const std::vector<ReconstructedStep>& 
     }
   }
   return {.k1_Nm_rad = best[0], .k2_Nm_rad2 = best[1], .k3_Nm_rad3 = best[2], .c_Nms_rad = best[3],
-          .relative_residual = best_residual / std::max(b.norm(), 1e-300)};
+          .relative_residual = best_residual / std::max(b.norm(), 1e-300),
+          .max_rotation_rad = max_rotation};
 }
 
 }  // namespace beamid::solver

@@ -32,6 +32,7 @@ std::vector<ReconstructedStep> ReconstructSupport(const FitData& data, const hb:
 struct DirectEstimate {
   double k1_Nm_rad = 0.0, k2_Nm_rad2 = 0.0, k3_Nm_rad3 = 0.0, c_Nms_rad = 0.0;
   double relative_residual = 0.0;  // |M − fit| / |M|
+  double max_rotation_rad = 0.0;   // largest |θ(t)| reconstructed
 };
 DirectEstimate EstimatePolynomialDirectly(const std::vector<ReconstructedStep>& steps);
 

@@ -89,8 +89,10 @@ void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& glo
     fmt::print("  reduced chi-square {:.3g} ({} residuals)\n", result.reduced_chi_square, result.degrees_of_freedom);
     if (report.contains("validation"))
       for (const auto& [channel, v] : report["validation"].items())
-        fmt::print("  held-out {}: worst error {:.2f} % on the 1st harmonic, {:.2f} % on the 3rd\n", channel,
-                   100.0 * v["worst_h1_relative_error"].get<double>(), 100.0 * v["worst_h3_relative_error"].get<double>());
+        fmt::print("  held-out {}: worst error {:.2f} % on the 1st harmonic ({} steps), {:.2f} % on the 3rd ({} steps; "
+                   "the others lie below the noise floor)\n",
+                   channel, 100.0 * v["worst_h1_relative_error"].get<double>(), v["measurable_steps_h1"].get<int>(),
+                   100.0 * v["worst_h3_relative_error"].get<double>(), v["measurable_steps_h3"].get<int>());
     for (const auto& w : result.warnings) fmt::print("  warning: {}\n", w);
     fmt::print("wrote {}\n", options.output);
   }

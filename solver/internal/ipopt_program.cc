@@ -111,7 +111,7 @@ class IdentificationTnlp : public Ipopt::TNLP {
   Eigen::VectorXd start_;
 };
 
-std::string StatusText(Ipopt::ApplicationReturnStatus status) {
+std::string StatusTextOf(Ipopt::ApplicationReturnStatus status) {
   switch (status) {
     case Ipopt::Solve_Succeeded: return "solved";
     case Ipopt::Solved_To_Acceptable_Level: return "solved to an acceptable level";
@@ -126,6 +126,8 @@ std::string StatusText(Ipopt::ApplicationReturnStatus status) {
 }
 
 }  // namespace
+
+std::string IpoptStatusText(int status) { return StatusTextOf(static_cast<Ipopt::ApplicationReturnStatus>(status)); }
 
 IpoptOutcome RunIpopt(FitProblem& problem, const Eigen::VectorXd& start, const IpoptOptions& options) {
   Ipopt::SmartPtr<IdentificationTnlp> program = new IdentificationTnlp(problem, start);
@@ -159,7 +161,7 @@ IpoptOutcome RunIpopt(FitProblem& problem, const Eigen::VectorXd& start, const I
   IpoptOutcome outcome = program->outcome;
   if (outcome.x.size() != start.size()) outcome.x = start;
   outcome.status = static_cast<int>(status);
-  outcome.status_text = StatusText(status);
+  outcome.status_text = StatusTextOf(status);
   outcome.success = status == Ipopt::Solve_Succeeded || status == Ipopt::Solved_To_Acceptable_Level;
   return outcome;
 }

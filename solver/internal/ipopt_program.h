@@ -27,6 +27,9 @@ struct IpoptOutcome {
   double objective = 0.0;
 };
 
+// Ipopt's ApplicationReturnStatus in words.
+std::string IpoptStatusText(int status);
+
 IpoptOutcome RunIpopt(FitProblem& problem, const Eigen::VectorXd& start, const IpoptOptions& options);
 
 }  // namespace beamid::solver::internal

@@ -110,21 +110,43 @@ TEST_F(IdentifyOnSimulatedCampaign, PredictsTheHeldOutAccelerometerAndAHiddenPos
   const IdentifyResult result = Identify(fit, structure, {});
   IdentificationProblem problem(fit, structure, {});
   problem.FeasiblePoint(result.starts[result.best_start].start);
-  double worst_acc3 = 0.0, worst_hidden = 0.0;
+  // First harmonic against the measurement; the third against the truth
+  // file's noise-free phasors, since at the low level it lies below the
+  // noise floor of the measured acc3. The truth is itself a time
+  // integration stopped when the response changed by `settle_change`
+  // between windows (~1e-5; more on the first step, from rest, when it hit
+  // settle_max_s): what is left of the transient (the lightly damped second
+  // mode, near 3Ω) is of that order relative to the fundamental, so the
+  // third harmonic is held to 10 % plus that floor.
+  double worst_acc3 = 0.0, worst_hidden = 0.0, worst_acc3_h3 = 0.0, worst_hidden_h3 = 0.0;
+  const auto truth_phasor = [](const nlohmann::json& harmonics, int k) {
+    return std::complex<double>(harmonics[k - 1][0].get<double>(), harmonics[k - 1][1].get<double>());
+  };
+  const auto relative = [](std::complex<double> a, std::complex<double> b) { return std::abs(a - b) / std::abs(b); };
   for (int i = 0; i < problem.num_steps(); ++i) {
     const double omega = fit.steps[i].omega_rad_s;
     const Eigen::MatrixXcd y = problem.DisplacementPhasors(result.x, i, {0.57, 0.45});
-    const std::complex<double> acc3 = -omega * omega * y(0, 1);
-    worst_acc3 = std::max(worst_acc3, std::abs(acc3 - held_out.steps[i].measured(0, 0)) /
-                                          std::abs(held_out.steps[i].measured(0, 0)));
+    const auto& truth_step = (*truth_)["steps"][i];
+    const double settle_change = truth_step["settle_change"].get<double>();
+    const auto third_harmonic_ok = [&](std::complex<double> predicted, const nlohmann::json& truth) {
+      const double allowed = 0.10 * std::abs(truth_phasor(truth, 3)) + settle_change * std::abs(truth_phasor(truth, 1));
+      return std::abs(predicted - truth_phasor(truth, 3)) < allowed;
+    };
+    worst_acc3 = std::max(worst_acc3, relative(-omega * omega * y(0, 1), held_out.steps[i].measured(0, 0)));
+    const auto& acc3_truth = truth_step["channels"]["acc3"]["harmonics"];
+    const std::complex<double> acc3_h3 = -9 * omega * omega * y(0, 3);
+    worst_acc3_h3 = std::max(worst_acc3_h3, relative(acc3_h3, truth_phasor(acc3_truth, 3)));
+    EXPECT_TRUE(third_harmonic_ok(acc3_h3, acc3_truth)) << "acc3, step " << i;
     // The truth file's noise-free displacement at 0.45 m (not in the campaign).
-    const auto& hidden = (*truth_)["steps"][i]["hidden"][0];
+    const auto& hidden = truth_step["hidden"][0];
     ASSERT_DOUBLE_EQ(hidden["position_m"].get<double>(), 0.45);
-    const auto& h1 = hidden["displacement_m"]["harmonics"][0];
-    const std::complex<double> truth(h1[0].get<double>(), h1[1].get<double>());
-    worst_hidden = std::max(worst_hidden, std::abs(y(1, 1) - truth) / std::abs(truth));
+    const auto& hidden_truth = hidden["displacement_m"]["harmonics"];
+    worst_hidden = std::max(worst_hidden, relative(y(1, 1), truth_phasor(hidden_truth, 1)));
+    worst_hidden_h3 = std::max(worst_hidden_h3, relative(y(1, 3), truth_phasor(hidden_truth, 3)));
+    EXPECT_TRUE(third_harmonic_ok(y(1, 3), hidden_truth)) << "0.45 m, step " << i;
   }
-  std::printf("worst first-harmonic error: acc3 %.3f %%, hidden 0.45 m %.3f %%\n", 100 * worst_acc3, 100 * worst_hidden);
+  std::printf("worst error: acc3 h1 %.3f %%, h3 %.2f %%; hidden 0.45 m h1 %.3f %%, h3 %.2f %%\n", 100 * worst_acc3,
+              100 * worst_acc3_h3, 100 * worst_hidden, 100 * worst_hidden_h3);
   EXPECT_LT(worst_acc3, 0.02);
   EXPECT_LT(worst_hidden, 0.02);
 }
@@ -133,8 +155,13 @@ TEST_F(IdentifyOnSimulatedCampaign, FindsTheSameFitFromStartsAFactorThreeAway) {
   const FitData fit = Fit({"acc1", "acc2"});
   const IdentifyResult reference = Identify(fit, PolynomialModel({.k1_Nm_rad = 100.0}), {});
   for (double factor : {3.0, 1.0 / 3.0}) {
+    // No direct estimate: only the far start and the global search's
+    // space-filling starts over a factor 9 either way of it (so that the
+    // range covers the truth well inside, not at its edge) are tried.
     IdentifyOptions far;
     far.use_direct_estimate = false;
+    far.num_starts = 8;
+    far.start_spread = 9.0;
     // k2 is 0 in truth: start it at ±3 % of k3's scale instead.
     const IdentifyResult result = Identify(
         fit,
