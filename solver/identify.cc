@@ -1,6 +1,7 @@
 #include "solver/identify.h"
 
 #include "solver/internal/worker_processes.h"
+#include "solver/multiple_scales_problem.h"
 
 #include <algorithm>
 #include <chrono>
@@ -42,10 +43,10 @@ StartOutcome RunStart(FitProblem& problem, const IdentifyOptions& options, const
   return result;
 }
 
-}  // namespace
-
-IdentifyResult Identify(const FitData& data, const ModelStructure& structure, const IdentifyOptions& options,
-                        const ProgressCallback& progress) {
+// Starts from the direct estimate of the polynomial law with any model.
+IdentifyResult IdentifyFromDirectEstimate(const ProblemFactory& make_problem, const FitData& data,
+                                          const ModelStructure& structure, const IdentifyOptions& options,
+                                          const ProgressCallback& progress) {
   // 1. Direct estimate from the reconstructed support (polynomial part).
   if (progress) progress(0.0, "direct estimate");
   hb::LinearBeamModel nominal{.beam = data.beam, .attachments = data.sensor_masses};
@@ -63,11 +64,26 @@ IdentifyResult Identify(const FitData& data, const ModelStructure& structure, co
     // cannot start: nudge it inside.
     first[3] = std::max(first[3], 1e-3 * bounds[3].typical);
   }
-  IdentifyResult result = IdentifyWith(
-      [&] { return std::make_unique<IdentificationProblem>(data, structure, options.model); }, structure, first,
-      options, progress);
+  IdentifyResult result = IdentifyWith(make_problem, structure, first, options, progress);
   result.direct = direct;
   return result;
+}
+
+}  // namespace
+
+IdentifyResult Identify(const FitData& data, const ModelStructure& structure, const IdentifyOptions& options,
+                        const ProgressCallback& progress) {
+  return IdentifyFromDirectEstimate(
+      [&] { return std::make_unique<IdentificationProblem>(data, structure, options.model); }, data, structure,
+      options, progress);
+}
+
+IdentifyResult IdentifyMultipleScales(const FitData& data, const ModelStructure& structure,
+                                      const IdentifyOptions& options, const ProgressCallback& progress) {
+  const MultipleScalesProblemOptions model{.beam_loss_factor = options.model.beam_loss_factor};
+  return IdentifyFromDirectEstimate(
+      [&] { return std::make_unique<MultipleScalesProblem>(data, structure, model); }, data, structure, options,
+      progress);
 }
 
 IdentifyResult IdentifyWith(const ProblemFactory& make_problem, const ModelStructure& structure,
