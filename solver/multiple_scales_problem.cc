@@ -95,7 +95,6 @@ MultipleScalesProblem::MultipleScalesProblem(const FitData& data, const ModelStr
   for (const FitStep& s : data_.steps)
     if (s.force_N.size() < 2)
       throw std::invalid_argument("step " + s.file + " has no force fundamental");
-  num_law_ = static_cast<int>(structure_.law_bounds.size());
   num_parameters_ = structure_.NumParameters();
   bounds_ = structure_.Bounds();
   for (const auto& b : bounds_) parameter_scale_.push_back(b.typical);

@@ -140,7 +140,7 @@ class MultipleScalesProblem : public FitProblem {
   FitData data_;
   ModelStructure structure_;
   MultipleScalesProblemOptions options_;
-  int num_law_ = 0, num_parameters_ = 0;
+  int num_parameters_ = 0;
   std::vector<double> parameter_scale_;
   std::vector<ParameterBounds> bounds_;
   hb::BeamProperties base_beam_;
