@@ -23,14 +23,18 @@ struct MultipleScalesProblem::StepCache {
 
 // The model at the current parameters and, per parameter, the models of its
 // difference stencil: ∂f/∂p_j ≈ center_weight·f(p) + Σ weight_k·f(model_k).
+// Each model is kept as its excitations, one per step (at the fitted
+// channels' positions): all of it that does not depend on U.
 struct MultipleScalesProblem::ModelSet {
+  using Steps = std::vector<MultipleScalesModel::Excitation>;
   struct Stencil {
     double center_weight = 0.0;
-    std::vector<MultipleScalesModel> models;
+    std::vector<Steps> models;
     std::vector<double> weights;
   };
   std::vector<double> parameters;
   MultipleScalesModel center;
+  Steps center_steps;
   std::vector<Stencil> stencils;
 };
 
@@ -131,7 +135,15 @@ MultipleScalesModel MultipleScalesProblem::Model(const std::vector<double>& para
 const MultipleScalesProblem::ModelSet& MultipleScalesProblem::ModelsAt(const std::vector<double>& parameters) {
   if (models_ && models_->parameters == parameters) return *models_;
   models_.reset();
+  std::vector<double> positions_m;
+  for (const FitChannel& c : data_.channels) positions_m.push_back(c.position_m);
+  auto excitations = [&](const MultipleScalesModel& model) {
+    ModelSet::Steps steps;
+    for (const FitStep& s : data_.steps) steps.push_back(model.AtExcitation(s.omega_rad_s, s.force_N[1], positions_m));
+    return steps;
+  };
   auto set = std::make_unique<ModelSet>(ModelSet{.parameters = parameters, .center = Model(parameters)});
+  set->center_steps = excitations(set->center);
   for (int j = 0; j < num_parameters_; ++j) {
     const double h = kParameterStep * std::max(std::abs(parameters[j]), parameter_scale_[j]);
     const bool below = parameters[j] - h < bounds_[j].lower, above = parameters[j] + h > bounds_[j].upper;
@@ -154,7 +166,7 @@ const MultipleScalesProblem::ModelSet& MultipleScalesProblem::ModelsAt(const std
     for (double offset : offsets) {
       std::vector<double> nudged = parameters;
       nudged[j] += offset;
-      stencil.models.push_back(Model(nudged));
+      stencil.models.push_back(excitations(Model(nudged)));
     }
     set->stencils.push_back(std::move(stencil));
   }
@@ -162,19 +174,19 @@ const MultipleScalesProblem::ModelSet& MultipleScalesProblem::ModelsAt(const std
   return *models_;
 }
 
-Eigen::Vector2d MultipleScalesProblem::StepConstraint(const MultipleScalesModel& model, int step, Complex u) const {
-  const FitStep& s = data_.steps[step];
-  const Complex residual = model.SolvabilityResidual_N(u, s.omega_rad_s, s.force_N[1]);
+Eigen::Vector2d MultipleScalesProblem::StepConstraint(const MultipleScalesModel::Excitation& excitation, Complex u) {
+  const Complex residual = excitation.SolvabilityResidual_N(u);
   return {residual.real(), residual.imag()};
 }
 
-Eigen::VectorXd MultipleScalesProblem::StepResidual(const MultipleScalesModel& model, int step, Complex u) const {
+Eigen::VectorXd MultipleScalesProblem::StepResidual(const MultipleScalesModel::Excitation& excitation, int step,
+                                                    Complex u) const {
   const FitStep& s = data_.steps[step];
   const int channels = static_cast<int>(data_.channels.size());
   const int k_max = data_.num_fit_harmonics;
   Eigen::VectorXd r(2 * channels * k_max);
   for (int c = 0; c < channels; ++c) {
-    const MultipleScalesModel::Harmonics h = model.Response(data_.channels[c].position_m, u, s.omega_rad_s, s.force_N[1]);
+    const MultipleScalesModel::Harmonics h = excitation.Response(c, u);
     const Complex displacement[] = {h.h1_m, h.h2_m, h.h3_m};
     for (int k = 1; k <= k_max; ++k) {
       const Complex misfit = DerivativeFactor(data_.channels[c].derivative_order, k * s.omega_rad_s) *
@@ -193,15 +205,15 @@ void MultipleScalesProblem::Evaluate(const Eigen::VectorXd& x) {
   for (int i = 0; i < num_steps(); ++i) {
     StepCache& c = cache_[i];
     const Complex u = ModalPhasor_m(x, i);
-    auto values = [&](const MultipleScalesModel& model, Complex uu) {
-      const Eigen::VectorXd r = StepResidual(model, i, uu);
+    auto values = [&](const ModelSet::Steps& model, Complex uu) {
+      const Eigen::VectorXd r = StepResidual(model[i], i, uu);
       Eigen::VectorXd v(kStateSize + r.size());
-      v << StepConstraint(model, i, uu), r;
+      v << StepConstraint(model[i], uu), r;
       return v;
     };
-    c.values = values(set.center, u);
+    c.values = values(set.center_steps, u);
     objective_ += 0.5 * c.values.tail(c.values.size() - kStateSize).squaredNorm();
-    c.d_values_d_z = DifferenceInU([&](Complex uu) { return values(set.center, uu); }, u,
+    c.d_values_d_z = DifferenceInU([&](Complex uu) { return values(set.center_steps, uu); }, u,
                                    kStateStep * state_scale_m_[i]);
     c.d_values_d_p.resize(c.values.size(), num_parameters_);
     for (int j = 0; j < num_parameters_; ++j) {
@@ -215,7 +227,8 @@ void MultipleScalesProblem::Evaluate(const Eigen::VectorXd& x) {
 }
 
 Eigen::VectorXd MultipleScalesProblem::FeasiblePoint(const std::vector<double>& parameters, int* failed_steps) {
-  const MultipleScalesModel& model = ModelsAt(parameters).center;
+  const ModelSet& set = ModelsAt(parameters);
+  const MultipleScalesModel& model = set.center;
   std::vector<Complex> states(num_steps(), Complex(0.0));
   int failures = 0;
   for (int i = 0; i < num_steps(); ++i) {
@@ -230,7 +243,7 @@ Eigen::VectorXd MultipleScalesProblem::FeasiblePoint(const std::vector<double>& 
     if (roots.size() == 3) roots.erase(roots.begin() + 1);  // the unstable middle branch
     double best = std::numeric_limits<double>::infinity();
     for (Complex u : roots) {
-      const double misfit = StepResidual(model, i, u).squaredNorm();
+      const double misfit = StepResidual(set.center_steps[i], i, u).squaredNorm();
       if (misfit < best) {
         best = misfit;
         states[i] = u;
@@ -241,8 +254,9 @@ Eigen::VectorXd MultipleScalesProblem::FeasiblePoint(const std::vector<double>& 
   for (Complex u : states) largest = std::max(largest, std::abs(u));
   for (int i = 0; i < num_steps(); ++i) {
     state_scale_m_[i] = std::max(std::abs(states[i]), 1e-6 * largest + 1e-15);
-    const Eigen::MatrixXd d = DifferenceInU([&](Complex u) -> Eigen::VectorXd { return StepConstraint(model, i, u); },
-                                            states[i], kStateStep * state_scale_m_[i]);
+    const Eigen::MatrixXd d =
+        DifferenceInU([&](Complex u) -> Eigen::VectorXd { return StepConstraint(set.center_steps[i], u); }, states[i],
+                      kStateStep * state_scale_m_[i]);
     // |∂S/∂U| (the rms singular value) times U's size: the force U takes.
     const double scale = d.norm() / std::sqrt(2.0) * state_scale_m_[i];
     constraint_scale_N_[i] = std::isfinite(scale) && scale > 0.0 ? scale : 1.0;

@@ -133,9 +133,10 @@ class MultipleScalesProblem : public FitProblem {
   struct ModelSet;
   void Evaluate(const Eigen::VectorXd& x);
   const ModelSet& ModelsAt(const std::vector<double>& parameters);
-  // Whitened misfit r_i of step i with U and a model.
-  Eigen::VectorXd StepResidual(const hb::MultipleScalesModel& model, int step, hb::Complex u) const;
-  Eigen::Vector2d StepConstraint(const hb::MultipleScalesModel& model, int step, hb::Complex u) const;
+  // Whitened misfit r_i and solvability residual S_i of step i with U, from
+  // the model's excitation at that step.
+  Eigen::VectorXd StepResidual(const hb::MultipleScalesModel::Excitation& excitation, int step, hb::Complex u) const;
+  static Eigen::Vector2d StepConstraint(const hb::MultipleScalesModel::Excitation& excitation, hb::Complex u);
 
   FitData data_;
   ModelStructure structure_;
