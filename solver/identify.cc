@@ -81,6 +81,9 @@ IdentifyResult Identify(const FitData& data, const ModelStructure& structure, co
 IdentifyResult IdentifyMultipleScales(const FitData& data, const ModelStructure& structure,
                                       const IdentifyOptions& options, const ProgressCallback& progress) {
   const MultipleScalesProblemOptions model{.beam_loss_factor = options.model.beam_loss_factor};
+  // What the model cannot hold (sensor masses, harmonics above 3) is bad
+  // input: refuse it here, not as a failure of every start.
+  { const MultipleScalesProblem check(data, structure, model); }
   return IdentifyFromDirectEstimate(
       [&] { return std::make_unique<MultipleScalesProblem>(data, structure, model); }, data, structure, options,
       progress);

@@ -85,6 +85,8 @@ IdentifyResult Identify(const FitData& data, const ModelStructure& structure, co
 // The seed's multiple-scales model (MultipleScalesProblem, `--model ms`),
 // started from the same direct estimate; options.model.beam_loss_factor is
 // the beam's known η, the other model options are the harmonic balance's.
+// Throws std::invalid_argument for data the model cannot hold (sensor
+// masses, more than 3 fitted harmonics, another law).
 IdentifyResult IdentifyMultipleScales(const FitData& data, const ModelStructure& structure,
                                       const IdentifyOptions& options, const ProgressCallback& progress = {});
 

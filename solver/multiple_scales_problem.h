@@ -26,8 +26,10 @@
 // error is ~1e-12 relative), and in the parameters with a step of
 // 1e-5·max(|p|, typical), one-sided second-order at a bound the model
 // refuses to cross (k1 ≥ 0, c ≥ 0). The model is rebuilt for every nudged
-// parameter set (a few tens of µs) and the whole set is kept while the
-// parameters do not change. The Hessian is the objective's Gauss–Newton JᵀJ
+// parameter set, and of each its U-independent part at every step
+// (MultipleScalesModel::Excitation: the receptances at Ω, 2Ω, 3Ω and the
+// sensors); that set is kept while the parameters do not change, so a
+// change of the states alone costs only polynomials in U. The Hessian is the objective's Gauss–Newton JᵀJ
 // alone (the constrained Gauss–Newton method, as IdentificationProblem with
 // constraint_curvature = false).
 #pragma once

@@ -106,6 +106,10 @@ TEST_F(CommandLine, IdentifyWithTheMultipleScalesModelAndPredictWithIt) {
   EXPECT_THAT(run.output, HasSubstr("with the multiple-scales model"));
   EXPECT_THAT(ReadFile(folder_ / "pred.json"), HasSubstr("\"model\": \"ms\""));
 
+  // The model gives harmonics 1..3 only: bad input, not a failed fit.
+  run = Beamid("identify " + campaign + " --fit acc1,acc2 --model ms --fit-harmonics 5");
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.output, HasSubstr("fit at most 3 harmonics"));
   run = Beamid("identify " + campaign + " --fit acc1,acc2 --model duffing");
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_THAT(run.output, HasSubstr("--model duffing: unknown model (use hb"));
