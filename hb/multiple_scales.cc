@@ -137,27 +137,85 @@ Complex MultipleScalesModel::ForcedRotation_rad(double omega_rad_s, Complex forc
   return Coupling(omega_rad_s, force_phasor_N).forced_rotation_rad;
 }
 
-Complex MultipleScalesModel::NonlinearMomentFirstHarmonic_Nm(Complex modal_phasor_m, double omega_rad_s) const {
-  const double k2 = support_.k2_Nm_rad2;
-  const Complex theta0 = modal_phasor_m * support_slope_per_m_;
-  const double theta0_abs2 = std::norm(theta0);
-  const double theta_static = -k2 * theta0_abs2 * static_rotation_per_moment_rad_Nm_ / 2.0;
-  const Complex theta2 = -k2 * theta0 * theta0 * SecondHarmonicCompliance_rad_Nm(omega_rad_s) / 2.0;
-  return 0.75 * support_.k3_Nm_rad3 * theta0_abs2 * theta0 +
-         2.0 * k2 * (theta0 * theta_static + std::conj(theta0) * theta2 / 2.0);
+MultipleScalesModel::Excitation MultipleScalesModel::AtExcitation(double omega_rad_s, Complex force_phasor_N,
+                                                                  const std::vector<double>& positions_m) const {
+  for (double x : positions_m)
+    if (!(x >= 0.0 && x <= beam_.length_m))
+      throw std::invalid_argument("multiple-scales model: the response position " + std::to_string(x) +
+                                  " m lies outside the beam [0, " + std::to_string(beam_.length_m) + "] m");
+  const double base = HarmonicBase_rad_s(omega_rad_s);
+  const LinearCoupling coupling = Coupling(omega_rad_s, force_phasor_N);
+  Excitation e;
+  e.k2_ = support_.k2_Nm_rad2;
+  e.k3_ = support_.k3_Nm_rad3;
+  e.slope_per_m_ = support_slope_per_m_;
+  e.static_compliance_rad_Nm_ = static_rotation_per_moment_rad_Nm_;
+  e.force_phasor_N_ = force_phasor_N;
+  e.modal_stiffness_N_m_ = ModalDynamicStiffness_N_m(omega_rad_s);
+  e.modal_force_N_ = force_phasor_N * mode_at_force_;
+  e.damping_Nm_rad_ = coupling.damping_Nm_rad;
+  e.nonlinear_factor_ = coupling.nonlinear_factor;
+  e.forced_rotation_rad_ = coupling.forced_rotation_rad;
+  e.second_compliance_rad_Nm_ = SecondHarmonicCompliance_rad_Nm(omega_rad_s);
+  // The seed's form takes θ1 = θ0: no forced rotation (θ_F = 0 there) and no
+  // non-resonant rotation of the support moment.
+  e.rest_rotation_rad_Nm_ = options_.harmonic_frequency == HarmonicFrequency::kNatural
+                                ? 0.0
+                                : NonResonantMoment_m_Nm(beam_.length_m, omega_rad_s, 1);
+  for (double x : positions_m)
+    e.positions_.push_back({.mode = mode_.Value(x),
+                            .rest_force_m_N = NonResonantForce_m_N(x, base),
+                            .rest_moment_m_Nm = NonResonantMoment_m_Nm(x, base),
+                            .static_m_Nm = DisplacementPerEndMoment_m_Nm(x, 0.0),
+                            .second_m_Nm = DisplacementPerEndMoment_m_Nm(x, 2.0 * base) * DamperFactor(2.0 * base),
+                            .third_m_Nm = DisplacementPerEndMoment_m_Nm(x, 3.0 * base) * DamperFactor(3.0 * base)});
+  return e;
+}
+
+Complex MultipleScalesModel::Excitation::NonlinearMoment_Nm(Complex theta0_rad) const {
+  const double theta0_abs2 = std::norm(theta0_rad);
+  const double theta_static = -k2_ * theta0_abs2 * static_compliance_rad_Nm_ / 2.0;
+  const Complex theta2 = -k2_ * theta0_rad * theta0_rad * second_compliance_rad_Nm_ / 2.0;
+  return 0.75 * k3_ * theta0_abs2 * theta0_rad + 2.0 * k2_ * (theta0_rad * theta_static + std::conj(theta0_rad) * theta2 / 2.0);
+}
+
+Complex MultipleScalesModel::Excitation::SupportMomentFirstHarmonic_Nm(Complex modal_phasor_m) const {
+  const Complex theta0 = modal_phasor_m * slope_per_m_;
+  return damping_Nm_rad_ * (theta0 + forced_rotation_rad_) + nonlinear_factor_ * NonlinearMoment_Nm(theta0);
+}
+
+Complex MultipleScalesModel::Excitation::SolvabilityResidual_N(Complex modal_phasor_m) const {
+  return modal_stiffness_N_m_ * modal_phasor_m - modal_force_N_ +
+         slope_per_m_ * SupportMomentFirstHarmonic_Nm(modal_phasor_m);
+}
+
+Complex MultipleScalesModel::Excitation::FirstHarmonicRotation_rad(Complex modal_phasor_m) const {
+  return modal_phasor_m * slope_per_m_ + forced_rotation_rad_ -
+         SupportMomentFirstHarmonic_Nm(modal_phasor_m) * rest_rotation_rad_Nm_;
+}
+
+MultipleScalesModel::Harmonics MultipleScalesModel::Excitation::Response(int position_index,
+                                                                         Complex modal_phasor_m) const {
+  const AtPosition& at = positions_.at(position_index);
+  const Complex u = modal_phasor_m;
+  const Complex moment1 = SupportMomentFirstHarmonic_Nm(u);
+  const Complex theta1 = u * slope_per_m_ + forced_rotation_rad_ - moment1 * rest_rotation_rad_Nm_;
+  Harmonics h;
+  h.h0_m = -(k2_ / 2.0) * std::norm(theta1) * at.static_m_Nm;
+  h.h1_m = u * at.mode + force_phasor_N_ * at.rest_force_m_N - moment1 * at.rest_moment_m_Nm;
+  h.h2_m = -(k2_ / 2.0) * theta1 * theta1 * at.second_m_Nm;
+  h.h3_m = -(theta1 * theta1 * theta1 / 4.0) * (k3_ - 2.0 * k2_ * k2_ * second_compliance_rad_Nm_) * at.third_m_Nm;
+  return h;
 }
 
 Complex MultipleScalesModel::SupportMomentFirstHarmonic_Nm(Complex modal_phasor_m, double omega_rad_s,
                                                           Complex force_phasor_N) const {
-  const LinearCoupling coupling = Coupling(omega_rad_s, force_phasor_N);
-  return coupling.damping_Nm_rad * (modal_phasor_m * support_slope_per_m_ + coupling.forced_rotation_rad) +
-         coupling.nonlinear_factor * NonlinearMomentFirstHarmonic_Nm(modal_phasor_m, omega_rad_s);
+  return AtExcitation(omega_rad_s, force_phasor_N).SupportMomentFirstHarmonic_Nm(modal_phasor_m);
 }
 
 Complex MultipleScalesModel::SolvabilityResidual_N(Complex modal_phasor_m, double omega_rad_s,
                                                   Complex force_phasor_N) const {
-  return ModalDynamicStiffness_N_m(omega_rad_s) * modal_phasor_m - force_phasor_N * mode_at_force_ +
-         support_slope_per_m_ * SupportMomentFirstHarmonic_Nm(modal_phasor_m, omega_rad_s, force_phasor_N);
+  return AtExcitation(omega_rad_s, force_phasor_N).SolvabilityResidual_N(modal_phasor_m);
 }
 
 std::vector<Complex> MultipleScalesModel::Solve(double omega_rad_s, Complex force_phasor_N) const {
@@ -248,33 +306,12 @@ double MultipleScalesModel::NonResonantMoment_m_Nm(double position_m, double ome
 
 Complex MultipleScalesModel::FirstHarmonicRotation_rad(Complex modal_phasor_m, double omega_rad_s,
                                                        Complex force_phasor_N) const {
-  const Complex theta0 = modal_phasor_m * support_slope_per_m_;
-  if (options_.harmonic_frequency == HarmonicFrequency::kNatural) return theta0;
-  return theta0 + ForcedRotation_rad(omega_rad_s, force_phasor_N) -
-         SupportMomentFirstHarmonic_Nm(modal_phasor_m, omega_rad_s, force_phasor_N) *
-             NonResonantMoment_m_Nm(beam_.length_m, omega_rad_s, 1);
+  return AtExcitation(omega_rad_s, force_phasor_N).FirstHarmonicRotation_rad(modal_phasor_m);
 }
 
 MultipleScalesModel::Harmonics MultipleScalesModel::Response(double position_m, Complex modal_phasor_m,
                                                              double omega_rad_s, Complex force_phasor_N) const {
-  if (!(position_m >= 0.0 && position_m <= beam_.length_m))
-    throw std::invalid_argument("multiple-scales model: the response position " + std::to_string(position_m) +
-                                " m lies outside the beam [0, " + std::to_string(beam_.length_m) + "] m");
-  const double base = HarmonicBase_rad_s(omega_rad_s);
-  const Complex u = modal_phasor_m;
-  const double k2 = support_.k2_Nm_rad2;
-  const Complex moment1 = SupportMomentFirstHarmonic_Nm(u, omega_rad_s, force_phasor_N);
-  const Complex theta1 = FirstHarmonicRotation_rad(u, omega_rad_s, force_phasor_N);
-  Harmonics h;
-  h.h0_m = -(k2 / 2.0) * std::norm(theta1) * DisplacementPerEndMoment_m_Nm(position_m, 0.0);
-  h.h1_m = u * mode_.Value(position_m) + force_phasor_N * NonResonantForce_m_N(position_m, base) -
-           moment1 * NonResonantMoment_m_Nm(position_m, base);
-  h.h2_m = -(k2 / 2.0) * theta1 * theta1 * DisplacementPerEndMoment_m_Nm(position_m, 2.0 * base) *
-           DamperFactor(2.0 * base);
-  h.h3_m = -(theta1 * theta1 * theta1 / 4.0) *
-           (support_.k3_Nm_rad3 - 2.0 * k2 * k2 * SecondHarmonicCompliance_rad_Nm(omega_rad_s)) *
-           DisplacementPerEndMoment_m_Nm(position_m, 3.0 * base) * DamperFactor(3.0 * base);
-  return h;
+  return AtExcitation(omega_rad_s, force_phasor_N, {position_m}).Response(0, modal_phasor_m);
 }
 
 double MultipleScalesModel::Backbone_rad_s(double amplitude_m) const {

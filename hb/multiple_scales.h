@@ -79,6 +79,37 @@ class MultipleScalesModel {
     std::vector<Complex> modal_phasors_m;
   };
 
+  // The model at one excitation (Ω, F1) and a list of positions: everything
+  // that does not depend on U evaluated once (receptances, the linear
+  // coupling), so that the solvability residual and the harmonics are cheap
+  // polynomials in U and Ū. The model's own SolvabilityResidual_N and
+  // Response evaluate through it; an identification, which needs them for
+  // many U at a fixed excitation, keeps it.
+  class Excitation {
+   public:
+    Complex SolvabilityResidual_N(Complex modal_phasor_m) const;     // see the model's
+    Complex SupportMomentFirstHarmonic_Nm(Complex modal_phasor_m) const;
+    Complex FirstHarmonicRotation_rad(Complex modal_phasor_m) const;
+    Harmonics Response(int position_index, Complex modal_phasor_m) const;  // positions_m[position_index]
+
+   private:
+    friend class MultipleScalesModel;
+    Complex NonlinearMoment_Nm(Complex theta0_rad) const;  // N1
+    struct AtPosition {
+      double mode = 0.0;              // w(x)
+      double rest_force_m_N = 0.0;    // G_rest(x; x_F, Ω)
+      double rest_moment_m_Nm = 0.0;  // G_rest,M(x; Ω)
+      double static_m_Nm = 0.0;       // G_xM(x, 0)
+      Complex second_m_Nm, third_m_Nm;  // G_xM(x, 2Ω), G_xM(x, 3Ω) with the damper
+    };
+    double k2_ = 0.0, k3_ = 0.0, slope_per_m_ = 0.0, static_compliance_rad_Nm_ = 0.0;
+    Complex force_phasor_N_, modal_stiffness_N_m_, modal_force_N_;
+    Complex damping_Nm_rad_, nonlinear_factor_, forced_rotation_rad_;
+    Complex second_compliance_rad_Nm_;  // G(2Ω), with the damper in the generalised form
+    double rest_rotation_rad_Nm_ = 0.0;  // G_rest,θM(Ω) (0 in the seed's form: θ1 = θ0)
+    std::vector<AtPosition> positions_;
+  };
+
   // Throws std::invalid_argument for a non-physical beam, K1 < 0, C < 0, a
   // non-finite coefficient or a force position outside [0, L].
   MultipleScalesModel(const BeamProperties& beam, const PolynomialSupportLaw::Coefficients& support,
@@ -105,6 +136,10 @@ class MultipleScalesModel {
   // 0th, 2nd and 3rd harmonics: θ0 + θ_F − M1·G_rest,θM (generalised form;
   // y'(L) of h1), θ0 = U·w'(L) (seed's form).
   Complex FirstHarmonicRotation_rad(Complex modal_phasor_m, double omega_rad_s, Complex force_phasor_N) const;
+
+  // Throws std::invalid_argument for a position outside the beam and
+  // std::runtime_error at an internal resonance (2Ω or 3Ω a natural frequency).
+  Excitation AtExcitation(double omega_rad_s, Complex force_phasor_N, const std::vector<double>& positions_m = {}) const;
 
   // All steady states U at Ω (the roots of the amplitude–frequency relation,
   // with their phase), ascending in |U|.
@@ -144,7 +179,6 @@ class MultipleScalesModel {
     Complex forced_rotation_rad;    // θ_F
   };
   LinearCoupling Coupling(double omega_rad_s, Complex force_phasor_N) const;
-  Complex NonlinearMomentFirstHarmonic_Nm(Complex modal_phasor_m, double omega_rad_s) const;
   // 1/(1 + iω·C·G_θM(ω)): turns an undamped end-moment receptance at a
   // harmonic frequency ω into the one with the damper (1 in the seed's form).
   Complex DamperFactor(double harmonic_omega_rad_s) const;

@@ -13,6 +13,8 @@
 
 #include <Eigen/Core>
 
+#include "solver/model_structure.h"
+
 namespace beamid::solver {
 
 class FitProblem {
@@ -47,6 +49,20 @@ class FitProblem {
   // with the states eliminated through the constraints (for the covariance).
   virtual Eigen::VectorXd WeightedResiduals(const Eigen::VectorXd& x) = 0;
   virtual Eigen::MatrixXd ReducedResidualJacobian(const Eigen::VectorXd& x) = 0;
+
+  // What a report and `beamid predict` need of the fitted model.
+  virtual const ModelStructure& structure() const = 0;
+  // The highest harmonic the model gives (H).
+  virtual int num_model_harmonics() const = 0;
+  // Displacement phasors of harmonics 0..H at positions for step i [m]
+  // (positions × (H + 1)), with the parameters and states of x.
+  virtual Eigen::MatrixXcd DisplacementPhasors(const Eigen::VectorXd& x, int step,
+                                               const std::vector<double>& positions_m) = 0;
+  // Step i's state as complex phasors in physical units, and its name in
+  // result.json: the harmonics Θ_0..Θ_H of θ ("theta_rad") for harmonic
+  // balance, the modal phasor U ("modal_phasor_m") for multiple scales.
+  virtual Eigen::VectorXcd StepState(const Eigen::VectorXd& x, int step) const = 0;
+  virtual std::string StepStateName() const = 0;
 };
 
 }  // namespace beamid::solver

@@ -55,7 +55,8 @@ class IdentificationProblem : public FitProblem {
   int num_constraints() const override { return num_steps() * state_size_; }
   int num_residuals() const override { return data_.NumResiduals(); }
   const FitData& data() const { return data_; }
-  const ModelStructure& structure() const { return structure_; }
+  const ModelStructure& structure() const override { return structure_; }
+  int num_model_harmonics() const override { return options_.num_harmonics; }
 
   // Scaled ↔ physical.
   std::vector<double> Parameters(const Eigen::VectorXd& x) const override;
@@ -91,7 +92,12 @@ class IdentificationProblem : public FitProblem {
 
   // Model phasors of harmonics 0..H at positions for step i (displacement,
   // m), with the parameters and states of x.
-  Eigen::MatrixXcd DisplacementPhasors(const Eigen::VectorXd& x, int step, const std::vector<double>& positions_m);
+  Eigen::MatrixXcd DisplacementPhasors(const Eigen::VectorXd& x, int step,
+                                       const std::vector<double>& positions_m) override;
+  Eigen::VectorXcd StepState(const Eigen::VectorXd& x, int step) const override {
+    return hb::HarmonicBalance::ToComplex(States(x, step));
+  }
+  std::string StepStateName() const override { return "theta_rad"; }
 
  private:
   struct StepCache;

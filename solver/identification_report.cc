@@ -32,7 +32,7 @@ Complex Convert(const Complex& displacement, int derivative_order, double k_omeg
 }
 
 // Model phasors of one data set's channels at every step: [step](channel, k-1).
-std::vector<Eigen::MatrixXcd> ModelPhasors(const FitData& data, IdentificationProblem& problem,
+std::vector<Eigen::MatrixXcd> ModelPhasors(const FitData& data, FitProblem& problem,
                                            const Eigen::VectorXd& x) {
   std::vector<double> positions;
   for (const auto& c : data.channels) positions.push_back(c.position_m);
@@ -50,7 +50,7 @@ std::vector<Eigen::MatrixXcd> ModelPhasors(const FitData& data, IdentificationPr
 
 }  // namespace
 
-nlohmann::json IdentificationReport(const FitData& fit, const FitData& validation, IdentificationProblem& problem,
+nlohmann::json IdentificationReport(const FitData& fit, const FitData& validation, FitProblem& problem,
                                     const IdentifyResult& result, const ReportContext& context) {
   nlohmann::json out;
   out["format"] = "beamid-result/1";
@@ -74,7 +74,7 @@ nlohmann::json IdentificationReport(const FitData& fit, const FitData& validatio
                   {"sensor_masses", masses},
                   {"fit_channels", channels},
                   {"num_fit_harmonics", fit.num_fit_harmonics},
-                  {"num_harmonics", problem.state_size() / 2}};
+                  {"num_harmonics", problem.num_model_harmonics()}};
   nlohmann::json parameters = nlohmann::json::object();
   nlohmann::json order = nlohmann::json::array();
   for (const auto& p : result.parameters) {
@@ -178,12 +178,11 @@ nlohmann::json IdentificationReport(const FitData& fit, const FitData& validatio
   nlohmann::json steps = nlohmann::json::array();
   for (int i = 0; i < static_cast<int>(fit.steps.size()); ++i) {
     const FitStep& s = fit.steps[i];
-    const Eigen::VectorXd z = problem.States(result.x, i);
     steps.push_back({{"level", s.level},
                      {"file", s.file},
                      {"frequency_Hz", s.omega_rad_s / (2 * std::numbers::pi)},
                      {"force_N", ToJson(s.force_N)},
-                     {"theta_rad", ToJson(hb::HarmonicBalance::ToComplex(z))}});
+                     {problem.StepStateName(), ToJson(problem.StepState(result.x, i))}});
   }
   out["steps"] = steps;
   return out;

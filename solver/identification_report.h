@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "solver/fit_data.h"
-#include "solver/identification_problem.h"
+#include "solver/fit_problem.h"
 #include "solver/identify.h"
 
 namespace beamid::solver {
@@ -18,13 +18,13 @@ namespace beamid::solver {
 struct ReportContext {
   std::string campaign_folder;
   std::string campaign_name;
-  std::string model_kind = "hb";
+  std::string model_kind = "hb";  // "hb" or "ms": which model `problem` is
 };
 
 // `problem` must be the problem whose variables result.x are (its internal
 // scales set by FeasiblePoint at the best start); `validation` holds the
 // held-out channels' data (no channels: no validation section).
-nlohmann::json IdentificationReport(const FitData& fit, const FitData& validation, IdentificationProblem& problem,
+nlohmann::json IdentificationReport(const FitData& fit, const FitData& validation, FitProblem& problem,
                                     const IdentifyResult& result, const ReportContext& context);
 
 }  // namespace beamid::solver

@@ -2,6 +2,7 @@
 
 #include "solver/internal/ipopt_program.h"
 #include "solver/internal/worker_processes.h"
+#include "solver/multiple_scales_problem.h"
 
 #include <algorithm>
 #include <chrono>
@@ -67,10 +68,12 @@ ModelStructure WithDataBounds(const ModelStructure& structure, const hb::BeamPro
   return bounded;
 }
 
-}  // namespace
-
-IdentifyResult Identify(const FitData& data, const ModelStructure& structure, const IdentifyOptions& options,
-                        const ProgressCallback& progress) {
+// Starts from the direct estimate of the polynomial law with any model; the
+// model is built on the structure with the data's bounds.
+using BoundedProblemFactory = std::function<std::unique_ptr<FitProblem>(const ModelStructure&)>;
+IdentifyResult IdentifyFromDirectEstimate(const BoundedProblemFactory& make_problem, const FitData& data,
+                                          const ModelStructure& structure, const IdentifyOptions& options,
+                                          const ProgressCallback& progress) {
   // 1. Direct estimate from the reconstructed support (polynomial part).
   if (progress) progress(0.0, "direct estimate");
   hb::LinearBeamModel nominal{.beam = data.beam, .attachments = data.sensor_masses};
@@ -89,11 +92,32 @@ IdentifyResult Identify(const FitData& data, const ModelStructure& structure, co
     // cannot start: nudge it inside.
     first[3] = std::max(first[3], 1e-3 * bounds[3].typical);
   }
-  IdentifyResult result = IdentifyWith(
-      [&] { return std::make_unique<IdentificationProblem>(data, bounded, options.model); }, bounded, first,
-      options, progress);
+  IdentifyResult result =
+      IdentifyWith([&] { return make_problem(bounded); }, bounded, first, options, progress);
   result.direct = direct;
   return result;
+}
+
+}  // namespace
+
+IdentifyResult Identify(const FitData& data, const ModelStructure& structure, const IdentifyOptions& options,
+                        const ProgressCallback& progress) {
+  return IdentifyFromDirectEstimate(
+      [&](const ModelStructure& bounded) {
+        return std::make_unique<IdentificationProblem>(data, bounded, options.model);
+      },
+      data, structure, options, progress);
+}
+
+IdentifyResult IdentifyMultipleScales(const FitData& data, const ModelStructure& structure,
+                                      const IdentifyOptions& options, const ProgressCallback& progress) {
+  const MultipleScalesProblemOptions model{.beam_loss_factor = options.model.beam_loss_factor};
+  // What the model cannot hold (sensor masses, harmonics above 3) is bad
+  // input: refuse it here, not as a failure of every start.
+  { const MultipleScalesProblem check(data, structure, model); }
+  return IdentifyFromDirectEstimate(
+      [&](const ModelStructure& bounded) { return std::make_unique<MultipleScalesProblem>(data, bounded, model); },
+      data, structure, options, progress);
 }
 
 IdentifyResult IdentifyWith(const ProblemFactory& make_problem, const ModelStructure& structure,

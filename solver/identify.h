@@ -83,6 +83,14 @@ using ProblemFactory = std::function<std::unique_ptr<FitProblem>()>;
 IdentifyResult Identify(const FitData& data, const ModelStructure& structure, const IdentifyOptions& options,
                         const ProgressCallback& progress = {});
 
+// The seed's multiple-scales model (MultipleScalesProblem, `--model ms`),
+// started from the same direct estimate; options.model.beam_loss_factor is
+// the beam's known η, the other model options are the harmonic balance's.
+// Throws std::invalid_argument for data the model cannot hold (sensor
+// masses, more than 3 fitted harmonics, another law).
+IdentifyResult IdentifyMultipleScales(const FitData& data, const ModelStructure& structure,
+                                      const IdentifyOptions& options, const ProgressCallback& progress = {});
+
 // Any model: starts at `first` (physical parameters, structure order) and
 // around it; the structure gives names, units and bounds.
 IdentifyResult IdentifyWith(const ProblemFactory& make_problem, const ModelStructure& structure,

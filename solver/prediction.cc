@@ -1,5 +1,8 @@
 #include "solver/prediction.h"
 
+#include "solver/multiple_scales_problem.h"
+
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <numbers>
@@ -18,7 +21,7 @@ Eigen::VectorXcd Phasors(const Json& array) {
 }
 
 // Displacement phasors at x for every step with parameters p (warm-started).
-std::vector<Eigen::VectorXcd> Solve(const IdentifiedModel& model, const std::vector<double>& p, double x,
+std::vector<Eigen::VectorXcd> SolveHarmonicBalance(const IdentifiedModel& model, const std::vector<double>& p, double x,
                                     std::vector<bool>* converged) {
   ModelStructure structure = model.structure;
   structure.SetValues(p);
@@ -35,6 +38,39 @@ std::vector<Eigen::VectorXcd> Solve(const IdentifiedModel& model, const std::vec
   return out;
 }
 
+// The same with the multiple-scales model: per step the root of the
+// amplitude equation nearest the identified U (the branch the test was on).
+std::vector<Eigen::VectorXcd> SolveMultipleScales(const IdentifiedModel& model, const std::vector<double>& p, double x,
+                                                  std::vector<bool>* converged) {
+  const hb::MultipleScalesModel ms = MakeMultipleScalesModel(model.beam.beam, model.force_position_m, model.structure, p);
+  std::vector<Eigen::VectorXcd> out;
+  for (std::size_t i = 0; i < model.steps.size(); ++i) {
+    const IdentifiedStep& s = model.steps[i];
+    Eigen::VectorXcd y = Eigen::VectorXcd::Zero(4);
+    bool solved = false;
+    try {
+      const std::vector<Complex> roots = ms.Solve(s.omega_rad_s, s.force_N[1]);
+      const Complex u = *std::min_element(roots.begin(), roots.end(), [&](Complex a, Complex b) {
+        return std::abs(a - s.modal_phasor_m) < std::abs(b - s.modal_phasor_m);
+      });
+      const hb::MultipleScalesModel::Harmonics h = ms.Response(x, u, s.omega_rad_s, s.force_N[1]);
+      y << h.h0_m, h.h1_m, h.h2_m, h.h3_m;
+      solved = true;
+    } catch (const std::runtime_error&) {
+      // An internal resonance at 2Ω or 3Ω: the model has no steady state here.
+    }
+    if (converged) (*converged)[i] = solved;
+    out.push_back(y);
+  }
+  return out;
+}
+
+std::vector<Eigen::VectorXcd> Solve(const IdentifiedModel& model, const std::vector<double>& p, double x,
+                                    std::vector<bool>* converged) {
+  return model.kind == "ms" ? SolveMultipleScales(model, p, x, converged)
+                            : SolveHarmonicBalance(model, p, x, converged);
+}
+
 }  // namespace
 
 IdentifiedModel ReadIdentifiedModel(const std::filesystem::path& result_file) {
@@ -47,6 +83,9 @@ IdentifiedModel ReadIdentifiedModel(const std::filesystem::path& result_file) {
       throw std::invalid_argument("not a beamid result (format must be beamid-result/1)");
     IdentifiedModel model;
     const Json& m = j.at("model");
+    model.kind = m.value("kind", "hb");
+    if (model.kind != "hb" && model.kind != "ms")
+      throw std::invalid_argument("model.kind '" + model.kind + "' is unknown (hb or ms)");
     const Json& b = m.at("beam");
     model.beam.beam = {.length_m = b.at("length_m"), .width_m = b.at("width_m"), .thickness_m = b.at("thickness_m"),
                        .youngs_modulus_Pa = b.at("youngs_modulus_Pa"), .density_kg_m3 = b.at("density_kg_m3"),
@@ -66,9 +105,21 @@ IdentifiedModel ReadIdentifiedModel(const std::filesystem::path& result_file) {
     model.covariance.resize(covariance.size(), covariance.size());
     for (std::size_t r = 0; r < covariance.size(); ++r)
       for (std::size_t c = 0; c < covariance.size(); ++c) model.covariance(r, c) = covariance[r][c];
-    for (const Json& s : j.at("steps"))
-      model.steps.push_back({s.at("level"), s.at("file"), 2 * std::numbers::pi * s.at("frequency_Hz").get<double>(),
-                             Phasors(s.at("force_N")), Phasors(s.at("theta_rad"))});
+    for (const Json& s : j.at("steps")) {
+      IdentifiedStep step{.level = s.at("level"),
+                          .file = s.at("file"),
+                          .omega_rad_s = 2 * std::numbers::pi * s.at("frequency_Hz").get<double>(),
+                          .force_N = Phasors(s.at("force_N"))};
+      if (model.kind == "ms") {
+        const Eigen::VectorXcd u = Phasors(s.at("modal_phasor_m"));
+        if (u.size() != 1 || step.force_N.size() < 2)
+          throw std::invalid_argument("step " + step.file + ": modal_phasor_m must hold one phasor and force_N the fundamental");
+        step.modal_phasor_m = u[0];
+      } else {
+        step.theta_rad = Phasors(s.at("theta_rad"));
+      }
+      model.steps.push_back(std::move(step));
+    }
     return model;
   } catch (const Json::exception& e) {
     throw std::invalid_argument(result_file.string() + ": " + e.what());
@@ -92,10 +143,13 @@ std::vector<PredictedStep> PredictAt(const IdentifiedModel& model, double positi
     const double step = 1e-4 * std::max(std::abs(p[j]), bounds[j].typical * 1e-2);
     std::vector<double> up = p, down = p;
     up[j] += step;
-    down[j] -= step;
+    // One-sided at a lower bound (c or η at 0): the model may not exist below.
+    const bool central = p[j] - step >= bounds[j].lower;
+    if (central) down[j] -= step;
     const auto y_up = Solve(model, up, position_m, nullptr);
     const auto y_down = Solve(model, down, position_m, nullptr);
-    for (std::size_t i = 0; i < model.steps.size(); ++i) derivative[j].push_back((y_up[i] - y_down[i]) / (2 * step));
+    for (std::size_t i = 0; i < model.steps.size(); ++i)
+      derivative[j].push_back((y_up[i] - y_down[i]) / (central ? 2 * step : step));
   }
   std::vector<PredictedStep> out;
   for (std::size_t i = 0; i < model.steps.size(); ++i) {

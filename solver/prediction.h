@@ -1,12 +1,17 @@
 // Prediction from an identified model (result.json of `beamid identify`):
-// for every step of the fit, the harmonic-balance steady state driven by that
-// step's measured force, evaluated at any position x, with its uncertainty
-// propagated from the parameter covariance,
+// for every step of the fit, the steady state of the model that was
+// identified, driven by that step's measured force, evaluated at any
+// position x, with its uncertainty propagated from the parameter covariance,
 //     Cov(Y) = J·Cov(p)·Jᵀ,   J = ∂Y/∂p by central differences (each
 //     perturbed model solved again),
 // and the steady-state time history over one period with a 95 % band.
+// The model is the one the parameters were fitted with (their values absorb
+// that model's own error): harmonic balance (kind "hb": harmonics 0..H,
+// all force harmonics) or multiple scales (kind "ms": harmonics 0..3 from the
+// force's fundamental, on the branch of the identified modal phasor).
 #pragma once
 
+#include <complex>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -24,13 +29,15 @@ struct IdentifiedStep {
   std::string file;
   double omega_rad_s = 0.0;
   Eigen::VectorXcd force_N;
-  Eigen::VectorXcd theta_rad;
+  Eigen::VectorXcd theta_rad;       // hb: Θ_0..Θ_H at the fit
+  std::complex<double> modal_phasor_m;  // ms: U at the fit
 };
 
 struct IdentifiedModel {
+  std::string kind = "hb";   // "hb" harmonic balance, "ms" multiple scales
   hb::LinearBeamModel beam;  // nominal beam with sensor masses, before linear parameters
   double force_position_m = 0.0;
-  int num_harmonics = 5;
+  int num_harmonics = 5;     // H (3 for ms)
   ModelStructure structure;  // values = identified
   Eigen::MatrixXd covariance;
   std::vector<IdentifiedStep> steps;

@@ -1,6 +1,7 @@
 // beamid identify: the support's parameters from a whole stepped-sine
-// campaign (exact harmonic balance, Ipopt), with uncertainty, fit quality and
-// the prediction error at held-out channels.
+// campaign (exact harmonic balance or the seed's multiple-scales model,
+// Ipopt), with uncertainty, fit quality and the prediction error at held-out
+// channels.
 #include <cmath>
 
 #include <fmt/core.h>
@@ -12,6 +13,7 @@
 #include "solver/cli/command_registry.h"
 #include "solver/identification_report.h"
 #include "solver/identify.h"
+#include "solver/multiple_scales_problem.h"
 
 namespace beamid::cli {
 namespace {
@@ -33,8 +35,10 @@ struct IdentifyCommandOptions {
 };
 
 void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& global) {
-  if (options.model != "hb")
-    throw std::invalid_argument("--model " + options.model + " is not available in this build (use hb)");
+  const bool multiple_scales = options.model == "ms";
+  if (!multiple_scales && options.model != "hb")
+    throw std::invalid_argument("--model " + options.model +
+                                ": unknown model (use hb for exact harmonic balance or ms for multiple scales)");
   const signal::Campaign campaign = signal::ReadCampaign(options.campaign_folder);
   signal::PhasorSet phasors;
   if (!options.phasors_file.empty()) {
@@ -66,22 +70,30 @@ void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& glo
   identify.num_starts = options.starts;
   identify.num_threads = options.threads;
   Progress progress("identify", global.quiet);
-  const solver::IdentifyResult result =
-      solver::Identify(fit, structure, identify, [&](double fraction, const std::string&) { progress.Update(fraction); });
+  const auto report_progress = [&](double fraction, const std::string&) { progress.Update(fraction); };
+  const solver::IdentifyResult result = multiple_scales
+                                            ? solver::IdentifyMultipleScales(fit, structure, identify, report_progress)
+                                            : solver::Identify(fit, structure, identify, report_progress);
   progress.Done();
 
-  solver::IdentificationProblem problem(fit, structure, identify.model);
-  problem.FeasiblePoint(result.starts[result.best_start].start);  // the winning run's scales
+  std::unique_ptr<solver::FitProblem> problem;
+  if (multiple_scales)
+    problem = std::make_unique<solver::MultipleScalesProblem>(
+        fit, structure, solver::MultipleScalesProblemOptions{.beam_loss_factor = options.beam_loss_factor});
+  else
+    problem = std::make_unique<solver::IdentificationProblem>(fit, structure, identify.model);
+  problem->FeasiblePoint(result.starts[result.best_start].start);  // the winning run's scales
   solver::FitData fit_with_loss = fit;
   fit_with_loss.beam.loss_factor = options.beam_loss_factor;
   const nlohmann::json report = solver::IdentificationReport(
-      fit_with_loss, validation, problem, result,
+      fit_with_loss, validation, *problem, result,
       {.campaign_folder = options.campaign_folder, .campaign_name = campaign.name, .model_kind = options.model});
   WriteTextFile(options.output, report.dump(1));
 
   if (!global.quiet) {
-    fmt::print("identified from {} steps, {} channel(s), harmonics 1..{} in {:.2f} s ({} of {} starts reached the best fit)\n",
-               fit.steps.size(), fit.channels.size(), fit.num_fit_harmonics, result.seconds, result.starts_at_best,
+    fmt::print("identified ({}) from {} steps, {} channel(s), harmonics 1..{} in {:.2f} s ({} of {} starts reached the best fit)\n",
+               multiple_scales ? "multiple scales" : "harmonic balance", fit.steps.size(), fit.channels.size(),
+               fit.num_fit_harmonics, result.seconds, result.starts_at_best,
                result.starts.size());
     for (const auto& p : result.parameters)
       fmt::print("  {:<10} = {:>12.6g} ± {:<10.3g} {}   (95 %: {:.6g} … {:.6g})\n", p.name, p.value, p.std, p.unit,
@@ -108,9 +120,12 @@ BEAMID_REGISTER_COMMAND("identify", [](CLI::App& app, const GlobalOptions& globa
   sub->add_option("--fit", options->fit_channels, "Response channels to fit (default: all)")->delimiter(',');
   sub->add_option("--validate", options->validate_channels, "Held-out channels to predict and compare")
       ->delimiter(',');
-  sub->add_option("--model", options->model, "Model: hb (exact harmonic balance)")->capture_default_str();
+  sub->add_option("--model", options->model,
+                  "Model: hb (exact harmonic balance) or ms (the seed's multiple-scales model: first mode, "
+                  "harmonics 1..3, small amplitudes near the first resonance, no sensor masses)")
+      ->capture_default_str();
   sub->add_option("--phasors", options->phasors_file, "Use phasors from 'beamid extract' instead of extracting");
-  sub->add_option("-H,--harmonics", options->harmonics, "Harmonics of the model")->capture_default_str();
+  sub->add_option("-H,--harmonics", options->harmonics, "Harmonics of the model (hb; ms has 3)")->capture_default_str();
   sub->add_option("--fit-harmonics", options->fit_harmonics, "Harmonics 1..K fitted")->capture_default_str();
   sub->add_option("--starts", options->starts, "Further starts besides the direct estimate")->capture_default_str();
   sub->add_option("--threads", options->threads, "Parallel starts (0: one per core)")->capture_default_str();

@@ -1,6 +1,8 @@
 // beamid predict: the identified model's steady state at any position of the
 // beam, for every step of the fit, with uncertainty bands; compared with a
-// campaign's sensor there when one is given.
+// campaign's sensor there when one is given. The model is the one identify
+// used (result.json's model.kind): parameters fitted with multiple scales are
+// predicted with multiple scales, not mixed with harmonic balance.
 #include <cmath>
 #include <numbers>
 
@@ -81,12 +83,14 @@ void RunPredict(const PredictOptions& options, const GlobalOptions& global) {
   }
   const nlohmann::json out = {{"command", "predict"},
                               {"result", options.result_file},
+                              {"model", model.kind},
                               {"position_m", options.position_m},
                               {"compared_channel", compared},
                               {"steps", out_steps}};
   WriteTextFile(options.output, out.dump(1));
   if (!global.quiet) {
-    fmt::print("predicted {} steps at x = {:.3f} m\n", steps.size(), options.position_m);
+    fmt::print("predicted {} steps at x = {:.3f} m with the {} model\n", steps.size(), options.position_m,
+               model.kind == "ms" ? "multiple-scales" : "harmonic-balance");
     if (!compared.empty()) fmt::print("  against {}: worst first-harmonic error {:.2f} %\n", compared, 100 * worst);
     fmt::print("wrote {}\n", options.output);
   }

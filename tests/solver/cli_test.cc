@@ -12,6 +12,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "tests/support/paper_scenario.h"
 #include "tests/support/temp_path.h"
 
 namespace {
@@ -74,16 +75,44 @@ TEST_F(CommandLine, BadInputEndsWithExitCodeTwoAndSaysWhatToFix) {
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_THAT(run.output, HasSubstr("missing.json"));
   std::ofstream(folder_ / "typo.json") << R"({"beam": {"length_m": 0.6, "width_m": 0.04, "thickness_m": 0.005,
-    "youngs_modulus_Pa": 2.1e11, "density_kg_m3": 7850}, "support": {"polynomial": {"k1": 150}},
+    "youngs_modulus_Pa": 2.1e11, "density_kg_m3": 7850}, "support": {"polynomial": {"k1_Nm_rad": 150, "k3": 4e5}},
     "excitation": {"position_m": 0.57}})";
   run = Beamid("backbone " + (folder_ / "typo.json").string());
   EXPECT_EQ(run.exit_code, 2);
-  EXPECT_THAT(run.output, HasSubstr("unknown field 'k1'"));
+  EXPECT_THAT(run.output, HasSubstr("unknown field 'k3'"));
   run = Beamid("identify " + (folder_ / "no_campaign").string() + " --fit acc1");
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_THAT(run.output, HasSubstr("no_campaign"));
   run = Beamid("frc examples/paper_setup/model.json --harmonics 0");
   EXPECT_EQ(run.exit_code, 2);
+}
+
+TEST_F(CommandLine, IdentifyWithTheMultipleScalesModelAndPredictWithIt) {
+  // Three steps around the resonance at a small force, from the simulator.
+  std::ofstream(folder_ / "scenario.json") << beamid::testing::PaperScenarioJson("cli test: --model ms", R"([
+    {"label": "low", "force_amplitude_N": 0.5, "frequencies_Hz": {"start": 53.6, "stop": 54.6, "step": 0.5}}])", 3);
+  const std::string campaign = (folder_ / "campaign").string();
+  ProgramRun run = Beamid("-q simulate " + (folder_ / "scenario.json").string() + " -o " + campaign);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::string result = (folder_ / "result.json").string();
+  run = Beamid("identify " + campaign + " --fit acc1,acc2 --validate acc3 --model ms --fix-loss-factor " +
+               "--beam-loss-factor 2e-4 -o " + result);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_THAT(run.output, HasSubstr("identified (multiple scales)"));
+  EXPECT_THAT(ReadFile(result), HasSubstr("\"kind\": \"ms\""));
+  EXPECT_THAT(ReadFile(result), HasSubstr("\"modal_phasor_m\""));
+  run = Beamid("predict " + result + " --x 0.57 --campaign " + campaign + " -o " + (folder_ / "pred.json").string());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_THAT(run.output, HasSubstr("with the multiple-scales model"));
+  EXPECT_THAT(ReadFile(folder_ / "pred.json"), HasSubstr("\"model\": \"ms\""));
+
+  // The model gives harmonics 1..3 only: bad input, not a failed fit.
+  run = Beamid("identify " + campaign + " --fit acc1,acc2 --model ms --fit-harmonics 5");
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.output, HasSubstr("fit at most 3 harmonics"));
+  run = Beamid("identify " + campaign + " --fit acc1,acc2 --model duffing");
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.output, HasSubstr("--model duffing: unknown model (use hb"));
 }
 
 TEST_F(CommandLine, EveryCommandHasHelpWithAnExample) {

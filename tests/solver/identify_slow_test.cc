@@ -11,77 +11,34 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "hb/campaign_writer.h"
-#include "hb/scenario.h"
-#include "hb/stepped_sine.h"
-#include "signal/campaign.h"
-#include "signal/campaign_extractor.h"
 #include "solver/identification_report.h"
 #include "solver/prediction.h"
-#include "tests/support/temp_path.h"
+#include "tests/support/paper_scenario.h"
+#include "tests/support/simulated_campaign.h"
 
 namespace beamid::solver {
 namespace {
 
 constexpr double kK1 = 150.0, kK2 = 0.0, kK3 = 3e5, kC = 0.05;
 
-const std::string kScenario = R"({
-  "name": "identification test: paper set-up, base physics",
-  "beam": {"length_m": 0.6, "width_m": 0.04, "thickness_m": 0.005, "youngs_modulus_Pa": 2.1e11,
-           "density_kg_m3": 7850, "loss_factor": 0.0002},
-  "support": {"polynomial": {"k1_Nm_rad": 150, "k2_Nm_rad2": 0, "k3_Nm_rad3": 3e5, "c_Nms_rad": 0.05}},
-  "excitation": {"channel": "force", "position_m": 0.57},
-  "sensors": [{"channel": "acc1", "position_m": 0.1}, {"channel": "acc2", "position_m": 0.3},
-              {"channel": "acc3", "position_m": 0.57}],
-  "hidden_positions_m": [0.45],
-  "levels": [{"label": "low", "force_amplitude_N": 1.0, "frequencies_Hz": {"start": 51, "stop": 57.3, "step": 0.45}},
-             {"label": "mid", "force_amplitude_N": 4.0, "frequencies_Hz": {"start": 51, "stop": 57.3, "step": 0.45}},
-             {"label": "high", "force_amplitude_N": 11.0, "frequencies_Hz": {"start": 51, "stop": 57.3, "step": 0.45}}],
-  "timing": {"sample_rate_Hz": 5120, "settle_min_s": 0.2, "settle_max_s": 4.0, "transient_s": 0.05, "record_s": 0.4},
-  "noise": {"seed": 7, "clock_offset_ppm": 25,
-            "default": {"relative_rms": 0.003, "absolute": 0.005, "adc_bits": 24, "adc_range": 500},
-            "channels": {"force": {"relative_rms": 0.002, "absolute": 0.002, "adc_bits": 24, "adc_range": 50}}}
-})";
+const std::string kScenario = testing::PaperScenarioJson("identification test: paper set-up, base physics", R"([
+  {"label": "low", "force_amplitude_N": 1.0, "frequencies_Hz": {"start": 51, "stop": 57.3, "step": 0.45}},
+  {"label": "mid", "force_amplitude_N": 4.0, "frequencies_Hz": {"start": 51, "stop": 57.3, "step": 0.45}},
+  {"label": "high", "force_amplitude_N": 11.0, "frequencies_Hz": {"start": 51, "stop": 57.3, "step": 0.45}}])", 7);
 
 class IdentifyOnSimulatedCampaign : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    folder_ = new std::filesystem::path(beamid::testing::UniqueTempPath("beamid_identify_slow_test"));
-    std::filesystem::remove_all(*folder_);
-    const hb::Scenario scenario = hb::ParseScenario(kScenario, "identify_slow_test scenario");
-    hb::SteppedSineSimulation simulation(scenario);
-    hb::CampaignWriter writer(simulation, *folder_);
-    simulation.Run([&](const hb::SimulatedStep& step) { writer.Write(step); });
-    writer.Finish();
-    campaign_ = new signal::Campaign(signal::ReadCampaign(*folder_));
-    signal::ExtractOptions extract;
-    extract.estimator.num_harmonics = 5;
-    phasors_ = new signal::PhasorSet(signal::ExtractCampaign(*campaign_, extract));
-    std::ifstream truth_file(*folder_ / "truth.json");
-    truth_ = new nlohmann::json(nlohmann::json::parse(truth_file));
-  }
-  static void TearDownTestSuite() {
-    std::filesystem::remove_all(*folder_);
-    delete folder_;
-    delete campaign_;
-    delete phasors_;
-    delete truth_;
-  }
+  static void SetUpTestSuite() { simulated_ = new testing::SimulatedCampaign(kScenario, "beamid_identify_slow_test"); }
+  static void TearDownTestSuite() { delete simulated_; }
 
   static FitData Fit(std::vector<std::string> channels) {
-    return MakeFitData(*campaign_, *phasors_, {.channels = std::move(channels)});
+    return MakeFitData(simulated_->campaign, simulated_->phasors, {.channels = std::move(channels)});
   }
 
-  static std::filesystem::path* folder_;
-  static signal::Campaign* campaign_;
-  static signal::PhasorSet* phasors_;
-  static nlohmann::json* truth_;
+  static testing::SimulatedCampaign* simulated_;
 };
 
-std::filesystem::path* IdentifyOnSimulatedCampaign::folder_ = nullptr;
-signal::Campaign* IdentifyOnSimulatedCampaign::campaign_ = nullptr;
-signal::PhasorSet* IdentifyOnSimulatedCampaign::phasors_ = nullptr;
-nlohmann::json* IdentifyOnSimulatedCampaign::truth_ = nullptr;
+testing::SimulatedCampaign* IdentifyOnSimulatedCampaign::simulated_ = nullptr;
 
 double Value(const IdentifyResult& r, const std::string& name) {
   for (const auto& p : r.parameters)
@@ -126,7 +83,7 @@ TEST_F(IdentifyOnSimulatedCampaign, PredictsTheHeldOutAccelerometerAndAHiddenPos
   for (int i = 0; i < problem.num_steps(); ++i) {
     const double omega = fit.steps[i].omega_rad_s;
     const Eigen::MatrixXcd y = problem.DisplacementPhasors(result.x, i, {0.57, 0.45});
-    const auto& truth_step = (*truth_)["steps"][i];
+    const auto& truth_step = simulated_->truth["steps"][i];
     const double settle_change = truth_step["settle_change"].get<double>();
     const auto third_harmonic_ok = [&](std::complex<double> predicted, const nlohmann::json& truth) {
       const double allowed = 0.10 * std::abs(truth_phasor(truth, 3)) + settle_change * std::abs(truth_phasor(truth, 1));
@@ -206,7 +163,7 @@ TEST_F(IdentifyOnSimulatedCampaign, PredictFromTheResultFileMatchesTheTruthWithI
   const IdentifyResult result = Identify(fit, structure, {});
   IdentificationProblem problem(fit, structure, {});
   problem.FeasiblePoint(result.starts[result.best_start].start);
-  const auto file = *folder_ / "result.json";
+  const auto file = simulated_->folder / "result.json";
   std::ofstream(file) << IdentificationReport(fit, FitData{}, problem, result, {}).dump();
   const IdentifiedModel model = ReadIdentifiedModel(file);
   const std::vector<PredictedStep> predicted = PredictAt(model, 0.45);
@@ -214,7 +171,7 @@ TEST_F(IdentifyOnSimulatedCampaign, PredictFromTheResultFileMatchesTheTruthWithI
   double worst = 0.0;
   for (std::size_t i = 0; i < predicted.size(); ++i) {
     ASSERT_TRUE(predicted[i].converged);
-    const auto& h1 = (*truth_)["steps"][i]["hidden"][0]["displacement_m"]["harmonics"][0];
+    const auto& h1 = simulated_->truth["steps"][i]["hidden"][0]["displacement_m"]["harmonics"][0];
     const std::complex<double> truth(h1[0].get<double>(), h1[1].get<double>());
     worst = std::max(worst, std::abs(predicted[i].displacement_m[1] - truth) / std::abs(truth));
     // The band is a real spread: positive, and far below the amplitude.
@@ -223,7 +180,7 @@ TEST_F(IdentifyOnSimulatedCampaign, PredictFromTheResultFileMatchesTheTruthWithI
   }
   EXPECT_LT(worst, 0.02);
   EXPECT_THROW(PredictAt(model, 0.8), std::invalid_argument);
-  EXPECT_THROW(ReadIdentifiedModel(*folder_ / "missing.json"), std::invalid_argument);
+  EXPECT_THROW(ReadIdentifiedModel(simulated_->folder / "missing.json"), std::invalid_argument);
 }
 
 }  // namespace
