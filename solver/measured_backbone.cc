@@ -149,8 +149,8 @@ void FindQuadrature(const LevelData& data, const SingleModeFit& modal_fit, const
       if (!(std::abs(pair / branch) > 0.5 && std::abs(pair / branch) < 2.0)) {
         i = k0;
         j = k1;
-        out.quadrature_extrapolated = true;
-        out.quadrature_note = "jump between the bracketing steps: extrapolated along the branch before it";
+        out.quadrature_after_jump = true;
+        out.quadrature_note = "a jump (fold) between the steps around quadrature: the phase resonance is taken on the branch before it";
       }
     }
   }

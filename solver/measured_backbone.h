@@ -44,7 +44,7 @@ struct MeasuredBackboneOptions {
   double constant_tolerance = 0.05;
   // Bracketing steps whose amplitudes differ by more than this factor and
   // whose slope of Re G disagrees with the neighbours' by more than 2× are a
-  // jump (fold): the quadrature point is extrapolated from the branch before it.
+  // jump (fold): the phase resonance is taken on the branch before it.
   double jump_amplitude_ratio = 2.0;
   // Model choice for the global fit: degrees 0..max of ω_n²(a) and ζω_n(a).
   int max_frequency_degree = 3;
@@ -73,7 +73,7 @@ struct LevelResonance {
   Estimate quadrature_response_amplitude;  // in the level's response quantity, SI
   Estimate quadrature_force_N;
   Estimate quadrature_damping_ratio;
-  bool quadrature_extrapolated = false;
+  bool quadrature_after_jump = false;
   std::string quadrature_note;
 
   // Peak of |X_d/F| (parabola through the three highest steps).
