@@ -107,7 +107,8 @@ std::optional<Column> Classify(const std::string& header, int index) {
   bool amplitude = false;
   for (std::string_view amp : {"_amplitude", "_amp", "_magnitude", "_mag"})
     if ((amplitude = StripAffix(name, "", amp))) break;
-  if (amplitude && name == "f") name = "force";  // "F_amp": the force, not the frequency
+  // "F_amp", "F [N]": the force, not the frequency.
+  if (name == "f" && (amplitude || NormaliseUnit(unit) == std::optional<std::string>("N"))) name = "force";
   static const std::array<std::pair<std::string_view, Role>, 10> kGeneric = {{
       {"frequency", Role::kFrequency}, {"freq", Role::kFrequency},   {"f", Role::kFrequency},
       {"force", Role::kForce},         {"excitation", Role::kForce}, {"input", Role::kForce},

@@ -160,5 +160,109 @@ TEST_F(MeasuredBackboneOnSimulatedCampaigns, FrictionDampingRisesWithAmplitudeBa
   EXPECT_NE(base_->measured.damping_trend.verdict, "rises");
 }
 
+// A level written as an acquisition system's table: response converted to
+// `quantity` and scaled to `unit_si` per written unit, phase in degrees or
+// radians, optional polar uncertainties, `;` with decimal commas or `,`.
+std::string WriteTable(const signal::FirstHarmonicLevel& level, signal::Quantity quantity, const std::string& header,
+                       double unit_si, bool degrees, bool uncertainties, bool decimal_comma) {
+  std::ostringstream out;
+  out << header << "\n";
+  const char separator = decimal_comma ? ';' : ',';
+  const double phase_unit = degrees ? 180 / std::numbers::pi : 1.0;
+  for (const auto& p : level.points) {
+    const auto x = signal::ConvertHarmonic(p.response, level.response_quantity, quantity, 2 * std::numbers::pi * p.frequency_hz);
+    const double phase = std::arg(x.value / p.force.value);
+    std::ostringstream cells;
+    cells.precision(12);
+    cells << p.frequency_hz << separator << std::abs(p.force.value) << separator << x.Amplitude() / unit_si << separator
+          << phase * phase_unit;
+    if (uncertainties)
+      cells << separator << p.force.std_real << separator << x.AmplitudeStd() / unit_si << separator
+            << x.PhaseStdRad() * phase_unit << separator << p.frequency_std_hz;
+    std::string row = cells.str();
+    if (decimal_comma)
+      for (auto& c : row)
+        if (c == '.') c = ',';
+    out << row << "\n";
+  }
+  return out.str();
+}
+
+// The same curve as a response-controlled test would give it near a linear
+// mode: every step scaled so that the displacement amplitude is the peak's
+// (G = F/X unchanged), as a controller holding the response would.
+signal::FirstHarmonicLevel HeldAtItsPeak(signal::FirstHarmonicLevel level) {
+  for (auto& p : level.points)
+    p.response = signal::ConvertHarmonic(p.response, level.response_quantity, signal::Quantity::kDisplacement,
+                                         2 * std::numbers::pi * p.frequency_hz);
+  level.response_quantity = signal::Quantity::kDisplacement;
+  double peak = 0;
+  for (const auto& p : level.points) peak = std::max(peak, p.response.Amplitude());
+  for (auto& p : level.points) {
+    const double s = peak / p.response.Amplitude();
+    p.force.value *= s;
+    p.force.SetCovariance(s * s * p.force.Covariance());
+    p.response.value *= s;
+    p.response.SetCovariance(s * s * p.response.Covariance());
+  }
+  return level;
+}
+
+void ExpectSameEstimate(const Estimate& table, const Estimate& campaign, double std_tolerance, const std::string& what) {
+  ASSERT_TRUE(table.valid && campaign.valid) << what;
+  // The weights of the fits differ a little (polar uncertainties): a small fraction of σ.
+  EXPECT_NEAR(table.value, campaign.value, 0.05 * campaign.std) << what;
+  EXPECT_NEAR(table.std, campaign.std, std_tolerance * campaign.std) << what;
+}
+
+TEST_F(MeasuredBackboneOnSimulatedCampaigns, TablesInAcquisitionSystemVariantsGiveTheCampaignsResults) {
+  constexpr double kG = 9.80665;
+  std::vector<signal::FirstHarmonicLevel> comma_g, velocity;
+  for (const auto& level : base_->levels) {
+    comma_g.push_back(signal::ParsePhasorTable(
+        WriteTable(level, signal::Quantity::kAcceleration,
+                   "Frequency [Hz];Force [N];Acceleration [g];Phase [deg];Force_std [N];Acceleration_std [g];Phase_std [deg];Frequency_std [Hz]",
+                   kG, true, true, true),
+        level.label + "_g.csv", level.label));
+    velocity.push_back(signal::ParsePhasorTable(
+        WriteTable(level, signal::Quantity::kVelocity, "freq_Hz,F_amp_N,vel_mm_s,phase_rad,std_F_N,std_vel_mm_s,std_phase_rad,std_freq_Hz",
+                   1e-3, false, true, false),
+        level.label + "_vel.csv", level.label));
+  }
+  const MeasuredBackbone from_comma_g = AnalyseMeasuredBackbone(comma_g);
+  const MeasuredBackbone from_velocity = AnalyseMeasuredBackbone(velocity);
+  // Polar uncertainties lose a little of the Re/Im correlation of the extracted phasors: stds agree to 10 %.
+  constexpr double kStdTolerance = 0.10;
+  for (std::size_t l = 0; l < base_->levels.size(); ++l) {
+    const auto& c = base_->measured.levels[l];
+    for (const auto* t : {&from_comma_g.levels[l], &from_velocity.levels[l]}) {
+      ExpectSameEstimate(t->quadrature_frequency_hz, c.quadrature_frequency_hz, kStdTolerance, c.label + " frequency");
+      ExpectSameEstimate(t->quadrature_amplitude_m, c.quadrature_amplitude_m, kStdTolerance, c.label + " amplitude");
+      ExpectSameEstimate(t->quadrature_damping_ratio, c.quadrature_damping_ratio, kStdTolerance, c.label + " zeta");
+      ExpectSameEstimate(t->local_damping_ratio, c.local_damping_ratio, kStdTolerance, c.label + " local zeta");
+    }
+  }
+  EXPECT_EQ(from_velocity.damping_trend.verdict, base_->measured.damping_trend.verdict);
+
+  // Response-controlled, displacement in mm, no uncertainty columns.
+  const signal::FirstHarmonicLevel held = HeldAtItsPeak(base_->levels.front());
+  const MeasuredBackbone from_held = AnalyseMeasuredBackbone({signal::ParsePhasorTable(
+      WriteTable(held, signal::Quantity::kDisplacement, "frequency,force [N],displacement [mm],phase (rad)", 1e-3, false,
+                 false, false),
+      "held.csv", "held")});
+  const LevelResonance& h = from_held.levels.front();
+  const LevelResonance& c = base_->measured.levels.front();
+  EXPECT_EQ(h.control, LevelControl::kResponse);
+  EXPECT_EQ(c.control, LevelControl::kForce);
+  std::printf("response-controlled low level: %.4f ± %.4f Hz, zeta %.5f ± %.5f (campaign %.4f ± %.4f Hz, %.5f ± %.5f)\n",
+              h.quadrature_frequency_hz.value, h.quadrature_frequency_hz.std, h.quadrature_damping_ratio.value,
+              h.quadrature_damping_ratio.std, c.quadrature_frequency_hz.value, c.quadrature_frequency_hz.std,
+              c.quadrature_damping_ratio.value, c.quadrature_damping_ratio.std);
+  EXPECT_NEAR(h.quadrature_frequency_hz.value, c.quadrature_frequency_hz.value,
+              3 * std::hypot(h.quadrature_frequency_hz.std, c.quadrature_frequency_hz.std));
+  EXPECT_NEAR(h.local_damping_ratio.value, c.local_damping_ratio.value,
+              3 * std::hypot(h.local_damping_ratio.std, c.local_damping_ratio.std));
+}
+
 }  // namespace
 }  // namespace beamid::solver
