@@ -9,6 +9,7 @@
 
 
 #include <Eigen/Cholesky>
+#include <Eigen/QR>
 
 #include "signal/quantity_conversion.h"
 
@@ -182,15 +183,6 @@ void FindQuadrature(const LevelData& data, const SingleModeFit& modal_fit, const
   out.quadrature_response_amplitude = {e[1].value * scale, e[1].std * scale, true};
 }
 
-// Vertex of the parabola through three points (x, y): (x_v, y_v).
-std::pair<double, double> Vertex(const double x[3], const double y[3]) {
-  const double d1 = (y[1] - y[0]) / (x[1] - x[0]), d2 = (y[2] - y[1]) / (x[2] - x[1]);
-  const double c2 = (d2 - d1) / (x[2] - x[0]);
-  const double c1 = d1 - c2 * (x[0] + x[1]);
-  const double xv = -c1 / (2 * c2);
-  return {xv, y[1] + d1 * (xv - x[1]) + c2 * (xv - x[0]) * (xv - x[1])};
-}
-
 int PeakIndex(const Eigen::VectorXd& raw, int n) {
   int best = 0;
   for (int i = 1; i < n; ++i)
@@ -198,28 +190,61 @@ int PeakIndex(const Eigen::VectorXd& raw, int n) {
   return best;
 }
 
-// Peak frequency [Hz], |X_d/F| and |X_d| there, then the half-power ζ (NaN if not available).
+// The quadratic through three points (x, y): y = c0 + c1·x + c2·x².
+Eigen::Vector3d Quadratic(const double x[3], const double y[3]) {
+  Eigen::Matrix3d m;
+  for (int k = 0; k < 3; ++k) m.row(k) << 1.0, x[k], x[k] * x[k];
+  return m.colPivHouseholderQr().solve(Eigen::Vector3d(y[0], y[1], y[2]));
+}
+
+// Peak frequency [Hz], |X_d/F| and |X_d| there, then the half-power ζ (NaN
+// if not available). For one mode 1/|H|² is a quadratic in ω² exactly,
+// ((ω_n² − ω²)² + (2ζω_nω)²)/A², so the peak is the vertex of the quadratic
+// through the three highest steps and each half-power crossing is solved on
+// the quadratic through the three steps around it.
 Eigen::VectorXd PeakAndHalfPower(const Eigen::VectorXd& raw, int n, int m) {
-  double f[3], h[3], a[3];
+  auto x_of = [&](int i) { return At(raw, i).omega * At(raw, i).omega; };
+  auto y_of = [&](int i) { return 1.0 / (At(raw, i).H() * At(raw, i).H()); };
+  double x[3], y[3], a[3];
   for (int k = 0; k < 3; ++k) {
-    const PointView p = At(raw, m - 1 + k);
-    f[k] = p.omega / kTwoPi;
-    h[k] = p.H();
-    a[k] = std::abs(p.disp);
+    x[k] = x_of(m - 1 + k);
+    y[k] = y_of(m - 1 + k);
+    a[k] = std::abs(At(raw, m - 1 + k).disp);
   }
-  const auto [f_peak, h_peak] = Vertex(f, h);
-  const double a_peak = Vertex(f, a).second;
-  const double level = h_peak / std::sqrt(2.0);
+  const Eigen::Vector3d peak = Quadratic(x, y);
+  const double x_peak = -peak[1] / (2 * peak[2]);
+  const double y_peak = peak[0] + peak[1] * x_peak + peak[2] * x_peak * x_peak;
+  const Eigen::Vector3d amplitude = Quadratic(x, a);
+  const double level = 2 * y_peak;
   auto crossing = [&](int from, int step) {
     for (int i = from; i + step >= 0 && i + step < n; i += step) {
-      const PointView p = At(raw, i), q = At(raw, i + step);
-      if (q.H() < level) return p.omega + (level - p.H()) / (q.H() - p.H()) * (q.omega - p.omega);
+      if (y_of(i + step) <= level) continue;
+      // Three steps around the crossing: i − step, i, i + step (or i, i + step, i + 2·step).
+      int c = i;
+      if (c - step < 0 || c - step >= n) c = i + step;
+      if (c + step < 0 || c + step >= n) c = i;
+      double xs[3], ys[3];
+      for (int k = -1; k <= 1; ++k) {
+        xs[k + 1] = x_of(c + k * step);
+        ys[k + 1] = y_of(c + k * step);
+      }
+      const Eigen::Vector3d q = Quadratic(xs, ys);
+      const double disc = q[1] * q[1] - 4 * q[2] * (q[0] - level);
+      const double lo = std::min(x_of(i), x_of(i + step)), hi = std::max(x_of(i), x_of(i + step));
+      if (disc >= 0 && q[2] != 0)
+        for (double sign : {-1.0, 1.0}) {
+          const double root = (-q[1] + sign * std::sqrt(disc)) / (2 * q[2]);
+          if (root >= lo && root <= hi) return std::sqrt(root);
+        }
+      // Not one mode's shape there: linear interpolation.
+      return std::sqrt(x_of(i) + (level - y_of(i)) / (y_of(i + step) - y_of(i)) * (x_of(i + step) - x_of(i)));
     }
     return std::numeric_limits<double>::quiet_NaN();
   };
-  const double w1 = crossing(m, -1), w2 = crossing(m, +1), wp = kTwoPi * f_peak;
+  const double w1 = crossing(m, -1), w2 = crossing(m, +1);
   Eigen::VectorXd out(4);
-  out << f_peak, h_peak, a_peak, (w2 * w2 - w1 * w1) / (4 * wp * wp);
+  out << std::sqrt(x_peak) / kTwoPi, 1 / std::sqrt(y_peak),
+      amplitude[0] + amplitude[1] * x_peak + amplitude[2] * x_peak * x_peak, (w2 * w2 - w1 * w1) / (4 * x_peak);
   return out;
 }
 

@@ -21,8 +21,10 @@
 //    linear in a, on the level's points whose |X_d/F| is at least
 //    `fit_window` of its peak;
 //  - half-power: ζ = (ω₂² − ω₁²)/(4ω_p²) where |X_d/F| = peak/√2 on both
-//    sides (biased when the amplitude changes along a force-controlled
-//    curve; the other two are not).
+//    sides, each crossing solved on 1/|X_d/F|² as a quadratic in ω² through
+//    the three steps around it (exact for one linear mode up to O(ζ²); biased
+//    when the amplitude changes along a force-controlled curve, the other
+//    two are not).
 // Uncertainties are the phasors' (and the frequency's) standard
 // uncertainties propagated to first order (central-difference Jacobians).
 #pragma once
@@ -76,7 +78,7 @@ struct LevelResonance {
   bool quadrature_after_jump = false;
   std::string quadrature_note;
 
-  // Peak of |X_d/F| (parabola through the three highest steps).
+  // Peak of |X_d/F|: vertex of 1/|X_d/F|², a quadratic in ω² for one mode, through the three highest steps.
   Estimate peak_frequency_hz;
   Estimate peak_receptance_m_N;
   Estimate peak_amplitude_m;
