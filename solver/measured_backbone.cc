@@ -261,6 +261,11 @@ void FindPeakAndHalfPower(const LevelData& data, LevelResonance& out) {
   out.peak_amplitude_m = e[2];
   out.half_power_damping_ratio = e[3];
   if (!e[3].valid) out.half_power_note = "the response does not fall to 1/√2 of its peak on both sides";
+  if (out.quadrature_after_jump) {
+    // One side of the peak lies on the other branch of a fold.
+    out.half_power_damping_ratio.valid = false;
+    out.half_power_note = "a jump (fold) next to the peak: no half-power estimate";
+  }
 }
 
 LevelControl DetectControl(const LevelData& data, double tolerance) {
@@ -395,6 +400,11 @@ MeasuredBackbone AnalyseMeasuredBackbone(const std::vector<signal::FirstHarmonic
   for (const auto& level : levels) {
     if (level.response_quantity == signal::Quantity::kForce)
       throw std::invalid_argument(level.source + ": level '" + level.label + "': the response is a force");
+    if (level.response_quantity != levels.front().response_quantity)
+      throw std::invalid_argument(level.source + ": level '" + level.label + "' holds a " +
+                                  std::string(signal::QuantityName(level.response_quantity)) + ", level '" +
+                                  levels.front().label + "' a " + result.response_quantity +
+                                  ": give the levels of one sensor, in one quantity");
     if (level.points.size() < 3)
       throw std::invalid_argument(level.source + ": level '" + level.label + "' has " +
                                   std::to_string(level.points.size()) + " steps; at least 3 are needed");
