@@ -23,6 +23,7 @@ plot curves using ($1*1e3):($2-$3):($2+$3) with filledcurves lc rgb '#c8d8f0' ti
      curves using ($1*1e3):(column('model_frequency_Hz')) with lines lw 2 dt 2 lc rgb 'black' title 'identified model', \
      levels using ($5*1e3):3:($6*1e3):4 with xyerrorbars pt 7 ps 1.2 lc rgb '#c03020' title 'measured (per level)'
 set ylabel 'damping ratio ζ [-]'
+set key below horizontal
 plot curves using ($1*1e3):($4-$5):($4+$5) with filledcurves lc rgb '#c8d8f0' title 'single-mode fit ±1σ', \
      curves using ($1*1e3):4 with lines lw 2 lc rgb '#2050a0' title 'single-mode fit ζ(a)', \
      levels using ($5*1e3):11:12 with yerrorbars pt 7 ps 1.2 lc rgb '#c03020' title 'quadrature point', \
