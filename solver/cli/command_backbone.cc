@@ -1,6 +1,7 @@
 // beamid backbone: the model's backbone — resonance frequency against
 // amplitude — by exact harmonic balance (phase resonance), with the paper's
-// corrected multiple-scales backbone beside it for a polynomial support.
+// corrected multiple-scales backbone beside it for a polynomial support; or,
+// with --measured, the measured backbone of a test (measured_backbone_command.h).
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -13,6 +14,7 @@
 #include "hb/multiple_scales.h"
 #include "solver/cli/cli_output.h"
 #include "solver/cli/command_registry.h"
+#include "solver/cli/measured_backbone_command.h"
 
 namespace beamid::cli {
 namespace {
@@ -118,18 +120,38 @@ void RunBackbone(const BackboneCommandOptions& options, const GlobalOptions& glo
 
 BEAMID_REGISTER_COMMAND("backbone", [](CLI::App& app, const GlobalOptions& global) {
   auto options = std::make_shared<BackboneCommandOptions>();
+  auto measured = std::make_shared<MeasuredBackboneCommandOptions>();
   CLI::App* sub = app.add_subcommand(
       "backbone",
-      "Backbone of a model: resonance frequency against amplitude of θ = y'(L) and of each sensor.\n"
-      "Example: beamid backbone examples/paper_setup/model.json --max-theta-rad 0.02 -o out/backbone");
-  sub->add_option("model", options->model_file, "Model file (JSON, see README 'Model files')")->required();
+      "Backbone of a model: resonance frequency against amplitude of θ = y'(L) and of each sensor;\n"
+      "or, with --measured, the measured backbone and damping against amplitude of a stepped-sine test.\n"
+      "Example: beamid backbone examples/paper_setup/model.json --max-theta-rad 0.02 -o out/backbone\n"
+      "Example: beamid backbone --measured out/base --channel acc2 --result out/result.json -o out/measured");
+  sub->add_option("model", options->model_file, "Model file (JSON, see README 'Model files')");
+  sub->add_option("--measured", measured->inputs,
+                  "Measured input: a campaign folder, a phasor file of beamid extract, or first-harmonic CSV tables "
+                  "(one per level, docs/phasor-table.md)");
+  sub->add_option("--channel", measured->channel, "With --measured: the response channel of a campaign (default: first)");
+  sub->add_option("--result", measured->result_file, "With --measured: overlay this identified model's backbone");
+  sub->add_option("--position-m", measured->position_m, "With --measured tables and --result: the sensor's position [m]");
   sub->add_option("--min-theta-rad", options->min_theta_rad, "Smallest θ amplitude [rad]")->capture_default_str();
   sub->add_option("--max-theta-rad", options->max_theta_rad, "Largest θ amplitude [rad]")->capture_default_str();
   sub->add_option("--points", options->points, "Number of amplitudes")->capture_default_str();
   sub->add_option("-H,--harmonics", options->harmonics, "Harmonics kept in the balance")->capture_default_str();
   sub->add_option("-o,--output", options->output, "Output prefix: writes PREFIX.csv and PREFIX.json")
       ->capture_default_str();
-  sub->callback([options, &global] { RunBackbone(*options, global); });
+  sub->callback([options, measured, &global] {
+    if (!measured->inputs.empty()) {
+      if (!options->model_file.empty())
+        throw std::invalid_argument("backbone: give a model file or --measured, not both");
+      measured->output = options->output;
+      RunMeasuredBackbone(*measured, global);
+      return;
+    }
+    if (options->model_file.empty())
+      throw std::invalid_argument("backbone: give a model file, or --measured INPUT for a test's backbone");
+    RunBackbone(*options, global);
+  });
 });
 
 }  // namespace

@@ -115,6 +115,17 @@ TEST_F(CommandLine, IdentifyWithTheMultipleScalesModelAndPredictWithIt) {
   EXPECT_THAT(run.output, HasSubstr("--model duffing: unknown model (use hb"));
 }
 
+TEST_F(CommandLine, MeasuredBackboneRejectsABadTableNamingFileAndColumn) {
+  std::ofstream(folder_ / "high.csv") << "frequency_Hz;force_N;acceleration [m/s^2];phase\n54;1;2;10\n55;1;3;80\n56;1;2;150\n";
+  ProgramRun run = Beamid("backbone --measured " + (folder_ / "high.csv").string() + " -o " + (folder_ / "bb").string());
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.output, HasSubstr("high.csv"));
+  EXPECT_THAT(run.output, HasSubstr("column 'phase'"));
+  run = Beamid("backbone -o " + (folder_ / "bb").string());
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.output, HasSubstr("--measured"));
+}
+
 TEST_F(CommandLine, EveryCommandHasHelpWithAnExample) {
   for (const char* command : {"frc", "backbone", "identify", "predict", "extract", "simulate"}) {
     const ProgramRun run = Beamid(std::string(command) + " --help");

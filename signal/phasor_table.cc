@@ -1,0 +1,338 @@
+#include "signal/phasor_table.h"
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <optional>
+#include <sstream>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "signal/input_error.h"
+
+namespace beamid::signal {
+namespace {
+
+enum class Role { kFrequency, kForce, kResponse, kPhase };
+
+struct Column {
+  std::string header;  // as written, for messages
+  Role role = Role::kFrequency;
+  bool is_std = false;
+  std::string unit;                       // normalised, "" when not given
+  std::optional<Quantity> quantity;       // a response column that names it
+  int index = 0;
+};
+
+std::string Trim(std::string_view text) {
+  const auto first = text.find_first_not_of(" \t\r\"'");
+  if (first == std::string_view::npos) return "";
+  const auto last = text.find_last_not_of(" \t\r\"'");
+  return std::string(text.substr(first, last - first + 1));
+}
+
+std::string Lower(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
+  return text;
+}
+
+// The unit spellings we accept, normalised to the campaign format's words
+// (signal/quantity.h) plus Hz, rad/s, rad and deg; nullopt when unknown.
+std::optional<std::string> NormaliseUnit(const std::string& raw) {
+  static const std::array<std::pair<std::string_view, std::string_view>, 26> kSpellings = {{
+      {"hz", "Hz"},       {"1/s", "Hz"},       {"rad/s", "rad/s"},  {"rad_s", "rad/s"},
+      {"n", "N"},         {"m/s^2", "m/s^2"},  {"m/s2", "m/s^2"},   {"m/s²", "m/s^2"},
+      {"m_s2", "m/s^2"},  {"m_s^2", "m/s^2"},  {"ms-2", "m/s^2"},   {"m/s/s", "m/s^2"},
+      {"g", "g"},         {"m/s", "m/s"},      {"m_s", "m/s"},      {"ms-1", "m/s"},
+      {"mm/s", "mm/s"},   {"mm_s", "mm/s"},    {"m", "m"},          {"mm", "mm"},
+      {"rad", "rad"},     {"deg", "deg"},      {"degree", "deg"},   {"degrees", "deg"},
+      {"°", "deg"},       {"radian", "rad"},
+  }};
+  const std::string key = Lower(Trim(raw));
+  for (const auto& [spelling, unit] : kSpellings)
+    if (key == spelling) return std::string(unit);
+  return std::nullopt;
+}
+
+// Splits "force [N]", "phase (deg)", "frequency_Hz", "acc_m_s2" into a
+// normalised name and a unit (raw when bracketed and unknown, so that the
+// error can name it).
+std::pair<std::string, std::string> SplitNameAndUnit(const std::string& header) {
+  std::string name = header, unit;
+  for (const auto& [open, close] : {std::pair{'[', ']'}, std::pair{'(', ')'}}) {
+    const auto a = header.find(open), b = header.rfind(close);
+    if (a != std::string::npos && b != std::string::npos && b > a) {
+      name = header.substr(0, a);
+      unit = Trim(header.substr(a + 1, b - a - 1));
+      break;
+    }
+  }
+  name = Lower(Trim(name));
+  std::replace_if(name.begin(), name.end(), [](char c) { return c == ' ' || c == '-' || c == '.'; }, '_');
+  while (!name.empty() && name.back() == '_') name.pop_back();
+  if (unit.empty()) {
+    // The longest suffix after an underscore that is a unit.
+    for (std::size_t pos = name.find('_'); pos != std::string::npos; pos = name.find('_', pos + 1)) {
+      if (NormaliseUnit(name.substr(pos + 1))) {
+        unit = name.substr(pos + 1);
+        name = name.substr(0, pos);
+        break;
+      }
+    }
+  }
+  return {name, unit};
+}
+
+bool StripAffix(std::string& name, std::string_view prefix, std::string_view suffix) {
+  if (!prefix.empty() && name.starts_with(prefix)) {
+    name = name.substr(prefix.size());
+    return true;
+  }
+  if (!suffix.empty() && name.ends_with(suffix)) {
+    name = name.substr(0, name.size() - suffix.size());
+    return true;
+  }
+  return false;
+}
+
+std::optional<Column> Classify(const std::string& header, int index) {
+  auto [name, unit] = SplitNameAndUnit(header);
+  Column column{.header = header, .unit = unit, .index = index};
+  column.is_std = StripAffix(name, "std_", "_std") || StripAffix(name, "sigma_", "_sigma") ||
+                  StripAffix(name, "u_", "_u");
+  bool amplitude = false;
+  for (std::string_view amp : {"_amplitude", "_amp", "_magnitude", "_mag"})
+    if ((amplitude = StripAffix(name, "", amp))) break;
+  // "F_amp", "F [N]": the force, not the frequency.
+  if (name == "f" && (amplitude || NormaliseUnit(unit) == std::optional<std::string>("N"))) name = "force";
+  static const std::array<std::pair<std::string_view, Role>, 10> kGeneric = {{
+      {"frequency", Role::kFrequency}, {"freq", Role::kFrequency},   {"f", Role::kFrequency},
+      {"force", Role::kForce},         {"excitation", Role::kForce}, {"input", Role::kForce},
+      {"response", Role::kResponse},   {"output", Role::kResponse},  {"phase", Role::kPhase},
+      {"response_phase", Role::kPhase},
+  }};
+  static const std::array<std::pair<std::string_view, Quantity>, 8> kResponses = {{
+      {"acceleration", Quantity::kAcceleration}, {"accel", Quantity::kAcceleration},
+      {"acc", Quantity::kAcceleration},          {"velocity", Quantity::kVelocity},
+      {"vel", Quantity::kVelocity},              {"displacement", Quantity::kDisplacement},
+      {"disp", Quantity::kDisplacement},         {"amplitude", Quantity::kDisplacement},
+  }};
+  for (const auto& [word, role] : kGeneric)
+    if (name == word) {
+      column.role = role;
+      return column;
+    }
+  for (const auto& [word, quantity] : kResponses)
+    if (name == word) {
+      column.role = Role::kResponse;
+      // A bare "amplitude" says nothing of the quantity: its unit must.
+      if (word != "amplitude") column.quantity = quantity;
+      return column;
+    }
+  return std::nullopt;  // some other column (coherence, THD...): ignored
+}
+
+std::string_view RoleName(Role role) {
+  switch (role) {
+    case Role::kFrequency: return "frequency";
+    case Role::kForce: return "force amplitude";
+    case Role::kResponse: return "response amplitude";
+    case Role::kPhase: return "phase";
+  }
+  return "";
+}
+
+std::vector<std::string> SplitCells(const std::string& line, char separator) {
+  std::vector<std::string> cells;
+  std::stringstream stream(line);
+  std::string cell;
+  while (std::getline(stream, cell, separator)) cells.push_back(cell);
+  if (!line.empty() && line.back() == separator) cells.emplace_back();
+  return cells;
+}
+
+class TableParser {
+ public:
+  TableParser(const std::string& source, const std::string& label) : source_(source), label_(label) {}
+
+  FirstHarmonicLevel Parse(std::string_view text) {
+    std::istringstream stream{std::string(text)};
+    std::string line;
+    int line_number = 0;
+    bool have_header = false;
+    std::vector<std::array<double, 8>> rows;
+    while (std::getline(stream, line)) {
+      ++line_number;
+      if (!line.empty() && line.back() == '\r') line.pop_back();
+      if (Trim(line).empty() || Trim(line).starts_with('#')) continue;
+      if (!have_header) {
+        ReadHeader(line);
+        have_header = true;
+        continue;
+      }
+      rows.push_back(ReadRow(line, line_number));
+    }
+    if (!have_header) Fail("", "the table is empty", "write a header line and one row per frequency step");
+    if (rows.size() < 3)
+      Fail("", "only " + std::to_string(rows.size()) + " data rows", "a level needs at least 3 frequency steps");
+    return MakeLevel(rows);
+  }
+
+ private:
+  [[noreturn]] void Fail(const std::string& column, const std::string& problem, const std::string& fix) const {
+    throw InputError(source_, "", column.empty() ? problem : "column '" + column + "': " + problem, fix);
+  }
+
+  void ReadHeader(const std::string& line) {
+    separator_ = line.find(';') != std::string::npos ? ';' : line.find('\t') != std::string::npos ? '\t' : ',';
+    const auto cells = SplitCells(line, separator_);
+    num_cells_ = static_cast<int>(cells.size());
+    for (int i = 0; i < num_cells_; ++i) {
+      const auto column = Classify(Trim(cells[i]), i);
+      if (!column) continue;
+      for (const auto& other : columns_)
+        if (other.role == column->role && other.is_std == column->is_std)
+          Fail(column->header,
+               "a second column for the " + std::string(RoleName(column->role)) + (column->is_std ? "'s uncertainty" : "") +
+                   " (the first is '" + other.header + "')",
+               "keep one of them or rename the other");
+      columns_.push_back(*column);
+    }
+    for (Role role : {Role::kFrequency, Role::kForce, Role::kResponse, Role::kPhase}) {
+      if (Main(role) != nullptr) continue;
+      std::string found;
+      for (const auto& cell : cells) found += (found.empty() ? "'" : ", '") + Trim(cell) + "'";
+      Fail(std::string(RoleName(role)), "missing (the header has " + found + ")",
+           "name the columns frequency_Hz, force_N, one of acceleration_m_s2 / velocity_m_s / "
+           "displacement_m (or response [unit]), and phase_rad or phase_deg (docs/phasor-table.md)");
+    }
+    ResolveUnits();
+  }
+
+  double UnitFactor(const Column& column) const {
+    const std::optional<std::string> unit = column.unit.empty() ? std::optional<std::string>("") : NormaliseUnit(column.unit);
+    auto unknown = [&](const std::string& accepted) {
+      Fail(column.header, "unknown unit '" + column.unit + "'", "use one of: " + accepted);
+    };
+    switch (column.role) {
+      case Role::kFrequency:
+        if (!unit || (*unit != "" && *unit != "Hz" && *unit != "rad/s")) unknown("Hz, rad/s");
+        return *unit == "rad/s" ? 1.0 / (2 * std::numbers::pi) : 1.0;
+      case Role::kForce:
+        if (!unit || (*unit != "" && *unit != "N")) unknown("N");
+        return 1.0;
+      case Role::kPhase:
+        if (!unit || (*unit != "rad" && *unit != "deg")) {
+          if (column.unit.empty())
+            Fail(column.header, "the phase has no unit", "write phase_rad or phase_deg (or phase [deg])");
+          unknown("rad, deg");
+        }
+        return *unit == "deg" ? std::numbers::pi / 180 : 1.0;
+      case Role::kResponse: {
+        const Quantity q = *response_quantity_;
+        if (unit && unit->empty()) return 1.0;  // the quantity's SI unit
+        const auto factor = unit ? UnitToSiFactor(q, *unit) : std::nullopt;
+        if (!factor) unknown(AcceptedUnits(q) + " (for a " + std::string(QuantityName(q)) + ")");
+        return *factor;
+      }
+    }
+    return 1.0;
+  }
+
+  void ResolveUnits() {
+    const Column& response = *Main(Role::kResponse);
+    response_quantity_ = response.quantity;
+    if (!response_quantity_) {
+      const auto unit = NormaliseUnit(response.unit);
+      for (Quantity q : {Quantity::kAcceleration, Quantity::kVelocity, Quantity::kDisplacement})
+        if (unit && UnitToSiFactor(q, *unit)) response_quantity_ = q;
+      if (!response_quantity_)
+        Fail(response.header,
+             response.unit.empty() ? "neither the name nor a unit says which quantity the response is"
+                                   : "unknown unit '" + response.unit + "'",
+             "name it acceleration, velocity or displacement, or give its unit: m/s^2, g, m/s, mm/s, m or mm");
+    }
+    for (const auto& c : columns_) {
+      // An uncertainty column in another unit than its value is a typo waiting to happen: same rules.
+      factor_[static_cast<int>(c.role) + (c.is_std ? 4 : 0)] = UnitFactor(c);
+    }
+  }
+
+  std::array<double, 8> ReadRow(const std::string& line, int line_number) const {
+    auto cells = SplitCells(line, separator_);
+    if (static_cast<int>(cells.size()) < num_cells_)
+      Fail("", "line " + std::to_string(line_number) + " has " + std::to_string(cells.size()) + " cells, the header " +
+                   std::to_string(num_cells_),
+           "give every row a value in every column");
+    std::array<double, 8> values{};
+    for (const auto& c : columns_) {
+      std::string cell = Trim(cells[c.index]);
+      if (separator_ != ',') std::replace(cell.begin(), cell.end(), ',', '.');
+      double value = 0.0;
+      const auto [end, error] = std::from_chars(cell.data(), cell.data() + cell.size(), value);
+      if (cell.empty() || error != std::errc() || end != cell.data() + cell.size() || !std::isfinite(value))
+        Fail(c.header, "line " + std::to_string(line_number) + ": '" + cell + "' is not a finite number",
+             "write a number there or drop the row");
+      const int slot = static_cast<int>(c.role) + (c.is_std ? 4 : 0);
+      if ((c.is_std && value < 0) || (!c.is_std && c.role != Role::kPhase && value <= 0))
+        Fail(c.header, "line " + std::to_string(line_number) + ": " + cell + (c.is_std ? " is negative" : " is not positive"),
+             "frequencies and amplitudes are positive, uncertainties not negative");
+      values[slot] = value * factor_[slot];
+    }
+    return values;
+  }
+
+  FirstHarmonicLevel MakeLevel(const std::vector<std::array<double, 8>>& rows) const {
+    FirstHarmonicLevel level{.label = label_, .source = source_,
+                             .channel = Main(Role::kResponse)->header,
+                             .response_quantity = *response_quantity_};
+    for (const auto& r : rows) {
+      FirstHarmonicPoint p;
+      p.frequency_hz = r[0];
+      p.frequency_std_hz = r[4];
+      p.force.value = r[1];
+      p.force.std_real = r[5];
+      const double amplitude = r[2], phase = r[3];
+      p.response.value = std::polar(amplitude, phase);
+      const Eigen::Matrix2d rotation = Eigen::Rotation2Dd(phase).toRotationMatrix();
+      const Eigen::Vector2d polar_std(r[6], amplitude * r[7]);
+      p.response.SetCovariance(rotation * polar_std.cwiseAbs2().asDiagonal() * rotation.transpose());
+      level.points.push_back(p);
+    }
+    return level;
+  }
+
+  std::string source_, label_;
+  char separator_ = ',';
+  int num_cells_ = 0;
+  const Column* Main(Role role) const {
+    for (const auto& c : columns_)
+      if (c.role == role && !c.is_std) return &c;
+    return nullptr;
+  }
+
+  std::vector<Column> columns_;
+  std::array<double, 8> factor_{1, 1, 1, 1, 1, 1, 1, 1};
+  std::optional<Quantity> response_quantity_;
+};
+
+}  // namespace
+
+FirstHarmonicLevel ParsePhasorTable(std::string_view text, const std::string& source, const std::string& label) {
+  return TableParser(source, label).Parse(text);
+}
+
+FirstHarmonicLevel ReadPhasorTable(const std::filesystem::path& file) {
+  std::ifstream stream(file, std::ios::binary);
+  if (!stream)
+    throw InputError(file.string(), "", "cannot open the phasor table", "check the path");
+  std::stringstream text;
+  text << stream.rdbuf();
+  return ParsePhasorTable(text.str(), file.string(), file.stem().string());
+}
+
+}  // namespace beamid::signal

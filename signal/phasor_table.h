@@ -1,0 +1,34 @@
+// Reads one level of a stepped-sine test from a first-harmonic table, the CSV
+// that acquisition systems export (docs/phasor-table.md): one row per step,
+// columns frequency, force amplitude, response amplitude and the response's
+// phase relative to the force, optionally their standard uncertainties.
+//
+// The response phasor is X = |X|·e^{iφ} with the force as the phase
+// reference (F real, positive), as everywhere in beamid
+// (signal/phasor_set.h). Uncertainties given in polar form (σ_|X|, σ_φ) become
+// the Re/Im covariance R·diag(σ_|X|², |X|²σ_φ²)·Rᵀ, R the rotation by φ.
+//
+// Accepted variants: ',' ';' or tab separators (with ';' or tab a decimal
+// comma is read as a point); units in brackets "force [N]", parentheses
+// "phase (deg)" or as a suffix "frequency_Hz", "acc_m_s2"; phase in rad or
+// deg; the response an acceleration (m/s^2, g), velocity (m/s, mm/s) or
+// displacement (m, mm), its quantity named by the column or implied by the
+// unit. Lines starting with '#' are comments. Anything wrong throws InputError
+// naming the file and the column (and row) to fix.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "signal/first_harmonic_level.h"
+
+namespace beamid::signal {
+
+// `source` names the text in messages; the level's label is `label`.
+FirstHarmonicLevel ParsePhasorTable(std::string_view text, const std::string& source, const std::string& label);
+
+// The level's label is the file name without its extension.
+FirstHarmonicLevel ReadPhasorTable(const std::filesystem::path& file);
+
+}  // namespace beamid::signal

@@ -1,0 +1,189 @@
+#include "solver/cli/measured_backbone_command.h"
+
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+
+#include <fmt/core.h>
+#include <nlohmann/json.hpp>
+
+#include "signal/campaign.h"
+#include "signal/campaign_extractor.h"
+#include "signal/first_harmonic_level.h"
+#include "signal/phasor_set_io.h"
+#include "signal/phasor_table.h"
+#include "solver/cli/cli_output.h"
+#include "solver/measured_backbone.h"
+#include "solver/prediction.h"
+#include "solver/sensor_backbone.h"
+
+namespace beamid::cli {
+namespace {
+
+std::vector<signal::FirstHarmonicLevel> ReadLevels(const MeasuredBackboneCommandOptions& options, bool quiet) {
+  namespace fs = std::filesystem;
+  const fs::path first = options.inputs.front();
+  const bool tables = first.extension() == ".csv" || first.extension() == ".CSV" || first.extension() == ".txt";
+  if (tables) {
+    std::vector<signal::FirstHarmonicLevel> levels;
+    for (const auto& input : options.inputs) {
+      levels.push_back(signal::ReadPhasorTable(input));
+      levels.back().response_position_m = options.position_m;
+    }
+    return levels;
+  }
+  if (options.inputs.size() > 1)
+    throw std::invalid_argument("--measured: give one campaign folder or phasor file, or several CSV tables");
+  signal::PhasorSet set;
+  if (fs::is_directory(first)) {
+    signal::ExtractOptions extract;
+    extract.estimator.num_harmonics = 3;
+    set = signal::ExtractCampaign(signal::ReadCampaign(first), extract);
+  } else {
+    set = signal::ReadPhasorSetJson(first);
+  }
+  if (set.steps.empty() || set.steps.front().responses.empty())
+    throw std::invalid_argument(first.string() + ": no steps with a response channel");
+  const std::string channel = options.channel.empty() ? set.steps.front().responses.front().channel : options.channel;
+  if (!quiet && options.channel.empty()) fmt::print(stderr, "backbone: response channel {} (--channel to choose)\n", channel);
+  return signal::FirstHarmonicLevels(set, channel, first.string());
+}
+
+nlohmann::json EstimateJson(const solver::Estimate& e) {
+  if (!e.valid) return nullptr;
+  return {{"value", e.value}, {"std", e.std}};
+}
+
+std::string Cell(const solver::Estimate& e) {
+  return e.valid ? fmt::format("{:.9g},{:.3g}", e.value, e.std) : ",";
+}
+
+}  // namespace
+
+void RunMeasuredBackbone(const MeasuredBackboneCommandOptions& options, const GlobalOptions& global) {
+  const auto levels = ReadLevels(options, global.quiet);
+  const solver::MeasuredBackbone measured = solver::AnalyseMeasuredBackbone(levels);
+
+  std::vector<solver::SensorBackbonePoint> model;
+  if (!options.result_file.empty()) {
+    const double position = levels.front().response_position_m;
+    if (position < 0)
+      throw std::invalid_argument("--result: the tables do not say where the sensor is. Fix: give --position-m");
+    const solver::IdentifiedModel identified = solver::ReadIdentifiedModel(options.result_file);
+    model = solver::ModelBackboneAtSensor(identified.structure.ApplyLinear(identified.beam), *identified.structure.law,
+                                          identified.force_position_m, position,
+                                          {.min_theta_amplitude_rad = 1e-5, .max_theta_amplitude_rad = 3e-2, .num_points = 120});
+  }
+
+  // Per level.
+  std::ostringstream csv;
+  csv << "level,control,quadrature_frequency_Hz,quadrature_frequency_std_Hz,amplitude_m,amplitude_std_m,"
+         "response_amplitude,response_amplitude_std,force_N,force_std_N,zeta_quadrature,zeta_quadrature_std,"
+         "zeta_local,zeta_local_std,zeta_half_power,zeta_half_power_std,peak_frequency_Hz,peak_frequency_std_Hz,"
+         "local_natural_frequency_Hz,local_natural_frequency_std_Hz,regeneration_relative_rms\n";
+  nlohmann::json level_json = nlohmann::json::array();
+  for (const auto& l : measured.levels) {
+    csv << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{:.4g}\n", l.label, solver::LevelControlName(l.control),
+                       Cell(l.quadrature_frequency_hz), Cell(l.quadrature_amplitude_m),
+                       Cell(l.quadrature_response_amplitude), Cell(l.quadrature_force_N),
+                       Cell(l.quadrature_damping_ratio), Cell(l.local_damping_ratio), Cell(l.half_power_damping_ratio),
+                       Cell(l.peak_frequency_hz), Cell(l.local_natural_frequency_hz), l.regeneration_relative_rms);
+    level_json.push_back(
+        {{"label", l.label},
+         {"control", solver::LevelControlName(l.control)},
+         {"num_points", l.num_points},
+         {"num_fit_points", l.num_fit_points},
+         {"phase_resonance",
+          {{"frequency_Hz", EstimateJson(l.quadrature_frequency_hz)},
+           {"displacement_amplitude_m", EstimateJson(l.quadrature_amplitude_m)},
+           {"response_amplitude", EstimateJson(l.quadrature_response_amplitude)},
+           {"force_N", EstimateJson(l.quadrature_force_N)},
+           {"damping_ratio", EstimateJson(l.quadrature_damping_ratio)},
+           {"after_jump", l.quadrature_after_jump},
+           {"note", l.quadrature_note}}},
+         {"peak",
+          {{"frequency_Hz", EstimateJson(l.peak_frequency_hz)},
+           {"receptance_m_N", EstimateJson(l.peak_receptance_m_N)},
+           {"displacement_amplitude_m", EstimateJson(l.peak_amplitude_m)}}},
+         {"half_power", {{"damping_ratio", EstimateJson(l.half_power_damping_ratio)}, {"note", l.half_power_note}}},
+         {"local_fit",
+          {{"natural_frequency_Hz", EstimateJson(l.local_natural_frequency_hz)},
+           {"damping_ratio", EstimateJson(l.local_damping_ratio)},
+           {"reduced_chi_square", l.local_reduced_chi_square}}},
+         {"regeneration",
+          {{"relative_rms", l.regeneration_relative_rms},
+           {"max_relative", l.regeneration_max_relative},
+           {"reduced_chi_square", l.regeneration_reduced_chi_square}}}});
+  }
+
+  // The single-mode fit against amplitude, and the model beside it.
+  std::ostringstream curves;
+  curves << "amplitude_m,fit_frequency_Hz,fit_frequency_std_Hz,fit_damping_ratio,fit_damping_ratio_std,model_frequency_Hz\n";
+  nlohmann::json curve_json = nlohmann::json::array();
+  const auto& fit = measured.fit;
+  constexpr int kCurvePoints = 60;
+  for (int k = 0; fit.ok && k <= kCurvePoints; ++k) {
+    const double a = measured.min_amplitude_m + (measured.max_amplitude_m - measured.min_amplitude_m) * k / kCurvePoints;
+    const double f = fit.NaturalFrequency_rad_s(a) / (2 * std::numbers::pi);
+    const double f_std = fit.NaturalFrequencyStd_rad_s(a) / (2 * std::numbers::pi);
+    const double model_f = model.empty() ? NAN : solver::BackboneFrequencyAt_hz(model, a);
+    curves << fmt::format("{:.9g},{:.9g},{:.3g},{:.6g},{:.3g},{}\n", a, f, f_std, fit.DampingRatio(a),
+                          fit.DampingRatioStd(a), std::isfinite(model_f) ? fmt::format("{:.9g}", model_f) : "");
+    curve_json.push_back({{"amplitude_m", a},
+                          {"frequency_Hz", f},
+                          {"frequency_std_Hz", f_std},
+                          {"damping_ratio", fit.DampingRatio(a)},
+                          {"damping_ratio_std", fit.DampingRatioStd(a)}});
+  }
+  nlohmann::json candidates = nlohmann::json::array();
+  for (const auto& c : measured.candidates)
+    candidates.push_back({{"frequency_degree", c.frequency_degree},
+                          {"damping_degree", c.damping_degree},
+                          {"aicc", c.aicc},
+                          {"reduced_chi_square", c.reduced_chi_square}});
+  nlohmann::json model_json = nlohmann::json::array();
+  for (const auto& p : model) model_json.push_back({{"amplitude_m", p.amplitude_m}, {"frequency_Hz", p.frequency_hz}});
+  const auto& trend = measured.damping_trend;
+  const nlohmann::json out = {
+      {"format", "beamid-measured-backbone/1"},
+      {"inputs", options.inputs},
+      {"channel", levels.front().channel},
+      {"response_quantity", measured.response_quantity},
+      {"amplitude", "first-harmonic displacement amplitude at the sensor [m]"},
+      {"levels", level_json},
+      {"single_mode_fit",
+       {{"model", "A*F/X_d = wn^2(a) - w^2 + 2i*w*(zeta*wn)(a), polynomials in a/a_ref"},
+        {"frequency_degree", fit.frequency_degree},
+        {"damping_degree", fit.damping_degree},
+        {"reference_amplitude_m", fit.reference_amplitude_m},
+        {"parameters", std::vector<double>(fit.parameters.data(), fit.parameters.data() + fit.parameters.size())},
+        {"reduced_chi_square", fit.ReducedChiSquare()},
+        {"candidates", candidates},
+        {"curve", curve_json}}},
+      {"damping_trend",
+       {{"amplitude_m", trend.amplitude_m},
+        {"slope_per_m", trend.slope_per_m},
+        {"slope_std_per_m", trend.slope_std_per_m},
+        {"z", trend.z},
+        {"verdict", trend.verdict}}},
+      {"model_backbone", model_json},
+      {"warnings", measured.warnings}};
+  WriteTextFile(options.output + ".csv", csv.str());
+  WriteTextFile(options.output + "_curves.csv", curves.str());
+  WriteTextFile(options.output + ".json", out.dump(1));
+  if (global.quiet) return;
+  for (const auto& w : measured.warnings) fmt::print(stderr, "beamid backbone: warning: {}\n", w);
+  for (const auto& l : measured.levels)
+    fmt::print("  {:>8} ({}-controlled): {:.4f} ± {:.4f} Hz at {:.3e} m, ζ = {:.5f} ± {:.5f} (local fit {:.5f})\n",
+               l.label, solver::LevelControlName(l.control), l.quadrature_frequency_hz.value,
+               l.quadrature_frequency_hz.std, l.quadrature_amplitude_m.value, l.quadrature_damping_ratio.value,
+               l.quadrature_damping_ratio.std, l.local_damping_ratio.value);
+  fmt::print("  damping against amplitude: {} (slope {:.3g} ± {:.2g} per m, {:.1f} σ)\n", trend.verdict,
+             trend.slope_per_m, trend.slope_std_per_m, trend.z);
+  fmt::print("wrote {0}.json, {0}.csv and {0}_curves.csv\n", options.output);
+}
+
+}  // namespace beamid::cli

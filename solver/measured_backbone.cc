@@ -1,0 +1,476 @@
+#include "solver/measured_backbone.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+
+
+#include <Eigen/Cholesky>
+#include <Eigen/QR>
+
+#include "signal/quantity_conversion.h"
+
+namespace beamid::solver {
+namespace {
+
+constexpr double kTwoPi = 2 * std::numbers::pi;
+constexpr int kInputsPerPoint = 5;  // ω, Re F, Im F, Re X_d, Im X_d
+
+// One level sorted by frequency, the response as displacement. The raw
+// vector holds every point's inputs; its covariance is block diagonal.
+struct LevelData {
+  Eigen::VectorXd raw;
+  Eigen::MatrixXd raw_covariance;
+  int order = 2;  // derivative order of the response quantity
+  int size() const { return static_cast<int>(raw.size() / kInputsPerPoint); }
+};
+
+struct PointView {
+  double omega;
+  std::complex<double> force, disp;
+  std::complex<double> G() const { return force / disp; }
+  double H() const { return std::abs(disp / force); }
+};
+
+PointView At(const Eigen::VectorXd& raw, int i) {
+  const double* r = raw.data() + kInputsPerPoint * i;
+  return {r[0], {r[1], r[2]}, {r[3], r[4]}};
+}
+
+LevelData MakeLevelData(const signal::FirstHarmonicLevel& level) {
+  std::vector<const signal::FirstHarmonicPoint*> sorted;
+  for (const auto& p : level.points) sorted.push_back(&p);
+  std::stable_sort(sorted.begin(), sorted.end(),
+                   [](const auto* a, const auto* b) { return a->frequency_hz < b->frequency_hz; });
+  const int n = static_cast<int>(sorted.size());
+  LevelData data;
+  data.order = signal::DerivativeOrder(level.response_quantity);
+  data.raw.resize(kInputsPerPoint * n);
+  data.raw_covariance = Eigen::MatrixXd::Zero(kInputsPerPoint * n, kInputsPerPoint * n);
+  for (int i = 0; i < n; ++i) {
+    const auto& p = *sorted[i];
+    const double omega = kTwoPi * p.frequency_hz;
+    const signal::HarmonicPhasor disp =
+        signal::ConvertHarmonic(p.response, level.response_quantity, signal::Quantity::kDisplacement, omega);
+    const int o = kInputsPerPoint * i;
+    data.raw.segment(o, kInputsPerPoint) << omega, p.force.value.real(), p.force.value.imag(), disp.value.real(),
+        disp.value.imag();
+    data.raw_covariance(o, o) = std::pow(kTwoPi * p.frequency_std_hz, 2);
+    data.raw_covariance.block(o + 1, o + 1, 2, 2) = p.force.Covariance();
+    data.raw_covariance.block(o + 3, o + 3, 2, 2) = disp.Covariance();
+  }
+  return data;
+}
+
+// Values and standard uncertainties of f(raw), linearised about the level's raw inputs.
+std::vector<Estimate> Propagate(const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& f, const LevelData& data) {
+  const Eigen::VectorXd value = f(data.raw);
+  Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(value.size(), data.raw.size());
+  for (int j = 0; j < data.raw.size(); ++j) {
+    const double sigma = std::sqrt(data.raw_covariance(j, j));
+    if (sigma == 0.0) continue;  // exact input: no contribution
+    const double h = 1e-3 * sigma;
+    Eigen::VectorXd plus = data.raw, minus = data.raw;
+    plus[j] += h;
+    minus[j] -= h;
+    jacobian.col(j) = (f(plus) - f(minus)) / (2 * h);
+  }
+  const Eigen::MatrixXd covariance = jacobian * data.raw_covariance * jacobian.transpose();
+  std::vector<Estimate> out;
+  for (int k = 0; k < value.size(); ++k)
+    out.push_back({value[k], std::sqrt(std::max(0.0, covariance(k, k))), std::isfinite(value[k])});
+  return out;
+}
+
+// Covariance of G = F/X_d from those of F and X_d (independent).
+Eigen::Matrix2d InverseReceptanceCovariance(const LevelData& data, int i) {
+  const PointView p = At(data.raw, i);
+  auto real_matrix = [](std::complex<double> c) {
+    Eigen::Matrix2d m;
+    m << c.real(), -c.imag(), c.imag(), c.real();
+    return m;
+  };
+  const Eigen::Matrix2d d_force = real_matrix(1.0 / p.disp);
+  const Eigen::Matrix2d d_disp = real_matrix(-p.force / (p.disp * p.disp));
+  const int o = kInputsPerPoint * i;
+  return d_force * data.raw_covariance.block(o + 1, o + 1, 2, 2) * d_force.transpose() +
+         d_disp * data.raw_covariance.block(o + 3, o + 3, 2, 2) * d_disp.transpose();
+}
+
+// Phase-resonance point from the step k nearest quadrature: frequency [Hz],
+// |X_d|, |F|, ζ. The modal constant A is the last raw input. Each step is a
+// point of the backbone, ω̂_n² = A·Re G + ω² at its own amplitude — a small
+// correction near quadrature, where Re G is small. Interpolating Re G in ω²
+// between the two bracketing steps instead is biased by the curvature of the
+// backbone when the amplitude changes much between them (the far side of a
+// hardening peak), and impossible across a jump.
+Eigen::VectorXd QuadratureFrom(const Eigen::VectorXd& raw, int k) {
+  const PointView p = At(raw, k);
+  const double modal_constant = raw[raw.size() - 1];
+  const double w2 = modal_constant * p.G().real() + p.omega * p.omega;
+  Eigen::VectorXd out(4);
+  out << std::sqrt(w2) / kTwoPi, std::abs(p.disp), std::abs(p.force), modal_constant * p.G().imag() / (2 * w2);
+  return out;
+}
+
+double PairSlope(const Eigen::VectorXd& raw, int i, int j) {
+  const PointView a = At(raw, i), b = At(raw, j);
+  return (b.omega * b.omega - a.omega * a.omega) / (a.G().real() - b.G().real());
+}
+
+void FindQuadrature(const LevelData& data, const SingleModeFit& modal_fit, const SingleModeFit& local_fit,
+                    const MeasuredBackboneOptions& options, LevelResonance& out) {
+  const int n = data.size();
+  int best = -1;
+  double best_h = 0.0;
+  for (int i = 0; i + 1 < n; ++i) {
+    const PointView a = At(data.raw, i), b = At(data.raw, i + 1);
+    if ((a.G().real() > 0) == (b.G().real() > 0)) continue;
+    // Among several crossings (noise far from the mode), the one of largest response.
+    const double h = std::max(a.H(), b.H());
+    if (h > best_h) best_h = h, best = i;
+  }
+  if (best < 0) {
+    out.quadrature_note = "the response never crosses quadrature with the force: widen the sweep";
+    return;
+  }
+  int i = best, j = best + 1;
+  const PointView a = At(data.raw, i), b = At(data.raw, j);
+  const double ratio = std::max(a.H(), b.H()) / std::min(a.H(), b.H());
+  if (ratio > options.jump_amplitude_ratio) {
+    // A jump between the two steps? Then Re G's slope between them differs
+    // from that along the branch the larger response belongs to.
+    const bool upper_is_first = a.H() > b.H();
+    const int k0 = upper_is_first ? i - 1 : j, k1 = upper_is_first ? i : j + 1;
+    if (k0 >= 0 && k1 < n) {
+      const double branch = PairSlope(data.raw, k0, k1), pair = PairSlope(data.raw, i, j);
+      if (!(std::abs(pair / branch) > 0.5 && std::abs(pair / branch) < 2.0)) {
+        i = k0;
+        j = k1;
+        out.quadrature_after_jump = true;
+        out.quadrature_note = "a jump (fold) between the steps around quadrature: the phase resonance is taken on the branch before it";
+      }
+    }
+  }
+  if (!modal_fit.ok) {
+    out.quadrature_note = "too few points near the mode for the modal constant";
+    return;
+  }
+  const int k = std::abs(At(data.raw, i).G().real()) / std::abs(At(data.raw, i).G()) <
+                        std::abs(At(data.raw, j).G().real()) / std::abs(At(data.raw, j).G())
+                    ? i
+                    : j;
+  // The modal constant as one more input, with its variance.
+  LevelData with_constant = data;
+  const int n_raw = static_cast<int>(data.raw.size());
+  with_constant.raw.conservativeResize(n_raw + 1);
+  with_constant.raw[n_raw] = modal_fit.ModalConstant();
+  with_constant.raw_covariance.conservativeResizeLike(Eigen::MatrixXd::Zero(n_raw + 1, n_raw + 1));
+  with_constant.raw_covariance(n_raw, n_raw) = modal_fit.covariance(0, 0);
+  const auto e = Propagate([&](const Eigen::VectorXd& raw) { return QuadratureFrom(raw, k); }, with_constant);
+  out.quadrature_frequency_hz = e[0];
+  // Beyond the noise: how far this level strays from one nonlinear mode.
+  const double model_std_hz =
+      local_fit.ok ? local_fit.backbone_residual_rms_rad2_s2 / (2 * kTwoPi * e[0].value) / kTwoPi : 0.0;
+  out.quadrature_frequency_hz.std = std::hypot(e[0].std, model_std_hz);
+  out.quadrature_amplitude_m = e[1];
+  out.quadrature_force_N = e[2];
+  out.quadrature_damping_ratio = e[3];
+  const double scale = std::pow(kTwoPi * e[0].value, data.order);
+  out.quadrature_response_amplitude = {e[1].value * scale, e[1].std * scale, true};
+}
+
+int PeakIndex(const Eigen::VectorXd& raw, int n) {
+  int best = 0;
+  for (int i = 1; i < n; ++i)
+    if (At(raw, i).H() > At(raw, best).H()) best = i;
+  return best;
+}
+
+// The quadratic through three points (x, y): y = c0 + c1·x + c2·x².
+Eigen::Vector3d Quadratic(const double x[3], const double y[3]) {
+  Eigen::Matrix3d m;
+  for (int k = 0; k < 3; ++k) m.row(k) << 1.0, x[k], x[k] * x[k];
+  return m.colPivHouseholderQr().solve(Eigen::Vector3d(y[0], y[1], y[2]));
+}
+
+// Peak frequency [Hz], |X_d/F| and |X_d| there, then the half-power ζ (NaN
+// if not available). For one mode 1/|H|² is a quadratic in ω² exactly,
+// ((ω_n² − ω²)² + (2ζω_nω)²)/A², so the peak is the vertex of the quadratic
+// through the three highest steps and each half-power crossing is solved on
+// the quadratic through the three steps around it.
+Eigen::VectorXd PeakAndHalfPower(const Eigen::VectorXd& raw, int n, int m) {
+  auto x_of = [&](int i) { return At(raw, i).omega * At(raw, i).omega; };
+  auto y_of = [&](int i) { return 1.0 / (At(raw, i).H() * At(raw, i).H()); };
+  double x[3], y[3], a[3];
+  for (int k = 0; k < 3; ++k) {
+    x[k] = x_of(m - 1 + k);
+    y[k] = y_of(m - 1 + k);
+    a[k] = std::abs(At(raw, m - 1 + k).disp);
+  }
+  const Eigen::Vector3d peak = Quadratic(x, y);
+  const double x_peak = -peak[1] / (2 * peak[2]);
+  const double y_peak = peak[0] + peak[1] * x_peak + peak[2] * x_peak * x_peak;
+  const Eigen::Vector3d amplitude = Quadratic(x, a);
+  const double level = 2 * y_peak;
+  auto crossing = [&](int from, int step) {
+    for (int i = from; i + step >= 0 && i + step < n; i += step) {
+      if (y_of(i + step) <= level) continue;
+      // Three steps around the crossing: i − step, i, i + step (or i, i + step, i + 2·step).
+      int c = i;
+      if (c - step < 0 || c - step >= n) c = i + step;
+      if (c + step < 0 || c + step >= n) c = i;
+      double xs[3], ys[3];
+      for (int k = -1; k <= 1; ++k) {
+        xs[k + 1] = x_of(c + k * step);
+        ys[k + 1] = y_of(c + k * step);
+      }
+      const Eigen::Vector3d q = Quadratic(xs, ys);
+      const double disc = q[1] * q[1] - 4 * q[2] * (q[0] - level);
+      const double lo = std::min(x_of(i), x_of(i + step)), hi = std::max(x_of(i), x_of(i + step));
+      if (disc >= 0 && q[2] != 0)
+        for (double sign : {-1.0, 1.0}) {
+          const double root = (-q[1] + sign * std::sqrt(disc)) / (2 * q[2]);
+          if (root >= lo && root <= hi) return std::sqrt(root);
+        }
+      // Not one mode's shape there: linear interpolation.
+      return std::sqrt(x_of(i) + (level - y_of(i)) / (y_of(i + step) - y_of(i)) * (x_of(i + step) - x_of(i)));
+    }
+    return std::numeric_limits<double>::quiet_NaN();
+  };
+  const double w1 = crossing(m, -1), w2 = crossing(m, +1);
+  Eigen::VectorXd out(4);
+  out << std::sqrt(x_peak) / kTwoPi, 1 / std::sqrt(y_peak),
+      amplitude[0] + amplitude[1] * x_peak + amplitude[2] * x_peak * x_peak, (w2 * w2 - w1 * w1) / (4 * x_peak);
+  return out;
+}
+
+void FindPeakAndHalfPower(const LevelData& data, LevelResonance& out) {
+  const int n = data.size();
+  const int m = PeakIndex(data.raw, n);
+  if (m == 0 || m == n - 1) {
+    out.half_power_note = "the largest response is at the end of the sweep: no peak, no half-power points";
+    return;
+  }
+  const auto e = Propagate([&](const Eigen::VectorXd& raw) { return PeakAndHalfPower(raw, n, m); }, data);
+  out.peak_frequency_hz = e[0];
+  out.peak_receptance_m_N = e[1];
+  out.peak_amplitude_m = e[2];
+  out.half_power_damping_ratio = e[3];
+  if (!e[3].valid) out.half_power_note = "the response does not fall to 1/√2 of its peak on both sides";
+  if (out.quadrature_after_jump) {
+    // One side of the peak lies on the other branch of a fold.
+    out.half_power_damping_ratio.valid = false;
+    out.half_power_note = "a jump (fold) next to the peak: no half-power estimate";
+  }
+}
+
+LevelControl DetectControl(const LevelData& data, double tolerance) {
+  double f_min = INFINITY, f_max = 0, x_min = INFINITY, x_max = 0;
+  for (int i = 0; i < data.size(); ++i) {
+    const PointView p = At(data.raw, i);
+    const double x = std::abs(p.disp) * std::pow(p.omega, data.order);
+    f_min = std::min(f_min, std::abs(p.force));
+    f_max = std::max(f_max, std::abs(p.force));
+    x_min = std::min(x_min, x);
+    x_max = std::max(x_max, x);
+  }
+  if (f_max / f_min - 1 <= tolerance) return LevelControl::kForce;
+  if (x_max / x_min - 1 <= tolerance) return LevelControl::kResponse;
+  return LevelControl::kNeither;
+}
+
+std::vector<SingleModePoint> FitPoints(const LevelData& data, double window) {
+  const int n = data.size();
+  const double peak = At(data.raw, PeakIndex(data.raw, n)).H();
+  std::vector<SingleModePoint> points;
+  for (int i = 0; i < n; ++i) {
+    const PointView p = At(data.raw, i);
+    if (p.H() < window * peak) continue;
+    points.push_back({.omega_rad_s = p.omega,
+                      .omega_std_rad_s = std::sqrt(data.raw_covariance(kInputsPerPoint * i, kInputsPerPoint * i)),
+                      .inverse_receptance_N_m = p.G(),
+                      .inverse_receptance_covariance = InverseReceptanceCovariance(data, i),
+                      .amplitude_m = std::abs(p.disp)});
+  }
+  return points;
+}
+
+SingleModeFit LocalFit(const std::vector<SingleModePoint>& points, double tolerance) {
+  double a_min = INFINITY, a_max = 0;
+  for (const auto& p : points) a_min = std::min(a_min, p.amplitude_m), a_max = std::max(a_max, p.amplitude_m);
+  // A level held at one amplitude cannot tell how ω_n and ζ change with it.
+  const int degree = a_max / a_min - 1 > tolerance ? 1 : 0;
+  return FitSingleMode(points, {.frequency_degree = 2 * degree, .damping_degree = degree, .reference_amplitude_m = a_max});
+}
+
+void EvaluateLocalFit(const SingleModeFit& fit, LevelResonance& out) {
+  if (!fit.ok) return;
+  const double a = out.quadrature_amplitude_m.valid ? out.quadrature_amplitude_m.value : fit.reference_amplitude_m;
+  out.local_natural_frequency_hz = {fit.NaturalFrequency_rad_s(a) / kTwoPi, fit.NaturalFrequencyStd_rad_s(a) / kTwoPi,
+                                    true};
+  out.local_damping_ratio = {fit.DampingRatio(a), fit.DampingRatioStd(a), true};
+  out.local_reduced_chi_square = fit.ReducedChiSquare();
+}
+
+// The amplitude a ∈ (0, a_max] with a·|D(a, ω)| = |A·F| closest to `measured`
+// (several on a folded curve); NaN if there is none.
+double SolveAmplitude(const SingleModeFit& fit, double omega, double force_amplitude, double a_max, double measured) {
+  const double target = std::abs(fit.ModalConstant()) * force_amplitude;
+  auto g = [&](double a) { return a * std::abs(fit.DynamicTerm(a, omega)) - target; };
+  constexpr int kGrid = 400;
+  double best = std::numeric_limits<double>::quiet_NaN();
+  double lo = 0.0, g_lo = g(0.0);
+  for (int k = 1; k <= kGrid; ++k) {
+    const double hi = a_max * k / kGrid, g_hi = g(hi);
+    if ((g_lo <= 0) != (g_hi <= 0)) {
+      double x0 = lo, x1 = hi, g0 = g_lo;
+      for (int it = 0; it < 60; ++it) {
+        const double xm = 0.5 * (x0 + x1), gm = g(xm);
+        if ((gm <= 0) == (g0 <= 0)) x0 = xm, g0 = gm;
+        else x1 = xm;
+      }
+      const double root = 0.5 * (x0 + x1);
+      if (!(std::abs(root - measured) >= std::abs(best - measured))) best = root;
+    }
+    lo = hi;
+    g_lo = g_hi;
+  }
+  return best;
+}
+
+void Regenerate(const SingleModeFit& fit, const LevelData& data, double window, double a_max, LevelResonance& out) {
+  const auto points = FitPoints(data, window);
+  double sum_sq = 0, worst = 0, chi_square = 0;
+  int count = 0;
+  for (int i = 0; i < data.size(); ++i) {
+    const PointView p = At(data.raw, i);
+    if (std::none_of(points.begin(), points.end(), [&](const auto& q) { return q.omega_rad_s == p.omega; })) continue;
+    std::complex<double> predicted, measured;
+    Eigen::Matrix2d covariance;
+    const int o = kInputsPerPoint * i;
+    if (out.control == LevelControl::kResponse) {
+      predicted = p.disp * fit.DynamicTerm(std::abs(p.disp), p.omega) / fit.ModalConstant();
+      measured = p.force;
+      covariance = data.raw_covariance.block(o + 1, o + 1, 2, 2);
+    } else {
+      const double a = SolveAmplitude(fit, p.omega, std::abs(p.force), 2 * a_max, std::abs(p.disp));
+      predicted = fit.ModalConstant() * p.force / fit.DynamicTerm(a, p.omega);
+      measured = p.disp;
+      covariance = data.raw_covariance.block(o + 3, o + 3, 2, 2);
+    }
+    const std::complex<double> error = predicted - measured;
+    const double relative = std::abs(error) / std::abs(measured);
+    sum_sq += relative * relative;
+    worst = std::max(worst, std::isfinite(relative) ? relative : INFINITY);
+    if (covariance.trace() > 0) {
+      const Eigen::Vector2d e(error.real(), error.imag());
+      chi_square += e.dot(covariance.ldlt().solve(e));
+    }
+    ++count;
+  }
+  out.regeneration_relative_rms = count ? std::sqrt(sum_sq / count) : 0.0;
+  out.regeneration_max_relative = worst;
+  out.regeneration_reduced_chi_square = count ? chi_square / (2 * count) : 0.0;
+}
+
+}  // namespace
+
+std::string_view LevelControlName(LevelControl control) {
+  switch (control) {
+    case LevelControl::kForce: return "force";
+    case LevelControl::kResponse: return "response";
+    case LevelControl::kNeither: return "neither";
+  }
+  return "";
+}
+
+MeasuredBackbone AnalyseMeasuredBackbone(const std::vector<signal::FirstHarmonicLevel>& levels,
+                                         const MeasuredBackboneOptions& options) {
+  if (levels.empty()) throw std::invalid_argument("measured backbone: no levels to analyse");
+  MeasuredBackbone result;
+  result.response_quantity = signal::QuantityName(levels.front().response_quantity);
+  std::vector<LevelData> data;
+  std::vector<SingleModePoint> all_points;
+  std::vector<SingleModeFit> local_fits;
+  std::vector<std::vector<SingleModePoint>> level_points;
+  for (const auto& level : levels) {
+    if (level.response_quantity == signal::Quantity::kForce)
+      throw std::invalid_argument(level.source + ": level '" + level.label + "': the response is a force");
+    if (level.response_quantity != levels.front().response_quantity)
+      throw std::invalid_argument(level.source + ": level '" + level.label + "' holds a " +
+                                  std::string(signal::QuantityName(level.response_quantity)) + ", level '" +
+                                  levels.front().label + "' a " + result.response_quantity +
+                                  ": give the levels of one sensor, in one quantity");
+    if (level.points.size() < 3)
+      throw std::invalid_argument(level.source + ": level '" + level.label + "' has " +
+                                  std::to_string(level.points.size()) + " steps; at least 3 are needed");
+    data.push_back(MakeLevelData(level));
+    level_points.push_back(FitPoints(data.back(), options.fit_window));
+    local_fits.push_back(LocalFit(level_points.back(), options.constant_tolerance));
+  }
+  // The modal constant A (the mode shape at sensor and force over the modal
+  // mass) does not depend on amplitude for a single nonlinear mode: take it
+  // where the structure is most linear, from the level of smallest response.
+  int linear_level = -1;
+  for (std::size_t l = 0; l < levels.size(); ++l) {
+    if (!local_fits[l].ok) continue;
+    if (linear_level < 0 || local_fits[l].reference_amplitude_m < local_fits[linear_level].reference_amplitude_m)
+      linear_level = static_cast<int>(l);
+  }
+  for (std::size_t l = 0; l < levels.size(); ++l) {
+    LevelResonance r;
+    r.label = levels[l].label;
+    r.num_points = data[l].size();
+    r.num_fit_points = static_cast<int>(level_points[l].size());
+    r.control = DetectControl(data[l], options.constant_tolerance);
+    FindQuadrature(data[l], linear_level >= 0 ? local_fits[linear_level] : local_fits[l], local_fits[l], options, r);
+    FindPeakAndHalfPower(data[l], r);
+    EvaluateLocalFit(local_fits[l], r);
+    if (!r.quadrature_note.empty()) result.warnings.push_back("level '" + r.label + "': " + r.quadrature_note);
+    all_points.insert(all_points.end(), level_points[l].begin(), level_points[l].end());
+    result.levels.push_back(std::move(r));
+  }
+  result.min_amplitude_m = INFINITY;
+  for (const auto& p : all_points) {
+    result.min_amplitude_m = std::min(result.min_amplitude_m, p.amplitude_m);
+    result.max_amplitude_m = std::max(result.max_amplitude_m, p.amplitude_m);
+  }
+
+  // Global single-nonlinear-mode fit, degrees by AICc.
+  for (int p = 0; p <= options.max_frequency_degree; ++p)
+    for (int q = 0; q <= options.max_damping_degree; ++q) {
+      const SingleModeFit fit = FitSingleMode(
+          all_points, {.frequency_degree = p, .damping_degree = q, .reference_amplitude_m = result.max_amplitude_m});
+      if (!fit.ok) continue;
+      result.candidates.push_back({p, q, fit.aicc, fit.ReducedChiSquare()});
+      if (!result.fit.ok || fit.aicc < result.fit.aicc) result.fit = fit;
+    }
+  if (!result.fit.ok) {
+    result.warnings.push_back("too few points near the mode for a single-mode fit across levels");
+    return result;
+  }
+  for (std::size_t l = 0; l < levels.size(); ++l)
+    Regenerate(result.fit, data[l], options.fit_window, result.max_amplitude_m, result.levels[l]);
+
+  // Damping trend: ζω_n linear in a, the frequency as chosen.
+  const SingleModeFit linear = FitSingleMode(all_points, {.frequency_degree = result.fit.frequency_degree,
+                                                          .damping_degree = 1,
+                                                          .reference_amplitude_m = result.max_amplitude_m});
+  if (linear.ok) {
+    DampingTrend& trend = result.damping_trend;
+    trend.amplitude_m = 0.5 * (result.min_amplitude_m + result.max_amplitude_m);
+    trend.slope_per_m = linear.DampingSlope_per_m(trend.amplitude_m);
+    trend.slope_std_per_m = linear.DampingSlopeStd_per_m(trend.amplitude_m);
+    trend.z = trend.slope_per_m / trend.slope_std_per_m;
+    trend.verdict = trend.z > options.trend_significance    ? "rises"
+                    : trend.z < -options.trend_significance ? "falls"
+                                                            : "no significant trend";
+  }
+  return result;
+}
+
+}  // namespace beamid::solver
