@@ -5,6 +5,7 @@
 
 #include <fmt/core.h>
 
+#include "solver/cli/cli_output.h"
 #include "solver/cli/command_registry.h"
 
 namespace beamid::cli {
@@ -18,27 +19,46 @@ int main(int argc, char** argv) {
   using namespace beamid::cli;
   CLI::App app{
       "beamid: identify the nonlinear support of a vibrating beam from stepped-sine tests.\n"
-      "Run 'beamid COMMAND --help' for the options and an example of each command."};
+      "Run 'beamid COMMAND --help' for the options and an example of each command.\n"
+      "Exit codes: 0 success, 2 bad input (the message says what to fix), 3 failure to converge, 1 internal error."};
   app.require_subcommand(1);
+  // --quiet and --progress may also follow the command's name.
+  app.fallthrough();
   GlobalOptions global;
-  app.add_flag("-q,--quiet", global.quiet, "No progress output on stderr");
+  app.add_flag("-q,--quiet", global.quiet, "No progress and no summary on the terminal, only errors");
+  app.add_option("--progress", global.progress,
+                 "Progress format: text (terminal) or json (one JSON object per line on stderr, for programs)")
+      ->check(CLI::IsMember({"text", "json"}))
+      ->capture_default_str();
   auto& registry = CommandRegistry();
   std::sort(registry.begin(), registry.end(),
             [](const CommandEntry& a, const CommandEntry& b) { return a.name < b.name; });
   for (const auto& entry : registry) entry.setup(app, global);
+  auto finish = [&](int code, const std::string& message) {
+    if (global.JsonProgress()) PrintJsonExit(code, message);
+    return code;
+  };
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
+  } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    // A mistyped command line is bad input like a bad file.
+    app.exit(e);
+    return finish(kExitBadInput, e.what());
   } catch (const std::invalid_argument& e) {
     fmt::print(stderr, "beamid: error: {}\n", e.what());
-    return kExitBadInput;
+    return finish(kExitBadInput, e.what());
   } catch (const std::runtime_error& e) {
     fmt::print(stderr, "beamid: failed: {}\n", e.what());
-    return kExitNoConvergence;
+    return finish(kExitNoConvergence, e.what());
   } catch (const std::exception& e) {
     fmt::print(stderr, "beamid: internal error: {}\n", e.what());
-    return 1;
+    return finish(1, e.what());
   }
-  return 0;
+  return finish(0, "");
 }
