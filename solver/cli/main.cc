@@ -34,8 +34,21 @@ int main(int argc, char** argv) {
   std::sort(registry.begin(), registry.end(),
             [](const CommandEntry& a, const CommandEntry& b) { return a.name < b.name; });
   for (const auto& entry : registry) entry.setup(app, global);
-  auto finish = [&](int code, const std::string& message) {
-    if (global.JsonProgress()) PrintJsonExit(code, message);
+  for (CLI::App* command : app.get_subcommands([](CLI::App*) { return true; }))
+    command->footer(
+        "Global options (before or after the command's name):\n"
+        "  -q,--quiet                  No progress and no summary on the terminal, only errors\n"
+        "  --progress text|json        json: one JSON object per line on stderr ({\"event\": \"progress\", ...},\n"
+        "                              {\"event\": \"done\", ...}, last {\"event\": \"exit\", \"exit_code\": N, ...})\n"
+        "Exit codes: 0 success, 2 bad input, 3 failure to converge, 1 internal error.");
+  // With --progress json, stderr holds JSON lines only: the error goes into
+  // the last one.
+  auto fail = [&](int code, const std::string& prefix, const std::string& message) {
+    if (global.JsonProgress()) {
+      PrintJsonExit(code, message);
+    } else {
+      fmt::print(stderr, "beamid: {}: {}\n", prefix, message);
+    }
     return code;
   };
   try {
@@ -48,17 +61,16 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     // A mistyped command line is bad input like a bad file.
+    if (global.JsonProgress()) return fail(kExitBadInput, "error", e.what());
     app.exit(e);
-    return finish(kExitBadInput, e.what());
+    return kExitBadInput;
   } catch (const std::invalid_argument& e) {
-    fmt::print(stderr, "beamid: error: {}\n", e.what());
-    return finish(kExitBadInput, e.what());
+    return fail(kExitBadInput, "error", e.what());
   } catch (const std::runtime_error& e) {
-    fmt::print(stderr, "beamid: failed: {}\n", e.what());
-    return finish(kExitNoConvergence, e.what());
+    return fail(kExitNoConvergence, "failed", e.what());
   } catch (const std::exception& e) {
-    fmt::print(stderr, "beamid: internal error: {}\n", e.what());
-    return finish(1, e.what());
+    return fail(1, "internal error", e.what());
   }
-  return finish(0, "");
+  if (global.JsonProgress()) PrintJsonExit(0, "");
+  return 0;
 }
