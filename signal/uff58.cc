@@ -213,7 +213,8 @@ class DatasetReader {
   // ASCII values: any number per line, separated by blanks, up to the "-1"
   // that closes the dataset.
   void ReadAsciiValues() {
-    dataset_.values.reserve(static_cast<std::size_t>(num_values_));
+    // A damaged record 7 must not reserve gigabytes: the vector grows anyway.
+    dataset_.values.reserve(std::min<std::size_t>(static_cast<std::size_t>(num_values_), std::size_t{1} << 22));
     while (true) {
       auto line = cursor_.Line();
       if (!line || IsDelimiter(*line)) {
