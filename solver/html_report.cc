@@ -236,7 +236,7 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves) {
   html += fmt::format("<p>Result <code>{}</code>, campaign <code>{}</code>; support law {}; fitted channels {}, "
                       "harmonics 1..{}; reduced χ² = {} ({} residuals).</p>\n",
                       Escape(input.result_file.string()), Escape(input.campaign_folder.string()),
-                      Escape(result.at("model").value("law", "")), Escape(JsonHtml(result.at("model").at("fit_channels"))),
+                      Escape(result.at("model").value("law", "")), JsonHtml(result.at("model").at("fit_channels")),
                       result.at("model").value("num_fit_harmonics", 0), Number(fit.value("reduced_chi_square", 0.0)),
                       fit.value("degrees_of_freedom", 0));
   if (!input.diagnosis.is_null()) html += DiagnosisSection(input.diagnosis);
