@@ -5,7 +5,8 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   libeigen3-dev libfftw3-dev coinor-libipopt-dev libgtest-dev libbenchmark-dev
-  nlohmann-json3-dev libcli11-dev libfmt-dev gnuplot-nox
+  nlohmann-json3-dev libcli11-dev libfmt-dev gnuplot-nox zlib1g-dev
+  chromium
 )
 missing=()
 for p in "${packages[@]}"; do

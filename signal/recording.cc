@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "signal/input_error.h"
+#include "signal/uff_recording.h"
 
 namespace beamid::signal {
 namespace {
@@ -149,6 +150,7 @@ Recording ParseRecording(std::string_view csv_text, const Campaign& campaign, co
 Recording ReadRecording(const Campaign& campaign, const Step& step, const RecordingChecks& checks) {
   const std::filesystem::path path = campaign.StepPath(step);
   const std::string source = path.string();
+  if (IsUniversalFile(path)) return RecordingFromUff58(ReadUff58(path), campaign, step, source, checks);
   std::ifstream stream(path, std::ios::binary | std::ios::ate);
   if (!stream)
     throw InputError(source, "", "cannot open the recording",

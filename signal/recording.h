@@ -1,5 +1,5 @@
 // One step's recording: uniformly sampled channels in SI units, read from the
-// campaign's CSV format (header "time_s,<channel>,..." in any column order,
+// campaign's CSV format (or a universal file, signal/uff_recording.h) (header "time_s,<channel>,..." in any column order,
 // "." decimal mark). Columns are reordered to Campaign::Channels() order:
 // the force first, then the sensors as campaign.json lists them.
 // ReadRecording parses with std::from_chars (no per-value allocation) and
@@ -32,7 +32,8 @@ struct Recording {
   int ChannelIndex(std::string_view channel) const;
 };
 
-// Reads and validates campaign.folder/step.file.
+// Reads and validates campaign.folder/step.file: a universal file (.uff,
+// .unv: signal/uff_recording.h) or else CSV.
 Recording ReadRecording(const Campaign& campaign, const Step& step, const RecordingChecks& checks = {});
 
 // Parses CSV text already in memory (source names it in messages) and

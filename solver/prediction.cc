@@ -23,10 +23,7 @@ Eigen::VectorXcd Phasors(const Json& array) {
 // Displacement phasors at x for every step with parameters p (warm-started).
 std::vector<Eigen::VectorXcd> SolveHarmonicBalance(const IdentifiedModel& model, const std::vector<double>& p, double x,
                                     std::vector<bool>* converged) {
-  ModelStructure structure = model.structure;
-  structure.SetValues(p);
-  const hb::LinearBeam beam(structure.ApplyLinear(model.beam), model.force_position_m);
-  const hb::HarmonicBalance balance(beam, *structure.law, {.num_harmonics = model.num_harmonics});
+  const hb::HarmonicBalance balance = IdentifiedHarmonicBalance(model, p);
   std::vector<Eigen::VectorXcd> out;
   for (std::size_t i = 0; i < model.steps.size(); ++i) {
     const IdentifiedStep& s = model.steps[i];
@@ -73,12 +70,27 @@ std::vector<Eigen::VectorXcd> Solve(const IdentifiedModel& model, const std::vec
 
 }  // namespace
 
+hb::HarmonicBalance IdentifiedHarmonicBalance(const IdentifiedModel& model, const std::vector<double>& p) {
+  ModelStructure structure = model.structure;
+  if (!p.empty()) structure.SetValues(p);
+  const hb::LinearBeam beam(structure.ApplyLinear(model.beam), model.force_position_m);
+  return hb::HarmonicBalance(beam, *structure.law, {.num_harmonics = model.num_harmonics});
+}
+
 IdentifiedModel ReadIdentifiedModel(const std::filesystem::path& result_file) {
   std::ifstream in(result_file);
   if (!in) throw std::invalid_argument(result_file.string() + ": cannot open the result file");
   Json j;
   try {
     j = Json::parse(in);
+  } catch (const Json::exception& e) {
+    throw std::invalid_argument(result_file.string() + ": " + e.what());
+  }
+  return IdentifiedModelFromJson(j, result_file.string());
+}
+
+IdentifiedModel IdentifiedModelFromJson(const nlohmann::json& j, const std::string& source) {
+  try {
     if (j.value("format", "") != "beamid-result/1")
       throw std::invalid_argument("not a beamid result (format must be beamid-result/1)");
     IdentifiedModel model;
@@ -122,9 +134,9 @@ IdentifiedModel ReadIdentifiedModel(const std::filesystem::path& result_file) {
     }
     return model;
   } catch (const Json::exception& e) {
-    throw std::invalid_argument(result_file.string() + ": " + e.what());
+    throw std::invalid_argument(source + ": " + e.what());
   } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(result_file.string() + ": " + e.what());
+    throw std::invalid_argument(source + ": " + e.what());
   }
 }
 
@@ -141,15 +153,14 @@ std::vector<PredictedStep> PredictAt(const IdentifiedModel& model, double positi
   const auto bounds = model.structure.Bounds();
   for (int j = 0; j < np; ++j) {
     const double step = 1e-4 * std::max(std::abs(p[j]), bounds[j].typical * 1e-2);
+    // One-sided at a bound (a loss factor fitted to ~0 must not go negative).
     std::vector<double> up = p, down = p;
-    up[j] += step;
-    // One-sided at a lower bound (c or η at 0): the model may not exist below.
-    const bool central = p[j] - step >= bounds[j].lower;
-    if (central) down[j] -= step;
+    up[j] = std::min(p[j] + step, bounds[j].upper);
+    down[j] = std::max(p[j] - step, bounds[j].lower);
     const auto y_up = Solve(model, up, position_m, nullptr);
     const auto y_down = Solve(model, down, position_m, nullptr);
     for (std::size_t i = 0; i < model.steps.size(); ++i)
-      derivative[j].push_back((y_up[i] - y_down[i]) / (central ? 2 * step : step));
+      derivative[j].push_back((y_up[i] - y_down[i]) / (up[j] - down[j]));
   }
   std::vector<PredictedStep> out;
   for (std::size_t i = 0; i < model.steps.size(); ++i) {

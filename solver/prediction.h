@@ -45,6 +45,12 @@ struct IdentifiedModel {
 
 // Throws std::invalid_argument naming the file and the missing field.
 IdentifiedModel ReadIdentifiedModel(const std::filesystem::path& result_file);
+// The same from result.json's content (source names it in messages).
+IdentifiedModel IdentifiedModelFromJson(const nlohmann::json& result, const std::string& source);
+
+// The harmonic balance of the identified model with parameters p (structure
+// order; empty: the identified values), as PredictAt solves it.
+hb::HarmonicBalance IdentifiedHarmonicBalance(const IdentifiedModel& model, const std::vector<double>& p = {});
 
 struct PredictedStep {
   std::string level;

@@ -10,27 +10,49 @@
 
 namespace beamid::cli {
 
-Progress::Progress(std::string label, bool quiet)
-    : label_(std::move(label)), quiet_(quiet), terminal_(isatty(fileno(stderr)) != 0) {}
+Progress::Progress(std::string label, const GlobalOptions& global)
+    : label_(std::move(label)),
+      quiet_(global.quiet),
+      json_(global.JsonProgress()),
+      terminal_(isatty(fileno(stderr)) != 0),
+      start_(std::chrono::steady_clock::now()) {}
 
 Progress::~Progress() { Done(); }
 
-void Progress::Update(double fraction) {
-  if (quiet_ || done_) return;
+void Progress::Update(double fraction, const std::string& what) {
+  if (done_ || (quiet_ && !json_)) return;
   const int percent = static_cast<int>(100.0 * std::clamp(fraction, 0.0, 1.0));
-  if (terminal_ ? percent == last_percent_ : percent / 10 == last_percent_ / 10) return;
+  const bool every_percent = json_ || terminal_;
+  if (every_percent ? percent == last_percent_ : percent / 10 == last_percent_ / 10) return;
   last_percent_ = percent;
-  if (terminal_)
-    fmt::print(stderr, "\r{}  {:3d} %", label_, percent);
-  else
-    fmt::print(stderr, "{}  {:3d} %\n", label_, percent);
+  if (json_) {
+    nlohmann::json line = {{"event", "progress"}, {"task", label_}, {"fraction", percent / 100.0}};
+    if (!what.empty()) line["what"] = what;
+    fmt::print(stderr, "{}\n", line.dump());
+  } else if (terminal_) {
+    // Pad so that a shorter "what" overwrites a longer one.
+    fmt::print(stderr, "\r{}  {:3d} %  {:<40.40}", label_, percent, what);
+  } else {
+    fmt::print(stderr, "{}  {:3d} %{}\n", label_, percent, what.empty() ? "" : "  " + what);
+  }
   std::fflush(stderr);
 }
 
 void Progress::Done() {
-  if (quiet_ || done_) return;
+  if (done_) return;
   done_ = true;
-  if (terminal_) fmt::print(stderr, "\r{}  done \n", label_);
+  if (json_) {
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    fmt::print(stderr, "{}\n", nlohmann::json({{"event", "done"}, {"task", label_}, {"seconds", seconds}}).dump());
+  } else if (!quiet_ && terminal_) {
+    fmt::print(stderr, "\r{}  done{:<50}\n", label_, "");
+  }
+}
+
+void PrintJsonExit(int exit_code, const std::string& message) {
+  nlohmann::json line = {{"event", "exit"}, {"exit_code", exit_code}};
+  if (!message.empty()) line["message"] = message;
+  fmt::print(stderr, "{}\n", line.dump());
 }
 
 nlohmann::json PhasorsToJson(const Eigen::VectorXcd& phasors) {

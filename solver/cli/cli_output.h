@@ -1,7 +1,17 @@
 // Shared by the subcommands: progress on stderr, CSV/JSON writing with clear
 // errors, and the conversion of displacement phasors to the other quantities.
+//
+// Progress has two forms. Text (default): on a terminal one line rewritten
+// in place ("identify   42 %  start 3/8"); otherwise one line per 10 %;
+// nothing with --quiet. JSON (--progress json), for programs, whatever
+// --quiet says: one object per line on stderr,
+//     {"event":"progress","task":"identify","fraction":0.42,"what":"start 3/8"}
+//     {"event":"done","task":"identify","seconds":12.3}
+// and, from main, a last line {"event":"exit","exit_code":N,"message":"..."}
+// (exit codes: solver/cli/command_registry.h).
 #pragma once
 
+#include <chrono>
 #include <complex>
 #include <filesystem>
 #include <string>
@@ -10,24 +20,30 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
+#include "solver/cli/command_registry.h"
+
 namespace beamid::cli {
 
-// A one-line progress indicator on stderr ("label  42 %"), silent when quiet
-// or when stderr is not a terminal (then one line per 10 %).
 class Progress {
  public:
-  Progress(std::string label, bool quiet);
+  Progress(std::string label, const GlobalOptions& global);
   ~Progress();
-  void Update(double fraction);
+  // fraction in [0, 1]; what: the current piece of work, optional.
+  void Update(double fraction, const std::string& what = "");
   void Done();
 
  private:
   std::string label_;
   bool quiet_;
+  bool json_;
   bool terminal_;
   int last_percent_ = -1;
   bool done_ = false;
+  std::chrono::steady_clock::time_point start_;
 };
+
+// The last JSON line of a run (--progress json).
+void PrintJsonExit(int exit_code, const std::string& message);
 
 // [re, im] pairs, the JSON form of a complex phasor everywhere in beamid.
 nlohmann::json PhasorsToJson(const Eigen::VectorXcd& phasors);

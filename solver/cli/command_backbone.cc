@@ -44,14 +44,13 @@ void RunBackbone(const BackboneCommandOptions& options, const GlobalOptions& glo
   const hb::LinearBeam beam(linear_model, model.force_position_m,
                             {.max_frequency_hz = 1.5 * (options.harmonics + 1) * 1.5 * f_guess_hz});
   const hb::HarmonicBalance balance(beam, *law, {.num_harmonics = options.harmonics});
-  Progress progress("backbone", global.quiet);
+  Progress progress("backbone", global);
   const auto summary = hb::TraceBackbone(
       balance,
       {.min_theta_amplitude_rad = options.min_theta_rad, .max_theta_amplitude_rad = options.max_theta_rad,
        .num_points = options.points},
       {}, [&](double fraction) { progress.Update(fraction); });
   progress.Done();
-  if (!summary.complete) fmt::print(stderr, "beamid backbone: warning: {}\n", summary.message);
 
   // The multiple-scales backbone models a plain beam with a polynomial law.
   std::optional<hb::MultipleScalesModel> ms;
@@ -116,6 +115,10 @@ void RunBackbone(const BackboneCommandOptions& options, const GlobalOptions& glo
                last.omega_rad_s / (2 * std::numbers::pi), last.theta_amplitude_rad, summary.points.size());
     fmt::print("wrote {0}.csv and {0}.json\n", options.output);
   }
+  // The partial backbone is written; the run still failed to converge.
+  if (!summary.complete)
+    throw std::runtime_error("the backbone stopped early (" + summary.message +
+                             "); try a smaller --max-theta-rad or fewer harmonics");
 }
 
 BEAMID_REGISTER_COMMAND("backbone", [](CLI::App& app, const GlobalOptions& global) {

@@ -32,7 +32,7 @@ void RunExtract(const ExtractCommandOptions& options, const GlobalOptions& globa
   signal::ExtractOptions extract;
   extract.estimator.num_harmonics = options.harmonics;
   extract.num_threads = options.threads;
-  Progress progress("extract", global.quiet);
+  Progress progress("extract", global);
   extract.progress = [&](std::size_t done, std::size_t total, const signal::StepPhasors&) {
     progress.Update(static_cast<double>(done) / static_cast<double>(total));
   };

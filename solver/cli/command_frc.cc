@@ -60,12 +60,13 @@ void RunFrc(const FrcOptions& options, const GlobalOptions& global) {
                          name, k);
   csv << '\n';
   nlohmann::json curves = nlohmann::json::array();
+  std::string incomplete;
   for (std::size_t level = 0; level < options.force_levels_N.size(); ++level) {
     const double force_N = options.force_levels_N[level];
     Eigen::VectorXcd force = Eigen::VectorXcd::Zero(2);
     force[1] = force_N;
     Progress progress(fmt::format("frc: level {}/{} ({} N)", level + 1, options.force_levels_N.size(), force_N),
-                      global.quiet);
+                      global);
     const auto summary = hb::TraceFrequencyResponse(
         balance, force,
         {.omega_start_rad_s = 2 * std::numbers::pi * from_hz, .omega_end_rad_s = 2 * std::numbers::pi * to_hz,
@@ -73,7 +74,8 @@ void RunFrc(const FrcOptions& options, const GlobalOptions& global) {
         [&](double fraction) { progress.Update(fraction); });
     progress.Done();
     if (!summary.reached_end)
-      fmt::print(stderr, "beamid frc: warning: the curve at {} N stopped early: {}\n", force_N, summary.message);
+      incomplete += fmt::format("{}the curve at {} N stopped early ({})", incomplete.empty() ? "" : "; ", force_N,
+                                summary.message);
     nlohmann::json points = nlohmann::json::array();
     for (const auto& p : summary.points) {
       const hb::HarmonicBalanceSolution solution{.omega_rad_s = p.omega_rad_s, .theta_rad = p.theta_rad};
@@ -125,6 +127,9 @@ void RunFrc(const FrcOptions& options, const GlobalOptions& global) {
   WriteTextFile(options.output + ".csv", csv.str());
   WriteTextFile(options.output + ".json", out.dump(1));
   if (!global.quiet) fmt::print("wrote {0}.csv and {0}.json\n", options.output);
+  // The partial curves are written; the run still failed to converge.
+  if (!incomplete.empty())
+    throw std::runtime_error(incomplete + "; try a smaller range, more --max-points or fewer harmonics");
 }
 
 BEAMID_REGISTER_COMMAND("frc", [](CLI::App& app, const GlobalOptions& global) {

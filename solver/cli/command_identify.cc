@@ -3,6 +3,7 @@
 // Ipopt), with uncertainty, fit quality and the prediction error at held-out
 // channels.
 #include <cmath>
+#include <filesystem>
 
 #include <fmt/core.h>
 
@@ -44,7 +45,7 @@ void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& glo
   if (!options.phasors_file.empty()) {
     phasors = signal::ReadPhasorSetJson(options.phasors_file);
   } else {
-    Progress progress("extract", global.quiet);
+    Progress progress("extract", global);
     signal::ExtractOptions extract;
     extract.estimator.num_harmonics = std::max(5, options.fit_harmonics);
     extract.progress = [&](std::size_t done, std::size_t total, const signal::StepPhasors&) {
@@ -69,8 +70,8 @@ void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& glo
   identify.model.beam_loss_factor = options.beam_loss_factor;
   identify.num_starts = options.starts;
   identify.num_threads = options.threads;
-  Progress progress("identify", global.quiet);
-  const auto report_progress = [&](double fraction, const std::string&) { progress.Update(fraction); };
+  Progress progress("identify", global);
+  const auto report_progress = [&](double fraction, const std::string& what) { progress.Update(fraction, what); };
   const solver::IdentifyResult result = multiple_scales
                                             ? solver::IdentifyMultipleScales(fit, structure, identify, report_progress)
                                             : solver::Identify(fit, structure, identify, report_progress);
@@ -85,9 +86,11 @@ void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& glo
   problem->FeasiblePoint(result.starts[result.best_start].start);  // the winning run's scales
   solver::FitData fit_with_loss = fit;
   fit_with_loss.beam.loss_factor = options.beam_loss_factor;
-  const nlohmann::json report = solver::IdentificationReport(
+  nlohmann::json report = solver::IdentificationReport(
       fit_with_loss, validation, *problem, result,
       {.campaign_folder = options.campaign_folder, .campaign_name = campaign.name, .model_kind = options.model});
+  // `beamid report` finds the campaign from anywhere on this machine.
+  report["campaign"]["absolute_folder"] = std::filesystem::absolute(options.campaign_folder).lexically_normal().string();
   WriteTextFile(options.output, report.dump(1));
 
   if (!global.quiet) {

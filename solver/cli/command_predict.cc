@@ -27,7 +27,7 @@ struct PredictOptions {
 
 void RunPredict(const PredictOptions& options, const GlobalOptions& global) {
   const solver::IdentifiedModel model = solver::ReadIdentifiedModel(options.result_file);
-  Progress progress("predict", global.quiet);
+  Progress progress("predict", global);
   const std::vector<solver::PredictedStep> steps = solver::PredictAt(model, options.position_m);
   progress.Done();
   // A campaign sensor within 1 mm of x is compared with the prediction.
@@ -94,6 +94,12 @@ void RunPredict(const PredictOptions& options, const GlobalOptions& global) {
     if (!compared.empty()) fmt::print("  against {}: worst first-harmonic error {:.2f} %\n", compared, 100 * worst);
     fmt::print("wrote {}\n", options.output);
   }
+  std::string unconverged;
+  for (const solver::PredictedStep& p : steps)
+    if (!p.converged) unconverged += (unconverged.empty() ? "" : ", ") + p.file;
+  if (!unconverged.empty())
+    throw std::runtime_error("the harmonic balance did not converge at " + unconverged + " (written to " +
+                             options.output + " all the same)");
 }
 
 BEAMID_REGISTER_COMMAND("predict", [](CLI::App& app, const GlobalOptions& global) {

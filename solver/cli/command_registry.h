@@ -16,9 +16,12 @@ namespace beamid::cli {
 inline constexpr int kExitBadInput = 2;
 inline constexpr int kExitNoConvergence = 3;
 
-// Options every subcommand understands.
+// Options every subcommand understands (before or after its name).
 struct GlobalOptions {
-  bool quiet = false;  // no progress output on stderr
+  bool quiet = false;             // no progress and no summary, only errors
+  std::string progress = "text";  // "json": one JSON object per line on stderr (solver/cli/cli_output.h)
+
+  bool JsonProgress() const { return progress == "json"; }
 };
 
 using CommandSetup = std::function<void(CLI::App& app, const GlobalOptions& global)>;

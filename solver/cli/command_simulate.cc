@@ -10,6 +10,7 @@
 #include "hb/campaign_writer.h"
 #include "hb/scenario.h"
 #include "hb/stepped_sine.h"
+#include "solver/cli/cli_output.h"
 #include "solver/cli/command_registry.h"
 
 namespace beamid::cli {
@@ -28,10 +29,17 @@ void RunSimulate(const SimulateOptions& options, const GlobalOptions& global) {
   const int total = scenario.NumSteps();
   const auto start = std::chrono::steady_clock::now();
   int unsettled = 0;
+  Progress progress("simulate", global);
+  // Text progress is one line per step (a step takes seconds); JSON goes
+  // through Progress.
+  const bool step_lines = !global.quiet && !global.JsonProgress();
   simulation.Run([&](const hb::SimulatedStep& step) {
     writer.Write(step);
     if (!step.settled) ++unsettled;
-    if (!global.quiet) {
+    if (global.JsonProgress())
+      progress.Update(static_cast<double>(step.index + 1) / total,
+                      fmt::format("{} {:.3f} Hz", step.level, step.nominal_frequency_hz));
+    if (step_lines) {
       const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       fmt::print(stderr, "[{:>4}/{}] {:<10} {:8.3f} Hz  settled in {:5.2f} s{}  ({:.1f} s elapsed)\n", step.index + 1,
                  total, step.level, step.nominal_frequency_hz, step.settle_s, step.settled ? "" : " (NOT settled)",
@@ -39,6 +47,7 @@ void RunSimulate(const SimulateOptions& options, const GlobalOptions& global) {
     }
   });
   writer.Finish();
+  progress.Done();
   if (!global.quiet) {
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     fmt::print(stderr, "wrote {} steps to {} ({:.1f} MB) in {:.1f} s\n", total, options.output,

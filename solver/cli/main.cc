@@ -5,6 +5,7 @@
 
 #include <fmt/core.h>
 
+#include "solver/cli/cli_output.h"
 #include "solver/cli/command_registry.h"
 
 namespace beamid::cli {
@@ -18,27 +19,58 @@ int main(int argc, char** argv) {
   using namespace beamid::cli;
   CLI::App app{
       "beamid: identify the nonlinear support of a vibrating beam from stepped-sine tests.\n"
-      "Run 'beamid COMMAND --help' for the options and an example of each command."};
+      "Run 'beamid COMMAND --help' for the options and an example of each command.\n"
+      "Exit codes: 0 success, 2 bad input (the message says what to fix), 3 failure to converge, 1 internal error."};
   app.require_subcommand(1);
+  // --quiet and --progress may also follow the command's name.
+  app.fallthrough();
   GlobalOptions global;
-  app.add_flag("-q,--quiet", global.quiet, "No progress output on stderr");
+  app.add_flag("-q,--quiet", global.quiet, "No progress and no summary on the terminal, only errors");
+  app.add_option("--progress", global.progress,
+                 "Progress format: text (terminal) or json (one JSON object per line on stderr, for programs)")
+      ->check(CLI::IsMember({"text", "json"}))
+      ->capture_default_str();
   auto& registry = CommandRegistry();
   std::sort(registry.begin(), registry.end(),
             [](const CommandEntry& a, const CommandEntry& b) { return a.name < b.name; });
   for (const auto& entry : registry) entry.setup(app, global);
+  for (CLI::App* command : app.get_subcommands([](CLI::App*) { return true; }))
+    command->footer(
+        "Global options (before or after the command's name):\n"
+        "  -q,--quiet                  No progress and no summary on the terminal, only errors\n"
+        "  --progress text|json        json: one JSON object per line on stderr ({\"event\": \"progress\", ...},\n"
+        "                              {\"event\": \"done\", ...}, last {\"event\": \"exit\", \"exit_code\": N, ...})\n"
+        "Exit codes: 0 success, 2 bad input, 3 failure to converge, 1 internal error.");
+  // With --progress json, stderr holds JSON lines only: the error goes into
+  // the last one.
+  auto fail = [&](int code, const std::string& prefix, const std::string& message) {
+    if (global.JsonProgress()) {
+      PrintJsonExit(code, message);
+    } else {
+      fmt::print(stderr, "beamid: {}: {}\n", prefix, message);
+    }
+    return code;
+  };
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
+  } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
-  } catch (const std::invalid_argument& e) {
-    fmt::print(stderr, "beamid: error: {}\n", e.what());
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    // A mistyped command line is bad input like a bad file.
+    if (global.JsonProgress()) return fail(kExitBadInput, "error", e.what());
+    app.exit(e);
     return kExitBadInput;
+  } catch (const std::invalid_argument& e) {
+    return fail(kExitBadInput, "error", e.what());
   } catch (const std::runtime_error& e) {
-    fmt::print(stderr, "beamid: failed: {}\n", e.what());
-    return kExitNoConvergence;
+    return fail(kExitNoConvergence, "failed", e.what());
   } catch (const std::exception& e) {
-    fmt::print(stderr, "beamid: internal error: {}\n", e.what());
-    return 1;
+    return fail(1, "internal error", e.what());
   }
+  if (global.JsonProgress()) PrintJsonExit(0, "");
   return 0;
 }

@@ -1,6 +1,8 @@
 // The beamid program itself: each command runs from a clean folder, writes
 // what it says, and bad input ends with exit code 2 and a message naming
-// the file and what to fix.
+// the file and what to fix. Every command has --help with an example and the
+// global --quiet and --progress; progress is text on a terminal and JSON on
+// request; failure to converge ends with exit code 3.
 #include <sys/wait.h>
 
 #include <cstdlib>
@@ -8,9 +10,12 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
+#include <algorithm>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "tests/support/paper_scenario.h"
 #include "tests/support/temp_path.h"
@@ -24,9 +29,11 @@ struct ProgramRun {
   std::string output;  // stdout and stderr
 };
 
-ProgramRun Beamid(const std::string& arguments) {
+// stderr_only: stdout is dropped (for the JSON lines on stderr).
+ProgramRun Beamid(const std::string& arguments, bool stderr_only = false) {
   const auto log = beamid::testing::UniqueTempPath("beamid_cli_test") += ".log";
-  const std::string command = std::string(BEAMID_EXECUTABLE) + " " + arguments + " > " + log.string() + " 2>&1";
+  const std::string command = std::string(BEAMID_EXECUTABLE) + " " + arguments +
+                              (stderr_only ? " 2> " + log.string() + " > /dev/null" : " > " + log.string() + " 2>&1");
   const int status = std::system(command.c_str());
   std::ifstream in(log);
   std::stringstream text;
@@ -126,13 +133,110 @@ TEST_F(CommandLine, MeasuredBackboneRejectsABadTableNamingFileAndColumn) {
   EXPECT_THAT(run.output, HasSubstr("--measured"));
 }
 
+// The commands as `beamid --help` lists them: a new command is checked
+// without editing this test.
+std::vector<std::string> ListedCommands() {
+  const ProgramRun run = Beamid("--help");
+  std::vector<std::string> commands;
+  std::istringstream lines(run.output.substr(run.output.find("Subcommands:")));
+  std::string line;
+  std::getline(lines, line);
+  while (std::getline(lines, line))
+    if (line.size() > 2 && line[0] == ' ' && line[1] == ' ' && line[2] != ' ')
+      commands.push_back(line.substr(2, line.find(' ', 2) - 2));
+  return commands;
+}
+
 TEST_F(CommandLine, EveryCommandHasHelpWithAnExample) {
-  for (const char* command : {"frc", "backbone", "identify", "predict", "extract", "simulate"}) {
-    const ProgramRun run = Beamid(std::string(command) + " --help");
+  const std::vector<std::string> commands = ListedCommands();
+  for (const char* expected : {"frc", "backbone", "identify", "predict", "extract", "simulate", "report"})
+    EXPECT_NE(std::find(commands.begin(), commands.end(), expected), commands.end()) << expected;
+  for (const std::string& command : commands) {
+    const ProgramRun run = Beamid(command + " --help");
     EXPECT_EQ(run.exit_code, 0) << command;
     EXPECT_THAT(run.output, HasSubstr("Example")) << command;
-    EXPECT_THAT(run.output, HasSubstr("beamid " + std::string(command) + " ")) << command;
+    EXPECT_THAT(run.output, HasSubstr("beamid " + command + " ")) << command;
+    EXPECT_THAT(run.output, HasSubstr("--quiet")) << command << ": the global options are listed";
+    EXPECT_THAT(run.output, HasSubstr("--progress")) << command;
   }
+}
+
+const std::string kShortFrc = "frc examples/paper_setup/model.json --force-N 1 --from-hz 53 --to-hz 56 -o ";
+
+TEST_F(CommandLine, QuietPrintsNothingBeforeOrAfterTheCommandName) {
+  for (const std::string& arguments : {"-q " + kShortFrc + (folder_ / "a").string(),
+                                       kShortFrc + (folder_ / "b").string() + " --quiet"}) {
+    const ProgramRun run = Beamid(arguments);
+    EXPECT_EQ(run.exit_code, 0) << run.output;
+    EXPECT_EQ(run.output, "") << arguments;
+  }
+  EXPECT_TRUE(std::filesystem::exists(folder_ / "b.json"));
+}
+
+// Each line of stderr parses as one JSON object; progress fractions rise to
+// 1, each task ends with "done", and the last line gives the exit code.
+std::vector<nlohmann::json> JsonLines(const std::string& text) {
+  std::vector<nlohmann::json> lines;
+  std::istringstream stream(text);
+  std::string line;
+  while (std::getline(stream, line)) {
+    EXPECT_NO_THROW(lines.push_back(nlohmann::json::parse(line))) << "not JSON: " << line;
+  }
+  return lines;
+}
+
+TEST_F(CommandLine, ProgressJsonIsOneObjectPerLineOnStderr) {
+  const ProgramRun run = Beamid(kShortFrc + (folder_ / "frc").string() + " --progress json", /*stderr_only=*/true);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::vector<nlohmann::json> lines = JsonLines(run.output);
+  ASSERT_GE(lines.size(), 5u) << run.output;
+  double last_fraction = -1.0;
+  int done = 0;
+  for (const auto& line : lines) {
+    if (line.at("event") == "progress") {
+      EXPECT_GT(line.at("fraction").get<double>(), last_fraction);
+      EXPECT_LE(line.at("fraction").get<double>(), 1.0);
+      last_fraction = line.at("fraction").get<double>();
+      EXPECT_THAT(line.at("task").get<std::string>(), HasSubstr("frc"));
+    }
+    if (line.at("event") == "done") ++done;
+  }
+  EXPECT_GT(last_fraction, 0.9);
+  EXPECT_EQ(done, 1);
+  EXPECT_EQ(lines.back().at("event"), "exit");
+  EXPECT_EQ(lines.back().at("exit_code"), 0);
+}
+
+TEST_F(CommandLine, ExitCodesTellBadInputFromFailureToConverge) {
+  // Bad command lines are bad input, like bad files.
+  EXPECT_EQ(Beamid("frc examples/paper_setup/model.json --no-such-option").exit_code, 2);
+  EXPECT_EQ(Beamid("--progress xml frc examples/paper_setup/model.json").exit_code, 2);
+  EXPECT_EQ(Beamid("report " + (folder_ / "missing.json").string()).exit_code, 2);
+  // A continuation allowed five points cannot cross the range: it fails to
+  // converge (3), writes what it has, and says so in JSON too.
+  const ProgramRun run = Beamid("frc examples/paper_setup/model.json --force-N 1 --from-hz 50 --to-hz 58 "
+                                "--max-points 5 --progress json -q -o " + (folder_ / "short").string(),
+                                /*stderr_only=*/true);
+  EXPECT_EQ(run.exit_code, 3) << run.output;
+  EXPECT_TRUE(std::filesystem::exists(folder_ / "short.json"));
+  const std::vector<nlohmann::json> lines = JsonLines(run.output);
+  ASSERT_FALSE(lines.empty());
+  EXPECT_EQ(lines.back().at("exit_code"), 3);
+  EXPECT_THAT(lines.back().at("message").get<std::string>(), HasSubstr("stopped early"));
+}
+
+// On a terminal (a pseudo-terminal from script(1)) progress rewrites one
+// line in place and ends with "done".
+TEST_F(CommandLine, ProgressOnATerminalRewritesOneLine) {
+  if (std::system("command -v script > /dev/null 2>&1") != 0) GTEST_SKIP() << "script(1) is not installed";
+  const auto log = folder_ / "tty.log";
+  const std::string command = "script -qec \"" + std::string(BEAMID_EXECUTABLE) + " " + kShortFrc +
+                              (folder_ / "tty").string() + "\" /dev/null > " + log.string() + " 2>&1 < /dev/null";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  const std::string output = ReadFile(log);
+  EXPECT_THAT(output, HasSubstr("\rfrc: level 1/1 (1 N)"));
+  EXPECT_THAT(output, HasSubstr(" %"));
+  EXPECT_THAT(output, HasSubstr("done"));
 }
 
 }  // namespace

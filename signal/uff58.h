@@ -1,0 +1,60 @@
+// Universal File Format dataset 58 ("function at nodal DOF"), the export of
+// common acquisition systems, in its ASCII form (58) and its binary form
+// (58b: an ASCII header line giving byte order, float format and byte count,
+// the 11 ASCII header records, then the raw values). Only what a stepped-sine
+// recording needs is accepted (docs/uff58.md): real, evenly spaced ordinates
+// (record 7: ordinate type 2 = single or 4 = double precision, abscissa
+// spacing 1), of function type 0 (general) or 1 (time response); x_n =
+// x_min + n·Δx with x_min and Δx from record 7. Other datasets of the file
+// (151, 164, 2411, …) are skipped. Every problem is an InputError naming the
+// file, the dataset (by its ID line 1) and what to fix.
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace beamid::signal {
+
+struct Uff58Axis {
+  int data_type = 0;          // specific data type: 0 unknown, 1 general, 8 displacement, 11 velocity,
+                              // 12 acceleration, 13 excitation force, 9 reaction force, 17 time, …
+  std::string label;          // axis label (A20), trimmed
+  std::string unit;           // axis units label (A20), trimmed; may be empty
+};
+
+struct Uff58Dataset {
+  int number = 0;                       // 1-based position among the file's datasets 58, for messages
+  bool binary = false;                  // 58b
+  std::array<std::string, 5> id_lines;  // ID lines 1..5, trailing blanks removed
+  int function_type = 0;                // record 6 field 1: 0 general, 1 time response, 4 FRF, …
+  std::string response_entity;          // record 6 field 5 (A10), trimmed
+  int response_node = 0;                // record 6 field 6
+  int response_direction = 0;           // record 6 field 7: 0 scalar, ±1..3 ±X/Y/Z, ±4..6 ±RX/RY/RZ
+  int ordinate_type = 0;                // record 7 field 1: 2 real single, 4 real double
+  double abscissa_start = 0.0;          // record 7 field 4, x_min
+  double abscissa_step = 0.0;           // record 7 field 5, Δx
+  Uff58Axis abscissa;                   // record 8
+  Uff58Axis ordinate;                   // record 9 (numerator)
+  std::vector<double> values;           // record 12, as written (file units)
+
+  // "dataset 3 ('acc1')": how messages name the dataset.
+  std::string Describe() const;
+  // "12:+Z": the response node and direction as a channel name.
+  std::string NodeDirection() const;
+};
+
+// All datasets 58/58b of a universal file held in memory (source names it
+// in messages). Throws InputError when the file is not a universal file,
+// holds no dataset 58, or a dataset 58 is truncated, malformed or outside the
+// accepted subset.
+std::vector<Uff58Dataset> ParseUff58(std::string_view bytes, const std::string& source);
+
+std::vector<Uff58Dataset> ReadUff58(const std::filesystem::path& file);
+
+// True for the extensions of universal files: .uff, .unv (any case).
+bool IsUniversalFile(const std::filesystem::path& file);
+
+}  // namespace beamid::signal

@@ -1,0 +1,104 @@
+// The numbers behind the plots of `beamid report`, from an identified model
+// (result.json), its campaign and the campaign's phasors:
+//  - per level and channel, the measured first-harmonic amplitudes |X_1| and
+//    the model's frequency response curve (hb/continuation) under a pure sine
+//    of the level's mean measured force amplitude |F_1|, with its stability;
+//  - the model's backbone (hb/backbone, phase resonance of θ_1) at the
+//    reference channel (the first fitted one) and the measured
+//    phase-resonance points: where the in-phase part Re(Y_1/F_1) of the
+//    displacement at that channel changes sign between neighbouring steps of a
+//    level (linear interpolation of frequency and amplitude);
+//  - at the first held-out channel, predicted (solver/prediction.h, with its
+//    standard uncertainty) and measured steady-state acceleration over one
+//    period, at each level's step of largest response; "measured" is the
+//    recording's harmonics 1..H (signal/), phase-referenced to the force like
+//    the model;
+//  - the residual map: per fitted channel c, harmonic k and step i the norm of
+//    the whitened misfit |L⁻¹(Y_model − Y_measured)| (solver/fit_data.h), whose
+//    squares sum to the fit's χ².
+// Amplitudes are in SI of each channel's quantity.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+
+#include "signal/campaign.h"
+#include "signal/phasor_set.h"
+#include "solver/prediction.h"
+
+namespace beamid::solver {
+
+struct ReportChannel {
+  std::string channel;
+  double position_m = 0.0;
+  int derivative_order = 2;  // 0 displacement, 1 velocity, 2 acceleration
+  std::string si_unit;
+  bool fitted = false;
+};
+
+struct ModelCurvePoint {
+  double frequency_hz = 0.0;
+  std::vector<double> amplitude;  // per channel
+  bool stable = true;
+};
+
+struct MeasuredPoint {
+  double frequency_hz = 0.0;
+  std::vector<double> amplitude;  // per channel
+};
+
+struct LevelCurves {
+  std::string level;
+  double force_amplitude_N = 0.0;
+  std::vector<MeasuredPoint> measured;  // steps of the level, campaign order
+  std::vector<ModelCurvePoint> model;   // continuation order
+  bool model_complete = true;
+  std::string model_message;
+};
+
+struct AmplitudePoint {
+  double frequency_hz = 0.0;
+  double amplitude = 0.0;
+  std::string level;
+};
+
+struct TimeHistory {
+  std::string level;
+  double frequency_hz = 0.0;
+  std::vector<double> time_s, predicted, predicted_std, measured;  // acceleration [m/s²]
+};
+
+struct ResidualMap {
+  std::vector<std::string> rows;        // "acc1 h1", …: channel-major
+  std::vector<std::string> step_level;  // per column
+  std::vector<double> step_frequency_hz;
+  Eigen::MatrixXd whitened_norm;        // rows × steps
+};
+
+struct ReportCurves {
+  std::vector<ReportChannel> channels;
+  std::vector<LevelCurves> levels;
+  int reference_channel = 0;                  // index in channels
+  std::vector<AmplitudePoint> backbone;       // model, at the reference channel
+  std::vector<AmplitudePoint> phase_resonance;  // measured, at the reference channel
+  std::string held_out_channel;               // empty: none
+  std::vector<TimeHistory> time_histories;
+  ResidualMap residuals;
+};
+
+struct ReportCurveOptions {
+  int frc_max_points = 600;    // per level
+  int backbone_points = 60;
+  int samples_per_period = 96;  // time histories
+};
+
+// `progress(fraction, what)` is called as the work advances.
+ReportCurves ComputeReportCurves(const nlohmann::json& result, const signal::Campaign& campaign,
+                                 const signal::PhasorSet& phasors, const ReportCurveOptions& options = {},
+                                 const std::function<void(double, const std::string&)>& progress = {});
+
+}  // namespace beamid::solver

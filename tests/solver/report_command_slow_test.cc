@@ -1,0 +1,227 @@
+// `beamid report` end to end on a campaign from the independent time-domain
+// simulator: simulate, identify (fit acc1, acc2; hold out acc3), report. The
+// page is self-contained and holds every plot as SVG with drawn paths; headless
+// Chromium lays the plots out with visible size and drawn paths, and its
+// screenshot (taken by the command with --screenshot) is not blank inside
+// every plot. Skipped only when Chromium is absent (scripts/install-deps.sh
+// installs it).
+#include <sys/wait.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "solver/html_screenshot.h"
+#include "tests/support/png_image.h"
+#include "tests/support/temp_path.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+// Two levels of eight steps around the first resonance (≈ 54 Hz), the
+// paper's set-up and support law.
+const char* kScenario = R"({
+  "name": "report test: paper set-up, two levels",
+  "beam": {"length_m": 0.6, "width_m": 0.04, "thickness_m": 0.005, "youngs_modulus_Pa": 2.1e11,
+           "density_kg_m3": 7850, "loss_factor": 0.0002},
+  "support": {"polynomial": {"k1_Nm_rad": 150, "k2_Nm_rad2": 0, "k3_Nm_rad3": 3e5, "c_Nms_rad": 0.05}},
+  "excitation": {"channel": "force", "position_m": 0.57},
+  "sensors": [{"channel": "acc1", "position_m": 0.1}, {"channel": "acc2", "position_m": 0.3},
+              {"channel": "acc3", "position_m": 0.57}],
+  "levels": [{"label": "low", "force_amplitude_N": 1.0, "frequencies_Hz": {"start": 52, "stop": 57, "step": 0.7}},
+             {"label": "high", "force_amplitude_N": 8.0, "frequencies_Hz": {"start": 52, "stop": 57, "step": 0.7}}],
+  "timing": {"sample_rate_Hz": 5120, "settle_min_s": 0.2, "settle_max_s": 4.0, "transient_s": 0.05, "record_s": 0.4},
+  "noise": {"seed": 3, "clock_offset_ppm": 25,
+            "default": {"relative_rms": 0.003, "absolute": 0.005, "adc_bits": 24, "adc_range": 500},
+            "channels": {"force": {"relative_rms": 0.002, "absolute": 0.002, "adc_bits": 24, "adc_range": 50}}}
+})";
+
+struct ProgramRun {
+  int exit_code = -1;
+  std::string output;
+};
+
+ProgramRun RunShell(const std::string& command, const fs::path& log) {
+  const int status = std::system((command + " > " + log.string() + " 2>&1").c_str());
+  std::ifstream in(log);
+  std::stringstream text;
+  text << in.rdbuf();
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
+}
+
+std::string ReadFile(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::size_t Count(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+class ReportCommand : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    folder_ = new fs::path(beamid::testing::UniqueTempPath("beamid_report_test"));
+    fs::remove_all(*folder_);
+    fs::create_directories(*folder_);
+    std::ofstream(*folder_ / "scenario.json") << kScenario;
+    const std::string beamid = BEAMID_EXECUTABLE;
+    const fs::path& f = *folder_;
+    simulate_ = new ProgramRun(RunShell(beamid + " -q simulate " + (f / "scenario.json").string() + " -o " +
+                                       (f / "campaign").string(), f / "simulate.log"));
+    identify_ = new ProgramRun(RunShell(beamid + " -q identify " + (f / "campaign").string() +
+                                       " --fit acc1,acc2 --validate acc3 -o " + (f / "result.json").string(),
+                                   f / "identify.log"));
+    const auto start = std::chrono::steady_clock::now();
+    // From another working folder: the campaign is found through result.json.
+    report_ = new ProgramRun(
+        RunShell("cd / && " + beamid + " report " + (f / "result.json").string() + " -o " + (f / "report.html").string(),
+                 f / "report.log"));
+    report_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  static void TearDownTestSuite() {
+    fs::remove_all(*folder_);
+    delete folder_;
+    delete simulate_;
+    delete identify_;
+    delete report_;
+  }
+
+  static fs::path* folder_;
+  static ProgramRun *simulate_, *identify_, *report_;
+  static double report_seconds_;
+};
+
+fs::path* ReportCommand::folder_ = nullptr;
+ProgramRun* ReportCommand::simulate_ = nullptr;
+ProgramRun* ReportCommand::identify_ = nullptr;
+ProgramRun* ReportCommand::report_ = nullptr;
+double ReportCommand::report_seconds_ = 0.0;
+
+constexpr int kPlots = 7;  // 3 channels' FRCs, backbone, 2 levels' time histories, residual map
+
+TEST_F(ReportCommand, WritesOneSelfContainedPageWithEveryPlot) {
+  ASSERT_EQ(simulate_->exit_code, 0) << simulate_->output;
+  ASSERT_EQ(identify_->exit_code, 0) << identify_->output;
+  ASSERT_EQ(report_->exit_code, 0) << report_->output;
+  std::cout << "report: " << report_seconds_ << " s, "
+            << fs::file_size(*folder_ / "report.html") / 1000 << " kB\n";
+  const std::string html = ReadFile(*folder_ / "report.html");
+  EXPECT_EQ(Count(html, "<svg"), static_cast<std::size_t>(kPlots));
+  EXPECT_THAT(html, Not(HasSubstr("<script")));
+  EXPECT_THAT(html, Not(HasSubstr("<link")));
+  EXPECT_THAT(html, Not(HasSubstr("src=\"http")));
+  EXPECT_THAT(html, Not(HasSubstr("href=\"http")));
+  for (const char* id : {"frc-acc1", "frc-acc2", "frc-acc3", "backbone-plot", "time-low", "time-high", "residual-map"})
+    EXPECT_THAT(html, HasSubstr(std::string("id=\"") + id + "\"")) << id;
+  // Model curves, unstable dashed branch at the high level, parameters.
+  EXPECT_THAT(html, HasSubstr("model high"));
+  EXPECT_THAT(html, HasSubstr("stroke-dasharray"));
+  for (const char* parameter : {"k1", "k2", "k3", "c"}) EXPECT_THAT(html, HasSubstr(std::string("<td>") + parameter + "</td>"));
+  EXPECT_THAT(html, HasSubstr("Held-out acc3"));
+}
+
+// A diagnosis (the documented fields of `beamid diagnose`) pointing at the
+// result gets its own section above the result's.
+TEST_F(ReportCommand, RendersADiagnosisSummary) {
+  ASSERT_EQ(identify_->exit_code, 0) << identify_->output;
+  std::ofstream(*folder_ / "diagnosis.json") << R"({"selected": "polynomial", "summary": "SUMMARY-TEXT",
+    "location": {"where": "support"}, "candidates": [{"name": "polynomial", "reduced_chi_square": 1.2},
+    {"name": "polynomial + friction", "reduced_chi_square": 1.1}], "result": "result.json"})";
+  const ProgramRun run = RunShell(std::string(BEAMID_EXECUTABLE) + " -q report " +
+                                      (*folder_ / "diagnosis.json").string() + " -o " +
+                                      (*folder_ / "diagnosis.html").string(),
+                                  *folder_ / "diagnosis.log");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::string html = ReadFile(*folder_ / "diagnosis.html");
+  EXPECT_THAT(html, HasSubstr("<section id=\"diagnosis\">"));
+  EXPECT_THAT(html, HasSubstr("SUMMARY-TEXT"));
+  EXPECT_THAT(html, HasSubstr("<td>polynomial + friction</td>"));
+  EXPECT_LT(html.find("id=\"diagnosis\""), html.find("id=\"parameters\""));
+  EXPECT_EQ(Count(html, "<svg"), static_cast<std::size_t>(kPlots));
+}
+
+TEST_F(ReportCommand, ChromiumShowsThePlots) {
+  const auto chromium = beamid::solver::FindChromium();
+  if (!chromium) GTEST_SKIP() << "Chromium is not installed (scripts/install-deps.sh installs it)";
+  ASSERT_EQ(report_->exit_code, 0) << report_->output;
+  const fs::path png = *folder_ / "report.png";
+  const ProgramRun shot = RunShell(std::string(BEAMID_EXECUTABLE) + " report " + (*folder_ / "result.json").string() +
+                                       " -o " + (*folder_ / "report.html").string() + " --screenshot " + png.string(),
+                                   *folder_ / "shot.log");
+  ASSERT_EQ(shot.exit_code, 0) << shot.output;
+  EXPECT_THAT(shot.output, HasSubstr("screenshot: " + png.string()));
+
+  // Lay the page out in Chromium with a probe that reports where each plot
+  // is and how many of its paths have a length.
+  std::string html = ReadFile(*folder_ / "report.html");
+  const std::string probe = R"(<pre id="probe"></pre><script>
+const lines = [];
+for (const f of document.querySelectorAll('figure.plot')) {
+  const r = f.querySelector('svg').getBoundingClientRect();
+  let drawn = 0;
+  for (const p of f.querySelectorAll('svg path')) { if (p.getTotalLength() > 1) drawn++; }
+  lines.push([f.id, Math.round(r.left), Math.round(r.top + window.scrollY), Math.round(r.width), Math.round(r.height), drawn].join(' '));
+}
+document.getElementById('probe').textContent = lines.join(';');
+</script>)";
+  html.insert(html.rfind("</body>"), probe);
+  std::ofstream(*folder_ / "probe.html") << html;
+  const beamid::solver::ScreenshotOptions window;
+  const ProgramRun dom = RunShell("'" + chromium->string() +
+                                 "' --headless --no-sandbox --disable-gpu --hide-scrollbars --window-size=" +
+                                 std::to_string(window.width_px) + "," + std::to_string(window.height_px) +
+                                 " --dump-dom 'file://" + (*folder_ / "probe.html").string() + "' 2>/dev/null",
+                             *folder_ / "dom.log");
+  const std::size_t begin = dom.output.find("<pre id=\"probe\">");
+  ASSERT_NE(begin, std::string::npos) << dom.output.substr(0, 2000);
+  std::stringstream probe_text(
+      dom.output.substr(begin + 16, dom.output.find("</pre>", begin) - begin - 16));
+
+  const beamid::testing::PngImage image = beamid::testing::ReadPng(png.string());
+  EXPECT_EQ(image.width, window.width_px);
+  EXPECT_EQ(image.height, window.height_px);
+  int plots = 0;
+  std::string entry;
+  while (std::getline(probe_text, entry, ';')) {
+    std::stringstream fields(entry);
+    std::string id;
+    int x = 0, y = 0, w = 0, h = 0, drawn = 0;
+    fields >> id >> x >> y >> w >> h >> drawn;
+    ++plots;
+    EXPECT_GT(w, 300) << id;
+    EXPECT_GT(h, 200) << id;
+    EXPECT_GT(drawn, 5) << id << ": too few drawn paths";
+    // Inside the screenshot, and not blank there: dark pixels (axes, text,
+    // curves) and several colours.
+    ASSERT_LE(y + h, image.height) << id << " lies below the screenshot";
+    ASSERT_LE(x + w, image.width) << id;
+    int dark = 0;
+    std::set<int> colours;
+    for (int j = y; j < y + h; ++j)
+      for (int i = x; i < x + w; ++i) {
+        const auto& p = image.At(i, j);
+        if (p[0] + p[1] + p[2] < 3 * 160) ++dark;
+        colours.insert((p[0] >> 4) << 8 | (p[1] >> 4) << 4 | (p[2] >> 4));
+      }
+    EXPECT_GT(dark, w * h / 200) << id << ": blank plot region in the screenshot";
+    EXPECT_GE(colours.size(), 4u) << id;
+  }
+  EXPECT_EQ(plots, kPlots);
+}
+
+}  // namespace
