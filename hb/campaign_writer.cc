@@ -75,8 +75,6 @@ CampaignWriter::CampaignWriter(const SteppedSineSimulation& simulation, const st
     std::filesystem::create_directories(directory_ / level.label, error);
     if (error) throw std::invalid_argument((directory_ / level.label).string() + ": cannot create (" + error.message() + ")");
   }
-  unit_to_si_.push_back(1.0);
-  for (const ScenarioSensor& sensor : s.sensors) unit_to_si_.push_back(UnitToSi(sensor.quantity, sensor.unit));
 }
 
 CampaignWriter::~CampaignWriter() = default;
@@ -87,11 +85,7 @@ void CampaignWriter::Write(const SimulatedStep& step) {
   std::vector<std::string> names{s.force_channel};
   for (const ScenarioSensor& sensor : s.sensors) names.push_back(sensor.channel);
 
-  Eigen::MatrixXd written = step.recording;
-  for (Eigen::Index c = 0; c < written.cols(); ++c) {
-    written.col(c) /= unit_to_si_[c];
-    clipped_samples_ += noise_.Apply(s.NoiseOf(names[c]), written.col(c));
-  }
+  const Eigen::MatrixXd written = noise_.Measure(s, step.recording, &clipped_samples_);
   std::string csv = "time_s";
   for (const std::string& name : names) csv += "," + name;
   csv += "\n";
@@ -197,10 +191,13 @@ void CampaignWriter::Finish() {
         {"support_translational_stiffness_N_m", StiffnessJson(s.attachments.support_translational_stiffness_N_m)},
         {"point_masses", point_masses}}},
       {"damping",
-       {{"model", "stiffness-proportional, C = beta*K"},
-        {"loss_factor", s.beam.loss_factor},
-        {"reference_frequency_Hz", sim.damping_reference_rad_s() / (2 * std::numbers::pi)},
-        {"beta_s", sim.stiffness_proportional_damping_s()}}},
+       s.damping_reference_frequency_hz > 0.0
+           ? Json{{"model", "stiffness-proportional, C = beta*K"},
+                  {"loss_factor", s.beam.loss_factor},
+                  {"reference_frequency_Hz", sim.damping_reference_rad_s() / (2 * std::numbers::pi)},
+                  {"beta_s", sim.stiffness_proportional_damping_s()}}
+           : Json{{"model", "hysteretic at each step: modal c_j = eta*w_j^2/(k_j*w), k_j*w the harmonic nearest w_j"},
+                  {"loss_factor", s.beam.loss_factor}}},
       {"excitation", {{"channel", s.force_channel}, {"position_m", s.force_position_m}, {"distortion", distortion}}},
       {"generator_clock_offset_ppm", s.clock_offset_ppm},
       {"sample_rate_Hz", s.timing.sample_rate_hz},

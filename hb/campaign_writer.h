@@ -45,7 +45,6 @@ class CampaignWriter {
   const SteppedSineSimulation& simulation_;
   std::filesystem::path directory_;
   MeasurementNoise noise_;
-  std::vector<double> unit_to_si_;  // per channel
   std::unique_ptr<nlohmann::json> campaign_steps_;
   std::unique_ptr<nlohmann::json> truth_steps_;
   std::uintmax_t bytes_written_ = 0;

@@ -25,4 +25,17 @@ int MeasurementNoise::Apply(const ChannelNoise& noise, Eigen::Ref<Eigen::VectorX
   return clipped;
 }
 
+Eigen::MatrixXd MeasurementNoise::Measure(const Scenario& scenario, const Eigen::MatrixXd& recording_si,
+                                          int* clipped) {
+  Eigen::MatrixXd written = recording_si;
+  for (Eigen::Index c = 0; c < written.cols(); ++c) {
+    const bool force = c == 0;
+    const ScenarioSensor* sensor = force ? nullptr : &scenario.sensors.at(static_cast<size_t>(c - 1));
+    if (sensor) written.col(c) /= UnitToSi(sensor->quantity, sensor->unit);
+    const int n = Apply(scenario.NoiseOf(force ? scenario.force_channel : sensor->channel), written.col(c));
+    if (clipped) *clipped += n;
+  }
+  return written;
+}
+
 }  // namespace beamid::hb

@@ -22,6 +22,13 @@ class MeasurementNoise {
   // written in) and returns how many samples the ADC clipped.
   int Apply(const ChannelNoise& noise, Eigen::Ref<Eigen::VectorXd> samples);
 
+  // A step's noise-free recording (samples × channels: the force, then the
+  // sensors in scenario order, SI) as the acquisition writes it: each channel
+  // in its written unit with the scenario's noise of that channel applied.
+  // Adds the clipped samples to *clipped. The campaign writer uses it, and so
+  // can a test that re-noises one clean simulation many times.
+  Eigen::MatrixXd Measure(const Scenario& scenario, const Eigen::MatrixXd& recording_si, int* clipped);
+
  private:
   std::mt19937_64 rng_;
 };

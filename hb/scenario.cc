@@ -132,7 +132,7 @@ Scenario ParseScenario(const std::string& json_text, const std::string& source) 
   }
   if (top.Has("mesh")) {
     ObjectReader m(top.Raw("mesh"), source, "mesh");
-    const double n = m.Positive("min_elements", 20);
+    const double n = m.Positive("min_elements", 40);
     if (n != std::floor(n) || n > 2000) m.FailField("min_elements", "must be an integer from 1 to 2000");
     s.mesh_min_elements = static_cast<int>(n);
   }

@@ -83,7 +83,7 @@ struct Scenario {
   LinearAttachments attachments;  // concealed attachments (sensor masses not included)
   // ω_ref/2π of the stiffness-proportional damping (0 = first natural frequency).
   double damping_reference_frequency_hz = 0.0;
-  int mesh_min_elements = 20;
+  int mesh_min_elements = 40;
 
   std::string force_channel = "force";
   double force_position_m = 0.570;

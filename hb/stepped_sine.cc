@@ -123,6 +123,9 @@ void SteppedSineSimulation::Run(const std::function<void(const SimulatedStep&)>&
       step.frequency_hz = step.nominal_frequency_hz * clock;
       step.force_amplitude_N = level.force_amplitude_N;
       const double omega = kTwoPi * step.frequency_hz;
+      // The beam's loss factor as the real, frequency-independent one at this
+      // step (hb/time_simulator.h), unless the scenario asks for C = (η/ω_ref)·K.
+      if (scenario_.damping_reference_frequency_hz == 0.0) simulator_->MatchLossFactorAt(omega);
 
       // The generator's phase is continuous across the frequency change.
       const double phase_start = std::fmod(phase, kTwoPi);

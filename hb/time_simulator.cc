@@ -6,8 +6,71 @@
 #include <string>
 
 #include <Eigen/Eigenvalues>
+#include <unsupported/Eigen/MatrixFunctions>
 
 namespace beamid::hb {
+namespace {
+
+// The one-step map of one mode q̈ + c·q̇ + ω²·q = p(t):
+//     q_{n+1} = uu·q_n + uv·q̇_n + u0·p_n + u1·p_{n+1},  likewise q̇_{n+1}.
+struct ModalStepMap {
+  double uu, uv, u0, u1, vu, vv, v0, v1;
+};
+
+// Modes with ωΔt above this are stepped by Newmark's average acceleration:
+// they respond quasi-statically to the test's harmonics, where its period
+// error does not matter, while an exact step of a mode near 2π/Δt would
+// resonate with the images of the held load and alias onto the harmonics.
+constexpr double kExactStepLimit = 0.1;
+
+// Newmark's average acceleration (γ = 1/2, β = 1/4) is linear in (q, q̇, p_n,
+// p_{n+1}): its map is read off by stepping unit inputs.
+ModalStepMap NewmarkModalStep(double omega, double damping, double dt) {
+  const double w2 = omega * omega;
+  auto step = [&](double u, double v, double p0, double p1, double* u_out, double* v_out) {
+    const double a0 = p0 - damping * v - w2 * u;
+    const double u_pred = u + dt * v + 0.25 * dt * dt * a0, v_pred = v + 0.5 * dt * a0;
+    const double a1 = (p1 - damping * v_pred - w2 * u_pred) / (1.0 + 0.5 * dt * damping + 0.25 * dt * dt * w2);
+    *u_out = u_pred + 0.25 * dt * dt * a1;
+    *v_out = v_pred + 0.5 * dt * a1;
+  };
+  ModalStepMap m;
+  step(1, 0, 0, 0, &m.uu, &m.vu);
+  step(0, 1, 0, 0, &m.uv, &m.vv);
+  step(0, 0, 1, 0, &m.u0, &m.v0);
+  step(0, 0, 0, 1, &m.u1, &m.v1);
+  return m;
+}
+
+// The exact map for a load that varies linearly over the step (first-order
+// hold between p_n and p_{n+1}), from the exponential of the augmented system
+// [q, q̇/ω, p/ω², ṗ/ω³] in the dimensionless time ωt (all entries O(1)).
+ModalStepMap ModalStep(double omega, double damping, double dt) {
+  if (!(omega > 0.0))  // a free mass (no damping either, since c ∝ ω²)
+    return {1.0, dt, dt * dt / 3.0, dt * dt / 6.0, 0.0, 1.0, 0.5 * dt, 0.5 * dt};
+  const double tau = omega * dt;
+  if (tau > kExactStepLimit) return NewmarkModalStep(omega, damping, dt);
+  Eigen::Matrix4d a = Eigen::Matrix4d::Zero();
+  a(0, 1) = 1.0;
+  a(1, 0) = -1.0;
+  a(1, 1) = -damping / omega;
+  a(1, 2) = 1.0;
+  a(2, 3) = 1.0;
+  const Eigen::Matrix4d e = (a * tau).exp();
+  const double w2 = omega * omega;
+  // p/ω² enters column 2; its slope (p_{n+1} − p_n)/(ω³Δt) column 3.
+  const double ramp = 1.0 / (w2 * tau);
+  return {.uu = e(0, 0),
+          .uv = e(0, 1) / omega,
+          .u0 = e(0, 2) / w2 - e(0, 3) * ramp,
+          .u1 = e(0, 3) * ramp,
+          .vu = omega * e(1, 0),
+          .vv = e(1, 1),
+          .v0 = omega * (e(1, 2) / w2 - e(1, 3) * ramp),
+          .v1 = omega * e(1, 3) * ramp};
+}
+
+}  // namespace
 
 TimeSimulator::TimeSimulator(const TimeSimulatorModel& model, const SupportLaw& law,
                              const TimeSimulatorOptions& options)
@@ -38,11 +101,10 @@ TimeSimulator::TimeSimulator(const TimeSimulatorModel& model, const SupportLaw& 
   } else {
     damping_reference_rad_s_ = fe_beam_.NaturalFrequencies_rad_s(1, law_->InitialStiffness_Nm_rad()).at(0);
   }
-  beta_damping_s_ = model.beam.loss_factor / damping_reference_rad_s_;
+  loss_factor_ = model.beam.loss_factor;
+  beta_damping_s_ = loss_factor_ / damping_reference_rad_s_;
   modal_damping_ = beta_damping_s_ * modal_stiffness_;
 
-  const double dt = time_step_s_;
-  inv_effective_mass_ = (1.0 + modal_damping_ * (0.5 * dt) + modal_stiffness_ * (0.25 * dt * dt)).inverse();
   force_shape_ = phi.row(force_dof).transpose().array();
   rotation_shape_ = phi.row(fe_beam_.SupportRotationDof()).transpose().array();
   output_modes_ = Eigen::MatrixXd::Zero(static_cast<int>(model.output_positions_m.size()), phi.cols());
@@ -50,8 +112,30 @@ TimeSimulator::TimeSimulator(const TimeSimulatorModel& model, const SupportLaw& 
     const int dof = fe_beam_.DeflectionDof(model.output_positions_m[i]);
     if (dof != FeBeam::kConstrained) output_modes_.row(static_cast<int>(i)) = phi.row(dof);
   }
-  moment_flexibility_ = 0.25 * dt * dt * (rotation_shape_.square() * inv_effective_mass_).sum();
+  UpdateStepMaps();
   Reset(0.0);
+}
+
+void TimeSimulator::UpdateStepMaps() {
+  const int n = static_cast<int>(omega_.size());
+  for (Eigen::ArrayXd* a : {&uu_, &uv_, &u0_, &u1_, &vu_, &vv_, &v0_, &v1_}) a->resize(n);
+  for (int j = 0; j < n; ++j) {
+    const ModalStepMap m = ModalStep(omega_(j), modal_damping_(j), time_step_s_);
+    uu_(j) = m.uu, uv_(j) = m.uv, u0_(j) = m.u0, u1_(j) = m.u1;
+    vu_(j) = m.vu, vv_(j) = m.vv, v0_(j) = m.v0, v1_(j) = m.v1;
+  }
+  moment_flexibility_ = (rotation_shape_.square() * u1_).sum();
+  moment_rate_flexibility_ = (rotation_shape_.square() * v1_).sum();
+}
+
+void TimeSimulator::MatchLossFactorAt(double omega_rad_s) {
+  if (!(omega_rad_s > 0.0)) throw std::invalid_argument("time simulator: the driving frequency must be positive");
+  beta_damping_s_ = 0.0;
+  for (Eigen::Index j = 0; j < omega_.size(); ++j) {
+    const double harmonic = std::max(1.0, std::round(omega_(j) / omega_rad_s));
+    modal_damping_(j) = loss_factor_ * modal_stiffness_(j) / (harmonic * omega_rad_s);
+  }
+  UpdateStepMaps();
 }
 
 void TimeSimulator::Reset(double force_N) {
@@ -64,17 +148,17 @@ void TimeSimulator::Reset(double force_N) {
   state_.force_N = force_N;
 }
 
-double TimeSimulator::SolveSupport(double theta_predicted, double* moment_Nm,
+double TimeSimulator::SolveSupport(double theta_predicted, double rate_predicted, double* moment_Nm,
                                    std::vector<double>& law_state_out) const {
   const double g = moment_flexibility_;
-  const double rate_per_theta = 2.0 / time_step_s_;
+  // θ = θ_pred − g·M and θ̇ = θ̇_pred − g_v·M, so θ̇(θ) = θ̇_pred + (g_v/g)·(θ − θ_pred).
+  const double rate_per_theta = moment_rate_flexibility_ / moment_flexibility_;
   const double theta_n = state_.theta_rad;
-  const double rate_n = state_.theta_rate_rad_s;
   // r(θ) = θ − θ_pred + g·M_s(θ, θ̇(θ)); r is increasing for any law whose
   // tangents are non-negative, which Newton exploits and bisection relies on.
   auto residual = [&](double theta, double* slope, double* moment) {
-    const SupportLawResponse r =
-        law_->Evaluate(theta, rate_per_theta * (theta - theta_n) - rate_n, state_.law_state, law_state_out);
+    const SupportLawResponse r = law_->Evaluate(theta, rate_predicted + rate_per_theta * (theta - theta_predicted),
+                                                state_.law_state, law_state_out);
     *moment = r.moment_Nm;
     *slope = 1.0 + g * (r.d_moment_d_theta_Nm_rad + rate_per_theta * r.d_moment_d_theta_rate_Nms_rad);
     return theta - theta_predicted + g * r.moment_Nm;
@@ -112,28 +196,31 @@ double TimeSimulator::SolveSupport(double theta_predicted, double* moment_Nm,
 }
 
 void TimeSimulator::Advance(double force_N) {
-  const double dt = time_step_s_;
   State& s = state_;
-  // Newmark predictors; a_{n+1} = a0 − (φ_θ/m̂)·M_s is linear in the moment.
-  const Eigen::ArrayXd u_pred = s.modal_displacement + dt * s.modal_velocity + (0.25 * dt * dt) * s.modal_acceleration;
-  const Eigen::ArrayXd v_pred = s.modal_velocity + (0.5 * dt) * s.modal_acceleration;
-  const Eigen::ArrayXd a_free =
-      (force_shape_ * force_N - modal_damping_ * v_pred - modal_stiffness_ * u_pred) * inv_effective_mass_;
-  const double theta_predicted = (rotation_shape_ * (u_pred + (0.25 * dt * dt) * a_free)).sum();
+  // The step with the support's end moment M set to 0; M enters linearly
+  // through u1, v1 (the load ramps from its value at t_n to the one at t_n+1).
+  const Eigen::ArrayXd load_n = force_shape_ * s.force_N - rotation_shape_ * s.support_moment_Nm;
+  const Eigen::ArrayXd& u = s.modal_displacement;
+  const Eigen::ArrayXd& v = s.modal_velocity;
+  const Eigen::ArrayXd u_free = uu_ * u + uv_ * v + u0_ * load_n + (u1_ * force_shape_) * force_N;
+  const Eigen::ArrayXd v_free = vu_ * u + vv_ * v + v0_ * load_n + (v1_ * force_shape_) * force_N;
+  const double theta_free = (rotation_shape_ * u_free).sum();
+  const double rate_free = (rotation_shape_ * v_free).sum();
 
   std::vector<double> law_state_out(s.law_state.size());
   double moment_Nm = 0.0;
-  const double theta = SolveSupport(theta_predicted, &moment_Nm, law_state_out);
+  const double theta = SolveSupport(theta_free, rate_free, &moment_Nm, law_state_out);
 
-  s.modal_acceleration = a_free - (rotation_shape_ * inv_effective_mass_) * moment_Nm;
-  s.modal_displacement = u_pred + (0.25 * dt * dt) * s.modal_acceleration;
-  s.modal_velocity = v_pred + (0.5 * dt) * s.modal_acceleration;
-  s.theta_rate_rad_s = (2.0 / dt) * (theta - s.theta_rad) - s.theta_rate_rad_s;
+  s.modal_displacement = u_free - (u1_ * rotation_shape_) * moment_Nm;
+  s.modal_velocity = v_free - (v1_ * rotation_shape_) * moment_Nm;
+  s.modal_acceleration = force_shape_ * force_N - rotation_shape_ * moment_Nm - modal_damping_ * s.modal_velocity -
+                         modal_stiffness_ * s.modal_displacement;
+  s.theta_rate_rad_s = rate_free - moment_rate_flexibility_ * moment_Nm;
   s.theta_rad = theta;
   s.support_moment_Nm = moment_Nm;
   s.law_state = std::move(law_state_out);
   s.force_N = force_N;
-  s.time_s += dt;
+  s.time_s += time_step_s_;
 }
 
 void TimeSimulator::Outputs(Eigen::Ref<Eigen::VectorXd> displacement_m, Eigen::Ref<Eigen::VectorXd> velocity_m_s,

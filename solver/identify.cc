@@ -30,10 +30,18 @@ std::vector<std::vector<double>> LatinHypercube(int count, int dimensions, unsig
   return points;
 }
 
+// The first start (the direct estimate, or the caller's own start) is the one
+// a single-start fit rests on, and from a factor 3 away it may need ~400
+// iterations; the further starts are exploratory and keep the cap, because a
+// start on another branch of the response stalls rather than converges.
+constexpr int kFirstStartMaxIterations = 1000;
+
 StartOutcome RunStart(FitProblem& problem, const IdentifyOptions& options, const std::vector<double>& start,
-                      Eigen::VectorXd* x_out) {
+                      bool first, Eigen::VectorXd* x_out) {
   const Eigen::VectorXd x0 = problem.FeasiblePoint(start);
-  const internal::IpoptOutcome outcome = internal::RunIpopt(problem, x0, options.ipopt);
+  internal::IpoptOptions ipopt = options.ipopt;
+  if (first) ipopt.max_iterations = std::max(ipopt.max_iterations, kFirstStartMaxIterations);
+  const internal::IpoptOutcome outcome = internal::RunIpopt(problem, x0, ipopt);
   StartOutcome result{.start = start,
                       .parameters = problem.Parameters(outcome.x),
                       .objective = problem.Objective(outcome.x),
@@ -155,7 +163,7 @@ IdentifyResult IdentifyWith(const ProblemFactory& make_problem, const ModelStruc
       [&](int i) {
         const std::unique_ptr<FitProblem> problem = make_problem();
         Eigen::VectorXd x;
-        const StartOutcome outcome = RunStart(*problem, options, starts[i], &x);
+        const StartOutcome outcome = RunStart(*problem, options, starts[i], i == 0, &x);
         // Worker processes send doubles: the Ipopt status travels as its code.
         std::vector<double> record = {outcome.objective, outcome.success ? 1.0 : 0.0,
                                       static_cast<double>(outcome.iterations),

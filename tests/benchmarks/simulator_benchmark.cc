@@ -37,7 +37,7 @@ BENCHMARK_CAPTURE(BM_SimulateExampleCampaign, paper_friction, "paper_friction.js
     ->Unit(benchmark::kSecond)
     ->Iterations(1);
 
-// One Newmark step with the scalar Newton on the support (per step: all modes
+// One time step with the scalar Newton on the support (per step: all modes
 // updated, the law evaluated until convergence).
 void BM_TimeStep(benchmark::State& state, bool with_friction) {
   TimeSimulatorModel model;

@@ -1,0 +1,131 @@
+// Coverage of the identification's 95 % intervals (issue 6): the paper's
+// set-up, base physics, three levels, simulated ONCE by the independent
+// time-domain simulator (never by the harmonic-balance model being fitted);
+// then independent realisations of the campaign's own measurement noise
+// (hb/noise.h, as `beamid simulate` applies it) on those clean recordings,
+// each extracted (signal/) and identified as `beamid identify` does (k1, k2,
+// k3, c and the beam's loss factor η). For every parameter the truth must
+// lie in the reported 95 % interval in 85–100 % of the realisations, and
+// every realisation must meet the first check of the issue (k1 within 1 %,
+// c within 5 %, k3 within 10 %, k2 within its interval).
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "hb/campaign_writer.h"
+#include "hb/noise.h"
+#include "hb/scenario.h"
+#include "hb/stepped_sine.h"
+#include "signal/campaign.h"
+#include "signal/phasor_estimator.h"
+#include "solver/identify.h"
+#include "tests/support/temp_path.h"
+
+namespace beamid::solver {
+namespace {
+
+// The paper's example campaign (examples/scenarios/paper_base.json: 1, 4
+// and 9 N) with 15 steps per level instead of 33, over the resonance. Its
+// noise is that of a real test of this beam, not tuned for this check:
+// - accelerometers: 0.005 m/s² rms broadband (0.5 mg over the 2.56 kHz band,
+//   ≈ 10 µg/√Hz: a general-purpose ICP accelerometer on a 24-bit DAQ) plus
+//   0.3 % of the channel's rms for the signal-proportional errors of a real
+//   chain (gain ripple, cable and mounting motion, shaker-table noise). At
+//   1 N the responses are 0.8–30 m/s², so the floor is 45–75 dB below them;
+//   the 0.3 % part keeps every SNR near 50 dB;
+// - force transducer: 0.002 N rms plus 0.2 % of its rms;
+// - 24-bit ADCs over ±500 m/s² and ±50 N; generator clock 25 ppm off.
+hb::Scenario LeanPaperBase() {
+  std::ifstream file("examples/scenarios/paper_base.json");
+  nlohmann::json scenario = nlohmann::json::parse(file);
+  for (auto& level : scenario["levels"]) level["frequencies_Hz"] = {{"start", 51.0}, {"stop", 57.3}, {"step", 0.45}};
+  scenario.erase("hidden_positions_m");
+  return hb::ParseScenario(scenario.dump(), "paper_base.json, 15 steps per level");
+}
+
+constexpr int kRealisations = 30;
+constexpr double kMinCoverage = 0.85;  // the issue's 85–100 %
+const std::vector<std::string> kNames = {"k1", "k2", "k3", "c", "loss_factor"};
+const std::vector<double> kTruth = {150.0, 0.0, 3e5, 0.05, 2e-4};
+
+// One realisation of the measurement on the clean recordings, extracted as
+// `beamid extract` does (the CSV's 9 significant digits aside).
+signal::PhasorSet Measure(const hb::Scenario& scenario, const std::vector<hb::SimulatedStep>& steps,
+                          const signal::Campaign& campaign, std::uint64_t seed) {
+  hb::MeasurementNoise noise(seed);
+  signal::PhasorSet set{.campaign = campaign.name, .num_harmonics = 5, .steps = {}};
+  const std::vector<const signal::ChannelSpec*> channels = campaign.Channels();
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    signal::Recording recording{.file = steps[i].file, .channels = {}, .sample_rate_hz = scenario.timing.sample_rate_hz,
+                                .start_time_s = 0.0, .samples = noise.Measure(scenario, steps[i].recording, nullptr)};
+    for (std::size_t c = 0; c < channels.size(); ++c) {
+      recording.channels.push_back(channels[c]->channel);
+      recording.samples.col(static_cast<Eigen::Index>(c)) *= channels[c]->to_si_factor;
+    }
+    set.steps.push_back(signal::EstimateStepPhasors(recording, campaign, campaign.steps[i], {.num_harmonics = 5}));
+  }
+  return set;
+}
+
+TEST(IdentificationCoverage, TruthLiesInThe95PercentIntervalsIn85To100PercentOfNoiseRealisations) {
+  const hb::Scenario scenario = LeanPaperBase();
+  ASSERT_EQ(scenario.NumSteps(), 45);
+  hb::SteppedSineSimulation simulation(scenario);
+  const std::filesystem::path folder = beamid::testing::UniqueTempPath("beamid_coverage_slow_test");
+  std::filesystem::remove_all(folder);
+  std::vector<hb::SimulatedStep> steps;
+  {
+    // campaign.json (and truth.json) once; the recordings are re-noised below.
+    hb::CampaignWriter writer(simulation, folder);
+    simulation.Run([&](const hb::SimulatedStep& step) {
+      writer.Write(step);
+      steps.push_back(step);
+    });
+    writer.Finish();
+  }
+  const signal::Campaign campaign = signal::ReadCampaign(folder);
+  std::filesystem::remove_all(folder);
+
+  ModelStructure structure = PolynomialModel({.k1_Nm_rad = 100.0});
+  structure.linear.push_back(LossFactor(1e-4));  // as `beamid identify` fits it by default
+  std::vector<int> covered(kNames.size(), 0);
+  std::vector<double> sum_z(kNames.size(), 0.0), sum_z2(kNames.size(), 0.0);
+  for (int r = 0; r < kRealisations; ++r) {
+    const signal::PhasorSet phasors = Measure(scenario, steps, campaign, 1000 + r);
+    const FitData fit = MakeFitData(campaign, phasors, {.channels = {"acc1", "acc2"}});
+    const IdentifyResult result = Identify(fit, structure, {});
+    ASSERT_EQ(result.parameters.size(), kNames.size());
+    for (std::size_t j = 0; j < kNames.size(); ++j) {
+      const ParameterEstimate& p = result.parameters[j];
+      ASSERT_EQ(p.name, kNames[j]);
+      const double z = (p.value - kTruth[j]) / p.std;
+      sum_z[j] += z;
+      sum_z2[j] += z * z;
+      if (p.lower_95 <= kTruth[j] && kTruth[j] <= p.upper_95) ++covered[j];
+    }
+    // The issue's first check, on every realisation.
+    EXPECT_NEAR(result.parameters[0].value, kTruth[0], 0.01 * kTruth[0]) << "realisation " << r;
+    EXPECT_NEAR(result.parameters[2].value, kTruth[2], 0.10 * kTruth[2]) << "realisation " << r;
+    EXPECT_NEAR(result.parameters[3].value, kTruth[3], 0.05 * kTruth[3]) << "realisation " << r;
+    EXPECT_LE(result.parameters[1].lower_95, kTruth[1]) << "k2, realisation " << r;
+    EXPECT_GE(result.parameters[1].upper_95, kTruth[1]) << "k2, realisation " << r;
+  }
+  for (std::size_t j = 0; j < kNames.size(); ++j) {
+    const double coverage = static_cast<double>(covered[j]) / kRealisations;
+    const double mean_z = sum_z[j] / kRealisations;
+    const double rms_z = std::sqrt(sum_z2[j] / kRealisations);
+    std::printf("%-12s coverage %5.1f %% (%d of %d), bias/sigma %+.2f, rms (estimate - truth)/sigma %.2f\n",
+                kNames[j].c_str(), 100.0 * coverage, covered[j], kRealisations, mean_z, rms_z);
+    EXPECT_GE(coverage, kMinCoverage) << kNames[j] << ": mean (estimate - truth)/sigma " << mean_z;
+    EXPECT_LE(coverage, 1.0) << kNames[j];
+  }
+}
+
+}  // namespace
+}  // namespace beamid::solver
