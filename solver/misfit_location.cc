@@ -401,7 +401,7 @@ MisfitLocation LocateMisfit(const FitData& data, const std::vector<Eigen::Matrix
     out.level_growth_exponent =
         GrowthExponent(pairs, response2, response_count, num_levels, [](const Pair&) { return true; });
   }
-  out.loops = AnalyseSupportLoops(data, reference_beam, options.family_significance);
+  if (options.analyse_loops) out.loops = AnalyseSupportLoops(data, reference_beam, options.family_significance);
 
   // Findings, in words.
   if (!out.significant) {

@@ -51,6 +51,8 @@ struct MisfitLocationOptions {
   int num_fitted_parameters = 0;
   // A group's excess χ² share must reach this to be named in a finding.
   double finding_min_share = 0.05;
+  // Reconstruct the support's loops (needs the exact linear beam per step).
+  bool analyse_loops = true;
 };
 
 // One tested group of standardised residuals.
