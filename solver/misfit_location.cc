@@ -124,7 +124,7 @@ double GrowthExponent(const std::vector<Pair>& pairs, const std::vector<double>&
 }  // namespace
 
 LoopEvidence AnalyseSupportLoops(const FitData& data, const hb::LinearBeamModel& reference_beam,
-                                 double family_significance) {
+                                 double family_significance, double relative_model_error) {
   const std::vector<ReconstructedStep> reconstructed = ReconstructSupport(data, reference_beam);
   const double k1 = reference_beam.support_stiffness_Nm_rad, c = reference_beam.support_damping_Nms_rad;
   const int k_max = data.num_fit_harmonics;
@@ -154,7 +154,7 @@ LoopEvidence AnalyseSupportLoops(const FitData& data, const hb::LinearBeamModel&
       energy_var += std::pow(std::numbers::pi * k * r.theta_std_rad[k], 2) * (d_re * d_re + d_im * d_im);
     }
     step.dissipated_energy_J = energy;
-    step.dissipated_energy_std_J = std::sqrt(energy_var);
+    step.dissipated_energy_std_J = std::hypot(std::sqrt(energy_var), relative_model_error * energy);
     const double scale = std::numbers::pi * omega * step.theta_amplitude_rad * step.theta_amplitude_rad;
     step.viscous_energy_J = c * scale;
     step.equivalent_damping_Nms_rad = scale > 0.0 ? energy / scale : 0.0;
@@ -169,7 +169,8 @@ LoopEvidence AnalyseSupportLoops(const FitData& data, const hb::LinearBeamModel&
       if (k < 2) continue;
       const Complex linear_support(k1, k * omega * c);
       const Complex beyond = r.moment_Nm[k] - linear_support * r.theta_rad[k];
-      const double sigma = std::abs(r.rotational_stiffness_Nm_rad[k] + linear_support) * r.theta_std_rad[k];
+      const double sigma = std::hypot(std::abs(r.rotational_stiffness_Nm_rad[k] + linear_support) * r.theta_std_rad[k],
+                                      relative_model_error * std::abs(beyond));
       const Complex rotated = beyond * std::conj(std::pow(unit, k));
       beyond2 += std::norm(beyond);
       step.elastic_harmonic_chi2 += std::pow(rotated.real() / sigma, 2);
@@ -401,7 +402,9 @@ MisfitLocation LocateMisfit(const FitData& data, const std::vector<Eigen::Matrix
     out.level_growth_exponent =
         GrowthExponent(pairs, response2, response_count, num_levels, [](const Pair&) { return true; });
   }
-  if (options.analyse_loops) out.loops = AnalyseSupportLoops(data, reference_beam, options.family_significance);
+  if (options.analyse_loops) {
+    out.loops = AnalyseSupportLoops(data, reference_beam, options.family_significance, options.loop_relative_model_error);
+  }
 
   // Findings, in words.
   if (!out.significant) {
