@@ -284,7 +284,14 @@ MisfitLocation LocateMisfit(const FitData& data, const std::vector<Eigen::Matrix
       for (int k = 1; k <= k_max; ++k) {
         const Complex y_model = k <= model[i].cols() ? model[i](c, k - 1) : Complex(0.0);
         const Complex error = y_model - s.measured(c, k - 1);
-        const Eigen::Matrix2d& whitening = s.whitening[c][k - 1];
+        Eigen::Matrix2d whitening = s.whitening[c][k - 1];
+        const double model_error = options.model_relative_error * std::abs(model[i].cols() > 0 ? model[i](c, 0) : Complex(0.0));
+        if (model_error > 0.0) {
+          const Eigen::Matrix2d root = whitening.inverse();
+          const Eigen::Matrix2d covariance =
+              root * root.transpose() + model_error * model_error * Eigen::Matrix2d::Identity();
+          whitening = covariance.llt().matrixL().solve(Eigen::Matrix2d::Identity());
+        }
         const Eigen::Vector2d r = whitening * ReIm(error);
         Pair p{.channel = c, .harmonic = k, .level = l};
         p.near_resonance = std::abs(s.measured(c, 0)) >= peak(l, c) / std::numbers::sqrt2;
@@ -298,7 +305,8 @@ MisfitLocation LocateMisfit(const FitData& data, const std::vector<Eigen::Matrix
           p.quadrature = std::max(p.chi2 - p.in_phase, 0.0);
         }
         p.scaled_error2 = std::norm(error) / std::pow(channel_sigma[c], 2);
-        p.scaled_noise2 = 2.0 * std::pow(s.std_amplitude(c, k - 1) / channel_sigma[c], 2);
+        p.scaled_noise2 =
+            (2.0 * std::pow(s.std_amplitude(c, k - 1), 2) + 2.0 * model_error * model_error) / std::pow(channel_sigma[c], 2);
         pairs.push_back(p);
       }
     }
@@ -399,8 +407,18 @@ MisfitLocation LocateMisfit(const FitData& data, const std::vector<Eigen::Matrix
     }
   }
   if (num_levels >= 2) {
-    out.level_growth_exponent =
-        GrowthExponent(pairs, response2, response_count, num_levels, [](const Pair&) { return true; });
+    // Over the channel×harmonic groups that carry the misfit (all when none
+    // does): elsewhere noise would dilute the levels' misfit.
+    std::vector<std::vector<bool>> carries(num_channels, std::vector<bool>(k_max + 1, false));
+    bool any = false;
+    for (const auto& g : out.groups) {
+      if (!g.significant || g.part != "both" || !g.level.empty() || g.band != "all") continue;
+      const auto it = std::find_if(data.channels.begin(), data.channels.end(),
+                                   [&](const FitChannel& f) { return f.channel == g.channel; });
+      carries[it - data.channels.begin()][g.harmonic] = any = true;
+    }
+    out.level_growth_exponent = GrowthExponent(pairs, response2, response_count, num_levels,
+                                               [&](const Pair& p) { return !any || carries[p.channel][p.harmonic]; });
   }
   if (options.analyse_loops) {
     out.loops = AnalyseSupportLoops(data, reference_beam, options.family_significance, options.loop_relative_model_error);

@@ -131,6 +131,7 @@ TEST(LocateMisfit, ACorrectModelRaisesNoFamilyWiseAlarmMoreOftenThanTheSignifica
       AddNoise(noisy, rng);
       MisfitLocationOptions options = kNoLoops;
       options.family_significance = alpha;
+      options.model_relative_error = 0.0;  // the noise exactly as stated
       const MisfitLocation location = LocateMisfit(noisy.data, noisy.model, kFitted, kUnusedBeam, options);
       alarms += location.significant;
       for (const auto& g : location.groups) groups_below += g.p_value < alpha, ++groups;
@@ -213,7 +214,7 @@ TEST(LocateMisfit, ReportsContentInHarmonicsFourAndFiveAsBeyondTheFittedOnes) {
   AddNoise(s, rng);
   for (std::size_t i = 0; i < s.model.size(); ++i) {
     // Measured harmonics 4 and 5 the model (fitting 1..3) has none of.
-    const double a = 1e-3 * std::abs(s.model[i](0, 0));
+    const double a = 1e-2 * std::abs(s.model[i](0, 0));
     s.data.steps[i].measured(0, 3) += std::polar(2.0 * a, 0.3);
     s.data.steps[i].measured(2, 4) += std::polar(a, -1.0);
   }
