@@ -455,9 +455,15 @@ MisfitLocation LocateMisfit(const FitData& data, const std::vector<Eigen::Matrix
       const MisfitGroupTest* quad = find([](const auto& h) { return h.part == "quadrature"; });
       if (in && quad && in->excess_chi2 + quad->excess_chi2 > 0.0) {
         const double f = in->excess_chi2 / (in->excess_chi2 + quad->excess_chi2);
-        text += f >= 0.7   ? "; stiffness-like (" + Percent(f) + " in phase with a stiffness change)"
-                : f <= 0.3 ? "; dissipation-like (" + Percent(1.0 - f) + " in quadrature, as a damping change)"
-                           : "; both stiffness- and dissipation-like (" + Percent(f) + " in phase)";
+        if (g->harmonic == 1) {
+          text += f >= 0.7   ? "; stiffness-like (" + Percent(f) + " in phase with a stiffness change)"
+                  : f <= 0.3 ? "; dissipation-like (" + Percent(1.0 - f) + " in quadrature, as a damping change)"
+                             : "; both stiffness- and dissipation-like (" + Percent(f) + " in phase)";
+        } else {
+          text += f >= 0.7   ? "; its size is off (" + Percent(f) + " in phase with the model's harmonic)"
+                  : f <= 0.3 ? "; its phase is off (" + Percent(1.0 - f) + " in quadrature to the model's harmonic)"
+                             : "; both its size and its phase are off";
+        }
       }
       const MisfitGroupTest* near_group = find([](const auto& h) { return h.band == "near_resonance"; });
       const MisfitGroupTest* away_group = find([](const auto& h) { return h.band == "away"; });

@@ -17,6 +17,7 @@
 #include "signal/campaign_extractor.h"
 #include "solver/identification_problem.h"
 #include "solver/identify.h"
+#include "solver/model_phasors.h"
 #include "tests/support/temp_path.h"
 
 namespace beamid::solver {
@@ -129,18 +130,7 @@ MisfitLocation FitBaseModelAndLocate(const SimulatedCampaign& campaign) {
   IdentificationProblem problem(fit, structure, options.model);
   problem.FeasiblePoint(result.starts[result.best_start].start);
   const FitData examined = campaign.Data(kAllChannels, 5);
-  std::vector<double> positions;
-  for (const auto& c : examined.channels) positions.push_back(c.position_m);
-  std::vector<Eigen::MatrixXcd> model;
-  for (int i = 0; i < problem.num_steps(); ++i) {
-    const Eigen::MatrixXcd y = problem.DisplacementPhasors(result.x, i, positions);
-    Eigen::MatrixXcd channels(positions.size(), 5);
-    for (int k = 1; k <= 5; ++k) {
-      const double omega = k * examined.steps[i].omega_rad_s;
-      channels.col(k - 1) = -omega * omega * y.col(k);  // accelerations
-    }
-    model.push_back(channels);
-  }
+  const std::vector<Eigen::MatrixXcd> model = ModelPhasors(examined, problem, result.x);
   std::vector<double> values;
   for (const auto& p : result.parameters) values.push_back(p.value);
   structure.SetValues(values);
