@@ -1,11 +1,16 @@
 // Where a fitted model misses the recordings. The standardised residual of
 // channel c, harmonic k, step i is the 2-vector
-//     r = L⁻¹ (Y_model − Y_measured),   L Lᵀ = Cov(Re Y, Im Y)   (solver/fit_data.h),
-// N(0, I) when the model is right. Its squares are summed over groups (a
-// channel, a harmonic, a level, a band of the response curve, a part of the
-// phasor) and each group's sum is tested against χ²(2·pairs) (one dof per
-// part). The groups are tested together at a family-wise significance
-// (Holm over every group tested), so a correct model raises no alarm.
+//     r = L⁻¹ (Y_model − Y_measured),
+//     L Lᵀ = Cov(Re Y, Im Y) + (ε·|Y_model,c1|)²·I   (solver/fit_data.h; ε: the
+//            model's own error, MisfitLocationOptions::model_relative_error),
+// N(0, I) when the model is right. Its squares are summed over groups and
+// each group's sum is tested against χ²(2·pairs) (one dof per pair for a
+// part). The groups, per channel c and harmonic k = 1..K of the data:
+//     c×k (all levels, both parts); c×k×part (in_phase, quadrature);
+//     c×k×level; c×k×band (near_resonance, away);
+// plus the overall test of all residuals. They are tested together at a
+// family-wise significance (Holm's step-down over every test, valid under
+// any dependence), so a correct model raises no alarm more often than that.
 //
 // Parts of a residual pair, in the whitened plane: the unit direction u of
 // the phasor a change of stiffness would move the response along,
