@@ -105,6 +105,7 @@ MisfitLocation LocateMisfit(const FitData& data, const std::vector<Eigen::Matrix
   const int num_channels = static_cast<int>(data.channels.size());
   const int k_max = data.num_fit_harmonics;
   const int num_levels = static_cast<int>(data.levels.size());
+  if (k_max < 1) throw std::invalid_argument("LocateMisfit: the data hold no harmonics (num_fit_harmonics < 1)");
   if (model.size() != data.steps.size()) {
     throw std::invalid_argument("LocateMisfit: the model has " + std::to_string(model.size()) + " steps, the data " +
                                 std::to_string(data.steps.size()));
