@@ -1,0 +1,15 @@
+// Tails of the χ² distribution, for testing sums of squared standardised
+// residuals: P(χ²(ν) ≥ x) = Q(ν/2, x/2), the regularized upper incomplete
+// gamma function, evaluated by its series (x < a + 1) or Lentz's continued
+// fraction (otherwise), both to ~1e-14 relative (Numerical Recipes §6.2).
+#pragma once
+
+namespace beamid::solver {
+
+// Q(a, x) = Γ(a, x)/Γ(a), a > 0, x ≥ 0. Throws std::invalid_argument otherwise.
+double RegularizedUpperGamma(double a, double x);
+
+// P(χ²(dof) ≥ x); 1 for x ≤ 0, and 1 for dof = 0 (nothing tested).
+double ChiSquareUpperTail(double x, double dof);
+
+}  // namespace beamid::solver
