@@ -1,0 +1,68 @@
+// Test support: a campaign from the independent time-domain simulator
+// (hb/stepped_sine), written to a temporary folder and extracted, ready to
+// fit; and re-noised copies of one noise-free simulation (the simulation is
+// the slow part, the noise is drawn when the campaign is written).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "hb/campaign_writer.h"
+#include "hb/scenario.h"
+#include "hb/stepped_sine.h"
+#include "signal/campaign.h"
+#include "signal/campaign_extractor.h"
+#include "solver/fit_data.h"
+#include "tests/support/temp_path.h"
+
+namespace beamid::testing {
+
+struct ExtractedCampaign {
+  std::filesystem::path folder;
+  signal::Campaign campaign;
+  signal::PhasorSet phasors;
+
+  solver::FitData Fit(std::vector<std::string> channels, int harmonics = 3) const {
+    return solver::MakeFitData(campaign, phasors, {.channels = std::move(channels), .num_fit_harmonics = harmonics});
+  }
+};
+
+inline ExtractedCampaign ExtractFolder(const std::filesystem::path& folder) {
+  ExtractedCampaign out{.folder = folder, .campaign = signal::ReadCampaign(folder), .phasors = {}};
+  signal::ExtractOptions extract;
+  extract.estimator.num_harmonics = 5;
+  out.phasors = signal::ExtractCampaign(out.campaign, extract);
+  return out;
+}
+
+// Simulated steps kept in memory, to write with any noise seed.
+inline std::vector<hb::SimulatedStep> SimulateSteps(const hb::Scenario& scenario) {
+  hb::SteppedSineSimulation simulation(scenario);
+  std::vector<hb::SimulatedStep> steps;
+  simulation.Run([&](const hb::SimulatedStep& step) { steps.push_back(step); });
+  return steps;
+}
+
+// Writes the steps with the scenario's noise drawn from `seed` and extracts them.
+inline ExtractedCampaign WriteAndExtract(const hb::Scenario& scenario, const std::vector<hb::SimulatedStep>& steps,
+                                         std::uint64_t seed, const std::string& name) {
+  hb::Scenario noisy = scenario;
+  noisy.seed = seed;
+  const std::filesystem::path folder = UniqueTempPath(name);
+  std::filesystem::remove_all(folder);
+  const hb::SteppedSineSimulation simulation(noisy);  // not run: it carries the scenario to the writer
+  hb::CampaignWriter writer(simulation, folder);
+  for (const auto& step : steps) writer.Write(step);
+  writer.Finish();
+  return ExtractFolder(folder);
+}
+
+inline ExtractedCampaign SimulateCampaign(const nlohmann::json& scenario_json, const std::string& name) {
+  const hb::Scenario scenario = hb::ParseScenario(scenario_json.dump(), name);
+  return WriteAndExtract(scenario, SimulateSteps(scenario), scenario.seed, name);
+}
+
+}  // namespace beamid::testing
