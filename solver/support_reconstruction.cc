@@ -24,6 +24,8 @@ std::vector<ReconstructedStep> ReconstructSupport(const FitData& data, const hb:
     step.omega_rad_s = s.omega_rad_s;
     step.theta_rad = Eigen::VectorXcd::Zero(k_max + 1);
     step.moment_Nm = Eigen::VectorXcd::Zero(k_max + 1);
+    step.theta_std_rad = Eigen::VectorXd::Zero(k_max + 1);
+    step.rotational_stiffness_Nm_rad = linear.rotational_stiffness.head(k_max + 1);
     for (int k = 1; k <= k_max; ++k) {
       const Complex force = k < s.force_N.size() ? s.force_N[k] : Complex(0.0);
       // Weighted least squares for one complex unknown: Θ = Σ w·ḡ·(Y − g_F·F) / Σ w·|g|².
@@ -39,6 +41,7 @@ std::vector<ReconstructedStep> ReconstructSupport(const FitData& data, const hb:
         denominator += weight * std::norm(g);
       }
       step.theta_rad[k] = numerator / denominator;
+      step.theta_std_rad[k] = 1.0 / std::sqrt(denominator);
       step.moment_Nm[k] = linear.blocked_moment_per_force[k] * force - linear.rotational_stiffness[k] * step.theta_rad[k];
     }
     out.push_back(std::move(step));

@@ -23,6 +23,10 @@ struct ReconstructedStep {
   double omega_rad_s = 0.0;
   Eigen::VectorXcd theta_rad;   // Θ_0..Θ_K (Θ_0 = 0)
   Eigen::VectorXcd moment_Nm;   // M_0..M_K (M_0 = 0)
+  // σ of the real and of the imaginary part of Θ_k from the channels'
+  // uncertainties (1/sqrt(Σ_c |g_c|²/σ_c²)); M_k's is |D(kω)| times it.
+  Eigen::VectorXd theta_std_rad;
+  Eigen::VectorXcd rotational_stiffness_Nm_rad;  // D(kω), k = 0..K
 };
 
 std::vector<ReconstructedStep> ReconstructSupport(const FitData& data, const hb::LinearBeamModel& beam_model);

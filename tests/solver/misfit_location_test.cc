@@ -1,0 +1,256 @@
+// Statistics of the misfit location on synthetic phasors drawn at the
+// whitening level (this tests the tests, not a model): a correct model
+// raises no family-wise alarm more often than the nominal significance, and
+// an injected misfit is found where it was put and described by its kind.
+#include "solver/misfit_location.h"
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include <Eigen/LU>
+#include <gtest/gtest.h>
+
+#include "solver/chi_square.h"
+
+namespace beamid::solver {
+namespace {
+
+using Complex = std::complex<double>;
+
+// P(χ²(ν) ≥ x) from statistical tables (independent of the code).
+TEST(ChiSquareUpperTail, MatchesTabulatedQuantiles) {
+  EXPECT_NEAR(ChiSquareUpperTail(3.841458820694124, 1), 0.05, 1e-12);
+  EXPECT_NEAR(ChiSquareUpperTail(6.634896601021214, 1), 0.01, 1e-12);
+  EXPECT_NEAR(ChiSquareUpperTail(18.307038053275146, 10), 0.05, 1e-12);
+  EXPECT_NEAR(ChiSquareUpperTail(124.34211340400407, 100), 0.05, 1e-11);
+  // Tabulated to 3 decimals: ±5e-4 in x is ±1.4e-7 in p.
+  EXPECT_NEAR(ChiSquareUpperTail(1106.969, 1000), 0.01, 2e-7);
+  EXPECT_DOUBLE_EQ(ChiSquareUpperTail(0.0, 4), 1.0);
+  EXPECT_DOUBLE_EQ(ChiSquareUpperTail(5.0, 0), 1.0);
+}
+
+// Q(n, x) for integer n is the Poisson sum e^{−x} Σ_{j<n} x^j/j!.
+TEST(RegularizedUpperGamma, EqualsThePoissonSumForIntegerOrders) {
+  for (int n : {1, 2, 3, 7, 20, 60, 500}) {
+    for (double x : {0.01, 0.5, 1.0, 3.0, 10.0, 25.0, 70.0, 150.0, 480.0, 553.0}) {
+      double term = std::exp(-x), sum = 0.0;
+      for (int j = 0; j < n; ++j) sum += term, term *= x / (j + 1);
+      EXPECT_NEAR(RegularizedUpperGamma(n, x), sum, 1e-13 + 1e-12 * sum) << "n " << n << " x " << x;
+    }
+  }
+  // Half-integer: Q(1/2, x) = erfc(√x).
+  for (double x : {0.01, 0.3, 2.0, 9.0}) EXPECT_NEAR(RegularizedUpperGamma(0.5, x), std::erfc(std::sqrt(x)), 1e-13);
+  EXPECT_THROW(RegularizedUpperGamma(0.0, 1.0), std::invalid_argument);
+  EXPECT_THROW(RegularizedUpperGamma(1.0, -1.0), std::invalid_argument);
+}
+
+constexpr int kHarmonics = 5;
+constexpr int kFitted = 3;
+const std::vector<std::string> kLevels{"low", "mid", "high"};
+const std::vector<double> kForceN{1.0, 4.0, 9.0};
+
+// A one-mode response seen by three accelerometers, with a small third
+// harmonic; each (channel, harmonic, step) gets its own anisotropic noise
+// covariance L·Lᵀ.
+struct Synthetic {
+  FitData data;
+  std::vector<Eigen::MatrixXcd> model;
+  std::vector<Eigen::MatrixXcd> stiffness_direction;  // Y²/F of the fundamental
+};
+
+Synthetic MakeSynthetic(std::mt19937& rng) {
+  Synthetic s;
+  s.data.num_fit_harmonics = kHarmonics;
+  s.data.levels = kLevels;
+  const std::vector<double> shape{0.3, 0.8, 0.4};
+  for (std::size_t c = 0; c < shape.size(); ++c)
+    s.data.channels.push_back({.channel = "acc" + std::to_string(c + 1), .position_m = 0.1 + 0.2 * c});
+  std::uniform_real_distribution<double> uniform(0.7, 1.3);
+  const double omega_n = 2 * std::numbers::pi * 54.0, zeta = 0.01;
+  for (std::size_t l = 0; l < kLevels.size(); ++l) {
+    for (double f_hz = 50.0; f_hz <= 58.0; f_hz += 0.5) {
+      FitStep step;
+      step.level = kLevels[l];
+      step.omega_rad_s = 2 * std::numbers::pi * f_hz;
+      step.force_N = Eigen::VectorXcd::Zero(kHarmonics + 1);
+      step.force_N[1] = kForceN[l];
+      const double w = step.omega_rad_s;
+      const Complex receptance = 1.0 / (omega_n * omega_n - w * w + Complex(0.0, 2 * zeta * omega_n * w));
+      Eigen::MatrixXcd y = Eigen::MatrixXcd::Zero(3, kHarmonics);
+      Eigen::MatrixXcd direction = Eigen::MatrixXcd::Zero(3, kHarmonics);
+      step.whitening.resize(3);
+      step.std_amplitude.resize(3, kHarmonics);
+      for (int c = 0; c < 3; ++c) {
+        y(c, 0) = -w * w * shape[c] * receptance * step.force_N[1];
+        y(c, 2) = 1e-3 * std::abs(y(c, 0)) * std::pow(std::abs(y(c, 0)) / 100.0, 2) * std::polar(1.0, 0.4);
+        direction(c, 0) = y(c, 0) * y(c, 0) / step.force_N[1];
+        for (int k = 0; k < kHarmonics; ++k) {
+          // σ grows a little with the signal, as with relative noise.
+          const double sigma = 0.01 + 1e-3 * std::abs(y(c, k));
+          Eigen::Matrix2d chol;
+          chol << sigma * uniform(rng), 0.0, 0.3 * sigma * (uniform(rng) - 1.0), sigma * uniform(rng);
+          step.whitening[c].push_back(chol.inverse());
+          step.std_amplitude(c, k) = std::sqrt(0.5 * (chol.row(0).squaredNorm() + chol.row(1).squaredNorm()));
+        }
+      }
+      step.measured = y;
+      s.data.steps.push_back(std::move(step));
+      s.model.push_back(y);
+      s.stiffness_direction.push_back(direction);
+    }
+  }
+  return s;
+}
+
+// Adds noise of each pair's own covariance: measured −= L·z, so r = z.
+void AddNoise(Synthetic& s, std::mt19937& rng) {
+  std::normal_distribution<double> normal;
+  for (FitStep& step : s.data.steps) {
+    for (int c = 0; c < step.measured.rows(); ++c) {
+      for (int k = 0; k < step.measured.cols(); ++k) {
+        const Eigen::Vector2d z(normal(rng), normal(rng));
+        const Eigen::Vector2d e = step.whitening[c][k].inverse() * z;
+        step.measured(c, k) -= Complex(e[0], e[1]);
+      }
+    }
+  }
+}
+
+const hb::LinearBeamModel kUnusedBeam{};
+const MisfitLocationOptions kNoLoops{.analyse_loops = false};
+
+TEST(LocateMisfit, ACorrectModelRaisesNoFamilyWiseAlarmMoreOftenThanTheSignificance) {
+  std::mt19937 rng(11);
+  const Synthetic clean = MakeSynthetic(rng);
+  constexpr int kDraws = 2000;
+  for (double alpha : {0.01, 0.05}) {
+    int alarms = 0, groups_below = 0, groups = 0;
+    for (int draw = 0; draw < kDraws; ++draw) {
+      Synthetic noisy = clean;
+      AddNoise(noisy, rng);
+      MisfitLocationOptions options = kNoLoops;
+      options.family_significance = alpha;
+      const MisfitLocation location = LocateMisfit(noisy.data, noisy.model, kFitted, kUnusedBeam, options);
+      alarms += location.significant;
+      for (const auto& g : location.groups) groups_below += g.p_value < alpha, ++groups;
+    }
+    const double rate = static_cast<double>(alarms) / kDraws;
+    const double raw = static_cast<double>(groups_below) / groups;
+    std::printf("alpha %.2f: family-wise false alarms %d / %d (%.4f); single groups below alpha %.4f\n", alpha, alarms,
+                kDraws, rate, raw);
+    // Holm keeps the family-wise rate ≤ α under any dependence of the groups;
+    // the observed rate may exceed it by the binomial scatter of the draws.
+    EXPECT_LE(rate, alpha + 2.0 * std::sqrt(alpha * (1.0 - alpha) / kDraws));
+    // The single tests are calibrated (p uniform under noise): ±4σ of a
+    // binomial over the groups (which are correlated, hence the margin).
+    EXPECT_NEAR(raw, alpha, 4.0 * std::sqrt(alpha / groups) + 0.2 * alpha);
+  }
+}
+
+TEST(LocateMisfit, ANoiseOnlyFindingSaysNoSignificantDiscrepancy) {
+  std::mt19937 rng(3);
+  Synthetic s = MakeSynthetic(rng);
+  AddNoise(s, rng);
+  const MisfitLocation location = LocateMisfit(s.data, s.model, kFitted, kUnusedBeam, kNoLoops);
+  ASSERT_FALSE(location.significant);
+  ASSERT_FALSE(location.findings.empty());
+  EXPECT_NE(location.findings[0].find("No significant discrepancy"), std::string::npos) << location.findings[0];
+}
+
+// A misfit on acc2's fundamental along (or across) the stiffness direction,
+// growing as the cube of the response (a missing cubic term).
+Synthetic WithInjectedFundamentalMisfit(bool in_phase, std::mt19937& rng) {
+  Synthetic s = MakeSynthetic(rng);
+  AddNoise(s, rng);
+  double largest = 0.0;
+  for (const auto& y : s.model) largest = std::max(largest, std::abs(y(1, 0)));
+  for (std::size_t i = 0; i < s.model.size(); ++i) {
+    const Complex d = s.stiffness_direction[i](1, 0);
+    const Complex unit = (in_phase ? 1.0 : Complex(0.0, 1.0)) * d / std::abs(d);
+    const double relative = std::abs(s.model[i](1, 0)) / largest;
+    s.data.steps[i].measured(1, 0) += 0.04 * largest * std::pow(relative, 3) * unit;
+  }
+  return s;
+}
+
+bool Contains(const std::string& text, const std::string& word) { return text.find(word) != std::string::npos; }
+
+TEST(LocateMisfit, FindsAnInPhaseMisfitOnAcc2GrowingWithLevelAsStiffnessLike) {
+  std::mt19937 rng(5);
+  const Synthetic s = WithInjectedFundamentalMisfit(true, rng);
+  const MisfitLocation location = LocateMisfit(s.data, s.model, kFitted, kUnusedBeam, kNoLoops);
+  ASSERT_TRUE(location.significant);
+  EXPECT_GT(location.in_phase_fraction, 0.8);
+  EXPECT_GT(location.fundamental_fraction, 0.9);
+  EXPECT_GT(location.channel_excess_chi2[1], 0.9 * (location.channel_excess_chi2[0] + location.channel_excess_chi2[1] +
+                                                    location.channel_excess_chi2[2]));
+  EXPECT_GT(location.level_growth_exponent, 1.5);
+  ASSERT_GE(location.findings.size(), 2u);
+  const std::string& top = location.findings[1];
+  std::printf("%s\n", top.c_str());
+  EXPECT_TRUE(Contains(top, "acc2")) << top;
+  EXPECT_TRUE(Contains(top, "fundamental")) << top;
+  EXPECT_TRUE(Contains(top, "stiffness-like")) << top;
+  EXPECT_TRUE(Contains(top, "grows with level faster")) << top;
+}
+
+TEST(LocateMisfit, FindsAQuadratureMisfitAsDissipationLike) {
+  std::mt19937 rng(6);
+  const Synthetic s = WithInjectedFundamentalMisfit(false, rng);
+  const MisfitLocation location = LocateMisfit(s.data, s.model, kFitted, kUnusedBeam, kNoLoops);
+  ASSERT_TRUE(location.significant);
+  EXPECT_LT(location.in_phase_fraction, 0.2);
+  ASSERT_GE(location.findings.size(), 2u);
+  std::printf("%s\n", location.findings[1].c_str());
+  EXPECT_TRUE(Contains(location.findings[1], "acc2")) << location.findings[1];
+  EXPECT_TRUE(Contains(location.findings[1], "dissipation-like")) << location.findings[1];
+}
+
+TEST(LocateMisfit, ReportsContentInHarmonicsFourAndFiveAsBeyondTheFittedOnes) {
+  std::mt19937 rng(8);
+  Synthetic s = MakeSynthetic(rng);
+  AddNoise(s, rng);
+  for (std::size_t i = 0; i < s.model.size(); ++i) {
+    // Measured harmonics 4 and 5 the model (fitting 1..3) has none of.
+    const double a = 1e-3 * std::abs(s.model[i](0, 0));
+    s.data.steps[i].measured(0, 3) += std::polar(2.0 * a, 0.3);
+    s.data.steps[i].measured(2, 4) += std::polar(a, -1.0);
+  }
+  const MisfitLocation location = LocateMisfit(s.data, s.model, kFitted, kUnusedBeam, kNoLoops);
+  ASSERT_TRUE(location.significant);
+  EXPECT_GT(location.beyond_fitted_fraction, 0.9);
+  bool said = false;
+  for (const auto& f : location.findings) said = said || Contains(f, "harmonic truncation");
+  EXPECT_TRUE(said);
+  for (const auto& g : location.groups) {
+    if (g.part == "both" && g.level.empty() && g.band == "all") {
+      const bool injected = (g.channel == "acc1" && g.harmonic == 4) || (g.channel == "acc3" && g.harmonic == 5);
+      EXPECT_EQ(g.significant, injected) << g.channel << " harmonic " << g.harmonic << " p " << g.p_value;
+    }
+  }
+}
+
+TEST(LocateMisfit, RejectsAModelOfTheWrongSize) {
+  std::mt19937 rng(1);
+  Synthetic s = MakeSynthetic(rng);
+  s.model.pop_back();
+  EXPECT_THROW(LocateMisfit(s.data, s.model, kFitted, kUnusedBeam, kNoLoops), std::invalid_argument);
+  s = MakeSynthetic(rng);
+  s.model[0] = Eigen::MatrixXcd::Zero(2, 3);
+  EXPECT_THROW(LocateMisfit(s.data, s.model, kFitted, kUnusedBeam, kNoLoops), std::invalid_argument);
+}
+
+TEST(LocateMisfit, JsonHoldsTheFindingsFeaturesAndGroups) {
+  std::mt19937 rng(5);
+  const Synthetic s = WithInjectedFundamentalMisfit(true, rng);
+  const MisfitLocation location = LocateMisfit(s.data, s.model, kFitted, kUnusedBeam, kNoLoops);
+  const nlohmann::json json = ToJson(location);
+  EXPECT_EQ(json["findings"].size(), location.findings.size());
+  EXPECT_EQ(json["groups"].size(), location.groups.size());
+  EXPECT_DOUBLE_EQ(json["in_phase_fraction"].get<double>(), location.in_phase_fraction);
+  EXPECT_TRUE(json["significant"].get<bool>());
+}
+
+}  // namespace
+}  // namespace beamid::solver
