@@ -101,7 +101,7 @@ CandidatePhysics SupportFriction() {
             if (!l.significant) return 0.0;
             return Mean({1.0 - l.in_phase_fraction, l.near_resonance_fraction,
                          std::isfinite(l.level_growth_exponent) && l.level_growth_exponent > 1.2 ? 1.0 : 0.0,
-                         l.loops.dissipation_not_viscous ? 1.0 : 0.0});
+                         l.loops.dissipation_not_viscous || l.loops.hysteretic_shape ? 1.0 : 0.0});
           },
   };
 }
@@ -143,7 +143,7 @@ CandidatePhysics AddedMass() {
                                  .initial = 0.0,
                                  .bounds = {.lower = 0.0, .upper = 1.0, .typical = 0.01},
                                  .apply = [](hb::LinearBeamModel& model, double value) {
-                                   model.attachments.point_masses.push_back({-1.0, value});
+                                   model.attachments.point_masses.push_back({-1.0, std::max(value, 0.0)});
                                  }};
             LinearParameter position{
                 .name = "added_mass_position",

@@ -107,7 +107,6 @@ struct Job {
   std::vector<double> start;
 };
 
-std::string Format(double v) { return fmt::format("{:.4g}", v); }
 
 std::string DescribeParameters(const FitSummary& fit, const std::vector<std::string>& names) {
   std::string text;
@@ -147,6 +146,34 @@ std::string WriteSummary(const DiagnosisResult& r) {
   return out.str();
 }
 
+// The base model in two stages: the polynomial support alone from the
+// direct estimate (robust even when the misfit is large), then with the
+// beam's loss factor from there. A large misfit can stall the second stage
+// (the loss factor runs to its bound); the base is then the first.
+IdentifyResult FitBase(const FitData& fit, const DiagnosisOptions& options, const IdentifyOptions& identify,
+                       ModelStructure* structure) {
+  DiagnosisOptions without = options;
+  without.fit_loss_factor = false;
+  *structure = BaseStructure(without);
+  IdentifyResult polynomial = Identify(fit, *structure, identify);
+  if (!options.fit_loss_factor) return polynomial;
+  ModelStructure with_loss = BaseStructure(options);
+  std::vector<double> first;
+  for (const auto& p : polynomial.parameters) first.push_back(p.value);
+  first.push_back(options.loss_factor_start);
+  try {
+    IdentifyResult full = IdentifyWith(
+        [&] { return std::make_unique<IdentificationProblem>(fit, with_loss, identify.model); }, with_loss, first,
+        identify);
+    if (full.chi_square <= polynomial.chi_square) {
+      *structure = with_loss;
+      return full;
+    }
+  } catch (const std::runtime_error&) {
+  }
+  return polynomial;
+}
+
 }  // namespace
 
 DiagnosisResult Diagnose(const FitData& fit, const FitData& validation, const FitData& located_in,
@@ -159,12 +186,12 @@ DiagnosisResult Diagnose(const FitData& fit, const FitData& validation, const Fi
 
   // 1. The base model.
   report(0.0, "base fit");
-  const ModelStructure base_structure = BaseStructure(options);
   IdentifyOptions identify;
   identify.model.num_harmonics = options.model_harmonics;
   identify.ipopt = options.ipopt;
   identify.num_threads = 1;
-  const IdentifyResult base_fit = Identify(fit, base_structure, identify);
+  ModelStructure base_structure;
+  const IdentifyResult base_fit = FitBase(fit, options, identify, &base_structure);
   std::vector<double> base_values, base_std;
   for (const auto& p : base_fit.parameters) {
     base_values.push_back(p.value);
@@ -212,6 +239,7 @@ DiagnosisResult Diagnose(const FitData& fit, const FitData& validation, const Fi
     bool ok = false;
     std::string error;
     double chi2 = 0.0;
+    double seconds = 0.0;
     std::vector<double> values, std;
     Eigen::VectorXd x;
   };
@@ -224,10 +252,12 @@ DiagnosisResult Diagnose(const FitData& fit, const FitData& validation, const Fi
         const CandidateExtension& extension = extensions[jobs[j].candidate];
         IdentifyOptions refit = identify;
         refit.model.num_harmonics = extension.model_harmonics;
+        refit.ipopt.max_iterations = options.refit_max_iterations;
+        refit.ipopt.max_cpu_seconds = options.refit_max_cpu_seconds;
         const IdentifyResult r = IdentifyWith(
             [&] { return std::make_unique<IdentificationProblem>(fit, extension.structure, refit.model); },
             extension.structure, jobs[j].start, refit);
-        std::vector<double> record = {r.chi_square};
+        std::vector<double> record = {r.chi_square, r.seconds};
         for (const auto& p : r.parameters) record.push_back(p.value);
         for (const auto& p : r.parameters) record.push_back(p.std);
         record.insert(record.end(), r.x.data(), r.x.data() + r.x.size());
@@ -241,10 +271,11 @@ DiagnosisResult Diagnose(const FitData& fit, const FitData& validation, const Fi
           const int p = extensions[jobs[j].candidate].structure.NumParameters();
           o.ok = true;
           o.chi2 = record[0];
-          o.values.assign(record.begin() + 1, record.begin() + 1 + p);
-          o.std.assign(record.begin() + 1 + p, record.begin() + 1 + 2 * p);
-          o.x = Eigen::Map<const Eigen::VectorXd>(record.data() + 1 + 2 * p,
-                                                  static_cast<Eigen::Index>(record.size()) - 1 - 2 * p);
+          o.seconds = record[1];
+          o.values.assign(record.begin() + 2, record.begin() + 2 + p);
+          o.std.assign(record.begin() + 2 + p, record.begin() + 2 + 2 * p);
+          o.x = Eigen::Map<const Eigen::VectorXd>(record.data() + 2 + 2 * p,
+                                                  static_cast<Eigen::Index>(record.size()) - 2 - 2 * p);
         }
         report(0.2 + 0.7 * done / static_cast<double>(jobs.size()),
                "refit " + std::to_string(done) + "/" + std::to_string(jobs.size()) + " (" +
@@ -266,6 +297,8 @@ DiagnosisResult Diagnose(const FitData& fit, const FitData& validation, const Fi
     outcome.extra_parameters = extensions[c].extra_parameters;
     outcome.test_dof = extensions[c].test_dof;
     if (result.location) outcome.signature_score = library[c].signature(*result.location);
+    for (int k = 0; k < static_cast<int>(jobs.size()); ++k)
+      if (jobs[k].candidate == c) outcome.seconds += outcomes[k].seconds;
     const int j = best_job[c];
     if (j < 0) {
       outcome.status = "failed";
@@ -382,6 +415,7 @@ nlohmann::json ToJson(const DiagnosisResult& r) {
                           {"likelihood_ratio", c.likelihood_ratio},
                           {"test_dof", c.test_dof},
                           {"p_value", c.p_value},
+                          {"seconds", c.seconds},
                           {"fit", ToJson(c.fit)}});
   }
   nlohmann::json location = r.location ? ToJson(*r.location) : nlohmann::json{{"error", r.location_error}};

@@ -44,7 +44,11 @@ struct DiagnosisOptions {
   // `beamid identify` warns above the same value.
   double acceptable_reduced_chi_square = 4.0;
   int num_workers = 0;              // 0: one per hardware core
-  internal::IpoptOptions ipopt;
+  internal::IpoptOptions ipopt;     // the base fit's
+  // Each candidate refit starts at the base optimum and needs < 40
+  // iterations when the candidate fits; a start that wanders is cut short.
+  int refit_max_iterations = 80;
+  double refit_max_cpu_seconds = 10.0;
 };
 
 // One fitted model's quality.
@@ -76,6 +80,7 @@ struct CandidateOutcome {
   double p_value = 1.0;
   double residual_drop = 1.0;       // χ²_base / χ²_candidate
   bool significant = false;
+  double seconds = 0.0;             // Ipopt time of its refits (all starts)
 };
 
 // Measured and modelled first harmonics of one channel at one step (the

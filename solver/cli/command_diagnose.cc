@@ -110,9 +110,9 @@ void RunDiagnose(const DiagnoseCommandOptions& options, const GlobalOptions& glo
     fmt::print("  {:<20} {:>6} {:>12.5g} {:>9} {:>11.5g} {:>10}  {:.3g} %\n", "(base)", "", result.base.chi_square, "",
                result.base.bic, "", 100.0 * result.base.held_out_h1_relative_error);
     for (const auto& c : result.candidates)
-      fmt::print("  {:<20} {:>6.2f} {:>12.5g} {:>8.3g}x {:>11.5g} {:>10.2g}  {:.3g} %{}\n", c.name, c.signature_score,
-                 c.fit.chi_square, c.residual_drop, c.fit.bic, c.p_value, 100.0 * c.fit.held_out_h1_relative_error,
-                 c.significant ? "  significant" : "");
+      fmt::print("  {:<20} {:>6.2f} {:>12.5g} {:>8.3g}x {:>11.5g} {:>10.2g}  {:.3g} %  ({:.1f} s){}\n", c.name,
+                 c.signature_score, c.fit.chi_square, c.residual_drop, c.fit.bic, c.p_value,
+                 100.0 * c.fit.held_out_h1_relative_error, c.seconds, c.significant ? "  significant" : "");
     fmt::print("{}\nwrote {}\n", result.summary, options.output);
   }
 }
