@@ -29,22 +29,33 @@ struct DiagnoseCommandOptions {
   std::string curves;  // CSV prefix of the response curves (and its plot)
 };
 
-// A gnuplot script: per level, measured first-harmonic amplitude (points)
-// against the base model and the diagnosed one (lines), every channel.
-std::string PlotScript(const std::string& csv, const std::string& png) {
-  return fmt::format(R"(set terminal pngcairo size 1200,800
-set output '{1}'
-set datafile separator ','
-set key outside right
-set xlabel 'frequency [Hz]'
-set ylabel 'first-harmonic amplitude (channel unit)'
-set logscale y
-set title 'measured (points), base model (dashed), diagnosed model (solid)'
-plot '{0}' every ::1 using 2:($5) with points pt 7 ps 0.6 title 'measured', \
-     '{0}' every ::1 using 2:($7) with points pt 1 ps 0.8 title 'base model', \
-     '{0}' every ::1 using 2:($9) with points pt 6 ps 0.9 title 'diagnosed model'
-)",
-                     csv, png);
+// A gnuplot script, one panel per channel: per level the measured
+// first-harmonic amplitude (points), the base model (dashed) and the
+// diagnosed model (solid) against frequency.
+std::string PlotScript(const solver::DiagnosisResult& result, const std::string& csv, const std::string& png) {
+  std::vector<std::string> levels, channels;
+  for (const auto& p : result.response) {
+    if (std::find(levels.begin(), levels.end(), p.level) == levels.end()) levels.push_back(p.level);
+    if (std::find(channels.begin(), channels.end(), p.channel) == channels.end()) channels.push_back(p.channel);
+  }
+  std::string script = fmt::format(
+      "set terminal pngcairo size {},600\nset output '{}'\nset datafile separator ','\nset key top left\n"
+      "set xlabel 'frequency [Hz]'\nset ylabel 'first-harmonic amplitude (channel unit)'\n"
+      "set multiplot layout 1,{}\n",
+      500 * channels.size(), png, channels.size());
+  for (const auto& channel : channels) {
+    script += fmt::format("set title '{}: measured (points), base model (dashed), diagnosed (solid)' noenhanced\nplot ",
+                          channel);
+    for (std::size_t l = 0; l < levels.size(); ++l) {
+      const std::string rows =
+          fmt::format("\"< awk -F, '$1==\\\"{}\\\" && $3==\\\"{}\\\"' {}\"", levels[l], channel, csv);
+      script += fmt::format("{0} using 2:5 with points pt 7 lc {1} title '{2}', "
+                            "{0} using 2:7 with lines dt 2 lc {1} notitle, "
+                            "{0} using 2:9 with lines dt 1 lc {1} notitle{3}",
+                            rows, l + 1, levels[l], l + 1 < levels.size() ? ", \\\n  " : "\n");
+    }
+  }
+  return script + "unset multiplot\n";
 }
 
 void RunDiagnose(const DiagnoseCommandOptions& options, const GlobalOptions& global) {
@@ -95,7 +106,7 @@ void RunDiagnose(const DiagnoseCommandOptions& options, const GlobalOptions& glo
   if (!options.curves.empty()) {
     const std::string csv = options.curves + ".csv", png = options.curves + ".png", gp = options.curves + ".gp";
     WriteTextFile(csv, solver::ResponseCsv(result));
-    WriteTextFile(gp, PlotScript(std::filesystem::path(csv).filename().string(),
+    WriteTextFile(gp, PlotScript(result, std::filesystem::path(csv).filename().string(),
                                  std::filesystem::path(png).filename().string()));
     const std::string folder = std::filesystem::absolute(gp).parent_path().string();
     const std::string command = "cd '" + folder + "' && gnuplot '" + std::filesystem::path(gp).filename().string() +
@@ -110,7 +121,10 @@ void RunDiagnose(const DiagnoseCommandOptions& options, const GlobalOptions& glo
     fmt::print("  {:<20} {:>6} {:>12.5g} {:>9} {:>11.5g} {:>10}  {:.3g} %\n", "(base)", "", result.base.chi_square, "",
                result.base.bic, "", 100.0 * result.base.held_out_h1_relative_error);
     for (const auto& c : result.candidates)
-      fmt::print("  {:<20} {:>6.2f} {:>12.5g} {:>8.3g}x {:>11.5g} {:>10.2g}  {:.3g} %  ({:.1f} s){}\n", c.name,
+      if (!c.converged)
+        fmt::print("  {:<20} {:>6.2f}  refit failed ({})\n", c.name, c.signature_score, c.status);
+      else
+        fmt::print("  {:<20} {:>6.2f} {:>12.5g} {:>8.3g}x {:>11.5g} {:>10.2g}  {:.3g} %  ({:.1f} s){}\n", c.name,
                  c.signature_score, c.fit.chi_square, c.residual_drop, c.fit.bic, c.p_value,
                  100.0 * c.fit.held_out_h1_relative_error, c.seconds, c.significant ? "  significant" : "");
     fmt::print("{}\nwrote {}\n", result.summary, options.output);

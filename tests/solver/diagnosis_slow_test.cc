@@ -18,29 +18,6 @@ namespace {
 
 constexpr double kMinResidualDrop = 5.0;
 
-nlohmann::json BaseScenario() {
-  return nlohmann::json::parse(R"({
-  "name": "diagnosis test: paper set-up",
-  "beam": {"length_m": 0.6, "width_m": 0.04, "thickness_m": 0.005, "youngs_modulus_Pa": 2.1e11,
-           "density_kg_m3": 7850, "loss_factor": 0.0002},
-  "support": {"polynomial": {"k1_Nm_rad": 150, "k2_Nm_rad2": 0, "k3_Nm_rad3": 3e5, "c_Nms_rad": 0.05}},
-  "excitation": {"channel": "force", "position_m": 0.57},
-  "sensors": [{"channel": "acc1", "position_m": 0.1}, {"channel": "acc2", "position_m": 0.3},
-              {"channel": "acc3", "position_m": 0.57}],
-  "levels": [{"label": "low", "force_amplitude_N": 1.0, "frequencies_Hz": {"start": 51, "stop": 57, "step": 0.75}},
-             {"label": "mid", "force_amplitude_N": 4.0, "frequencies_Hz": {"start": 51, "stop": 57, "step": 0.75}},
-             {"label": "high", "force_amplitude_N": 9.0, "frequencies_Hz": {"start": 51, "stop": 57, "step": 0.75}}],
-  "timing": {"sample_rate_Hz": 5120, "settle_min_s": 0.2, "settle_max_s": 4.0, "transient_s": 0.05, "record_s": 0.4},
-  "noise": {"seed": 11, "clock_offset_ppm": 25,
-            "default": {"relative_rms": 0.003, "absolute": 0.005, "adc_bits": 24, "adc_range": 500},
-            "channels": {"force": {"relative_rms": 0.002, "absolute": 0.002, "adc_bits": 24, "adc_range": 50}}}
-})");
-}
-
-struct Outcome {
-  DiagnosisResult result;
-};
-
 DiagnosisResult DiagnoseScenario(const nlohmann::json& scenario, const std::string& name) {
   const testing::ExtractedCampaign campaign = testing::SimulateCampaign(scenario, "beamid_diagnosis_" + name);
   DiagnosisOptions options;
@@ -77,7 +54,7 @@ double Extra(const DiagnosisResult& result, const std::string& name) {
 }
 
 TEST(DiagnosisOnConcealedEffects, NamesFrictionAtTheSupport) {
-  nlohmann::json s = BaseScenario();
+  nlohmann::json s = testing::PaperSetUpScenario();
   s["support"]["polynomial"]["k1_Nm_rad"] = 100.0;
   s["support"]["jenkins"] = {{"stiffness_Nm_rad", 50.0}, {"slip_moment_Nm", 0.15}};
   s["timing"]["max_time_step_s"] = 9.765625e-06;
@@ -90,7 +67,7 @@ TEST(DiagnosisOnConcealedEffects, NamesFrictionAtTheSupport) {
 }
 
 TEST(DiagnosisOnConcealedEffects, NamesClampCompliance) {
-  nlohmann::json s = BaseScenario();
+  nlohmann::json s = testing::PaperSetUpScenario();
   s["attachments"] = {{"clamp_rotational_stiffness_Nm_rad", 1e4}};
   const DiagnosisResult result = DiagnoseScenario(s, "clamp");
   ExpectNamed(result, "clamp_compliance");
@@ -98,14 +75,14 @@ TEST(DiagnosisOnConcealedEffects, NamesClampCompliance) {
 }
 
 TEST(DiagnosisOnConcealedEffects, NamesAnAddedMass) {
-  nlohmann::json s = BaseScenario();
+  nlohmann::json s = testing::PaperSetUpScenario();
   s["attachments"] = {{"point_masses", {{{"position_m", 0.45}, {"mass_kg", 0.03}}}}};
   const DiagnosisResult result = DiagnoseScenario(s, "added_mass");
   ExpectNamed(result, "added_mass");
 }
 
 TEST(DiagnosisOnConcealedEffects, NamesAModulusError) {
-  nlohmann::json s = BaseScenario();
+  nlohmann::json s = testing::PaperSetUpScenario();
   s["beam"]["youngs_modulus_Pa"] = 2.0e11;
   s["nominal_beam"] = {{"youngs_modulus_Pa", 2.1e11}};
   const DiagnosisResult result = DiagnoseScenario(s, "modulus");
