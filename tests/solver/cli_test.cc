@@ -84,10 +84,13 @@ TEST_F(CommandLine, BadInputEndsWithExitCodeTwoAndSaysWhatToFix) {
   EXPECT_THAT(run.output, HasSubstr("no_campaign"));
   run = Beamid("frc examples/paper_setup/model.json --harmonics 0");
   EXPECT_EQ(run.exit_code, 2);
+  run = Beamid("diagnose " + (folder_ / "no_campaign").string() + " --candidates gravity");
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.output, HasSubstr("gravity"));
 }
 
 TEST_F(CommandLine, EveryCommandHasHelpWithAnExample) {
-  for (const char* command : {"frc", "backbone", "identify", "predict", "extract", "simulate"}) {
+  for (const char* command : {"frc", "backbone", "identify", "predict", "extract", "simulate", "diagnose"}) {
     const ProgramRun run = Beamid(std::string(command) + " --help");
     EXPECT_EQ(run.exit_code, 0) << command;
     EXPECT_THAT(run.output, HasSubstr("Example")) << command;
