@@ -44,8 +44,8 @@ std::string PlotScript(const solver::DiagnosisResult& result, const std::string&
       "set multiplot layout 1,{}\n",
       500 * channels.size(), png, channels.size());
   for (const auto& channel : channels) {
-    script += fmt::format("set title '{}: measured (points), base model (dashed), diagnosed (solid)' noenhanced\nplot ",
-                          channel);
+    script += fmt::format(
+        "set title '{} (points: measured, dashed: base, solid: diagnosed)' noenhanced font ',10'\nplot ", channel);
     for (std::size_t l = 0; l < levels.size(); ++l) {
       const std::string rows =
           fmt::format("\"< awk -F, '$1==\\\"{}\\\" && $3==\\\"{}\\\"' {}\"", levels[l], channel, csv);
