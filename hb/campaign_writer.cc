@@ -185,7 +185,9 @@ void CampaignWriter::Finish() {
           {"c_Nms_rad", s.polynomial.c_Nms_rad}}},
         {"jenkins", s.jenkins ? Json{{"stiffness_Nm_rad", s.jenkins->stiffness_Nm_rad},
                                      {"slip_moment_Nm", s.jenkins->slip_moment_Nm}}
-                              : Json(nullptr)}}},
+                              : Json(nullptr)},
+         {"one_sided", s.one_sided_stiffness_Nm_rad != 0.0 ? Json{{"stiffness_Nm_rad", s.one_sided_stiffness_Nm_rad}}
+                                                           : Json(nullptr)}}},
       {"attachments",
        {{"clamp_rotational_stiffness_Nm_rad", StiffnessJson(s.attachments.clamp_rotational_stiffness_Nm_rad)},
         {"support_translational_stiffness_N_m", StiffnessJson(s.attachments.support_translational_stiffness_N_m)},

@@ -10,7 +10,7 @@ namespace beamid::hb {
 using internal::Json;
 using internal::ObjectReader;
 
-std::unique_ptr<SupportLaw> ModelFile::MakeSupportLaw() const { return MakePolynomialSupportLaw(polynomial, jenkins); }
+std::unique_ptr<SupportLaw> ModelFile::MakeSupportLaw() const { return MakePolynomialSupportLaw(polynomial, jenkins, one_sided_stiffness_Nm_rad); }
 
 ModelFile ParseModelFile(const std::string& json_text, const std::string& source) {
   Json root;
@@ -29,7 +29,7 @@ ModelFile ParseModelFile(const std::string& json_text, const std::string& source
     ObjectReader beam(top.Raw("beam"), source, "beam", kDoc);
     internal::ReadBeam(beam, model.beam, true);
   }
-  internal::ReadSupport(top, kDoc, model.polynomial, model.jenkins);
+  internal::ReadSupport(top, kDoc, model.polynomial, model.jenkins, model.one_sided_stiffness_Nm_rad);
   internal::ReadAttachments(top, kDoc, model.attachments);
   {
     ObjectReader e(top.Raw("excitation"), source, "excitation", kDoc);

@@ -27,6 +27,7 @@ struct ModelFile {
   BeamProperties beam;
   PolynomialSupportLaw::Coefficients polynomial;
   std::optional<JenkinsSupportLaw::Parameters_> jenkins;
+  double one_sided_stiffness_Nm_rad = 0.0;  // OneSidedStiffnessLaw in parallel when non-zero
   LinearAttachments attachments;
   double force_position_m = 0.570;
   std::vector<ModelSensor> sensors;

@@ -81,7 +81,7 @@ bool IsSafeLabel(const std::string& label) {
 
 }  // namespace
 
-std::unique_ptr<SupportLaw> Scenario::MakeSupportLaw() const { return MakePolynomialSupportLaw(polynomial, jenkins); }
+std::unique_ptr<SupportLaw> Scenario::MakeSupportLaw() const { return MakePolynomialSupportLaw(polynomial, jenkins, one_sided_stiffness_Nm_rad); }
 
 LinearAttachments Scenario::TrueAttachments() const {
   LinearAttachments all = attachments;
@@ -124,7 +124,7 @@ Scenario ParseScenario(const std::string& json_text, const std::string& source) 
     ObjectReader nominal(top.Raw("nominal_beam"), source, "nominal_beam");
     ReadBeam(nominal, s.nominal_beam, false);
   }
-  internal::ReadSupport(top, "docs/simulator.md", s.polynomial, s.jenkins);
+  internal::ReadSupport(top, "docs/simulator.md", s.polynomial, s.jenkins, s.one_sided_stiffness_Nm_rad);
   internal::ReadAttachments(top, "docs/simulator.md", s.attachments);
   if (top.Has("damping")) {
     ObjectReader d(top.Raw("damping"), source, "damping");

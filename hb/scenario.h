@@ -80,6 +80,7 @@ struct Scenario {
   BeamProperties nominal_beam;  // written to campaign.json
   PolynomialSupportLaw::Coefficients polynomial;
   std::optional<JenkinsSupportLaw::Parameters_> jenkins;
+  double one_sided_stiffness_Nm_rad = 0.0;  // OneSidedStiffnessLaw in parallel when non-zero
   LinearAttachments attachments;  // concealed attachments (sensor masses not included)
   // ω_ref/2π of the stiffness-proportional damping (0 = first natural frequency).
   double damping_reference_frequency_hz = 0.0;
@@ -98,7 +99,8 @@ struct Scenario {
   double clock_offset_ppm = 0.0;  // true f = nominal·(1 + ppm·1e-6)
   std::uint64_t seed = 1;
 
-  // The true support law: the polynomial, plus the Jenkins element in parallel.
+  // The true support law: the polynomial, plus the Jenkins element and the
+  // one-sided stiffness in parallel.
   std::unique_ptr<SupportLaw> MakeSupportLaw() const;
   // Concealed attachments plus the sensors' masses.
   LinearAttachments TrueAttachments() const;

@@ -179,6 +179,34 @@ void JenkinsSupportLaw::SetParameterValues(std::span<const double> values) {
   *this = JenkinsSupportLaw(Parameters_{values[0], values[1]});
 }
 
+// ---------------------------------------------------------------- one-sided
+
+std::unique_ptr<SupportLaw> OneSidedStiffnessLaw::Clone() const {
+  return std::make_unique<OneSidedStiffnessLaw>(*this);
+}
+
+SupportLawResponse OneSidedStiffnessLaw::Evaluate(double theta, double, std::span<const double>,
+                                                  std::span<double>) const {
+  const bool engaged = theta > 0.0;
+  return {.moment_Nm = engaged ? stiffness_Nm_rad_ * theta : 0.0,
+          .d_moment_d_theta_Nm_rad = engaged ? stiffness_Nm_rad_ : 0.0,
+          .d_moment_d_theta_rate_Nms_rad = 0.0};
+}
+
+std::vector<LawParameter> OneSidedStiffnessLaw::Parameters() const {
+  return {{"one_sided_stiffness", stiffness_Nm_rad_, "N*m/rad"}};
+}
+
+void OneSidedStiffnessLaw::SetParameterValues(std::span<const double> values) {
+  if (values.size() != 1) throw std::invalid_argument("one-sided stiffness law takes 1 parameter");
+  stiffness_Nm_rad_ = values[0];
+}
+
+Eigen::MatrixXd OneSidedStiffnessLaw::PeriodicParameterJacobian(const Eigen::VectorXd& theta,
+                                                                const Eigen::VectorXd&) const {
+  return theta.cwiseMax(0.0);
+}
+
 // ----------------------------------------------------------------- composite
 
 CompositeSupportLaw::CompositeSupportLaw(const CompositeSupportLaw& other) {
@@ -286,12 +314,14 @@ void CompositeSupportLaw::SetParameterValues(std::span<const double> values) {
 }
 
 std::unique_ptr<SupportLaw> MakePolynomialSupportLaw(const PolynomialSupportLaw::Coefficients& polynomial,
-                                                     const std::optional<JenkinsSupportLaw::Parameters_>& jenkins) {
+                                                     const std::optional<JenkinsSupportLaw::Parameters_>& jenkins,
+                                                     double one_sided_stiffness_Nm_rad) {
   auto polynomial_law = std::make_unique<PolynomialSupportLaw>(polynomial);
-  if (!jenkins) return polynomial_law;
+  if (!jenkins && one_sided_stiffness_Nm_rad == 0.0) return polynomial_law;
   auto composite = std::make_unique<CompositeSupportLaw>();
   composite->Add(std::move(polynomial_law));
-  composite->Add(std::make_unique<JenkinsSupportLaw>(*jenkins));
+  if (jenkins) composite->Add(std::make_unique<JenkinsSupportLaw>(*jenkins));
+  if (one_sided_stiffness_Nm_rad != 0.0) composite->Add(std::make_unique<OneSidedStiffnessLaw>(one_sided_stiffness_Nm_rad));
   return composite;
 }
 

@@ -139,6 +139,34 @@ class JenkinsSupportLaw final : public SupportLaw {
   Parameters_ parameters_;
 };
 
+// A one-sided (asymmetric) stiffness: M = k_a·max(θ, 0). In parallel with
+// the polynomial law the support is k1 + k_a stiff for positive rotation and
+// k1 for negative rotation (a contact whose patch grows as the beam rotates
+// into the rod, and lifts off the other way). Its moment is a fixed fraction
+// of |θ|'s even harmonics at every amplitude, which k2·θ² (∝ θ²) cannot
+// follow over several levels. k_a may be negative (softer for positive θ).
+class OneSidedStiffnessLaw final : public SupportLaw {
+ public:
+  explicit OneSidedStiffnessLaw(double stiffness_Nm_rad) : stiffness_Nm_rad_(stiffness_Nm_rad) {}
+  double stiffness_Nm_rad() const { return stiffness_Nm_rad_; }
+
+  std::string Name() const override { return "one_sided"; }
+  std::unique_ptr<SupportLaw> Clone() const override;
+  SupportLawResponse Evaluate(double theta_rad, double theta_rate_rad_s,
+                              std::span<const double> state_in,
+                              std::span<double> state_out) const override;
+  // The small-amplitude mean of the two senses' stiffness.
+  double InitialStiffness_Nm_rad() const override { return 0.5 * stiffness_Nm_rad_; }
+  std::vector<LawParameter> Parameters() const override;
+  void SetParameterValues(std::span<const double> values) override;
+  // Exact: the column is max(θ, 0).
+  Eigen::MatrixXd PeriodicParameterJacobian(const Eigen::VectorXd& theta_rad,
+                                            const Eigen::VectorXd& theta_rate_rad_s) const override;
+
+ private:
+  double stiffness_Nm_rad_ = 0.0;
+};
+
 // The sum of several laws acting in parallel (e.g. polynomial + Jenkins).
 class CompositeSupportLaw final : public SupportLaw {
  public:
@@ -168,8 +196,10 @@ class CompositeSupportLaw final : public SupportLaw {
   std::vector<std::unique_ptr<SupportLaw>> laws_;
 };
 
-// The polynomial law, with a Jenkins element in parallel when one is given.
+// The polynomial law, with a Jenkins element and a one-sided stiffness in
+// parallel when they are given (non-zero).
 std::unique_ptr<SupportLaw> MakePolynomialSupportLaw(const PolynomialSupportLaw::Coefficients& polynomial,
-                                                     const std::optional<JenkinsSupportLaw::Parameters_>& jenkins);
+                                                     const std::optional<JenkinsSupportLaw::Parameters_>& jenkins,
+                                                     double one_sided_stiffness_Nm_rad = 0.0);
 
 }  // namespace beamid::hb

@@ -1,5 +1,6 @@
 #include "solver/model_structure.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace beamid::solver {
@@ -82,7 +83,9 @@ LinearParameter LossFactor(double initial) {
           .unit = "1",
           .initial = initial,
           .bounds = {.lower = 0.0, .upper = 0.05, .typical = 1e-3},
-          .apply = [](hb::LinearBeamModel& model, double eta) { model.beam.loss_factor = eta; }};
+          // Ipopt relaxes bounds by ~1e-8: a fit that wants no beam damping may
+          // step a hair below 0, which the beam rejects.
+          .apply = [](hb::LinearBeamModel& model, double eta) { model.beam.loss_factor = std::max(eta, 0.0); }};
 }
 
 LinearParameter LinearParameterByName(const std::string& name, double value) {

@@ -115,9 +115,10 @@ inline void ReadBeam(ObjectReader& r, BeamProperties& beam, bool all_required) {
 
 
 // "support": {"polynomial": {k1_Nm_rad, k2_Nm_rad2, k3_Nm_rad3, c_Nms_rad},
-//             "jenkins": {stiffness_Nm_rad, slip_moment_Nm}} (jenkins optional).
+//             "jenkins": {stiffness_Nm_rad, slip_moment_Nm},
+//             "one_sided": {stiffness_Nm_rad}} (jenkins and one_sided optional).
 inline void ReadSupport(ObjectReader& top, const std::string& format_doc, PolynomialSupportLaw::Coefficients& polynomial,
-                        std::optional<JenkinsSupportLaw::Parameters_>& jenkins) {
+                        std::optional<JenkinsSupportLaw::Parameters_>& jenkins, double& one_sided_stiffness_Nm_rad) {
   ObjectReader support(top.Raw("support"), top.source(), "support", format_doc);
   ObjectReader poly(support.Raw("polynomial"), top.source(), "support.polynomial", format_doc);
   polynomial.k1_Nm_rad = poly.Number("k1_Nm_rad");  // required: a support without it is a typo
@@ -129,6 +130,12 @@ inline void ReadSupport(ObjectReader& top, const std::string& format_doc, Polyno
     ObjectReader j(support.Raw("jenkins"), top.source(), "support.jenkins", format_doc);
     jenkins = JenkinsSupportLaw::Parameters_{.stiffness_Nm_rad = j.Positive("stiffness_Nm_rad", 0.0),
                                              .slip_moment_Nm = j.Positive("slip_moment_Nm", 0.0)};
+  }
+  if (support.Has("one_sided")) {
+    ObjectReader o(support.Raw("one_sided"), top.source(), "support.one_sided", format_doc);
+    one_sided_stiffness_Nm_rad = o.Number("stiffness_Nm_rad");
+    if (polynomial.k1_Nm_rad + one_sided_stiffness_Nm_rad < 0.0)
+      o.FailField("stiffness_Nm_rad", "must not make k1 + stiffness_Nm_rad negative (a support that pushes)");
   }
 }
 

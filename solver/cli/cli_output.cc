@@ -8,6 +8,9 @@
 #include <fmt/core.h>
 #include <unistd.h>
 
+#include "signal/campaign_extractor.h"
+#include "signal/phasor_set_io.h"
+
 namespace beamid::cli {
 
 Progress::Progress(std::string label, const GlobalOptions& global)
@@ -68,6 +71,18 @@ void WriteTextFile(const std::filesystem::path& path, const std::string& text) {
   if (!out) throw std::invalid_argument(path.string() + ": cannot write this file (check the folder and permissions)");
   out << text;
   if (!out) throw std::invalid_argument(path.string() + ": writing failed (disk full?)");
+}
+
+signal::PhasorSet ReadOrExtractPhasors(const signal::Campaign& campaign, const std::string& phasors_file,
+                                       int num_harmonics, const GlobalOptions& global) {
+  if (!phasors_file.empty()) return signal::ReadPhasorSetJson(phasors_file);
+  Progress progress("extract", global);
+  signal::ExtractOptions extract;
+  extract.estimator.num_harmonics = num_harmonics;
+  extract.progress = [&](std::size_t done, std::size_t total, const signal::StepPhasors&) {
+    progress.Update(static_cast<double>(done) / total);
+  };
+  return signal::ExtractCampaign(campaign, extract);
 }
 
 }  // namespace beamid::cli

@@ -22,6 +22,9 @@
 
 #include "solver/cli/command_registry.h"
 
+#include "signal/campaign.h"
+#include "signal/phasor_set.h"
+
 namespace beamid::cli {
 
 class Progress {
@@ -51,5 +54,11 @@ nlohmann::json PhasorsToJson(const Eigen::VectorXcd& phasors);
 // Writes text to a file, creating its folder; throws std::invalid_argument
 // naming the path if it cannot.
 void WriteTextFile(const std::filesystem::path& path, const std::string& text);
+
+// The phasors of a campaign: read from `phasors_file` (the output of
+// `beamid extract`) when given, else extracted with harmonics 1..num_harmonics
+// and progress on stderr.
+signal::PhasorSet ReadOrExtractPhasors(const signal::Campaign& campaign, const std::string& phasors_file,
+                                       int num_harmonics, const GlobalOptions& global);
 
 }  // namespace beamid::cli

@@ -41,18 +41,8 @@ void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& glo
     throw std::invalid_argument("--model " + options.model +
                                 ": unknown model (use hb for exact harmonic balance or ms for multiple scales)");
   const signal::Campaign campaign = signal::ReadCampaign(options.campaign_folder);
-  signal::PhasorSet phasors;
-  if (!options.phasors_file.empty()) {
-    phasors = signal::ReadPhasorSetJson(options.phasors_file);
-  } else {
-    Progress progress("extract", global);
-    signal::ExtractOptions extract;
-    extract.estimator.num_harmonics = std::max(5, options.fit_harmonics);
-    extract.progress = [&](std::size_t done, std::size_t total, const signal::StepPhasors&) {
-      progress.Update(static_cast<double>(done) / total);
-    };
-    phasors = signal::ExtractCampaign(campaign, extract);
-  }
+  const signal::PhasorSet phasors =
+      ReadOrExtractPhasors(campaign, options.phasors_file, std::max(5, options.fit_harmonics), global);
   const solver::FitData fit =
       solver::MakeFitData(campaign, phasors, {.channels = options.fit_channels, .num_fit_harmonics = options.fit_harmonics});
   const solver::FitData validation =

@@ -139,6 +139,8 @@ IpoptOutcome RunIpopt(FitProblem& problem, const Eigen::VectorXd& start, const I
   set(app->Options()->SetIntegerValue("print_level", options.print_level), "print_level");
   set(app->Options()->SetStringValue("sb", "yes"), "sb");  // no banner
   set(app->Options()->SetIntegerValue("max_iter", options.max_iterations), "max_iter");
+  if (options.max_cpu_seconds > 0.0)
+    set(app->Options()->SetNumericValue("max_cpu_time", options.max_cpu_seconds), "max_cpu_time");
   set(app->Options()->SetNumericValue("tol", options.tolerance), "tol");
   set(app->Options()->SetNumericValue("constr_viol_tol", options.constraint_tolerance), "constr_viol_tol");
   // We start from a feasible point near the optimum (the direct estimate):

@@ -92,6 +92,9 @@ TEST_F(CommandLine, BadInputEndsWithExitCodeTwoAndSaysWhatToFix) {
   EXPECT_THAT(run.output, HasSubstr("no_campaign"));
   run = Beamid("frc examples/paper_setup/model.json --harmonics 0");
   EXPECT_EQ(run.exit_code, 2);
+  run = Beamid("diagnose " + (folder_ / "no_campaign").string() + " --candidates gravity");
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.output, HasSubstr("gravity"));
 }
 
 TEST_F(CommandLine, IdentifyWithTheMultipleScalesModelAndPredictWithIt) {
@@ -149,7 +152,7 @@ std::vector<std::string> ListedCommands() {
 
 TEST_F(CommandLine, EveryCommandHasHelpWithAnExample) {
   const std::vector<std::string> commands = ListedCommands();
-  for (const char* expected : {"frc", "backbone", "identify", "predict", "extract", "simulate", "report"})
+  for (const char* expected : {"frc", "backbone", "identify", "predict", "extract", "simulate", "report", "diagnose"})
     EXPECT_NE(std::find(commands.begin(), commands.end(), expected), commands.end()) << expected;
   for (const std::string& command : commands) {
     const ProgramRun run = Beamid(command + " --help");

@@ -7,6 +7,15 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+// Test support: a campaign from the independent time-domain simulator
+// (hb/stepped_sine), written to a temporary folder and extracted, ready to
+// fit; and re-noised copies of one noise-free simulation (the simulation is
+// the slow part, the noise is drawn when the campaign is written).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -15,6 +24,7 @@
 #include "hb/stepped_sine.h"
 #include "signal/campaign.h"
 #include "signal/campaign_extractor.h"
+#include "solver/fit_data.h"
 #include "tests/support/temp_path.h"
 
 namespace beamid::testing {
@@ -43,5 +53,71 @@ struct SimulatedCampaign {
   SimulatedCampaign(const SimulatedCampaign&) = delete;
   SimulatedCampaign& operator=(const SimulatedCampaign&) = delete;
 };
+
+struct ExtractedCampaign {
+  std::filesystem::path folder;
+  signal::Campaign campaign;
+  signal::PhasorSet phasors;
+
+  solver::FitData Fit(std::vector<std::string> channels, int harmonics = 3) const {
+    return solver::MakeFitData(campaign, phasors, {.channels = std::move(channels), .num_fit_harmonics = harmonics});
+  }
+};
+
+inline ExtractedCampaign ExtractFolder(const std::filesystem::path& folder) {
+  ExtractedCampaign out{.folder = folder, .campaign = signal::ReadCampaign(folder), .phasors = {}};
+  signal::ExtractOptions extract;
+  extract.estimator.num_harmonics = 5;
+  out.phasors = signal::ExtractCampaign(out.campaign, extract);
+  return out;
+}
+
+// Simulated steps kept in memory, to write with any noise seed.
+inline std::vector<hb::SimulatedStep> SimulateSteps(const hb::Scenario& scenario) {
+  hb::SteppedSineSimulation simulation(scenario);
+  std::vector<hb::SimulatedStep> steps;
+  simulation.Run([&](const hb::SimulatedStep& step) { steps.push_back(step); });
+  return steps;
+}
+
+// Writes the steps with the scenario's noise drawn from `seed` and extracts them.
+inline ExtractedCampaign WriteAndExtract(const hb::Scenario& scenario, const std::vector<hb::SimulatedStep>& steps,
+                                         std::uint64_t seed, const std::string& name) {
+  hb::Scenario noisy = scenario;
+  noisy.seed = seed;
+  const std::filesystem::path folder = UniqueTempPath(name);
+  std::filesystem::remove_all(folder);
+  const hb::SteppedSineSimulation simulation(noisy);  // not run: it carries the scenario to the writer
+  hb::CampaignWriter writer(simulation, folder);
+  for (const auto& step : steps) writer.Write(step);
+  writer.Finish();
+  return ExtractFolder(folder);
+}
+
+// The paper's set-up with base physics (polynomial support), three levels
+// (1, 4, 9 N) of nine steps around the resonance, realistic noise.
+inline nlohmann::json PaperSetUpScenario() {
+  return nlohmann::json::parse(R"({
+  "name": "test: paper set-up, base physics",
+  "beam": {"length_m": 0.6, "width_m": 0.04, "thickness_m": 0.005, "youngs_modulus_Pa": 2.1e11,
+           "density_kg_m3": 7850, "loss_factor": 0.0002},
+  "support": {"polynomial": {"k1_Nm_rad": 150, "k2_Nm_rad2": 0, "k3_Nm_rad3": 3e5, "c_Nms_rad": 0.05}},
+  "excitation": {"channel": "force", "position_m": 0.57},
+  "sensors": [{"channel": "acc1", "position_m": 0.1}, {"channel": "acc2", "position_m": 0.3},
+              {"channel": "acc3", "position_m": 0.57}],
+  "levels": [{"label": "low", "force_amplitude_N": 1.0, "frequencies_Hz": {"start": 51, "stop": 57, "step": 0.75}},
+             {"label": "mid", "force_amplitude_N": 4.0, "frequencies_Hz": {"start": 51, "stop": 57, "step": 0.75}},
+             {"label": "high", "force_amplitude_N": 9.0, "frequencies_Hz": {"start": 51, "stop": 57, "step": 0.75}}],
+  "timing": {"sample_rate_Hz": 5120, "settle_min_s": 0.2, "settle_max_s": 4.0, "transient_s": 0.05, "record_s": 0.4},
+  "noise": {"seed": 11, "clock_offset_ppm": 25,
+            "default": {"relative_rms": 0.003, "absolute": 0.005, "adc_bits": 24, "adc_range": 500},
+            "channels": {"force": {"relative_rms": 0.002, "absolute": 0.002, "adc_bits": 24, "adc_range": 50}}}
+})");
+}
+
+inline ExtractedCampaign SimulateCampaign(const nlohmann::json& scenario_json, const std::string& name) {
+  const hb::Scenario scenario = hb::ParseScenario(scenario_json.dump(), name);
+  return WriteAndExtract(scenario, SimulateSteps(scenario), scenario.seed, name);
+}
 
 }  // namespace beamid::testing

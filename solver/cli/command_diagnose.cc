@@ -1,0 +1,151 @@
+// beamid diagnose: where the base model misses a campaign, which left-out
+// physics explains it (refitting every candidate), and the fit with it.
+#include <cstdlib>
+#include <filesystem>
+
+#include <fmt/core.h>
+
+#include "signal/campaign.h"
+#include "signal/campaign_extractor.h"
+#include "signal/phasor_set_io.h"
+#include "solver/cli/cli_output.h"
+#include "solver/cli/command_registry.h"
+#include "solver/diagnosis.h"
+
+namespace beamid::cli {
+namespace {
+
+struct DiagnoseCommandOptions {
+  std::string campaign_folder;
+  std::vector<std::string> fit_channels;
+  std::vector<std::string> validate_channels;
+  std::vector<std::string> candidates;
+  std::string phasors_file;
+  int harmonics = 5;
+  int fit_harmonics = 3;
+  int workers = 0;
+  double significance = 0.01;
+  std::string output = "diagnosis.json";
+  std::string curves;  // CSV prefix of the response curves (and its plot)
+};
+
+// A gnuplot script, one panel per channel: per level the measured
+// first-harmonic amplitude (points), the base model (dashed) and the
+// diagnosed model (solid) against frequency.
+std::string PlotScript(const solver::DiagnosisResult& result, const std::string& csv, const std::string& png) {
+  std::vector<std::string> levels, channels;
+  for (const auto& p : result.response) {
+    if (std::find(levels.begin(), levels.end(), p.level) == levels.end()) levels.push_back(p.level);
+    if (std::find(channels.begin(), channels.end(), p.channel) == channels.end()) channels.push_back(p.channel);
+  }
+  std::string script = fmt::format(
+      "set terminal pngcairo size {},600\nset output '{}'\nset datafile separator ','\nset key top left\n"
+      "set xlabel 'frequency [Hz]'\nset ylabel 'first-harmonic amplitude (channel unit)'\n"
+      "set multiplot layout 1,{}\n",
+      500 * channels.size(), png, channels.size());
+  for (const auto& channel : channels) {
+    script += fmt::format(
+        "set title '{} (points: measured, dashed: base, solid: diagnosed)' noenhanced font ',10'\nplot ", channel);
+    for (std::size_t l = 0; l < levels.size(); ++l) {
+      const std::string rows =
+          fmt::format("\"< awk -F, '$1==\\\"{}\\\" && $3==\\\"{}\\\"' {}\"", levels[l], channel, csv);
+      script += fmt::format("{0} using 2:5 with points pt 7 lc {1} title '{2}', "
+                            "{0} using 2:7 with lines dt 2 lc {1} notitle, "
+                            "{0} using 2:9 with lines dt 1 lc {1} notitle{3}",
+                            rows, l + 1, levels[l], l + 1 < levels.size() ? ", \\\n  " : "\n");
+    }
+  }
+  return script + "unset multiplot\n";
+}
+
+void RunDiagnose(const DiagnoseCommandOptions& options, const GlobalOptions& global) {
+  for (const auto& name : options.candidates) {
+    const auto names = solver::CandidateNames();
+    if (std::find(names.begin() + 1, names.end(), name) == names.end())
+      throw std::invalid_argument("--candidates: unknown candidate '" + name +
+                                  "' (known: support_friction, clamp_compliance, added_mass, modulus_error, "
+                                  "support_asymmetry, harmonic_truncation)");
+  }
+  const signal::Campaign campaign = signal::ReadCampaign(options.campaign_folder);
+  const signal::PhasorSet phasors =
+      ReadOrExtractPhasors(campaign, options.phasors_file, std::max(5, options.fit_harmonics), global);
+  const solver::FitData fit = solver::MakeFitData(
+      campaign, phasors, {.channels = options.fit_channels, .num_fit_harmonics = options.fit_harmonics});
+  const solver::FitData validation =
+      options.validate_channels.empty()
+          ? solver::FitData{}
+          : solver::MakeFitData(campaign, phasors,
+                                {.channels = options.validate_channels, .num_fit_harmonics = options.fit_harmonics});
+  // The fitted channels examined up to the 5th harmonic (beyond the fitted ones).
+  std::vector<std::string> fitted_channels;
+  for (const auto& c : fit.channels) fitted_channels.push_back(c.channel);
+  const solver::FitData located = solver::MakeFitData(
+      campaign, phasors, {.channels = fitted_channels, .num_fit_harmonics = std::max(5, options.fit_harmonics)});
+  solver::DiagnosisOptions diagnosis;
+  diagnosis.model_harmonics = options.harmonics;
+  diagnosis.candidates = options.candidates;
+  diagnosis.num_workers = options.workers;
+  diagnosis.significance = options.significance;
+  Progress progress("diagnose", global);
+  const solver::DiagnosisResult result = solver::Diagnose(
+      fit, validation, located, diagnosis, [&](double fraction, const std::string&) { progress.Update(fraction); });
+  progress.Done();
+  nlohmann::json report = solver::ToJson(result);
+  report["campaign"] = {{"folder", options.campaign_folder}, {"name", campaign.name}};
+  WriteTextFile(options.output, report.dump(1));
+  if (!options.curves.empty()) {
+    const std::string csv = options.curves + ".csv", png = options.curves + ".png", gp = options.curves + ".gp";
+    WriteTextFile(csv, solver::ResponseCsv(result));
+    WriteTextFile(gp, PlotScript(result, std::filesystem::path(csv).filename().string(),
+                                 std::filesystem::path(png).filename().string()));
+    const std::string folder = std::filesystem::absolute(gp).parent_path().string();
+    const std::string command = "cd '" + folder + "' && gnuplot '" + std::filesystem::path(gp).filename().string() +
+                                "' 2>/dev/null";
+    if (std::system(command.c_str()) != 0 && !global.quiet)
+      fmt::print(stderr, "gnuplot failed or is missing: {} not drawn ({} is there)\n", png, csv);
+  }
+  if (!global.quiet) {
+    fmt::print("diagnosed {} steps in {:.2f} s: {}\n", fit.steps.size(), result.seconds, result.verdict);
+    fmt::print("  {:<20} {:>6} {:>12} {:>9} {:>11} {:>10}  {}\n", "candidate", "score", "chi-square", "drop",
+               "BIC", "p", "held-out h1");
+    fmt::print("  {:<20} {:>6} {:>12.5g} {:>9} {:>11.5g} {:>10}  {:.3g} %\n", "(base)", "", result.base.chi_square, "",
+               result.base.bic, "", 100.0 * result.base.held_out_h1_relative_error);
+    for (const auto& c : result.candidates)
+      if (!c.converged)
+        fmt::print("  {:<20} {:>6.2f}  refit failed ({})\n", c.name, c.signature_score, c.status);
+      else
+        fmt::print("  {:<20} {:>6.2f} {:>12.5g} {:>8.3g}x {:>11.5g} {:>10.2g}  {:.3g} %  ({:.1f} s){}\n", c.name,
+                 c.signature_score, c.fit.chi_square, c.residual_drop, c.fit.bic, c.p_value,
+                 100.0 * c.fit.held_out_h1_relative_error, c.seconds, c.significant ? "  significant" : "");
+    fmt::print("{}\nwrote {}\n", result.summary, options.output);
+  }
+}
+
+BEAMID_REGISTER_COMMAND("diagnose", [](CLI::App& app, const GlobalOptions& global) {
+  auto options = std::make_shared<DiagnoseCommandOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "diagnose",
+      "Locate where the identified model misses the recordings, name the left-out physics (friction, clamp "
+      "compliance, added mass, modulus error, support asymmetry, harmonic truncation) by refitting each, and show "
+      "the fit with it.\n"
+      "Example: beamid diagnose campaign/ --fit acc1,acc2 --validate acc3 -o diagnosis.json --curves frc");
+  sub->add_option("campaign", options->campaign_folder, "Campaign folder (holds campaign.json)")->required();
+  sub->add_option("--fit", options->fit_channels, "Response channels to fit (default: all)")->delimiter(',');
+  sub->add_option("--validate", options->validate_channels, "Held-out channels to predict and compare")
+      ->delimiter(',');
+  sub->add_option("--candidates", options->candidates, "Candidates to try (default: all)")->delimiter(',');
+  sub->add_option("--phasors", options->phasors_file, "Use phasors from 'beamid extract' instead of extracting");
+  sub->add_option("-H,--harmonics", options->harmonics, "Harmonics of the base model")->capture_default_str();
+  sub->add_option("--fit-harmonics", options->fit_harmonics, "Harmonics 1..K fitted")->capture_default_str();
+  sub->add_option("--workers", options->workers, "Parallel refits (0: one per core)")->capture_default_str();
+  sub->add_option("--significance", options->significance, "Family-wise significance of naming a cause")
+      ->capture_default_str();
+  sub->add_option("--curves", options->curves,
+                  "Write PREFIX.csv with the first-harmonic response of measurements, base and diagnosed model per "
+                  "level, and PREFIX.png (gnuplot)");
+  sub->add_option("-o,--output", options->output, "Diagnosis file (JSON)")->capture_default_str();
+  sub->callback([options, &global] { RunDiagnose(*options, global); });
+});
+
+}  // namespace
+}  // namespace beamid::cli

@@ -1,0 +1,43 @@
+// No false alarm: on campaigns whose physics IS the base model (polynomial
+// support, nominal beam), the diagnosis names no cause. One noise-free
+// simulation of the time-domain simulator, written with ten noise seeds.
+#include <cstdio>
+#include <filesystem>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "solver/diagnosis.h"
+#include "tests/support/simulated_campaign.h"
+
+namespace beamid::solver {
+namespace {
+
+constexpr int kRealisations = 10;
+
+TEST(DiagnosisOnBasePhysics, RaisesNoFalseAlarmOverTenNoiseRealisations) {
+  const hb::Scenario scenario =
+      hb::ParseScenario(testing::PaperSetUpScenario().dump(), "diagnosis_no_false_alarm scenario");
+  const std::vector<hb::SimulatedStep> steps = testing::SimulateSteps(scenario);
+  int alarms = 0;
+  for (int r = 0; r < kRealisations; ++r) {
+    const testing::ExtractedCampaign campaign =
+        testing::WriteAndExtract(scenario, steps, 1000 + r, "beamid_diagnosis_base_" + std::to_string(r));
+    DiagnosisOptions options;
+    options.num_workers = 2;
+    const DiagnosisResult result = Diagnose(campaign.Fit({"acc1", "acc2"}), campaign.Fit({"acc3"}),
+                                            campaign.Fit({"acc1", "acc2"}, 5), options);
+    std::filesystem::remove_all(campaign.folder);
+    const CandidateOutcome& best = result.candidates.front();
+    std::printf("realisation %d: %s; base reduced chi2 %.3g; best candidate %s (drop %.3gx, p %.2g), %.2f s\n", r,
+                result.verdict.c_str(), result.base.reduced_chi_square, best.name.c_str(), best.residual_drop,
+                best.p_value, result.seconds);
+    EXPECT_EQ(result.verdict, "no significant discrepancy") << result.summary;
+    EXPECT_EQ(result.selected, std::vector<std::string>{"none"});
+    if (result.selected.front() != "none") ++alarms;
+  }
+  EXPECT_EQ(alarms, 0);
+}
+
+}  // namespace
+}  // namespace beamid::solver
