@@ -204,11 +204,47 @@ std::string JsonHtml(const Json& value) {
   return Escape(value.dump());
 }
 
+// What a test engineer reads of a diagnosis (diagnosis.json of `beamid
+// diagnose`): the verdict, the findings, only the residual groups that stand
+// out of the noise, and one row per candidate; the full statistics stay in
+// the JSON file.
 std::string DiagnosisSection(const Json& diagnosis) {
   std::string html = "<section id=\"diagnosis\"><h2>Diagnosis</h2>\n";
-  for (const char* key : {"summary", "selected", "location", "candidates"})
-    if (diagnosis.contains(key))
-      html += fmt::format("<h3>{}</h3>\n<div class=\"diagnosis-{}\">{}</div>\n", key, key, JsonHtml(diagnosis[key]));
+  if (diagnosis.contains("verdict")) html += "<p><b>Verdict:</b> " + JsonHtml(diagnosis["verdict"]) + "</p>\n";
+  if (diagnosis.contains("selected")) html += "<p><b>Selected:</b> " + JsonHtml(diagnosis["selected"]) + "</p>\n";
+  if (diagnosis.contains("summary")) html += "<p class=\"diagnosis-summary\">" + JsonHtml(diagnosis["summary"]) + "</p>\n";
+  const Json location = diagnosis.value("location", Json::object());
+  if (location.contains("findings") && location["findings"].is_array()) {
+    html += "<h3>Where the misfit sits</h3>\n<ul>";
+    for (const auto& finding : location["findings"]) html += "<li>" + JsonHtml(finding) + "</li>";
+    html += "</ul>\n";
+  }
+  if (location.contains("groups") && location["groups"].is_array()) {
+    Json significant = Json::array();
+    for (const auto& g : location["groups"])
+      if (g.value("significant", false)) significant.push_back(g);
+    html += fmt::format("<h3>Residual groups beyond the noise ({} of {})</h3>\n", significant.size(),
+                        location["groups"].size());
+    if (!significant.empty()) html += JsonHtml(significant) + "\n";
+  }
+  if (diagnosis.contains("candidates") && diagnosis["candidates"].is_array()) {
+    html += "<h3>Candidate physics, each refitted</h3>\n<table><tr><th>candidate</th><th>signature score</th>"
+            "<th>χ² before</th><th>χ² after</th><th>drop</th><th>p</th><th>significant</th>"
+            "<th>extra parameters (95 %)</th></tr>\n";
+    for (const auto& c : diagnosis["candidates"]) {
+      std::string extra;
+      const Json extra_parameters = c.value("extra_parameters", Json::object());
+      for (const auto& [name, p] : extra_parameters.items())
+        extra += fmt::format("{}{} = {} ± {} {}", extra.empty() ? "" : "<br>", Escape(name),
+                             p.contains("value") ? JsonHtml(p["value"]) : "", p.contains("std") ? JsonHtml(p["std"]) : "",
+                             Escape(p.value("unit", "")));
+      const auto field = [&](const char* key) { return c.contains(key) ? JsonHtml(c[key]) : std::string(); };
+      html += "<tr><td>" + field("name") + "</td><td>" + field("score") + "</td><td>" + field("residual_before") +
+              "</td><td>" + field("residual_after") + "</td><td>" + field("residual_drop") + "</td><td>" +
+              field("p_value") + "</td><td>" + field("significant") + "</td><td>" + extra + "</td></tr>\n";
+    }
+    html += "</table>\n";
+  }
   return html + "</section>\n";
 }
 

@@ -35,7 +35,7 @@ fi
 report_input="$out/result.json"
 if "$beamid" diagnose --help >/dev/null 2>&1; then
   step "6. diagnose: is anything left out of the model?"
-  "$beamid" diagnose "$out/campaign" --fit acc1,acc2 --validate acc3 -o "$out/diagnosis.json"
+  "$beamid" diagnose "$out/campaign" --fit acc1,acc2 --validate acc3 --result "$out/result.json" -o "$out/diagnosis.json"
   report_input="$out/diagnosis.json"
 fi
 

@@ -27,6 +27,7 @@ struct DiagnoseCommandOptions {
   double significance = 0.01;
   std::string output = "diagnosis.json";
   std::string curves;  // CSV prefix of the response curves (and its plot)
+  std::string result_file;  // identify's result.json, named in the diagnosis for `beamid report`
 };
 
 // A gnuplot script, one panel per channel: per level the measured
@@ -92,6 +93,11 @@ void RunDiagnose(const DiagnoseCommandOptions& options, const GlobalOptions& glo
   progress.Done();
   nlohmann::json report = solver::ToJson(result);
   report["campaign"] = {{"folder", options.campaign_folder}, {"name", campaign.name}};
+  if (!options.result_file.empty()) {
+    if (!std::filesystem::exists(options.result_file))
+      throw std::invalid_argument(options.result_file + ": no such result file (--result names the result.json of 'beamid identify')");
+    report["result_file"] = std::filesystem::absolute(options.result_file).lexically_normal().string();
+  }
   WriteTextFile(options.output, report.dump(1));
   if (!options.curves.empty()) {
     const std::string csv = options.curves + ".csv", png = options.curves + ".png", gp = options.curves + ".gp";
@@ -144,6 +150,9 @@ BEAMID_REGISTER_COMMAND("diagnose", [](CLI::App& app, const GlobalOptions& globa
                   "Write PREFIX.csv with the first-harmonic response of measurements, base and diagnosed model per "
                   "level, and PREFIX.png (gnuplot)");
   sub->add_option("-o,--output", options->output, "Diagnosis file (JSON)")->capture_default_str();
+  sub->add_option("--result", options->result_file,
+                  "result.json of 'beamid identify' on this campaign, named in the diagnosis so that "
+                  "'beamid report' shows both");
   sub->callback([options, &global] { RunDiagnose(*options, global); });
 });
 

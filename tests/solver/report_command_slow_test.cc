@@ -139,9 +139,15 @@ TEST_F(ReportCommand, WritesOneSelfContainedPageWithEveryPlot) {
 // result gets its own section above the result's.
 TEST_F(ReportCommand, RendersADiagnosisSummary) {
   ASSERT_EQ(identify_->exit_code, 0) << identify_->output;
-  std::ofstream(*folder_ / "diagnosis.json") << R"({"selected": "polynomial", "summary": "SUMMARY-TEXT",
-    "location": {"where": "support"}, "candidates": [{"name": "polynomial", "reduced_chi_square": 1.2},
-    {"name": "polynomial + friction", "reduced_chi_square": 1.1}], "result": "result.json"})";
+  std::ofstream(*folder_ / "diagnosis.json") << R"({"selected": ["support_friction"], "verdict": "cause named",
+    "summary": "SUMMARY-TEXT", "location": {"findings": ["FINDING-TEXT"], "groups": [
+      {"channel": "acc2", "harmonic": 1, "level": "high", "part": "quadrature", "chi2": 812.0, "significant": true},
+      {"channel": "acc1", "harmonic": 3, "level": "low", "part": "both", "chi2": 3.1, "significant": false}]},
+    "candidates": [{"name": "support_friction", "score": 0.9, "residual_before": 5000, "residual_after": 120,
+      "residual_drop": 41.7, "p_value": 0, "significant": true,
+      "extra_parameters": {"jenkins_stiffness": {"value": 49.9, "std": 0.1, "unit": "N*m/rad"}}},
+     {"name": "clamp_compliance", "score": 0.1, "residual_before": 5000, "residual_after": 4900}],
+    "result": "result.json"})";
   const ProgramRun run = RunShell(std::string(BEAMID_EXECUTABLE) + " -q report " +
                                       (*folder_ / "diagnosis.json").string() + " -o " +
                                       (*folder_ / "diagnosis.html").string(),
@@ -150,7 +156,11 @@ TEST_F(ReportCommand, RendersADiagnosisSummary) {
   const std::string html = ReadFile(*folder_ / "diagnosis.html");
   EXPECT_THAT(html, HasSubstr("<section id=\"diagnosis\">"));
   EXPECT_THAT(html, HasSubstr("SUMMARY-TEXT"));
-  EXPECT_THAT(html, HasSubstr("<td>polynomial + friction</td>"));
+  EXPECT_THAT(html, HasSubstr("<li>FINDING-TEXT</li>"));
+  EXPECT_THAT(html, HasSubstr("Residual groups beyond the noise (1 of 2)"));
+  EXPECT_THAT(html, HasSubstr("<td>support_friction</td>"));
+  EXPECT_THAT(html, HasSubstr("<td>clamp_compliance</td>"));
+  EXPECT_THAT(html, HasSubstr("jenkins_stiffness = 49.9"));
   EXPECT_LT(html.find("id=\"diagnosis\""), html.find("id=\"parameters\""));
   EXPECT_EQ(Count(html, "<svg"), static_cast<std::size_t>(kPlots));
 }
