@@ -25,6 +25,7 @@ class FitProblem {
   virtual int num_variables() const = 0;
   virtual int num_constraints() const = 0;
   virtual int num_residuals() const = 0;
+  virtual int num_steps() const = 0;
 
   // Physical parameters of a scaled point.
   virtual std::vector<double> Parameters(const Eigen::VectorXd& x) const = 0;

@@ -1,5 +1,7 @@
 #include "solver/identification_problem.h"
 
+#include "solver/support_reconstruction.h"
+
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -171,6 +173,18 @@ Eigen::VectorXd IdentificationProblem::FeasiblePoint(const std::vector<double>& 
   const int h = options_.num_harmonics;
   const double k_law = balance_->law().InitialStiffness_Nm_rad();
   const double c_law = balance_->law().InitialDamping_Nms_rad();
+  // The support rotation the measurements show (exact linear beam with
+  // these linear parameters, solver/support_reconstruction.h): Newton
+  // started there lands on the branch the test was on, whatever branch a
+  // sweep with far-off parameters would have followed.
+  std::vector<ReconstructedStep> measured;
+  try {
+    ModelStructure current = structure_;
+    current.SetValues(parameters);
+    measured = ReconstructSupport(data_, current.ApplyLinear(base_model_));
+  } catch (const std::exception&) {
+    measured.clear();  // too few channels to reconstruct: the sweep alone decides
+  }
   std::vector<Eigen::VectorXd> states(num_steps());
   int failures = 0;
   Eigen::VectorXd previous;
@@ -200,7 +214,13 @@ Eigen::VectorXd IdentificationProblem::FeasiblePoint(const std::vector<double>& 
       return std::nullopt;
     };
     std::optional<Eigen::VectorXd> solution;
-    if (previous.size() && s.level == previous_level) solution = newton(previous);
+    if (!measured.empty()) {
+      Eigen::VectorXcd theta_measured = Eigen::VectorXcd::Zero(h + 1);
+      const Eigen::VectorXcd& m = measured[i].theta_rad;
+      for (Eigen::Index k = 1; k < std::min<Eigen::Index>(m.size(), h + 1); ++k) theta_measured[k] = m[k];
+      solution = newton(HarmonicBalance::ToReal(theta_measured));
+    }
+    if (!solution && previous.size() && s.level == previous_level) solution = newton(previous);
     if (!solution) solution = newton(linear_guess);
     if (!solution) {
       ++failures;

@@ -49,7 +49,7 @@ class IdentificationProblem : public FitProblem {
   IdentificationProblem& operator=(const IdentificationProblem&) = delete;
 
   int num_parameters() const override { return num_parameters_; }
-  int num_steps() const { return static_cast<int>(data_.steps.size()); }
+  int num_steps() const override { return static_cast<int>(data_.steps.size()); }
   int state_size() const { return state_size_; }
   int num_variables() const override { return num_parameters_ + num_steps() * state_size_; }
   int num_constraints() const override { return num_steps() * state_size_; }

@@ -1,5 +1,7 @@
 #include "solver/identification_report.h"
 
+#include "solver/model_phasors.h"
+
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -21,29 +23,6 @@ nlohmann::json ToJson(const Eigen::MatrixXd& m) {
     nlohmann::json row = nlohmann::json::array();
     for (Eigen::Index c = 0; c < m.cols(); ++c) row.push_back(m(r, c));
     out.push_back(row);
-  }
-  return out;
-}
-
-Complex Convert(const Complex& displacement, int derivative_order, double k_omega) {
-  Complex out = displacement;
-  for (int d = 0; d < derivative_order; ++d) out *= Complex(0.0, k_omega);
-  return out;
-}
-
-// Model phasors of one data set's channels at every step: [step](channel, k-1).
-std::vector<Eigen::MatrixXcd> ModelPhasors(const FitData& data, FitProblem& problem,
-                                           const Eigen::VectorXd& x) {
-  std::vector<double> positions;
-  for (const auto& c : data.channels) positions.push_back(c.position_m);
-  std::vector<Eigen::MatrixXcd> out;
-  for (int i = 0; i < static_cast<int>(data.steps.size()); ++i) {
-    const Eigen::MatrixXcd y = problem.DisplacementPhasors(x, i, positions);
-    Eigen::MatrixXcd m(data.channels.size(), data.num_fit_harmonics);
-    for (std::size_t c = 0; c < data.channels.size(); ++c)
-      for (int k = 1; k <= data.num_fit_harmonics; ++k)
-        m(c, k - 1) = Convert(y(c, k), data.channels[c].derivative_order, k * data.steps[i].omega_rad_s);
-    out.push_back(m);
   }
   return out;
 }

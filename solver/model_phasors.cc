@@ -6,7 +6,7 @@
 
 namespace beamid::solver {
 
-std::vector<Eigen::MatrixXcd> ModelPhasors(const FitData& data, IdentificationProblem& problem,
+std::vector<Eigen::MatrixXcd> ModelPhasors(const FitData& data, FitProblem& problem,
                                            const Eigen::VectorXd& x) {
   if (static_cast<int>(data.steps.size()) != problem.num_steps()) {
     throw std::invalid_argument("ModelPhasors: the data have " + std::to_string(data.steps.size()) +

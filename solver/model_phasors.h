@@ -11,12 +11,12 @@
 #include <Eigen/Core>
 
 #include "solver/fit_data.h"
-#include "solver/identification_problem.h"
+#include "solver/fit_problem.h"
 
 namespace beamid::solver {
 
 // `data` must have the steps of the problem's data, in the same order.
-std::vector<Eigen::MatrixXcd> ModelPhasors(const FitData& data, IdentificationProblem& problem,
+std::vector<Eigen::MatrixXcd> ModelPhasors(const FitData& data, FitProblem& problem,
                                            const Eigen::VectorXd& x);
 
 }  // namespace beamid::solver

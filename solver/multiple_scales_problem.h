@@ -78,7 +78,7 @@ class MultipleScalesProblem : public FitProblem {
   static constexpr int kStateSize = 2;  // Re U, Im U
 
   int num_parameters() const override { return num_parameters_; }
-  int num_steps() const { return static_cast<int>(data_.steps.size()); }
+  int num_steps() const override { return static_cast<int>(data_.steps.size()); }
   int num_variables() const override { return num_parameters_ + kStateSize * num_steps(); }
   int num_constraints() const override { return kStateSize * num_steps(); }
   int num_residuals() const override { return data_.NumResiduals(); }
