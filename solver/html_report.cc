@@ -104,13 +104,39 @@ std::string BackbonePlot(const ReportCurves& curves) {
     frc.push_back({});
   }
   for (const auto& p : curves.backbone) backbone.push_back({p.frequency_hz, p.amplitude});
-  for (const auto& p : curves.phase_resonance) resonance.push_back({p.frequency_hz, p.amplitude});
+  // Error bars of two standard uncertainties.
+  for (const auto& p : curves.phase_resonance)
+    resonance.push_back({p.frequency_hz, p.amplitude, 2 * p.frequency_std_hz, 2 * p.amplitude_std});
   script += Datablock("frc", frc) + Datablock("bb", backbone) + Datablock("pr", resonance);
   script +=
       "plot $frc with lines lw 1 lc rgb '#aaaaaa' title 'model FRCs', "
-      "$bb with lines lw 2.5 lc rgb '#000000' title 'model backbone (phase resonance)', "
-      "$pr with points pt 13 ps 1.6 lc rgb '#d62728' title 'measured phase resonance'\n";
+      "$bb with lines lw 2.5 lc rgb '#000000' title 'model backbone (phase resonance at this sensor)', "
+      "$pr using 1:2:3:4 with xyerrorbars pt 13 ps 1.6 lw 1.5 lc rgb '#d62728' title 'measured phase resonance ±2σ'\n";
   return script;
+}
+
+std::string Warnings(const std::vector<std::string>& warnings) {
+  std::string html;
+  for (const auto& w : warnings) html += "<p class=\"warning\">warning: " + Escape(w) + "</p>\n";
+  return html;
+}
+
+// Each level's measured phase resonance against the model's backbone.
+std::string ResonanceTable(const ReportCurves& curves) {
+  const ReportChannel& ch = curves.channels[static_cast<std::size_t>(curves.reference_channel)];
+  std::string html = fmt::format(
+      "<table class=\"resonance\"><tr><th>level</th><th>phase resonance [Hz]</th><th>|X_1| [{}]</th>"
+      "<th>damping ratio ζ</th><th>model backbone there [Hz]</th><th>measured − model</th><th>note</th></tr>\n",
+      Escape(ch.si_unit));
+  for (const auto& p : curves.phase_resonance)
+    html += fmt::format(
+        "<tr><td>{}</td><td>{:.4f} ± {:.4f}</td><td>{:.5g} ± {:.2g}</td><td>{:.5f} ± {:.5f}</td><td>{}</td>"
+        "<td class=\"z\">{}</td><td>{}</td></tr>\n",
+        Escape(p.level), p.frequency_hz, p.frequency_std_hz, p.amplitude, p.amplitude_std,
+        p.damping_ratio, p.damping_ratio_std,
+        std::isfinite(p.model_frequency_hz) ? fmt::format("{:.4f}", p.model_frequency_hz) : "outside its range",
+        std::isfinite(p.z) ? fmt::format("{:+.2f} σ", p.z) : "", Escape(p.note));
+  return html + "</table>\n";
 }
 
 std::string TimePlot(const TimeHistory& history, const std::string& channel) {
@@ -284,9 +310,7 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves) {
                           "third.</p>\n",
                           Escape(channel), 100 * v.value("worst_h1_relative_error", 0.0),
                           100 * v.value("worst_h3_relative_error", 0.0));
-  for (const auto& w : result.value("warnings", Json::array()))
-    html += "<p class=\"warning\">warning: " + Escape(w.get<std::string>()) + "</p>\n";
-  html += "</section>\n";
+  html += Warnings(result.value("warnings", Json::array()).get<std::vector<std::string>>()) + "</section>\n";
 
   html += "<section id=\"frc\"><h2>Frequency response curves</h2>\n";
   for (std::size_t c = 0; c < curves.channels.size(); ++c)
@@ -302,10 +326,12 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves) {
 
   html += "<section id=\"backbone\"><h2>Backbone</h2>\n" +
           Figure("backbone-plot", GnuplotSvg(BackbonePlot(curves)),
-                 "The model's backbone (phase resonance of the support rotation) and the measured phase-resonance "
-                 "points (quadrature of the displacement with the force, interpolated between steps).") +
-          (curves.phase_resonance.empty() ? "<p>No step pair of a level crosses phase resonance.</p>\n" : "") +
-          "</section>\n";
+                 "The model's backbone as this sensor sees it (its first harmonic in quadrature with the force) "
+                 "and each level's measured phase resonance with ±2σ bars, from the model-free analysis of "
+                 "<code>beamid backbone --measured</code> (the step nearest quadrature moved there along one "
+                 "nonlinear mode; on a level that jumps before quadrature, from the branch before the jump).") +
+          (curves.phase_resonance.empty() ? "<p>No level crosses phase resonance.</p>\n" : ResonanceTable(curves)) +
+          Warnings(curves.phase_resonance_warnings) + "</section>\n";
 
   html += "<section id=\"prediction\"><h2>Prediction at the held-out sensor</h2>\n";
   if (curves.time_histories.empty())

@@ -7,10 +7,12 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "hb/backbone.h"
 #include "hb/continuation.h"
 #include "signal/quantity.h"
+#include "signal/first_harmonic_level.h"
 #include "solver/fit_data.h"
+#include "solver/measured_backbone.h"
+#include "solver/sensor_backbone.h"
 
 namespace beamid::solver {
 namespace {
@@ -48,31 +50,44 @@ std::vector<ReportChannel> Channels(const nlohmann::json& result, const signal::
   return out;
 }
 
-void MeasuredPhaseResonance(const LevelCurves& level, int order, std::vector<AmplitudePoint>& out,
-                            const signal::PhasorSet& phasors, const std::string& channel_name) {
-  // (frequency, displacement phasor) of the level's steps, by frequency.
-  std::vector<std::pair<double, Complex>> points;
-  for (const auto& step : phasors.steps) {
-    if (step.level != level.level) continue;
-    const signal::ChannelPhasors* p = step.Find(channel_name);
-    if (!p) continue;
-    const double omega = kTwoPi * step.frequency_hz;
-    Complex y = p->Harmonic(1).value;
-    for (int d = 0; d < order; ++d) y /= Complex(0.0, omega);
-    points.emplace_back(step.frequency_hz, y);
+// The measured phase-resonance points of every level at `reference`, set
+// beside the model's backbone there (amplitudes of displacement).
+void MeasuredPhaseResonance(const signal::PhasorSet& phasors, const ReportChannel& reference,
+                            const std::vector<SensorBackbonePoint>& model_backbone, ReportCurves& curves) {
+  MeasuredBackbone measured;
+  try {
+    measured = AnalyseMeasuredBackbone(signal::FirstHarmonicLevels(phasors, reference.channel, "the phasors"));
+  } catch (const std::exception& error) {
+    curves.phase_resonance_warnings.push_back(error.what());
+    return;
   }
-  std::sort(points.begin(), points.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  for (std::size_t i = 1; i < points.size(); ++i) {
-    const double a = points[i - 1].second.real(), b = points[i].second.real();
-    if (a == 0.0 || (a > 0.0) == (b > 0.0)) continue;
-    // Through quadrature (±90°), not through 0° or 180°: the quadrature
-    // part keeps its sign.
-    if ((points[i].second.imag() > 0.0) != (points[i - 1].second.imag() > 0.0)) continue;
-    const double w = a / (a - b);
-    const double f = points[i - 1].first + w * (points[i].first - points[i - 1].first);
-    const double omega = kTwoPi * f;
-    const double amplitude = (1 - w) * std::abs(points[i - 1].second) + w * std::abs(points[i].second);
-    out.push_back({f, amplitude * std::pow(omega, order), level.level});
+  // The levels' own notes go beside their points; the rest are warnings.
+  for (const auto& warning : measured.warnings)
+    if (std::none_of(measured.levels.begin(), measured.levels.end(), [&](const LevelResonance& level) {
+          return level.quadrature_frequency_hz.valid && !level.quadrature_note.empty() &&
+                 warning.ends_with(level.quadrature_note);
+        }))
+      curves.phase_resonance_warnings.push_back(warning);
+  for (const auto& level : measured.levels) {
+    if (!level.quadrature_frequency_hz.valid) continue;
+    const double f = level.quadrature_frequency_hz.value, f_std = level.quadrature_frequency_hz.std;
+    const double a = level.quadrature_amplitude_m.value, a_std = level.quadrature_amplitude_m.std;
+    // σ of the difference: the point's frequency and, through the backbone's slope, its amplitude.
+    const double model_f = BackboneFrequencyAt_hz(model_backbone, a);
+    const double slope = (BackboneFrequencyAt_hz(model_backbone, 1.01 * a) -
+                          BackboneFrequencyAt_hz(model_backbone, 0.99 * a)) / (0.02 * a);
+    const double sigma = std::hypot(f_std, std::isfinite(slope) ? slope * a_std : 0.0);
+    const double scale = std::pow(kTwoPi * f, reference.derivative_order);
+    curves.phase_resonance.push_back({.level = level.label,
+                                      .frequency_hz = f,
+                                      .frequency_std_hz = f_std,
+                                      .amplitude = a * scale,
+                                      .amplitude_std = a_std * scale,
+                                      .damping_ratio = level.quadrature_damping_ratio.value,
+                                      .damping_ratio_std = level.quadrature_damping_ratio.std,
+                                      .model_frequency_hz = model_f,
+                                      .z = (f - model_f) / sigma,
+                                      .note = level.quadrature_note});
   }
 }
 
@@ -147,23 +162,19 @@ ReportCurves ComputeReportCurves(const nlohmann::json& result, const signal::Cam
   double theta_max = 0.0;
   for (const auto& s : model.steps)
     if (s.theta_rad.size() > 1) theta_max = std::max(theta_max, std::abs(s.theta_rad[1]));
+  std::vector<SensorBackbonePoint> model_backbone;
   if (theta_max > 0.0) {
-    const auto backbone =
-        hb::TraceBackbone(balance, {.min_theta_amplitude_rad = theta_max / 30.0,
-                                    .max_theta_amplitude_rad = 1.3 * theta_max,
-                                    .num_points = options.backbone_points});
-    for (const auto& p : backbone.points) {
-      Eigen::VectorXcd force = Eigen::VectorXcd::Zero(2);
-      force[1] = p.force_amplitude_N;
-      const hb::HarmonicBalanceSolution solution{.omega_rad_s = p.omega_rad_s, .theta_rad = p.theta_rad};
-      const Eigen::MatrixXcd y = balance.Displacements(solution, force, {reference.position_m});
+    model_backbone = ModelBackboneAtSensor(model.structure.ApplyLinear(model.beam), *model.structure.law,
+                                           model.force_position_m, reference.position_m,
+                                           {.min_theta_amplitude_rad = theta_max / 30.0,
+                                            .max_theta_amplitude_rad = 1.3 * theta_max,
+                                            .num_points = options.backbone_points},
+                                           h);
+    for (const auto& p : model_backbone)
       curves.backbone.push_back(
-          {p.omega_rad_s / kTwoPi, std::abs(FromDisplacement(y(0, 1), reference.derivative_order, p.omega_rad_s)), ""});
-    }
+          {p.frequency_hz, p.amplitude_m * std::pow(kTwoPi * p.frequency_hz, reference.derivative_order), ""});
   }
-  for (const auto& level : curves.levels)
-    MeasuredPhaseResonance(level, reference.derivative_order, curves.phase_resonance,
-                           phasors, reference.channel);
+  MeasuredPhaseResonance(phasors, reference, model_backbone, curves);
 
   // Predicted and measured histories at the first held-out channel.
   report(0.6, "prediction at the held-out channel");

@@ -3,11 +3,12 @@
 //  - per level and channel, the measured first-harmonic amplitudes |X_1| and
 //    the model's frequency response curve (hb/continuation) under a pure sine
 //    of the level's mean measured force amplitude |F_1|, with its stability;
-//  - the model's backbone (hb/backbone, phase resonance of θ_1) at the
-//    reference channel (the first fitted one) and the measured
-//    phase-resonance points: where the in-phase part Re(Y_1/F_1) of the
-//    displacement at that channel changes sign between neighbouring steps of a
-//    level (linear interpolation of frequency and amplitude);
+//  - the model's backbone at the reference channel (the first fitted one) as
+//    it is measured there (solver/sensor_backbone.h: the channel's first
+//    harmonic in quadrature with the force), and the measured phase-resonance
+//    point of every level with its uncertainty, from the model-free analysis
+//    of `beamid backbone --measured` (solver/measured_backbone.h), which also
+//    handles a level whose sweep jumps (folds) before quadrature;
 //  - at the first held-out channel, predicted (solver/prediction.h, with its
 //    standard uncertainty) and measured steady-state acceleration over one
 //    period, at each level's step of largest response; "measured" is the
@@ -66,6 +67,19 @@ struct AmplitudePoint {
   std::string level;
 };
 
+// A level's measured phase resonance beside the model's backbone.
+struct MeasuredResonance {
+  std::string level;
+  double frequency_hz = 0.0, frequency_std_hz = 0.0;
+  double amplitude = 0.0, amplitude_std = 0.0;  // in the reference channel's quantity, SI
+  double damping_ratio = 0.0, damping_ratio_std = 0.0;  // from the quadrature point
+  // The model's backbone frequency at this amplitude (NaN outside its range)
+  // and the difference in standard uncertainties of the measured point.
+  double model_frequency_hz = 0.0;
+  double z = 0.0;
+  std::string note;  // e.g. a jump before quadrature
+};
+
 struct TimeHistory {
   std::string level;
   double frequency_hz = 0.0;
@@ -84,7 +98,8 @@ struct ReportCurves {
   std::vector<LevelCurves> levels;
   int reference_channel = 0;                  // index in channels
   std::vector<AmplitudePoint> backbone;       // model, at the reference channel
-  std::vector<AmplitudePoint> phase_resonance;  // measured, at the reference channel
+  std::vector<MeasuredResonance> phase_resonance;  // measured, at the reference channel
+  std::vector<std::string> phase_resonance_warnings;
   std::string held_out_channel;               // empty: none
   std::vector<TimeHistory> time_histories;
   ResidualMap residuals;

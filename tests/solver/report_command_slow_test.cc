@@ -8,12 +8,15 @@
 #include <sys/wait.h>
 
 #include <chrono>
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -137,6 +140,23 @@ TEST_F(ReportCommand, WritesOneSelfContainedPageWithEveryPlot) {
 
 // A diagnosis (the documented fields of `beamid diagnose`) pointing at the
 // result gets its own section above the result's.
+// The measured phase resonance of every level, from the model-free analysis,
+// beside the identified model's backbone: the model was fitted to these
+// recordings, so its backbone passes within the points' stated uncertainty.
+TEST_F(ReportCommand, SetsEachLevelsMeasuredPhaseResonanceBesideTheModelsBackbone) {
+  ASSERT_EQ(report_->exit_code, 0) << report_->output;
+  const std::string html = ReadFile(*folder_ / "report.html");
+  const std::size_t table = html.find("<table class=\"resonance\">");
+  ASSERT_NE(table, std::string::npos);
+  std::vector<double> z;
+  for (std::size_t at = html.find("<td class=\"z\">", table); at != std::string::npos && at < html.find("</table>", table);
+       at = html.find("<td class=\"z\">", at + 1))
+    z.push_back(std::stod(html.substr(at + std::string("<td class=\"z\">").size())));
+  ASSERT_EQ(z.size(), 2u) << "one row per level";
+  std::printf("measured phase resonance − model backbone: %+.2f σ (low), %+.2f σ (high)\n", z[0], z[1]);
+  for (double value : z) EXPECT_LT(std::abs(value), 3.0);
+}
+
 TEST_F(ReportCommand, RendersADiagnosisSummary) {
   ASSERT_EQ(identify_->exit_code, 0) << identify_->output;
   std::ofstream(*folder_ / "diagnosis.json") << R"({"selected": ["support_friction"], "verdict": "cause named",
