@@ -164,12 +164,17 @@ ReportCurves ComputeReportCurves(const nlohmann::json& result, const signal::Cam
     if (s.theta_rad.size() > 1) theta_max = std::max(theta_max, std::abs(s.theta_rad[1]));
   std::vector<SensorBackbonePoint> model_backbone;
   if (theta_max > 0.0) {
-    model_backbone = ModelBackboneAtSensor(model.structure.ApplyLinear(model.beam), *model.structure.law,
-                                           model.force_position_m, reference.position_m,
-                                           {.min_theta_amplitude_rad = theta_max / 30.0,
-                                            .max_theta_amplitude_rad = 1.3 * theta_max,
-                                            .num_points = options.backbone_points},
-                                           h);
+    try {
+      model_backbone = ModelBackboneAtSensor(model.structure.ApplyLinear(model.beam), *model.structure.law,
+                                             model.force_position_m, reference.position_m,
+                                             {.min_theta_amplitude_rad = theta_max / 30.0,
+                                              .max_theta_amplitude_rad = 1.3 * theta_max,
+                                              .num_points = options.backbone_points},
+                                             h);
+    } catch (const std::runtime_error& error) {
+      // The page is still worth having without it.
+      curves.phase_resonance_warnings.push_back(std::string("the model's backbone: ") + error.what());
+    }
     for (const auto& p : model_backbone)
       curves.backbone.push_back(
           {p.frequency_hz, p.amplitude_m * std::pow(kTwoPi * p.frequency_hz, reference.derivative_order), ""});
