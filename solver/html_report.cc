@@ -104,15 +104,60 @@ std::string BackbonePlot(const ReportCurves& curves) {
     frc.push_back({});
   }
   for (const auto& p : curves.backbone) backbone.push_back({p.frequency_hz, p.amplitude});
-  // Error bars of two standard uncertainties.
+  // Error bars and bands of two standard uncertainties.
   for (const auto& p : curves.phase_resonance)
     resonance.push_back({p.frequency_hz, p.amplitude, 2 * p.frequency_std_hz, 2 * p.amplitude_std});
-  script += Datablock("frc", frc) + Datablock("bb", backbone) + Datablock("pr", resonance);
+  // The fit's band in frequency, as a closed polygon: up one edge, down the other.
+  Rows single_mode, band;
+  const auto& fit = curves.measured_mode.fit;
+  for (const auto& p : fit) {
+    single_mode.push_back({p.frequency_hz, p.amplitude});
+    band.push_back({p.frequency_hz - 2 * p.frequency_std_hz, p.amplitude});
+  }
+  for (auto p = fit.rbegin(); p != fit.rend(); ++p) band.push_back({p->frequency_hz + 2 * p->frequency_std_hz, p->amplitude});
+  script += Datablock("frc", frc) + Datablock("bb", backbone) + Datablock("pr", resonance) +
+            Datablock("sm", single_mode) + Datablock("band", band);
   script +=
       "plot $frc with lines lw 1 lc rgb '#aaaaaa' title 'model FRCs', "
-      "$bb with lines lw 2.5 lc rgb '#000000' title 'model backbone (phase resonance at this sensor)', "
+      "$bb with lines lw 2.5 lc rgb '#000000' title 'model backbone (phase resonance at this sensor)', ";
+  if (!single_mode.empty())
+    script +=
+        "$band with filledcurves closed lc rgb '#f4b6b6' fs transparent solid 0.5 notitle, "
+        "$sm using 1:2 with lines lw 1.5 dt 2 lc rgb '#d62728' title 'measured: one nonlinear mode fitted across levels ±2σ', ";
+  script +=
       "$pr using 1:2:3:4 with xyerrorbars pt 13 ps 1.6 lw 1.5 lc rgb '#d62728' title 'measured phase resonance ±2σ'\n";
   return script;
+}
+
+// Damping ratio against amplitude, model-free: each level's three estimates
+// and the single-nonlinear-mode fit's ζ(a).
+std::string DampingPlot(const ReportCurves& curves) {
+  const ReportChannel& ch = curves.channels[static_cast<std::size_t>(curves.reference_channel)];
+  const MeasuredNonlinearMode& mode = curves.measured_mode;
+  Rows quadrature, local, half_power, fit;
+  for (const auto& p : mode.damping) {
+    if (std::isfinite(p.quadrature)) quadrature.push_back({p.amplitude, p.quadrature, 2 * p.quadrature_std});
+    if (std::isfinite(p.local)) local.push_back({p.amplitude, p.local, 2 * p.local_std});
+    if (std::isfinite(p.half_power)) half_power.push_back({p.amplitude, p.half_power, 2 * p.half_power_std});
+  }
+  for (const auto& p : mode.fit)
+    fit.push_back({p.amplitude, p.damping_ratio, p.damping_ratio - 2 * p.damping_ratio_std,
+                   p.damping_ratio + 2 * p.damping_ratio_std});
+  std::string script = fmt::format(
+      "set title {}\nset xlabel {}\nset ylabel 'damping ratio {{/Symbol z}}'\nset grid\nset key outside below\n",
+      GnuplotQuote(PlotText(fmt::format("damping against amplitude at {} (model-free)", ch.channel))),
+      GnuplotQuote(fmt::format("|X_1| at phase resonance [{}]", ch.si_unit)));
+  script += Datablock("q", quadrature) + Datablock("l", local) + Datablock("h", half_power) + Datablock("f", fit);
+  std::string plot = "plot ";
+  auto add = [&](const std::string& item) { plot += (plot.size() > 5 ? ", " : "") + item; };
+  if (!fit.empty()) {
+    add("$f using 1:3:4 with filledcurves lc rgb '#f4b6b6' fs transparent solid 0.5 notitle");
+    add("$f using 1:2 with lines lw 1.5 dt 2 lc rgb '#d62728' title 'one nonlinear mode fitted across levels ±2σ'");
+  }
+  if (!quadrature.empty()) add("$q with yerrorbars pt 13 ps 1.4 lc rgb '#d62728' title 'quadrature point'");
+  if (!local.empty()) add("$l with yerrorbars pt 7 ps 0.9 lc rgb '#1f77b4' title 'local single-mode fit'");
+  if (!half_power.empty()) add("$h with yerrorbars pt 5 ps 0.9 lc rgb '#2ca02c' title 'half-power'");
+  return script + plot + "\n";
 }
 
 std::string Warnings(const std::vector<std::string>& warnings) {
@@ -331,7 +376,23 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves) {
                  "<code>beamid backbone --measured</code> (the step nearest quadrature moved there along one "
                  "nonlinear mode; on a level that jumps before quadrature, from the branch before the jump).") +
           (curves.phase_resonance.empty() ? "<p>No level crosses phase resonance.</p>\n" : ResonanceTable(curves)) +
-          Warnings(curves.phase_resonance_warnings) + "</section>\n";
+          Warnings(curves.phase_resonance_warnings);
+  if (!curves.measured_mode.damping.empty()) {
+    const MeasuredNonlinearMode& mode = curves.measured_mode;
+    std::string trend;
+    if (mode.damping_trend == "rises")
+      trend = fmt::format("The damping ratio rises with amplitude ({:.1f} σ): dissipation that grows faster than a "
+                          "viscous damper's, as friction's does.", mode.damping_trend_z);
+    else if (mode.damping_trend == "falls")
+      trend = fmt::format("The damping ratio falls with amplitude ({:.1f} σ), as a damper of constant "
+                          "coefficient gives when the frequency rises.", mode.damping_trend_z);
+    else if (!mode.damping_trend.empty())
+      trend = fmt::format("No significant trend of the damping ratio with amplitude ({:+.1f} σ).", mode.damping_trend_z);
+    html += Figure("damping-plot", GnuplotSvg(DampingPlot(curves)),
+                   "The measured damping ratio of each level by three estimators (±2σ), and the single nonlinear "
+                   "mode fitted across levels (" + Escape(mode.fit_form) + "). " + trend);
+  }
+  html += "</section>\n";
 
   html += "<section id=\"prediction\"><h2>Prediction at the held-out sensor</h2>\n";
   if (curves.time_histories.empty())

@@ -7,6 +7,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include <fmt/format.h>
+
 #include "hb/continuation.h"
 #include "signal/quantity.h"
 #include "signal/first_harmonic_level.h"
@@ -68,8 +70,22 @@ void MeasuredPhaseResonance(const signal::PhasorSet& phasors, const ReportChanne
                  warning.ends_with(level.quadrature_note);
         }))
       curves.phase_resonance_warnings.push_back(warning);
+  const auto to_channel = [&](double displacement_m, double frequency_hz) {
+    return displacement_m * std::pow(kTwoPi * frequency_hz, reference.derivative_order);
+  };
+  MeasuredNonlinearMode& mode = curves.measured_mode;
   for (const auto& level : measured.levels) {
     if (!level.quadrature_frequency_hz.valid) continue;
+    auto value = [](const Estimate& e) { return e.valid ? e.value : NAN; };
+    auto std = [](const Estimate& e) { return e.valid ? e.std : NAN; };
+    mode.damping.push_back({.level = level.label,
+                            .amplitude = to_channel(level.quadrature_amplitude_m.value, level.quadrature_frequency_hz.value),
+                            .quadrature = value(level.quadrature_damping_ratio),
+                            .quadrature_std = std(level.quadrature_damping_ratio),
+                            .local = value(level.local_damping_ratio),
+                            .local_std = std(level.local_damping_ratio),
+                            .half_power = value(level.half_power_damping_ratio),
+                            .half_power_std = std(level.half_power_damping_ratio)});
     const double f = level.quadrature_frequency_hz.value, f_std = level.quadrature_frequency_hz.std;
     const double a = level.quadrature_amplitude_m.value, a_std = level.quadrature_amplitude_m.std;
     // σ of the difference: the point's frequency and, through the backbone's slope, its amplitude.
@@ -77,17 +93,33 @@ void MeasuredPhaseResonance(const signal::PhasorSet& phasors, const ReportChanne
     const double slope = (BackboneFrequencyAt_hz(model_backbone, 1.01 * a) -
                           BackboneFrequencyAt_hz(model_backbone, 0.99 * a)) / (0.02 * a);
     const double sigma = std::hypot(f_std, std::isfinite(slope) ? slope * a_std : 0.0);
-    const double scale = std::pow(kTwoPi * f, reference.derivative_order);
     curves.phase_resonance.push_back({.level = level.label,
                                       .frequency_hz = f,
                                       .frequency_std_hz = f_std,
-                                      .amplitude = a * scale,
-                                      .amplitude_std = a_std * scale,
+                                      .amplitude = to_channel(a, f),
+                                      .amplitude_std = to_channel(a_std, f),
                                       .damping_ratio = level.quadrature_damping_ratio.value,
                                       .damping_ratio_std = level.quadrature_damping_ratio.std,
                                       .model_frequency_hz = model_f,
                                       .z = (f - model_f) / sigma,
                                       .note = level.quadrature_note});
+  }
+  const SingleModeFit& fit = measured.fit;
+  if (!fit.ok) return;
+  mode.fit_form = fmt::format("ω_n² a polynomial of degree {} and ζω_n of degree {} in the amplitude",
+                              fit.frequency_degree, fit.damping_degree);
+  mode.damping_trend = measured.damping_trend.verdict;
+  mode.damping_trend_z = measured.damping_trend.z;
+  constexpr int kCurvePoints = 60;
+  for (int k = 0; k <= kCurvePoints; ++k) {
+    const double a = measured.min_amplitude_m +
+                     (measured.max_amplitude_m - measured.min_amplitude_m) * k / static_cast<double>(kCurvePoints);
+    const double f = fit.NaturalFrequency_rad_s(a) / kTwoPi;
+    mode.fit.push_back({.amplitude = to_channel(a, f),
+                        .frequency_hz = f,
+                        .frequency_std_hz = fit.NaturalFrequencyStd_rad_s(a) / kTwoPi,
+                        .damping_ratio = fit.DampingRatio(a),
+                        .damping_ratio_std = fit.DampingRatioStd(a)});
   }
 }
 

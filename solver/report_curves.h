@@ -20,6 +20,7 @@
 // Amplitudes are in SI of each channel's quantity.
 #pragma once
 
+#include <cmath>
 #include <functional>
 #include <string>
 #include <vector>
@@ -80,6 +81,31 @@ struct MeasuredResonance {
   std::string note;  // e.g. a jump before quadrature
 };
 
+// The model-free view across levels at the reference channel: per level the
+// damping ratio by the three estimators of solver/measured_backbone.h, and
+// the single-nonlinear-mode fit ω_n(a), ζ(a) with its ±2σ band.
+struct MeasuredDampingPoint {
+  std::string level;
+  double amplitude = 0.0;  // at the phase resonance, in the reference channel's quantity, SI
+  double quadrature = NAN, quadrature_std = NAN;
+  double local = NAN, local_std = NAN;
+  double half_power = NAN, half_power_std = NAN;
+};
+
+struct SingleModeCurvePoint {
+  double amplitude = 0.0;  // in the reference channel's quantity, SI
+  double frequency_hz = 0.0, frequency_std_hz = 0.0;
+  double damping_ratio = 0.0, damping_ratio_std = 0.0;
+};
+
+struct MeasuredNonlinearMode {
+  std::vector<MeasuredDampingPoint> damping;
+  std::vector<SingleModeCurvePoint> fit;  // empty when the fit failed
+  std::string fit_form;                   // e.g. "ω_n² of degree 3, ζω_n of degree 1"
+  std::string damping_trend;              // "rises", "falls", "no significant trend"
+  double damping_trend_z = 0.0;
+};
+
 struct TimeHistory {
   std::string level;
   double frequency_hz = 0.0;
@@ -100,6 +126,7 @@ struct ReportCurves {
   std::vector<AmplitudePoint> backbone;       // model, at the reference channel
   std::vector<MeasuredResonance> phase_resonance;  // measured, at the reference channel
   std::vector<std::string> phase_resonance_warnings;
+  MeasuredNonlinearMode measured_mode;  // at the reference channel
   std::string held_out_channel;               // empty: none
   std::vector<TimeHistory> time_histories;
   ResidualMap residuals;

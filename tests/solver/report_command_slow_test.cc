@@ -115,7 +115,7 @@ ProgramRun* ReportCommand::identify_ = nullptr;
 ProgramRun* ReportCommand::report_ = nullptr;
 double ReportCommand::report_seconds_ = 0.0;
 
-constexpr int kPlots = 7;  // 3 channels' FRCs, backbone, 2 levels' time histories, residual map
+constexpr int kPlots = 8;  // 3 channels' FRCs, backbone, damping, 2 levels' time histories, residual map
 
 TEST_F(ReportCommand, WritesOneSelfContainedPageWithEveryPlot) {
   ASSERT_EQ(simulate_->exit_code, 0) << simulate_->output;
@@ -129,7 +129,7 @@ TEST_F(ReportCommand, WritesOneSelfContainedPageWithEveryPlot) {
   EXPECT_THAT(html, Not(HasSubstr("<link")));
   EXPECT_THAT(html, Not(HasSubstr("src=\"http")));
   EXPECT_THAT(html, Not(HasSubstr("href=\"http")));
-  for (const char* id : {"frc-acc1", "frc-acc2", "frc-acc3", "backbone-plot", "time-low", "time-high", "residual-map"})
+  for (const char* id : {"frc-acc1", "frc-acc2", "frc-acc3", "backbone-plot", "damping-plot", "time-low", "time-high", "residual-map"})
     EXPECT_THAT(html, HasSubstr(std::string("id=\"") + id + "\"")) << id;
   // Model curves, unstable dashed branch at the high level, parameters.
   EXPECT_THAT(html, HasSubstr("model high"));
