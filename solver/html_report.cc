@@ -301,14 +301,21 @@ std::string DiagnosisSection(const Json& diagnosis) {
   if (diagnosis.contains("candidates") && diagnosis["candidates"].is_array()) {
     html += "<h3>Candidate physics, each refitted</h3>\n<table><tr><th>candidate</th><th>signature score</th>"
             "<th>χ² before</th><th>χ² after</th><th>drop</th><th>p</th><th>significant</th>"
-            "<th>extra parameters (95 %)</th></tr>\n";
+            "<th>extra parameters ± standard uncertainty</th></tr>\n";
     for (const auto& c : diagnosis["candidates"]) {
       std::string extra;
       const Json extra_parameters = c.value("extra_parameters", Json::object());
-      for (const auto& [name, p] : extra_parameters.items())
-        extra += fmt::format("{}{} = {} ± {} {}", extra.empty() ? "" : "<br>", Escape(name),
-                             p.contains("value") ? JsonHtml(p["value"]) : "", p.contains("std") ? JsonHtml(p["std"]) : "",
-                             Escape(p.value("unit", "")));
+      for (const auto& [name, p] : extra_parameters.items()) {
+        const auto number = [&](const char* key) { return p.contains(key) && p[key].is_number() ? p[key].get<double>() : NAN; };
+        const double value = number("value"), std = number("std");
+        // A refit that did not move a parameter off its base value leaves it
+        // undetermined (its std is that of a flat direction): say so.
+        const bool determined = std::isfinite(std) && std < 100 * std::abs(value);
+        const std::string unit = p.value("unit", "") == "1" ? "" : " " + Escape(p.value("unit", ""));
+        extra += fmt::format("{}{} = {}", extra.empty() ? "" : "<br>", Escape(name),
+                             determined ? Number(value) + " ± " + Number(std) + unit
+                                        : Number(value) + unit + " (not determined by these data)");
+      }
       const auto field = [&](const char* key) { return c.contains(key) ? JsonHtml(c[key]) : std::string(); };
       html += "<tr><td>" + field("name") + "</td><td>" + field("score") + "</td><td>" + field("residual_before") +
               "</td><td>" + field("residual_after") + "</td><td>" + field("residual_drop") + "</td><td>" +
