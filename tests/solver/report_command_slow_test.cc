@@ -22,6 +22,7 @@
 #include <gtest/gtest.h>
 
 #include "solver/html_screenshot.h"
+#include "tests/support/paper_scenario.h"
 #include "tests/support/png_image.h"
 #include "tests/support/temp_path.h"
 
@@ -33,21 +34,11 @@ using ::testing::Not;
 
 // Two levels of eight steps around the first resonance (≈ 54 Hz), the
 // paper's set-up and support law.
-const char* kScenario = R"({
-  "name": "report test: paper set-up, two levels",
-  "beam": {"length_m": 0.6, "width_m": 0.04, "thickness_m": 0.005, "youngs_modulus_Pa": 2.1e11,
-           "density_kg_m3": 7850, "loss_factor": 0.0002},
-  "support": {"polynomial": {"k1_Nm_rad": 150, "k2_Nm_rad2": 0, "k3_Nm_rad3": 3e5, "c_Nms_rad": 0.05}},
-  "excitation": {"channel": "force", "position_m": 0.57},
-  "sensors": [{"channel": "acc1", "position_m": 0.1}, {"channel": "acc2", "position_m": 0.3},
-              {"channel": "acc3", "position_m": 0.57}],
-  "levels": [{"label": "low", "force_amplitude_N": 1.0, "frequencies_Hz": {"start": 52, "stop": 57, "step": 0.7}},
-             {"label": "high", "force_amplitude_N": 8.0, "frequencies_Hz": {"start": 52, "stop": 57, "step": 0.7}}],
-  "timing": {"sample_rate_Hz": 5120, "settle_min_s": 0.2, "settle_max_s": 4.0, "transient_s": 0.05, "record_s": 0.4},
-  "noise": {"seed": 3, "clock_offset_ppm": 25,
-            "default": {"relative_rms": 0.003, "absolute": 0.005, "adc_bits": 24, "adc_range": 500},
-            "channels": {"force": {"relative_rms": 0.002, "absolute": 0.002, "adc_bits": 24, "adc_range": 50}}}
-})";
+const std::string kScenario = beamid::testing::PaperScenarioJson(
+    "report test: paper set-up, two levels",
+    R"([{"label": "low", "force_amplitude_N": 1.0, "frequencies_Hz": {"start": 52, "stop": 57, "step": 0.7}},
+        {"label": "high", "force_amplitude_N": 8.0, "frequencies_Hz": {"start": 52, "stop": 57, "step": 0.7}}])",
+    3);
 
 struct ProgramRun {
   int exit_code = -1;
