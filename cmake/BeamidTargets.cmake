@@ -26,7 +26,7 @@ function(beamid_add_folder_library)
 endfunction()
 
 # beamid_add_test(<source> LIBS ...): one GoogleTest executable named after the
-# file. Files named *_slow_test.cc get the ctest label "slow", all others
+# file, each test case a ctest test (but see SetUpTestSuite below). Files named *_slow_test.cc get the ctest label "slow", all others
 # "fast" (the sanitizer CI job runs the fast ones).
 function(beamid_add_test source)
   cmake_parse_arguments(ARG "" "" "LIBS" ${ARGN})
@@ -43,8 +43,17 @@ function(beamid_add_test source)
   else()
     set(label fast)
   endif()
-  gtest_discover_tests(${target}
-    WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
-    PROPERTIES LABELS ${label}
-    DISCOVERY_TIMEOUT 60)
+  # A suite that builds its data once (SetUpTestSuite: a simulated campaign,
+  # an identification) runs as one ctest test: one process per test case
+  # would build the data again for each.
+  file(READ ${source} text)
+  if(text MATCHES "SetUpTestSuite")
+    add_test(NAME ${target} COMMAND ${target} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+    set_tests_properties(${target} PROPERTIES LABELS ${label})
+  else()
+    gtest_discover_tests(${target}
+      WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
+      PROPERTIES LABELS ${label}
+      DISCOVERY_TIMEOUT 60)
+  endif()
 endfunction()
