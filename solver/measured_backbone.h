@@ -51,6 +51,10 @@ struct MeasuredBackboneOptions {
   // Model choice for the global fit: degrees 0..max of ω_n²(a) and ζω_n(a).
   int max_frequency_degree = 3;
   int max_damping_degree = 2;
+  // Also the Iwan-like power laws p0 + p1·s^α, q0 + q1·s^β (exponents on a grid).
+  bool try_power_laws = true;
+  // Also A(a) = A0 + A2·s² (the mode's shape at sensor and force changing with amplitude).
+  bool try_amplitude_dependent_modal_constant = true;
   // |slope|/σ above which the damping trend counts as significant.
   double trend_significance = 3.0;
 };
@@ -104,6 +108,10 @@ struct BackboneModelCandidate {
   int damping_degree = 0;
   double aicc = 0.0;
   double reduced_chi_square = 0.0;
+  double frequency_exponent = 0.0;  // > 0: power law (Iwan-like), exponent chosen
+  double damping_exponent = 0.0;
+  bool amplitude_dependent_modal_constant = false;
+  std::string form;  // SingleModeFit::FormName()
 };
 
 // dζ/da of the global fit with ζω_n linear in a, at `amplitude_m`.
