@@ -103,20 +103,23 @@ Eigen::Matrix2d InverseReceptanceCovariance(const LevelData& data, int i) {
 // Phase-resonance point from the step k nearest quadrature: frequency [Hz],
 // |X_d|, |F|, ζ. The modal constant A(a_k) at the step's amplitude is the last
 // two raw inputs (Re, Im). Each step is a point of the backbone at its own
-// amplitude: with A·G = ω_n² − ω² + 2iω·ζω_n, the response is in quadrature
-// with the force where Re(A·D̄) = 0, i.e. ω_q² = ω² + Re G/Re(1/A) — a small
-// correction near quadrature, where Re G is small. Interpolating Re G in ω²
-// between the two bracketing steps instead is biased by the curvature of the
-// backbone when the amplitude changes much between them (the far side of a
-// hardening peak), and impossible across a jump.
+// amplitude: with A·G = D = ω_n² − ω² + 2iω·ζω_n, the response is in
+// quadrature with the force where Re(A·D̄) = 0, i.e. ω_q² = ω_n² + (Im A/Re A)·
+// 2ω_q·ζω_n — a small move near quadrature, where Re G is small.
+// Interpolating Re G in ω² between the two bracketing steps instead is
+// biased by the curvature of the backbone when the amplitude changes much
+// between them (the far side of a hardening peak), and impossible across a jump.
 Eigen::VectorXd QuadratureFrom(const Eigen::VectorXd& raw, int k) {
   const PointView p = At(raw, k);
   const std::complex<double> modal_constant(raw[raw.size() - 2], raw[raw.size() - 1]);
   const std::complex<double> ag = modal_constant * p.G();
-  const double w2 = p.omega * p.omega + p.G().real() / (1.0 / modal_constant).real();
-  const double omega_n = std::sqrt(p.omega * p.omega + ag.real());
+  const double omega_n_sq = p.omega * p.omega + ag.real();
+  const double zeta_omega_n = ag.imag() / (2 * p.omega);
+  double w2 = omega_n_sq;
+  for (int iteration = 0; iteration < 3; ++iteration)
+    w2 = omega_n_sq + modal_constant.imag() / modal_constant.real() * 2 * std::sqrt(w2) * zeta_omega_n;
   Eigen::VectorXd out(4);
-  out << std::sqrt(w2) / kTwoPi, std::abs(p.disp), std::abs(p.force), ag.imag() / (2 * p.omega * omega_n);
+  out << std::sqrt(w2) / kTwoPi, std::abs(p.disp), std::abs(p.force), zeta_omega_n / std::sqrt(omega_n_sq);
   return out;
 }
 

@@ -16,11 +16,11 @@
 // per cycle ∝ a^(2+β), softening ∝ a^α); their exponents are chosen on a grid
 // by χ² and counted as parameters. For given exponents the model is linear
 // in (A, p, q), so the fit is a weighted linear least-squares problem; each
-// point's real/imaginary residual pair is whitened by |A|²·Cov(G) (+ the
-// frequency's variance on the real part), iterating A a few times. The
-// parameter covariance is scaled by the reduced χ² when that exceeds 1 (the
-// single mode is an approximation: residual modes, amplitude errors).
-// Model choice between degrees (P, Q) uses AICc with the noise scale left
+// point's real/imaginary residual pair is whitened by the covariance of A·G
+// from that of G (+ the frequency's variance on the real part), iterating A a
+// few times. The parameter covariance is scaled by the reduced χ² when that
+// exceeds 1 (the single mode is an approximation: residual modes, amplitude
+// errors). Model choice between forms uses AICc with the noise scale left
 // free, n·ln(χ²/n) + 2k + 2k(k+1)/(n−k−1), so it does not depend on how
 // well the phasor uncertainties were estimated.
 #pragma once
@@ -42,8 +42,8 @@ struct SingleModePoint {
 };
 
 struct SingleModeFitOptions {
-  int frequency_degree = 1;  // P
-  int damping_degree = 1;    // Q
+  int frequency_degree = 1;  // P (a power law has 2 terms: reported as 1)
+  int damping_degree = 1;    // Q (likewise)
   // α, β > 0: the Iwan-like power law (two terms) instead of the polynomial.
   double frequency_exponent = 0.0;
   double damping_exponent = 0.0;
