@@ -65,6 +65,8 @@ struct MeasuredBackboneOptions {
   bool try_power_laws = true;
   // Also A(a) = A0 + A2·s² (the mode's shape at sensor and force changing with amplitude).
   bool try_amplitude_dependent_modal_constant = true;
+  // Take the other modes' share R (X_d/F = A/D + R) off before every fit.
+  bool estimate_residual = true;
   // |slope|/σ above which the damping trend counts as significant.
   double trend_significance = 3.0;
 };

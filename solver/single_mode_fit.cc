@@ -135,8 +135,28 @@ std::complex<double> SingleModeFit::DynamicTerm(double a, double omega) const {
   return {omega_n_sq - omega * omega, 2 * omega * zeta_omega};
 }
 
-SingleModeFit FitSingleMode(const std::vector<SingleModePoint>& points, const SingleModeFitOptions& options) {
+std::vector<SingleModePoint> WithoutResidual(const std::vector<SingleModePoint>& points, double residual) {
+  std::vector<SingleModePoint> out = points;
+  if (residual == 0.0) return out;
+  for (auto& p : out) {
+    // X_d/F − R: the mode's own part; G' = 1/(1/G − R), dG'/dG = (G'/G)².
+    const std::complex<double> g = p.inverse_receptance_N_m;
+    const std::complex<double> modal = 1.0 / (1.0 / g - residual);
+    const std::complex<double> d = (modal / g) * (modal / g);
+    Eigen::Matrix2d jacobian;
+    jacobian << d.real(), -d.imag(), d.imag(), d.real();
+    p.inverse_receptance_N_m = modal;
+    p.inverse_receptance_covariance = jacobian * p.inverse_receptance_covariance * jacobian.transpose();
+    p.amplitude_m *= std::abs(g / modal);
+  }
+  return out;
+}
+
+SingleModeFit FitSingleMode(const std::vector<SingleModePoint>& measured_points, const SingleModeFitOptions& options) {
+  const std::vector<SingleModePoint> points = WithoutResidual(measured_points, options.residual_receptance_m_N);
   SingleModeFit fit;
+  fit.residual_receptance_m_N = options.residual_receptance_m_N;
+  fit.num_searched_parameters = options.residual_receptance_m_N != 0.0 ? 1 : 0;
   fit.frequency_degree = options.frequency_exponent > 0 ? 1 : options.frequency_degree;
   fit.damping_degree = options.damping_exponent > 0 ? 1 : options.damping_degree;
   fit.frequency_exponent = options.frequency_exponent;
@@ -210,7 +230,11 @@ SingleModeFit FitSingleMode(const std::vector<SingleModePoint>& points, const Si
   double sum_sq = 0.0;
   for (int i = 0; i < n; i += 2) sum_sq += unweighted[i] * unweighted[i];
   fit.backbone_residual_rms_rad2_s2 = std::sqrt(sum_sq / (n / 2));
-  fit.ok = std::isfinite(fit.chi_square) && fit.parameters.allFinite();
+  // Terms the data cannot tell apart (a level held at one amplitude makes
+  // s, s², … copies of 1): no fit.
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(scaled);
+  qr.setThreshold(1e-10);
+  fit.ok = std::isfinite(fit.chi_square) && fit.parameters.allFinite() && qr.rank() == k;
   return fit;
 }
 
@@ -236,15 +260,62 @@ SingleModeFit FitSingleModeChoosingExponents(const std::vector<SingleModePoint>&
     }
   if (!best.ok) return best;
   // Count the chosen exponents as parameters: redo the scaling and the AICc.
-  best.num_grid_parameters = (options.frequency_exponent > 0) + (options.damping_exponent > 0);
+  best.num_searched_parameters += (options.frequency_exponent > 0) + (options.damping_exponent > 0);
   const double reduced = best.ReducedChiSquare();
   if (reduced > 1) {
-    const double before = std::max(1.0, best.chi_square / (best.num_residuals - static_cast<int>(best.parameters.size())));
-    best.covariance *= reduced / before;
+    const int searched_before = best.residual_receptance_m_N != 0.0 ? 1 : 0;
+    const int dof_before = best.num_residuals - static_cast<int>(best.parameters.size()) - searched_before;
+    best.covariance *= reduced / std::max(1.0, best.chi_square / dof_before);
   }
   best.aicc = Aicc(best.chi_square, best.num_residuals, best.NumParameters());
   best.ok = best.num_residuals > best.NumParameters() + 1;
   return best;
+}
+
+}  // namespace beamid::solver
+
+namespace beamid::solver {
+
+double FitResidualReceptance(const std::vector<SingleModePoint>& points, const SingleModeFitOptions& options) {
+  double peak = 0.0;
+  for (const auto& p : points) peak = std::max(peak, 1.0 / std::abs(p.inverse_receptance_N_m));
+  auto chi_square = [&](double residual) {
+    SingleModeFitOptions o = options;
+    o.residual_receptance_m_N = residual;
+    const SingleModeFit fit = FitSingleMode(points, o);
+    return fit.ok ? fit.chi_square : std::numeric_limits<double>::infinity();
+  };
+  // A coarse scan (χ² need not be convex in R), then golden section in the best cell.
+  constexpr int kScan = 40;
+  constexpr double kRange = 0.02;  // |R| up to 2 % of the peak receptance
+  double best = 0.0, best_chi = chi_square(0.0);
+  const double step = 2 * kRange * peak / kScan;
+  for (int k = 0; k <= kScan; ++k) {
+    const double r = -kRange * peak + k * step;
+    const double c = chi_square(r);
+    if (c < best_chi) best_chi = c, best = r;
+  }
+  double lo = best - step, hi = best + step;
+  const double ratio = (std::sqrt(5.0) - 1) / 2;
+  double x1 = hi - ratio * (hi - lo), x2 = lo + ratio * (hi - lo);
+  double c1 = chi_square(x1), c2 = chi_square(x2);
+  for (int iteration = 0; iteration < 40; ++iteration) {
+    if (c1 < c2) {
+      hi = x2, x2 = x1, c2 = c1;
+      x1 = hi - ratio * (hi - lo), c1 = chi_square(x1);
+    } else {
+      lo = x1, x1 = x2, c1 = c2;
+      x2 = lo + ratio * (hi - lo), c2 = chi_square(x2);
+    }
+  }
+  double r = 0.5 * (lo + hi);
+  if (chi_square(r) > best_chi) r = best;
+  // Only when the data ask for it: R must lower the AICc (one parameter more).
+  SingleModeFitOptions with = options, without = options;
+  with.residual_receptance_m_N = r;
+  without.residual_receptance_m_N = 0.0;
+  const SingleModeFit fit_with = FitSingleMode(points, with), fit_without = FitSingleMode(points, without);
+  return fit_with.ok && (!fit_without.ok || fit_with.aicc < fit_without.aicc) ? r : 0.0;
 }
 
 }  // namespace beamid::solver

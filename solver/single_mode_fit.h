@@ -7,6 +7,10 @@
 //     (ζω_n)(a) = Σ_{j≤Q} q_j·s^j      or, Iwan-like, q_0 + q_1·s^β,
 //     A(a) = A_0 + i·A_i (+ A_2·s²),
 //
+// with, optionally, the other modes' share R (real, [m/N]) taken off first:
+// X_d/F = A(a)/D(a, ω) + R, a then the amplitude of the mode's own part
+// |X_d − R·F|.
+//
 // A the modal constant (φ(x_sensor)·φ(x_force)/m). It is complex when the
 // damping is not proportional (a localised damper makes the mode complex),
 // and it changes with amplitude when the nonlinearity changes the mode's
@@ -49,6 +53,9 @@ struct SingleModeFitOptions {
   double damping_exponent = 0.0;
   // Whether A changes with amplitude (the A_2·s² term).
   bool amplitude_dependent_modal_constant = false;
+  // R [m/N]: the other modes' share of the receptance, X_d/F = A/D + R
+  // (0 = none); FitResidualReceptance estimates it. Counts as a parameter.
+  double residual_receptance_m_N = 0.0;
   // a_ref: amplitudes are scaled by it to keep the problem well conditioned.
   double reference_amplitude_m = 1.0;
   // Points without a covariance are weighted with this relative standard
@@ -64,8 +71,10 @@ class SingleModeFit {
   double frequency_exponent = 0.0;  // α (> 0: power law)
   double damping_exponent = 0.0;    // β (> 0: power law)
   bool amplitude_dependent_modal_constant = false;
-  // Exponents chosen on a grid: each counts as one more parameter in the AICc.
-  int num_grid_parameters = 0;
+  double residual_receptance_m_N = 0.0;  // R: X_d/F = A/D + R
+  // Searched outside the linear fit (exponents on a grid, R): each counts as
+  // one more parameter in the AICc.
+  int num_searched_parameters = 0;
   double reference_amplitude_m = 1.0;
   // Re A_0, Im A_0, [A_2,] then the terms of ω_n² (p), then those of ζω_n (q).
   Eigen::VectorXd parameters;
@@ -78,7 +87,7 @@ class SingleModeFit {
   double backbone_residual_rms_rad2_s2 = 0.0;
   bool ok = false;        // false: too few points for the parameters
 
-  int NumParameters() const { return static_cast<int>(parameters.size()) + num_grid_parameters; }
+  int NumParameters() const { return static_cast<int>(parameters.size()) + num_searched_parameters; }
   double ReducedChiSquare() const;
   // Re A at zero amplitude.
   double ModalConstant() const { return parameters[0]; }
@@ -109,6 +118,13 @@ class SingleModeFit {
 };
 
 SingleModeFit FitSingleMode(const std::vector<SingleModePoint>& points, const SingleModeFitOptions& options);
+
+// The R that minimises the fit's χ² for the form of `options`: residual
+// (out-of-band) modes add a nearly constant, real receptance to the mode's,
+// which bends the tails of each curve (the same way on both sides of the
+// resonance) and, left out, biases A(a) and so the phase resonances. 0 when
+// it does not lower the AICc (counted as one parameter more).
+double FitResidualReceptance(const std::vector<SingleModePoint>& points, const SingleModeFitOptions& options);
 
 // The power-law exponents tried for the Iwan-like forms.
 std::vector<double> PowerLawExponentGrid();
