@@ -7,24 +7,26 @@
 // (solver/single_mode_fit.h: polynomials or Iwan-like power laws, A constant
 // or A(a), chosen by AICc) that regenerates each level's curve.
 //
-// With the response converted to displacement X_d (signal/quantity_conversion.h)
-// and G = F/X_d, a single mode obeys A(a)·G = ω_n²(a) − ω² + 2iω ζ(a) ω_n(a),
+// With the response converted to displacement X_d (signal/quantity_conversion.h),
+// one nonlinear mode plus the other modes' nearly constant share R obeys
+// X_d/F = A(a)/D(a, ω) + R, D = ω_n²(a) − ω² + 2iω ζ(a) ω_n(a), a = |X_d − R·F|,
 // A complex (non-proportional damping) and changing with amplitude (the
-// mode's shape at sensor and force changes as the nonlinearity stiffens):
+// mode's shape at sensor and force changes as the nonlinearity stiffens). R
+// is estimated once from all levels' points (when it lowers the AICc); left
+// out, it bends the tails of every curve and biases A(a). Then:
 //  - quadrature point (phase resonance, X_d 90° from F): at the step nearest
-//    quadrature of the two that bracket it, the single-mode model's move to
-//    quadrature at that step's own amplitude a_k, Re(A·D̄) = 0, i.e.
-//    ω_q² = ω_n² + (Im A/Re A)·2ω_q ζω_n with ω_n² = ω² + Re(A·G), and
-//    ζ = Im(A·G)/(2ω ω_n); A(a_k) from the global fit (which sees the
-//    amplitudes where A is pinned down by points on both sides of a
-//    resonance). (Interpolating Re G in ω² between the steps is biased when
-//    the amplitude changes much between them, and fails across a jump; a
-//    constant A taken from the lowest level is 9 % off at the top of a
-//    hardening fold, 7 mHz at 9 N on the paper's beam.) Its frequency
-//    uncertainty adds, to the propagated noise, A(a_k)'s covariance from the
-//    global fit (the extrapolation, where the step lies beyond the amplitudes
-//    seen on both sides) and the level's RMS departure from one nonlinear
-//    mode (SingleModeFit's backbone residual);
+//    quadrature of the two that bracket it, the model's move to quadrature
+//    at that step's own amplitude a_k: Re(A/D) + R = 0 with ω_n² = ω² +
+//    Re(A·G'), ζω_n = Im(A·G')/(2ω), G' = F/(X_d − R·F); A(a_k) from the
+//    global fit (which sees the amplitudes where A is pinned down by points
+//    on both sides of a resonance). (Interpolating Re G in ω² between the
+//    steps is biased when the amplitude changes much between them, and fails
+//    across a jump; a constant real A taken from the lowest level is 9 % off
+//    at the top of a hardening fold — +7.6 mHz, 3σ, at 9 N on the paper's
+//    beam.) Its frequency uncertainty adds, to the propagated noise, A(a_k)'s
+//    covariance from the global fit (the extrapolation, where the step lies
+//    beyond the amplitudes seen on both sides) and the level's RMS departure
+//    from one nonlinear mode (SingleModeFit's backbone residual);
 //  - local single-mode fit: the model above with ω_n² quadratic and ζω_n
 //    linear in a, A constant (complex), on the level's points whose |X_d/F|
 //    is at least `fit_window` of its peak; its ω_n is the modal natural
