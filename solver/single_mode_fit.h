@@ -122,8 +122,9 @@ SingleModeFit FitSingleMode(const std::vector<SingleModePoint>& points, const Si
 // The R that minimises the fit's χ² for the form of `options`: residual
 // (out-of-band) modes add a nearly constant, real receptance to the mode's,
 // which bends the tails of each curve (the same way on both sides of the
-// resonance) and, left out, biases A(a) and so the phase resonances. 0 when
-// it does not lower the AICc (counted as one parameter more).
+// resonance) and, left out, biases A(a) and so the phase resonances. Searched
+// within ±2 % of the largest |X_d/F| (a scan, then golden section); 0 when it
+// does not lower the AICc (counted as one parameter more).
 double FitResidualReceptance(const std::vector<SingleModePoint>& points, const SingleModeFitOptions& options);
 
 // The power-law exponents tried for the Iwan-like forms.
