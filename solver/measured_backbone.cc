@@ -101,18 +101,35 @@ Eigen::Matrix2d InverseReceptanceCovariance(const LevelData& data, int i) {
 }
 
 // Phase-resonance point from the step k nearest quadrature: frequency [Hz],
-// |X_d|, |F|, ζ. The modal constant A is the last raw input. Each step is a
-// point of the backbone, ω̂_n² = A·Re G + ω² at its own amplitude — a small
-// correction near quadrature, where Re G is small. Interpolating Re G in ω²
-// between the two bracketing steps instead is biased by the curvature of the
-// backbone when the amplitude changes much between them (the far side of a
-// hardening peak), and impossible across a jump.
+// |X_d|, |F|, ζ. The last three raw inputs are Re A, Im A at the step's
+// amplitude and the other modes' share R. Each step is a point of the
+// backbone at its own (modal) amplitude a' = |X_d − R·F|: with
+// A·G' = D = ω_n² − ω² + 2iω·ζω_n (G' = F/(X_d − R·F)), the sensor is in
+// quadrature with the force where Re(A/D) + R = 0, i.e. with Δ = ω_n² − ω_q²
+// and E = 2ω_q·ζω_n, Re A·Δ + Im A·E + R·(Δ² + E²) = 0 — a small move near
+// quadrature, where Re G is small. The sensor's amplitude there is
+// a'·|1 + R·D_q/A|. Interpolating Re G in ω² between the two bracketing
+// steps instead is biased by the curvature of the backbone when the amplitude
+// changes much between them (the far side of a hardening peak), and
+// impossible across a jump.
 Eigen::VectorXd QuadratureFrom(const Eigen::VectorXd& raw, int k) {
   const PointView p = At(raw, k);
-  const double modal_constant = raw[raw.size() - 1];
-  const double w2 = modal_constant * p.G().real() + p.omega * p.omega;
+  const std::complex<double> modal_constant(raw[raw.size() - 3], raw[raw.size() - 2]);
+  const double residual = raw[raw.size() - 1];
+  const std::complex<double> modal_disp = p.disp - residual * p.force;
+  const std::complex<double> ag = modal_constant * p.force / modal_disp;
+  const double omega_n_sq = p.omega * p.omega + ag.real();
+  const double zeta_omega_n = ag.imag() / (2 * p.omega);
+  double delta = 0.0, w2 = omega_n_sq;
+  for (int iteration = 0; iteration < 4; ++iteration) {
+    const double e = 2 * std::sqrt(w2) * zeta_omega_n;
+    delta = -(modal_constant.imag() * e + residual * (delta * delta + e * e)) / modal_constant.real();
+    w2 = omega_n_sq - delta;
+  }
+  const std::complex<double> d_q(delta, 2 * std::sqrt(w2) * zeta_omega_n);
   Eigen::VectorXd out(4);
-  out << std::sqrt(w2) / kTwoPi, std::abs(p.disp), std::abs(p.force), modal_constant * p.G().imag() / (2 * w2);
+  out << std::sqrt(w2) / kTwoPi, std::abs(modal_disp) * std::abs(1.0 + residual * d_q / modal_constant), std::abs(p.force),
+      zeta_omega_n / std::sqrt(omega_n_sq);
   return out;
 }
 
@@ -121,6 +138,7 @@ double PairSlope(const Eigen::VectorXd& raw, int i, int j) {
   return (b.omega * b.omega - a.omega * a.omega) / (a.G().real() - b.G().real());
 }
 
+// `modal_fit` gives A(a): the global fit, or the most linear level's local fit.
 void FindQuadrature(const LevelData& data, const SingleModeFit& modal_fit, const SingleModeFit& local_fit,
                     const MeasuredBackboneOptions& options, LevelResonance& out) {
   const int n = data.size();
@@ -163,13 +181,20 @@ void FindQuadrature(const LevelData& data, const SingleModeFit& modal_fit, const
                         std::abs(At(data.raw, j).G().real()) / std::abs(At(data.raw, j).G())
                     ? i
                     : j;
-  // The modal constant as one more input, with its variance.
+  // The modal constant at the step's amplitude as two more inputs, with their
+  // covariance: where the step lies far from the amplitudes that pin A(a)
+  // down (the top of a folding curve), that is the extrapolation's
+  // uncertainty. Then R (its uncertainty is left out: it moves the phase
+  // resonance by R·E², a fraction of a mHz).
+  const double residual = modal_fit.residual_receptance_m_N;
+  const double step_amplitude = std::abs(At(data.raw, k).disp - residual * At(data.raw, k).force);
+  const std::complex<double> modal_constant = modal_fit.ModalConstantAt(step_amplitude);
   LevelData with_constant = data;
   const int n_raw = static_cast<int>(data.raw.size());
-  with_constant.raw.conservativeResize(n_raw + 1);
-  with_constant.raw[n_raw] = modal_fit.ModalConstant();
-  with_constant.raw_covariance.conservativeResizeLike(Eigen::MatrixXd::Zero(n_raw + 1, n_raw + 1));
-  with_constant.raw_covariance(n_raw, n_raw) = modal_fit.covariance(0, 0);
+  with_constant.raw.conservativeResize(n_raw + 3);
+  with_constant.raw.tail(3) << modal_constant.real(), modal_constant.imag(), residual;
+  with_constant.raw_covariance.conservativeResizeLike(Eigen::MatrixXd::Zero(n_raw + 3, n_raw + 3));
+  with_constant.raw_covariance.block(n_raw, n_raw, 2, 2) = modal_fit.ModalConstantCovariance(step_amplitude);
   const auto e = Propagate([&](const Eigen::VectorXd& raw) { return QuadratureFrom(raw, k); }, with_constant);
   out.quadrature_frequency_hz = e[0];
   // Beyond the noise: how far this level strays from one nonlinear mode.
@@ -299,12 +324,15 @@ std::vector<SingleModePoint> FitPoints(const LevelData& data, double window) {
   return points;
 }
 
-SingleModeFit LocalFit(const std::vector<SingleModePoint>& points, double tolerance) {
+SingleModeFit LocalFit(const std::vector<SingleModePoint>& points, double tolerance, double residual) {
   double a_min = INFINITY, a_max = 0;
   for (const auto& p : points) a_min = std::min(a_min, p.amplitude_m), a_max = std::max(a_max, p.amplitude_m);
   // A level held at one amplitude cannot tell how ω_n and ζ change with it.
   const int degree = a_max / a_min - 1 > tolerance ? 1 : 0;
-  return FitSingleMode(points, {.frequency_degree = 2 * degree, .damping_degree = degree, .reference_amplitude_m = a_max});
+  return FitSingleMode(points, {.frequency_degree = 2 * degree,
+                                .damping_degree = degree,
+                                .residual_receptance_m_N = residual,
+                                .reference_amplitude_m = a_max});
 }
 
 void EvaluateLocalFit(const SingleModeFit& fit, LevelResonance& out) {
@@ -319,8 +347,9 @@ void EvaluateLocalFit(const SingleModeFit& fit, LevelResonance& out) {
 // The amplitude a ∈ (0, a_max] with a·|D(a, ω)| = |A·F| closest to `measured`
 // (several on a folded curve); NaN if there is none.
 double SolveAmplitude(const SingleModeFit& fit, double omega, double force_amplitude, double a_max, double measured) {
-  const double target = std::abs(fit.ModalConstant()) * force_amplitude;
-  auto g = [&](double a) { return a * std::abs(fit.DynamicTerm(a, omega)) - target; };
+  auto g = [&](double a) {
+    return a * std::abs(fit.DynamicTerm(a, omega)) - std::abs(fit.ModalConstantAt(a)) * force_amplitude;
+  };
   constexpr int kGrid = 400;
   double best = std::numeric_limits<double>::quiet_NaN();
   double lo = 0.0, g_lo = g(0.0);
@@ -352,13 +381,16 @@ void Regenerate(const SingleModeFit& fit, const LevelData& data, double window, 
     std::complex<double> predicted, measured;
     Eigen::Matrix2d covariance;
     const int o = kInputsPerPoint * i;
+    const double residual = fit.residual_receptance_m_N;
     if (out.control == LevelControl::kResponse) {
-      predicted = p.disp * fit.DynamicTerm(std::abs(p.disp), p.omega) / fit.ModalConstant();
+      // X_d = F·(A/D + R) at the modal amplitude the measurement shows.
+      const double a = std::abs(p.disp - residual * p.force);
+      predicted = p.disp / (fit.ModalConstantAt(a) / fit.DynamicTerm(a, p.omega) + residual);
       measured = p.force;
       covariance = data.raw_covariance.block(o + 1, o + 1, 2, 2);
     } else {
-      const double a = SolveAmplitude(fit, p.omega, std::abs(p.force), 2 * a_max, std::abs(p.disp));
-      predicted = fit.ModalConstant() * p.force / fit.DynamicTerm(a, p.omega);
+      const double a = SolveAmplitude(fit, p.omega, std::abs(p.force), 2 * a_max, std::abs(p.disp - residual * p.force));
+      predicted = (fit.ModalConstantAt(a) / fit.DynamicTerm(a, p.omega) + residual) * p.force;
       measured = p.disp;
       covariance = data.raw_covariance.block(o + 3, o + 3, 2, 2);
     }
@@ -375,6 +407,47 @@ void Regenerate(const SingleModeFit& fit, const LevelData& data, double window, 
   out.regeneration_relative_rms = count ? std::sqrt(sum_sq / count) : 0.0;
   out.regeneration_max_relative = worst;
   out.regeneration_reduced_chi_square = count ? chi_square / (2 * count) : 0.0;
+}
+
+// The global single-nonlinear-mode fit: every form of ω_n²(a) and ζω_n(a)
+// (polynomial degrees, Iwan-like power laws) with A constant or A(a), by AICc.
+void ChooseGlobalFit(const std::vector<SingleModePoint>& points, double reference_amplitude_m, double residual,
+                     const MeasuredBackboneOptions& options, MeasuredBackbone& result) {
+  constexpr double kPowerLaw = 1.0;  // "choose the exponent"
+  double a_min = INFINITY, a_max = 0;
+  for (const auto& p : points) a_min = std::min(a_min, p.amplitude_m), a_max = std::max(a_max, p.amplitude_m);
+  // Levels held at one amplitude cannot tell how anything changes with it.
+  const bool spans = a_max / a_min - 1 > options.constant_tolerance;
+  std::vector<std::pair<int, double>> frequency_forms, damping_forms;  // (degree, exponent)
+  for (int p = 0; p <= (spans ? options.max_frequency_degree : 0); ++p) frequency_forms.push_back({p, 0.0});
+  for (int q = 0; q <= (spans ? options.max_damping_degree : 0); ++q) damping_forms.push_back({q, 0.0});
+  if (options.try_power_laws && spans) {
+    frequency_forms.push_back({1, kPowerLaw});
+    damping_forms.push_back({1, kPowerLaw});
+  }
+  for (bool varying : {false, true}) {
+    if (varying && !(options.try_amplitude_dependent_modal_constant && spans)) continue;
+    for (const auto& [p, alpha] : frequency_forms)
+      for (const auto& [q, beta] : damping_forms) {
+        const SingleModeFit fit = FitSingleModeChoosingExponents(points, {.frequency_degree = p,
+                                                                          .damping_degree = q,
+                                                                          .frequency_exponent = alpha,
+                                                                          .damping_exponent = beta,
+                                                                          .amplitude_dependent_modal_constant = varying,
+                                                                          .residual_receptance_m_N = residual,
+                                                                          .reference_amplitude_m = reference_amplitude_m});
+        if (!fit.ok) continue;
+        result.candidates.push_back({.frequency_degree = fit.frequency_degree,
+                                     .damping_degree = fit.damping_degree,
+                                     .aicc = fit.aicc,
+                                     .reduced_chi_square = fit.ReducedChiSquare(),
+                                     .frequency_exponent = fit.frequency_exponent,
+                                     .damping_exponent = fit.damping_exponent,
+                                     .amplitude_dependent_modal_constant = varying,
+                                     .form = fit.FormName()});
+        if (!result.fit.ok || fit.aicc < result.fit.aicc) result.fit = fit;
+      }
+  }
 }
 
 }  // namespace
@@ -410,11 +483,44 @@ MeasuredBackbone AnalyseMeasuredBackbone(const std::vector<signal::FirstHarmonic
                                   std::to_string(level.points.size()) + " steps; at least 3 are needed");
     data.push_back(MakeLevelData(level));
     level_points.push_back(FitPoints(data.back(), options.fit_window));
-    local_fits.push_back(LocalFit(level_points.back(), options.constant_tolerance));
   }
-  // The modal constant A (the mode shape at sensor and force over the modal
-  // mass) does not depend on amplitude for a single nonlinear mode: take it
-  // where the structure is most linear, from the level of smallest response.
+  for (const auto& points : level_points) all_points.insert(all_points.end(), points.begin(), points.end());
+  result.min_amplitude_m = INFINITY;
+  for (const auto& p : all_points) {
+    result.min_amplitude_m = std::min(result.min_amplitude_m, p.amplitude_m);
+    result.max_amplitude_m = std::max(result.max_amplitude_m, p.amplitude_m);
+  }
+  // The other modes' share R, once for all levels (it does not depend on
+  // amplitude): first with the most flexible polynomial form, then again with
+  // the form chosen with it (R and the form bias each other's choice).
+  double residual = 0.0;
+  if (options.estimate_residual) {
+    const bool spans = result.max_amplitude_m / result.min_amplitude_m - 1 > options.constant_tolerance;
+    residual = FitResidualReceptance(all_points, {.frequency_degree = spans ? options.max_frequency_degree : 0,
+                                                  .damping_degree = spans ? options.max_damping_degree : 0,
+                                                  .amplitude_dependent_modal_constant =
+                                                      spans && options.try_amplitude_dependent_modal_constant,
+                                                  .reference_amplitude_m = result.max_amplitude_m});
+    ChooseGlobalFit(all_points, result.max_amplitude_m, residual, options, result);
+    if (result.fit.ok) {
+      const SingleModeFit& f = result.fit;
+      residual = FitResidualReceptance(all_points, {.frequency_degree = f.frequency_degree,
+                                                    .damping_degree = f.damping_degree,
+                                                    .frequency_exponent = f.frequency_exponent,
+                                                    .damping_exponent = f.damping_exponent,
+                                                    .amplitude_dependent_modal_constant = f.amplitude_dependent_modal_constant,
+                                                    .reference_amplitude_m = f.reference_amplitude_m});
+    }
+    result.fit = SingleModeFit();
+    result.candidates.clear();
+  }
+  for (const auto& points : level_points) local_fits.push_back(LocalFit(points, options.constant_tolerance, residual));
+  ChooseGlobalFit(all_points, result.max_amplitude_m, residual, options, result);
+  if (!result.fit.ok) result.warnings.push_back("too few points near the mode for a single-mode fit across levels");
+
+  // A(a) for the phase resonances: from the global fit, which sees every
+  // level (the amplitudes at which each is pinned down by points on both
+  // sides of a resonance); without one, from the most linear level's local fit.
   int linear_level = -1;
   for (std::size_t l = 0; l < levels.size(); ++l) {
     if (!local_fits[l].ok) continue;
@@ -427,39 +533,24 @@ MeasuredBackbone AnalyseMeasuredBackbone(const std::vector<signal::FirstHarmonic
     r.num_points = data[l].size();
     r.num_fit_points = static_cast<int>(level_points[l].size());
     r.control = DetectControl(data[l], options.constant_tolerance);
-    FindQuadrature(data[l], linear_level >= 0 ? local_fits[linear_level] : local_fits[l], local_fits[l], options, r);
+    const SingleModeFit& modal_fit = result.fit.ok ? result.fit : linear_level >= 0 ? local_fits[linear_level] : local_fits[l];
+    FindQuadrature(data[l], modal_fit, local_fits[l], options, r);
     FindPeakAndHalfPower(data[l], r);
     EvaluateLocalFit(local_fits[l], r);
     if (!r.quadrature_note.empty()) result.warnings.push_back("level '" + r.label + "': " + r.quadrature_note);
-    all_points.insert(all_points.end(), level_points[l].begin(), level_points[l].end());
+    if (result.fit.ok) Regenerate(result.fit, data[l], options.fit_window, result.max_amplitude_m, r);
     result.levels.push_back(std::move(r));
   }
-  result.min_amplitude_m = INFINITY;
-  for (const auto& p : all_points) {
-    result.min_amplitude_m = std::min(result.min_amplitude_m, p.amplitude_m);
-    result.max_amplitude_m = std::max(result.max_amplitude_m, p.amplitude_m);
-  }
+  if (!result.fit.ok) return result;
 
-  // Global single-nonlinear-mode fit, degrees by AICc.
-  for (int p = 0; p <= options.max_frequency_degree; ++p)
-    for (int q = 0; q <= options.max_damping_degree; ++q) {
-      const SingleModeFit fit = FitSingleMode(
-          all_points, {.frequency_degree = p, .damping_degree = q, .reference_amplitude_m = result.max_amplitude_m});
-      if (!fit.ok) continue;
-      result.candidates.push_back({p, q, fit.aicc, fit.ReducedChiSquare()});
-      if (!result.fit.ok || fit.aicc < result.fit.aicc) result.fit = fit;
-    }
-  if (!result.fit.ok) {
-    result.warnings.push_back("too few points near the mode for a single-mode fit across levels");
-    return result;
-  }
-  for (std::size_t l = 0; l < levels.size(); ++l)
-    Regenerate(result.fit, data[l], options.fit_window, result.max_amplitude_m, result.levels[l]);
-
-  // Damping trend: ζω_n linear in a, the frequency as chosen.
-  const SingleModeFit linear = FitSingleMode(all_points, {.frequency_degree = result.fit.frequency_degree,
-                                                          .damping_degree = 1,
-                                                          .reference_amplitude_m = result.max_amplitude_m});
+  // Damping trend: ζω_n linear in a, the frequency and A(a) as chosen.
+  const SingleModeFit linear = FitSingleModeChoosingExponents(
+      all_points, {.frequency_degree = result.fit.frequency_degree,
+                   .damping_degree = 1,
+                   .frequency_exponent = result.fit.frequency_exponent,
+                   .amplitude_dependent_modal_constant = result.fit.amplitude_dependent_modal_constant,
+                   .residual_receptance_m_N = result.fit.residual_receptance_m_N,
+                   .reference_amplitude_m = result.max_amplitude_m});
   if (linear.ok) {
     DampingTrend& trend = result.damping_trend;
     trend.amplitude_m = 0.5 * (result.min_amplitude_m + result.max_amplitude_m);

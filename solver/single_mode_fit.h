@@ -1,22 +1,36 @@
 // The single-nonlinear-mode model of a structure's response near one isolated
 // mode, fitted to first-harmonic points (frequency ω, inverse receptance
-// G = F/X_d of force over displacement, amplitude a = |X_d|):
+// G = F/X_d of force over displacement, amplitude a = |X_d|, s = a/a_ref):
 //
-//     A·G = ω_n²(a) − ω² + 2i·ω·(ζω_n)(a),
-//     ω_n²(a) = Σ_{j≤P} p_j·(a/a_ref)^j,   (ζω_n)(a) = Σ_{j≤Q} q_j·(a/a_ref)^j,
+//     A(a)·G = ω_n²(a) − ω² + 2i·ω·(ζω_n)(a),
+//     ω_n²(a) = Σ_{j≤P} p_j·s^j        or, Iwan-like, p_0 + p_1·s^α,
+//     (ζω_n)(a) = Σ_{j≤Q} q_j·s^j      or, Iwan-like, q_0 + q_1·s^β,
+//     A(a) = A_0 + i·A_i (+ A_2·s²),
 //
-// A the modal constant (φ(x_sensor)·φ(x_force)/m, signed). The model is linear
+// with, optionally, the other modes' share R (real, [m/N]) taken off first:
+// X_d/F = A(a)/D(a, ω) + R, a then the amplitude of the mode's own part
+// |X_d − R·F|.
+//
+// A the modal constant (φ(x_sensor)·φ(x_force)/m). It is complex when the
+// damping is not proportional (a localised damper makes the mode complex),
+// and it changes with amplitude when the nonlinearity changes the mode's
+// shape (a stiffening support restrains the rotation there): to first order
+// by the square of the amplitude for a symmetric nonlinearity, hence A_2·s².
+// The power laws are those of microslip joints (Iwan, Segalman: dissipation
+// per cycle ∝ a^(2+β), softening ∝ a^α); their exponents are chosen on a grid
+// by χ² and counted as parameters. For given exponents the model is linear
 // in (A, p, q), so the fit is a weighted linear least-squares problem; each
-// point's real/imaginary residual pair is whitened by A²·Cov(G) (+ the
-// frequency's variance on the real part), iterating A a few times. The
-// parameter covariance is scaled by the reduced χ² when that exceeds 1 (the
-// single mode is an approximation: residual modes, amplitude errors).
-// Model choice between degrees (P, Q) uses AICc with the noise scale left
+// point's real/imaginary residual pair is whitened by the covariance of A·G
+// from that of G (+ the frequency's variance on the real part), iterating A a
+// few times. The parameter covariance is scaled by the reduced χ² when that
+// exceeds 1 (the single mode is an approximation: residual modes, amplitude
+// errors). Model choice between forms uses AICc with the noise scale left
 // free, n·ln(χ²/n) + 2k + 2k(k+1)/(n−k−1), so it does not depend on how
 // well the phasor uncertainties were estimated.
 #pragma once
 
 #include <complex>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -32,8 +46,16 @@ struct SingleModePoint {
 };
 
 struct SingleModeFitOptions {
-  int frequency_degree = 1;  // P
-  int damping_degree = 1;    // Q
+  int frequency_degree = 1;  // P (a power law has 2 terms: reported as 1)
+  int damping_degree = 1;    // Q (likewise)
+  // α, β > 0: the Iwan-like power law (two terms) instead of the polynomial.
+  double frequency_exponent = 0.0;
+  double damping_exponent = 0.0;
+  // Whether A changes with amplitude (the A_2·s² term).
+  bool amplitude_dependent_modal_constant = false;
+  // R [m/N]: the other modes' share of the receptance, X_d/F = A/D + R
+  // (0 = none); FitResidualReceptance estimates it. Counts as a parameter.
+  double residual_receptance_m_N = 0.0;
   // a_ref: amplitudes are scaled by it to keep the problem well conditioned.
   double reference_amplitude_m = 1.0;
   // Points without a covariance are weighted with this relative standard
@@ -46,8 +68,16 @@ class SingleModeFit {
  public:
   int frequency_degree = 0;
   int damping_degree = 0;
+  double frequency_exponent = 0.0;  // α (> 0: power law)
+  double damping_exponent = 0.0;    // β (> 0: power law)
+  bool amplitude_dependent_modal_constant = false;
+  double residual_receptance_m_N = 0.0;  // R: X_d/F = A/D + R
+  // Searched outside the linear fit (exponents on a grid, R): each counts as
+  // one more parameter in the AICc.
+  int num_searched_parameters = 0;
   double reference_amplitude_m = 1.0;
-  Eigen::VectorXd parameters;  // A, p_0..p_P, q_0..q_Q
+  // Re A_0, Im A_0, [A_2,] then the terms of ω_n² (p), then those of ζω_n (q).
+  Eigen::VectorXd parameters;
   Eigen::MatrixXd covariance;  // scaled by max(1, reduced χ²)
   double chi_square = 0.0;
   int num_residuals = 0;  // 2 per point
@@ -57,9 +87,15 @@ class SingleModeFit {
   double backbone_residual_rms_rad2_s2 = 0.0;
   bool ok = false;        // false: too few points for the parameters
 
-  int NumParameters() const { return static_cast<int>(parameters.size()); }
+  int NumParameters() const { return static_cast<int>(parameters.size()) + num_searched_parameters; }
   double ReducedChiSquare() const;
+  // Re A at zero amplitude.
   double ModalConstant() const { return parameters[0]; }
+  std::complex<double> ModalConstantAt(double amplitude_m) const;
+  // Covariance of (Re A(a), Im A(a)).
+  Eigen::Matrix2d ModalConstantCovariance(double amplitude_m) const;
+  // "polynomial 3" or "power 2.5" for ω_n² and ζω_n, and "A(a)" when A changes.
+  std::string FormName() const;
   double NaturalFrequency_rad_s(double amplitude_m) const;
   double NaturalFrequencyStd_rad_s(double amplitude_m) const;
   double DampingRatio(double amplitude_m) const;
@@ -67,11 +103,13 @@ class SingleModeFit {
   // dζ/da and its standard uncertainty (delta method).
   double DampingSlope_per_m(double amplitude_m) const;
   double DampingSlopeStd_per_m(double amplitude_m) const;
-  // D(a, ω) = ω_n²(a) − ω² + 2iω(ζω_n)(a), so X_d = A·F/D.
+  // D(a, ω) = ω_n²(a) − ω² + 2iω(ζω_n)(a), so X_d = A(a)·F/D.
   std::complex<double> DynamicTerm(double amplitude_m, double omega_rad_s) const;
 
-  // 1, a/a_ref, …, (a/a_ref)^degree.
-  Eigen::VectorXd Basis(double amplitude_m, int degree) const;
+  // The terms of ω_n² and ζω_n at an amplitude: 1, s, …, s^degree, or 1, s^exponent.
+  Eigen::VectorXd FrequencyBasis(double amplitude_m) const;
+  Eigen::VectorXd DampingBasis(double amplitude_m) const;
+  int NumModalConstantTerms() const { return amplitude_dependent_modal_constant ? 3 : 2; }
 
  private:
   // Gradients of ω_n and ζ with respect to the parameters.
@@ -80,5 +118,22 @@ class SingleModeFit {
 };
 
 SingleModeFit FitSingleMode(const std::vector<SingleModePoint>& points, const SingleModeFitOptions& options);
+
+// The R that minimises the fit's χ² for the form of `options`: residual
+// (out-of-band) modes add a nearly constant, real receptance to the mode's,
+// which bends the tails of each curve (the same way on both sides of the
+// resonance) and, left out, biases A(a) and so the phase resonances. Searched
+// within ±2 % of the largest |X_d/F| (a scan, then golden section); 0 when it
+// does not lower the AICc (counted as one parameter more).
+double FitResidualReceptance(const std::vector<SingleModePoint>& points, const SingleModeFitOptions& options);
+
+// The power-law exponents tried for the Iwan-like forms.
+std::vector<double> PowerLawExponentGrid();
+
+// The best fit (smallest χ²) over the exponent grid for every power-law
+// exponent that `options` asks for (any value > 0 there means "choose it"),
+// each chosen exponent counted as a parameter.
+SingleModeFit FitSingleModeChoosingExponents(const std::vector<SingleModePoint>& points,
+                                             const SingleModeFitOptions& options);
 
 }  // namespace beamid::solver

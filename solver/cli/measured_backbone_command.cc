@@ -140,8 +140,12 @@ void RunMeasuredBackbone(const MeasuredBackboneCommandOptions& options, const Gl
   }
   nlohmann::json candidates = nlohmann::json::array();
   for (const auto& c : measured.candidates)
-    candidates.push_back({{"frequency_degree", c.frequency_degree},
+    candidates.push_back({{"form", c.form},
+                          {"frequency_degree", c.frequency_degree},
                           {"damping_degree", c.damping_degree},
+                          {"frequency_exponent", c.frequency_exponent},
+                          {"damping_exponent", c.damping_exponent},
+                          {"amplitude_dependent_modal_constant", c.amplitude_dependent_modal_constant},
                           {"aicc", c.aicc},
                           {"reduced_chi_square", c.reduced_chi_square}});
   nlohmann::json model_json = nlohmann::json::array();
@@ -155,9 +159,17 @@ void RunMeasuredBackbone(const MeasuredBackboneCommandOptions& options, const Gl
       {"amplitude", "first-harmonic displacement amplitude at the sensor [m]"},
       {"levels", level_json},
       {"single_mode_fit",
-       {{"model", "A*F/X_d = wn^2(a) - w^2 + 2i*w*(zeta*wn)(a), polynomials in a/a_ref"},
+       {{"model",
+         "A(a)*F/X_d = wn^2(a) - w^2 + 2i*w*(zeta*wn)(a), s = a/a_ref; wn^2, zeta*wn: polynomials in s or power laws "
+         "c0 + c1*s^exponent (Iwan-like); A = A0r + i*A0i (+ A2*s^2); chosen by AICc; X_d/F = A/D + R, a = |X_d - R*F|"},
+        {"form", fit.FormName()},
         {"frequency_degree", fit.frequency_degree},
         {"damping_degree", fit.damping_degree},
+        {"frequency_exponent", fit.frequency_exponent},
+        {"damping_exponent", fit.damping_exponent},
+        {"amplitude_dependent_modal_constant", fit.amplitude_dependent_modal_constant},
+        {"residual_receptance_m_N", fit.residual_receptance_m_N},
+        {"parameter_order", "Re A0, Im A0, [A2], wn^2 terms, zeta*wn terms"},
         {"reference_amplitude_m", fit.reference_amplitude_m},
         {"parameters", std::vector<double>(fit.parameters.data(), fit.parameters.data() + fit.parameters.size())},
         {"reduced_chi_square", fit.ReducedChiSquare()},
@@ -181,6 +193,7 @@ void RunMeasuredBackbone(const MeasuredBackboneCommandOptions& options, const Gl
                l.label, solver::LevelControlName(l.control), l.quadrature_frequency_hz.value,
                l.quadrature_frequency_hz.std, l.quadrature_amplitude_m.value, l.quadrature_damping_ratio.value,
                l.quadrature_damping_ratio.std, l.local_damping_ratio.value);
+  if (fit.ok) fmt::print("  single-mode fit (AICc): {}, reduced χ² {:.3g}\n", fit.FormName(), fit.ReducedChiSquare());
   fmt::print("  damping against amplitude: {} (slope {:.3g} ± {:.2g} per m, {:.1f} σ)\n", trend.verdict,
              trend.slope_per_m, trend.slope_std_per_m, trend.z);
   fmt::print("wrote {0}.json, {0}.csv and {0}_curves.csv\n", options.output);

@@ -122,9 +122,17 @@ void Print(const char* name, const MeasuredBackbone& m) {
         l.quadrature_damping_ratio.value, l.quadrature_damping_ratio.std, l.local_damping_ratio.value,
         l.local_damping_ratio.std, l.local_reduced_chi_square, l.half_power_damping_ratio.value, l.half_power_damping_ratio.std,
         100 * l.regeneration_relative_rms);
-  std::printf("%s global fit: degrees (%d, %d), reduced chi-square %.3g; damping slope %.4g ± %.3g /m (z = %.2f, %s)\n",
-              name, m.fit.frequency_degree, m.fit.damping_degree, m.fit.ReducedChiSquare(), m.damping_trend.slope_per_m,
+  std::printf("%s global fit: %s, reduced chi-square %.3g; damping slope %.4g ± %.3g /m (z = %.2f, %s)\n", name,
+              m.fit.FormName().c_str(), m.fit.ReducedChiSquare(), m.damping_trend.slope_per_m,
               m.damping_trend.slope_std_per_m, m.damping_trend.z, m.damping_trend.verdict.c_str());
+  // The best candidate of the other family, to see how close the choice was.
+  const BackboneModelCandidate* other = nullptr;
+  const bool chosen_power = m.fit.frequency_exponent > 0 || m.fit.damping_exponent > 0;
+  for (const auto& c : m.candidates)
+    if ((c.frequency_exponent > 0 || c.damping_exponent > 0) != chosen_power && (!other || c.aicc < other->aicc)) other = &c;
+  if (other)
+    std::printf("%s best %s candidate: %s, AICc %+.1f from the chosen\n", name, chosen_power ? "polynomial" : "power-law",
+                other->form.c_str(), other->aicc - m.fit.aicc);
 }
 
 // Measured phase resonance against the true model's backbone at the same amplitude, in σ.
@@ -260,6 +268,10 @@ TEST_F(MeasuredBackboneOnSimulatedCampaigns, TablesInAcquisitionSystemVariantsGi
               c.quadrature_damping_ratio.value, c.quadrature_damping_ratio.std);
   EXPECT_NEAR(h.quadrature_frequency_hz.value, c.quadrature_frequency_hz.value,
               3 * std::hypot(h.quadrature_frequency_hz.std, c.quadrature_frequency_hz.std));
+  // Without uncertainty columns the σ comes from the fit's scatter; a broken
+  // fit (terms the held level cannot tell apart) shows as a σ of many Hz.
+  constexpr double kHeldRelativeStd = 1e-4;
+  EXPECT_LT(h.quadrature_frequency_hz.std, kHeldRelativeStd * c.quadrature_frequency_hz.value);
   EXPECT_NEAR(h.local_damping_ratio.value, c.local_damping_ratio.value,
               3 * std::hypot(h.local_damping_ratio.std, c.local_damping_ratio.std));
 }
