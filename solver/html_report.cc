@@ -175,7 +175,7 @@ std::string ResonanceTable(const ReportCurves& curves) {
       Escape(ch.si_unit));
   for (const auto& p : curves.phase_resonance)
     html += fmt::format(
-        "<tr><td>{}</td><td>{:.4f} ± {:.4f}</td><td>{:.5g} ± {:.2g}</td><td>{:.5f} ± {:.5f}</td><td>{}</td>"
+        "<tr><td>{}</td><td>{:.4f} ± {:.4f}</td><td>{:.5g} ± {:.2g}</td><td>{:.5f} ± {:.2g}</td><td>{}</td>"
         "<td class=\"z\">{}</td><td>{}</td></tr>\n",
         Escape(p.level), p.frequency_hz, p.frequency_std_hz, p.amplitude, p.amplitude_std,
         p.damping_ratio, p.damping_ratio_std,

@@ -197,9 +197,12 @@ void FindQuadrature(const LevelData& data, const SingleModeFit& modal_fit, const
   with_constant.raw_covariance.block(n_raw, n_raw, 2, 2) = modal_fit.ModalConstantCovariance(step_amplitude);
   const auto e = Propagate([&](const Eigen::VectorXd& raw) { return QuadratureFrom(raw, k); }, with_constant);
   out.quadrature_frequency_hz = e[0];
-  // Beyond the noise: how far this level strays from one nonlinear mode.
-  const double model_std_hz =
-      local_fit.ok ? local_fit.backbone_residual_rms_rad2_s2 / (2 * kTwoPi * e[0].value) / kTwoPi : 0.0;
+  // Beyond the noise: how far this level strays from one nonlinear mode
+  // (from the fit across levels when the level has too few points near the
+  // mode for its own).
+  const double model_residual_rad2_s2 =
+      local_fit.ok ? local_fit.backbone_residual_rms_rad2_s2 : modal_fit.backbone_residual_rms_rad2_s2;
+  const double model_std_hz = model_residual_rad2_s2 / (2 * kTwoPi * e[0].value) / kTwoPi;
   out.quadrature_frequency_hz.std = std::hypot(e[0].std, model_std_hz);
   out.quadrature_amplitude_m = e[1];
   out.quadrature_force_N = e[2];

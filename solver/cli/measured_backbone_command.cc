@@ -189,10 +189,12 @@ void RunMeasuredBackbone(const MeasuredBackboneCommandOptions& options, const Gl
   if (global.quiet) return;
   for (const auto& w : measured.warnings) fmt::print(stderr, "beamid backbone: warning: {}\n", w);
   for (const auto& l : measured.levels)
-    fmt::print("  {:>8} ({}-controlled): {:.4f} ± {:.4f} Hz at {:.3e} m, ζ = {:.5f} ± {:.5f} (local fit {:.5f})\n",
+    fmt::print("  {:>8} ({}-controlled): {:.4f} ± {:.4f} Hz at {:.3e} m, ζ = {:.5f} ± {:.2g} (local fit {})\n",
                l.label, solver::LevelControlName(l.control), l.quadrature_frequency_hz.value,
                l.quadrature_frequency_hz.std, l.quadrature_amplitude_m.value, l.quadrature_damping_ratio.value,
-               l.quadrature_damping_ratio.std, l.local_damping_ratio.value);
+               l.quadrature_damping_ratio.std,
+               l.local_damping_ratio.valid ? fmt::format("{:.5f}", l.local_damping_ratio.value)
+                                           : std::string("not available: too few steps near the mode"));
   if (fit.ok) fmt::print("  single-mode fit (AICc): {}, reduced χ² {:.3g}\n", fit.FormName(), fit.ReducedChiSquare());
   fmt::print("  damping against amplitude: {} (slope {:.3g} ± {:.2g} per m, {:.1f} σ)\n", trend.verdict,
              trend.slope_per_m, trend.slope_std_per_m, trend.z);
