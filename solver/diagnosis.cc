@@ -132,8 +132,10 @@ std::string WriteSummary(const DiagnosisResult& r) {
         best.name, best.description, best.residual_drop, r.base.chi_square, best.fit.chi_square, r.base.bic,
         best.fit.bic, best.p_value);
     if (std::isfinite(r.base.held_out_h1_relative_error))
-      out << fmt::format("Held-out channels: first-harmonic error {:.3g} % -> {:.3g} %. ",
-                         100.0 * r.base.held_out_h1_relative_error, 100.0 * r.final_fit.held_out_h1_relative_error);
+      out << fmt::format("Held-out channels: first-harmonic error {:.3g} % -> {:.3g} %, chi-square of the harmonics "
+                         "the model predicts {:.4g} -> {:.4g}. ",
+                         100.0 * r.base.held_out_h1_relative_error, 100.0 * r.final_fit.held_out_h1_relative_error,
+                         r.base.held_out_chi_square, r.final_fit.held_out_chi_square);
     out << "Identified: " << DescribeParameters(r.final_fit, r.final_extra_parameters) << ".";
   } else if (r.verdict == "unexplained") {
     out << "No candidate explains the misfit significantly: unexplained";
