@@ -5,6 +5,7 @@
 // better. Three levels, nine steps around the resonance, realistic noise.
 #include "solver/diagnosis.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -61,6 +62,13 @@ TEST(DiagnosisOnConcealedEffects, NamesAnAddedMass) {
   }
   EXPECT_NEAR(Extra(result, "added_mass"), 0.03, 0.01 * 0.03);
   EXPECT_NEAR(Extra(result, "added_mass_position"), 0.45, 1e-3);
+  // A wrong candidate's intervals are finite too: on this campaign the clamp
+  // compliance refit reported about ±1e142 on every parameter before.
+  for (const auto& c : result.candidates) {
+    if (c.name != "clamp_compliance" || !c.converged) continue;
+    for (const auto& p : c.fit.parameters)
+      EXPECT_TRUE(std::isfinite(p.std) && p.std < 1e3 * std::max(std::abs(p.value), 1.0)) << p.name << " ± " << p.std;
+  }
 }
 
 TEST(DiagnosisOnConcealedEffects, NamesAModulusError) {
