@@ -12,10 +12,10 @@
 namespace beamid::hb {
 namespace {
 
-int AutomaticSamples(int num_harmonics, bool hysteretic) {
+int AutomaticSamples(int num_harmonics, bool smooth) {
   int n = 8;
   while (n < 4 * num_harmonics + 4) n *= 2;
-  return hysteretic ? std::max(n, 256) : n;
+  return smooth ? n : std::max(n, 256);
 }
 
 // Relative step of the difference quotient in ω of the linear part.
@@ -54,7 +54,7 @@ HarmonicBalance::HarmonicBalance(const LinearBeam& beam, const SupportLaw& law, 
   if (options_.num_harmonics < 1) throw std::invalid_argument("harmonic balance needs at least 1 harmonic");
   num_time_samples_ = options_.num_time_samples > 0
                           ? options_.num_time_samples
-                          : AutomaticSamples(options_.num_harmonics, law_->NumInternalStates() > 0);
+                          : AutomaticSamples(options_.num_harmonics, law_->IsSmooth());
   if (num_time_samples_ < 2 * options_.num_harmonics + 2)
     throw std::invalid_argument("num_time_samples must be at least 2H + 2 = " +
                                 std::to_string(2 * options_.num_harmonics + 2));

@@ -234,6 +234,10 @@ int CompositeSupportLaw::NumInternalStates() const {
   return count;
 }
 
+bool CompositeSupportLaw::IsSmooth() const {
+  return std::all_of(laws_.begin(), laws_.end(), [](const auto& law) { return law->IsSmooth(); });
+}
+
 SupportLawResponse CompositeSupportLaw::Evaluate(double theta, double theta_rate,
                                                  std::span<const double> state_in,
                                                  std::span<double> state_out) const {

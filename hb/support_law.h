@@ -52,6 +52,13 @@ class SupportLaw {
   // Internal state variables carried between time steps (0: memoryless).
   virtual int NumInternalStates() const { return 0; }
 
+  // False for a law with corners (a slider that sticks and slips, a contact
+  // that opens): its moment over a period has harmonics decaying only like
+  // 1/k², which alias onto the low ones in the alternating frequency–time
+  // step unless the period is sampled densely (hb/harmonic_balance.h). A
+  // memoryless polynomial is smooth; a hysteretic law has corners.
+  virtual bool IsSmooth() const { return NumInternalStates() == 0; }
+
   // One time step. state_in/state_out have NumInternalStates() entries; the
   // tangents are consistent with the update (for Newton in the integrator).
   virtual SupportLawResponse Evaluate(double theta_rad, double theta_rate_rad_s,
@@ -155,6 +162,9 @@ class OneSidedStiffnessLaw final : public SupportLaw {
   SupportLawResponse Evaluate(double theta_rad, double theta_rate_rad_s,
                               std::span<const double> state_in,
                               std::span<double> state_out) const override;
+  // The kink at θ = 0 (whatever k_a: an identification changes it after
+  // the balance is set up).
+  bool IsSmooth() const override { return false; }
   // The small-amplitude mean of the two senses' stiffness.
   double InitialStiffness_Nm_rad() const override { return 0.5 * stiffness_Nm_rad_; }
   std::vector<LawParameter> Parameters() const override;
@@ -179,6 +189,7 @@ class CompositeSupportLaw final : public SupportLaw {
   std::string Name() const override;
   std::unique_ptr<SupportLaw> Clone() const override;
   int NumInternalStates() const override;
+  bool IsSmooth() const override;  // all its laws are
   SupportLawResponse Evaluate(double theta_rad, double theta_rate_rad_s,
                               std::span<const double> state_in,
                               std::span<double> state_out) const override;

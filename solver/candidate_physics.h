@@ -38,7 +38,10 @@ struct CandidateExtension {
   // Starts of the refit (physical values, structure order): the base optimum
   // with the extra parameters at one or more plausible sizes.
   std::vector<std::vector<double>> starts;
-  int model_harmonics = 5;  // H of the refit
+  // H of the refit. A candidate with parameters of its own balanced with
+  // more harmonics than the base is tested against the refit with no
+  // parameters of its own at the same H (HarmonicTruncation), when there is one.
+  int model_harmonics = 5;
   // Extra degrees of freedom of the likelihood-ratio test (the parameter
   // count; 1 for an extension with no parameter of its own, see
   // HarmonicTruncation).
@@ -71,10 +74,12 @@ CandidatePhysics ModulusError();
 // A support stiffer for one sense of rotation than for the other:
 // M_extra = k_a·max(θ, 0) (a contact whose patch grows when the beam rotates
 // into the rod). Even harmonics whose share does not grow with amplitude, which
-// k2·θ² cannot follow over several levels.
+// k2·θ² cannot follow over several levels. Its kink has slowly decaying
+// harmonics: it is balanced with as many as HarmonicTruncation (2H + 1, at
+// least 9).
 CandidatePhysics SupportAsymmetry();
 // Content beyond the modelled harmonics: the same law with more harmonics in
-// the balance (no new parameter).
+// the balance (2H + 1, at least 9; no new parameter).
 CandidatePhysics HarmonicTruncation();
 
 // All of the above, in the order of issue 7.

@@ -7,7 +7,10 @@
 //   likelihood ratio  Λ = (χ²_base − χ²_cand)/s²,  s² = max(1, χ²_cand/dof),
 //   p = P(χ²(q) ≥ Λ) below significance/(number of candidates) (Bonferroni),
 //   and the refit removes at least min_relative_improvement of χ²_base
-//   (a significant but negligible gain is not a cause), and the base misfit
+//   (a significant but negligible gain is not a cause); a candidate balanced
+//   with more harmonics than the base is tested against the refit with those
+//   harmonics and no parameters of its own (harmonic_truncation) instead of
+//   χ²_base, when that fits better; and the base misfit
 //   exceeds acceptable_reduced_chi_square (a base within the model's own
 //   errors has nothing to explain);
 // ranked by BIC = χ² + P·ln(n) (AIC = χ² + 2P also reported) and checked on

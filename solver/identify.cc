@@ -218,11 +218,19 @@ IdentifyResult IdentifyWith(const ProblemFactory& make_problem, const ModelStruc
   result.degrees_of_freedom = std::max(1, problem->num_residuals() - num_parameters);
   result.reduced_chi_square = result.chi_square / result.degrees_of_freedom;
   const double variance_scale = std::max(1.0, result.reduced_chi_square);
+  // Inverted scale-free (unit diagonal, the correlation's inverse): in
+  // physical units the diagonal spans 20 orders of magnitude (k3 in
+  // N·m/rad³ beside a clamp compliance in rad/(N·m)), beyond double
+  // precision, and rounding made eigenvalues of well-determined
+  // directions negative (intervals of ±1e143).
   const Eigen::MatrixXd information = j.transpose() * j;
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(information);
-  const Eigen::VectorXd values = eigen.eigenvalues().cwiseMax(1e-300);
-  result.covariance = variance_scale * eigen.eigenvectors() * values.cwiseInverse().asDiagonal() *
-                      eigen.eigenvectors().transpose();
+  const Eigen::VectorXd scale = information.diagonal().cwiseSqrt().cwiseMax(1e-300);
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> normalised(scale.cwiseInverse().asDiagonal() * information *
+                                                            scale.cwiseInverse().asDiagonal());
+  const Eigen::VectorXd values = normalised.eigenvalues().cwiseMax(1e-300);
+  result.covariance = variance_scale * scale.cwiseInverse().asDiagonal() * normalised.eigenvectors() *
+                      values.cwiseInverse().asDiagonal() * normalised.eigenvectors().transpose() *
+                      scale.cwiseInverse().asDiagonal();
   const Eigen::VectorXd std = result.covariance.diagonal().cwiseSqrt();
   result.correlation = std.cwiseInverse().asDiagonal() * result.covariance * std.cwiseInverse().asDiagonal();
   const auto names = initial.Names();
@@ -235,10 +243,7 @@ IdentifyResult IdentifyWith(const ProblemFactory& make_problem, const ModelStruc
       result.warnings.push_back(names[k] + " is not identifiable from these data: its standard uncertainty (" +
                                 std::to_string(std[k]) + ") exceeds its value");
   }
-  // Collinearity on the scale-free information matrix (the correlation's inverse).
-  const Eigen::VectorXd scale = information.diagonal().cwiseSqrt().cwiseMax(1e-300);
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> normalised(scale.cwiseInverse().asDiagonal() * information *
-                                                            scale.cwiseInverse().asDiagonal());
+  // Collinearity on the scale-free information matrix.
   if (normalised.eigenvalues().minCoeff() < 1e-8 * normalised.eigenvalues().maxCoeff())
     result.warnings.push_back("the parameters are nearly collinear: some combination of them is not identifiable");
   if (result.reduced_chi_square > 4.0)

@@ -112,17 +112,19 @@ void RunDiagnose(const DiagnoseCommandOptions& options, const GlobalOptions& glo
   }
   if (!global.quiet) {
     fmt::print("diagnosed {} steps in {:.2f} s: {}\n", fit.steps.size(), result.seconds, result.verdict);
-    fmt::print("  {:<20} {:>6} {:>12} {:>9} {:>11} {:>10}  {}\n", "candidate", "score", "chi-square", "drop",
-               "BIC", "p", "held-out h1");
-    fmt::print("  {:<20} {:>6} {:>12.5g} {:>9} {:>11.5g} {:>10}  {:.3g} %\n", "(base)", "", result.base.chi_square, "",
-               result.base.bic, "", 100.0 * result.base.held_out_h1_relative_error);
+    fmt::print("  {:<20} {:>6} {:>12} {:>9} {:>11} {:>10}  {} / {}\n", "candidate", "score", "chi-square", "drop",
+               "BIC", "p", "held-out h1", "chi-square");
+    fmt::print("  {:<20} {:>6} {:>12.5g} {:>9} {:>11.5g} {:>10}  {:.3g} % / {:.4g}\n", "(base)", "",
+               result.base.chi_square, "", result.base.bic, "", 100.0 * result.base.held_out_h1_relative_error,
+               result.base.held_out_chi_square);
     for (const auto& c : result.candidates)
       if (!c.converged)
         fmt::print("  {:<20} {:>6.2f}  refit failed ({})\n", c.name, c.signature_score, c.status);
       else
-        fmt::print("  {:<20} {:>6.2f} {:>12.5g} {:>8.3g}x {:>11.5g} {:>10.2g}  {:.3g} %  ({:.1f} s){}\n", c.name,
-                 c.signature_score, c.fit.chi_square, c.residual_drop, c.fit.bic, c.p_value,
-                 100.0 * c.fit.held_out_h1_relative_error, c.seconds, c.significant ? "  significant" : "");
+        fmt::print("  {:<20} {:>6.2f} {:>12.5g} {:>8.3g}x {:>11.5g} {:>10.2g}  {:.3g} % / {:.4g}  ({:.1f} s){}\n",
+                   c.name, c.signature_score, c.fit.chi_square, c.residual_drop, c.fit.bic, c.p_value,
+                   100.0 * c.fit.held_out_h1_relative_error, c.fit.held_out_chi_square, c.seconds,
+                   c.significant ? "  significant" : "");
     fmt::print("{}\nwrote {}\n", result.summary, options.output);
   }
 }

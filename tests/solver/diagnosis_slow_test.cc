@@ -5,52 +5,22 @@
 // better. Three levels, nine steps around the resonance, realistic noise.
 #include "solver/diagnosis.h"
 
-#include <cstdio>
-#include <filesystem>
+#include <algorithm>
+#include <cmath>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "tests/support/simulated_campaign.h"
+#include "tests/support/concealed_diagnosis.h"
 
 namespace beamid::solver {
 namespace {
 
-constexpr double kMinResidualDrop = 5.0;
-
-DiagnosisResult DiagnoseScenario(const nlohmann::json& scenario, const std::string& name) {
-  const testing::ExtractedCampaign campaign = testing::SimulateCampaign(scenario, "beamid_diagnosis_" + name);
-  DiagnosisOptions options;
-  options.num_workers = 2;
-  DiagnosisResult result = Diagnose(campaign.Fit({"acc1", "acc2"}), campaign.Fit({"acc3"}),
-                                    campaign.Fit({"acc1", "acc2"}, 5), options);
-  std::filesystem::remove_all(campaign.folder);
-  std::printf("%s: verdict '%s', selected %s, %.2f s\n", name.c_str(), result.verdict.c_str(),
-              result.selected.front().c_str(), result.seconds);
-  std::printf("  base: chi2 %.4g (reduced %.3g), held-out acc3 h1 %.3f %%\n", result.base.chi_square,
-              result.base.reduced_chi_square, 100 * result.base.held_out_h1_relative_error);
-  for (const auto& c : result.candidates)
-    std::printf("  %-20s chi2 %.4g drop %.3gx BIC %.5g p %.2g held-out %.3f %% score %.2f %s\n", c.name.c_str(),
-                c.fit.chi_square, c.residual_drop, c.fit.bic, c.p_value, 100 * c.fit.held_out_h1_relative_error,
-                c.signature_score, c.significant ? "significant" : "");
-  std::printf("  %s\n", result.summary.c_str());
-  return result;
-}
-
-void ExpectNamed(const DiagnosisResult& result, const std::string& cause) {
-  ASSERT_EQ(result.verdict, "cause named");
-  ASSERT_FALSE(result.selected.empty());
-  EXPECT_EQ(result.selected.front(), cause);
-  EXPECT_EQ(result.candidates.front().name, cause);
-  EXPECT_GE(result.base.chi_square / result.final_fit.chi_square, kMinResidualDrop);
-  EXPECT_LT(result.final_fit.held_out_h1_relative_error, result.base.held_out_h1_relative_error);
-}
+using testing::DiagnoseScenario;
+using testing::ExpectNamed;
 
 double Extra(const DiagnosisResult& result, const std::string& name) {
-  for (const auto& p : result.final_fit.parameters)
-    if (p.name == name) return p.value;
-  ADD_FAILURE() << "no parameter " << name;
-  return 0.0;
+  return testing::FinalParameter(result, name).value;
 }
 
 TEST(DiagnosisOnConcealedEffects, NamesFrictionAtTheSupport) {
@@ -79,6 +49,26 @@ TEST(DiagnosisOnConcealedEffects, NamesAnAddedMass) {
   s["attachments"] = {{"point_masses", {{{"position_m", 0.45}, {"mass_kg", 0.03}}}}};
   const DiagnosisResult result = DiagnoseScenario(s, "added_mass");
   ExpectNamed(result, "added_mass");
+  // Finite intervals (the covariance was once inverted in physical units,
+  // where rounding gave ±1e143), and the mass and its place found within
+  // 1 % and 1 mm. Not within the intervals (±0.04 g, ±0.13 mm): the fit
+  // finds 30.06 g at 449.66 mm, with or without the beam's loss factor
+  // refitted beside them; the clamp compliance likewise comes out 0.15 %
+  // high, 16 of its σ. Not traced further: of the order of the simulator's
+  // 40-element beam against the exact one (natural frequencies within 0.05 %).
+  for (const std::string name : {"added_mass", "added_mass_position"}) {
+    const ParameterEstimate p = testing::FinalParameter(result, name);
+    EXPECT_TRUE(std::isfinite(p.std) && p.std < 0.01 * p.value) << name << " ± " << p.std;
+  }
+  EXPECT_NEAR(Extra(result, "added_mass"), 0.03, 0.01 * 0.03);
+  EXPECT_NEAR(Extra(result, "added_mass_position"), 0.45, 1e-3);
+  // A wrong candidate's intervals are finite too: on this campaign the clamp
+  // compliance refit reported about ±1e142 on every parameter before.
+  for (const auto& c : result.candidates) {
+    if (c.name != "clamp_compliance" || !c.converged) continue;
+    for (const auto& p : c.fit.parameters)
+      EXPECT_TRUE(std::isfinite(p.std) && p.std < 1e3 * std::max(std::abs(p.value), 1.0)) << p.name << " ± " << p.std;
+  }
 }
 
 TEST(DiagnosisOnConcealedEffects, NamesAModulusError) {
