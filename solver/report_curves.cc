@@ -7,7 +7,6 @@
 #include <numbers>
 #include <stdexcept>
 
-#include <fmt/format.h>
 
 #include "hb/continuation.h"
 #include "signal/quantity.h"
@@ -106,8 +105,7 @@ void MeasuredPhaseResonance(const signal::PhasorSet& phasors, const ReportChanne
   }
   const SingleModeFit& fit = measured.fit;
   if (!fit.ok) return;
-  mode.fit_form = fmt::format("ω_n² a polynomial of degree {} and ζω_n of degree {} in the amplitude",
-                              fit.frequency_degree, fit.damping_degree);
+  mode.fit_form = fit.FormName();
   mode.damping_trend = measured.damping_trend.verdict;
   mode.damping_trend_z = measured.damping_trend.z;
   constexpr int kCurvePoints = 60;

@@ -101,7 +101,7 @@ struct SingleModeCurvePoint {
 struct MeasuredNonlinearMode {
   std::vector<MeasuredDampingPoint> damping;
   std::vector<SingleModeCurvePoint> fit;  // empty when the fit failed
-  std::string fit_form;                   // e.g. "ω_n² of degree 3, ζω_n of degree 1"
+  std::string fit_form;                   // SingleModeFit::FormName()
   std::string damping_trend;              // "rises", "falls", "no significant trend"
   double damping_trend_z = 0.0;
 };
