@@ -2,7 +2,8 @@
 // with one effect the base model leaves out, concealed (the campaign states
 // the nominal set-up): the diagnosis names it first, the weighted residual
 // drops at least 5x, and the held-out accelerometer (acc3) is predicted
-// better. Three levels, nine steps around the resonance, realistic noise.
+// better, and the effect's parameters are found within their 95 % intervals.
+// Three levels, nine steps around the resonance, realistic noise.
 #include "solver/diagnosis.h"
 
 #include <algorithm>
@@ -19,10 +20,6 @@ namespace {
 using testing::DiagnoseScenario;
 using testing::ExpectNamed;
 
-double Extra(const DiagnosisResult& result, const std::string& name) {
-  return testing::FinalParameter(result, name).value;
-}
-
 TEST(DiagnosisOnConcealedEffects, NamesFrictionAtTheSupport) {
   nlohmann::json s = testing::PaperSetUpScenario();
   s["support"]["polynomial"]["k1_Nm_rad"] = 100.0;
@@ -32,8 +29,12 @@ TEST(DiagnosisOnConcealedEffects, NamesFrictionAtTheSupport) {
   s["timing"]["settle_tolerance"] = 5e-4;
   const DiagnosisResult result = DiagnoseScenario(s, "friction");
   ExpectNamed(result, "support_friction");
-  // The slip moment within a factor 1.5 of the truth (0.15 N·m).
-  EXPECT_NEAR(std::log(Extra(result, "jenkins_slip_moment") / 0.15), 0.0, std::log(1.5));
+  // Within 1 %, not within the intervals: this campaign's steps settle only
+  // to 5e-4 (a slipping support settles slowly; 1e-5 would take minutes),
+  // which leaves the estimates 2–2.6 σ off (k_t 49.974 ± 0.013, M_slip
+  // 0.14989 ± 0.00004).
+  EXPECT_NEAR(testing::FinalParameter(result, "jenkins_stiffness").value, 50.0, 0.01 * 50.0);
+  EXPECT_NEAR(testing::FinalParameter(result, "jenkins_slip_moment").value, 0.15, 0.01 * 0.15);
 }
 
 TEST(DiagnosisOnConcealedEffects, NamesClampCompliance) {
@@ -41,7 +42,7 @@ TEST(DiagnosisOnConcealedEffects, NamesClampCompliance) {
   s["attachments"] = {{"clamp_rotational_stiffness_Nm_rad", 1e4}};
   const DiagnosisResult result = DiagnoseScenario(s, "clamp");
   ExpectNamed(result, "clamp_compliance");
-  EXPECT_NEAR(1.0 / Extra(result, "clamp_compliance"), 1e4, 0.3e4);
+  testing::ExpectWithinInterval(result, "clamp_compliance", 1e-4);
 }
 
 TEST(DiagnosisOnConcealedEffects, NamesAnAddedMass) {
@@ -49,26 +50,18 @@ TEST(DiagnosisOnConcealedEffects, NamesAnAddedMass) {
   s["attachments"] = {{"point_masses", {{{"position_m", 0.45}, {"mass_kg", 0.03}}}}};
   const DiagnosisResult result = DiagnoseScenario(s, "added_mass");
   ExpectNamed(result, "added_mass");
-  // Finite intervals (the covariance was once inverted in physical units,
-  // where rounding gave ±1e143), and the mass and its place found within
-  // 1 % and 1 mm. Not within the intervals (±0.04 g, ±0.13 mm): the fit
-  // finds 30.06 g at 449.66 mm, with or without the beam's loss factor
-  // refitted beside them; the clamp compliance likewise comes out 0.15 %
-  // high, 16 of its σ. Not traced further: of the order of the simulator's
-  // 40-element beam against the exact one (natural frequencies within 0.05 %).
-  for (const std::string name : {"added_mass", "added_mass_position"}) {
-    const ParameterEstimate p = testing::FinalParameter(result, name);
-    EXPECT_TRUE(std::isfinite(p.std) && p.std < 0.01 * p.value) << name << " ± " << p.std;
-  }
-  EXPECT_NEAR(Extra(result, "added_mass"), 0.03, 0.01 * 0.03);
-  EXPECT_NEAR(Extra(result, "added_mass_position"), 0.45, 1e-3);
-  // A wrong candidate's intervals are finite too: on this campaign the clamp
-  // compliance refit reported about ±1e142 on every parameter before.
-  for (const auto& c : result.candidates) {
-    if (c.name != "clamp_compliance" || !c.converged) continue;
-    for (const auto& p : c.fit.parameters)
-      EXPECT_TRUE(std::isfinite(p.std) && p.std < 1e3 * std::max(std::abs(p.value), 1.0)) << p.name << " ± " << p.std;
-  }
+  // Within ±0.04 g and ±0.13 mm (95 %). With steps cut at 4 s instead of
+  // settled to 1e-5, the fit found 30.06 g at 449.66 mm: 5σ off.
+  testing::ExpectWithinInterval(result, "added_mass", 0.03);
+  testing::ExpectWithinInterval(result, "added_mass_position", 0.45);
+  // A wrong candidate's intervals are finite too (the covariance was once
+  // inverted in physical units, where rounding gave about ±1e142).
+  const auto wrong = std::find_if(result.candidates.begin(), result.candidates.end(),
+                                  [](const auto& c) { return c.name == "modulus_error"; });
+  ASSERT_NE(wrong, result.candidates.end());
+  ASSERT_TRUE(wrong->converged);
+  for (const auto& p : wrong->fit.parameters)
+    EXPECT_TRUE(std::isfinite(p.std) && p.std < 1e3 * std::max(std::abs(p.value), 1.0)) << p.name << " ± " << p.std;
 }
 
 TEST(DiagnosisOnConcealedEffects, NamesAModulusError) {
@@ -77,7 +70,7 @@ TEST(DiagnosisOnConcealedEffects, NamesAModulusError) {
   s["nominal_beam"] = {{"youngs_modulus_Pa", 2.1e11}};
   const DiagnosisResult result = DiagnoseScenario(s, "modulus");
   ExpectNamed(result, "modulus_error");
-  EXPECT_NEAR(Extra(result, "EI_scale"), 2.0 / 2.1, 0.01);
+  testing::ExpectWithinInterval(result, "EI_scale", 2.0 / 2.1);
 }
 
 }  // namespace

@@ -25,6 +25,7 @@
 #include "signal/campaign.h"
 #include "signal/campaign_extractor.h"
 #include "solver/fit_data.h"
+#include "tests/support/paper_scenario.h"
 #include "tests/support/temp_path.h"
 
 namespace beamid::testing {
@@ -95,24 +96,15 @@ inline ExtractedCampaign WriteAndExtract(const hb::Scenario& scenario, const std
 }
 
 // The paper's set-up with base physics (polynomial support), three levels
-// (1, 4, 9 N) of nine steps around the resonance, realistic noise.
+// (1, 4, 9 N) of nine steps around the resonance, realistic noise, each step
+// settled to 1e-5 or cut at 8 s (tests/support/paper_scenario.h).
 inline nlohmann::json PaperSetUpScenario() {
-  return nlohmann::json::parse(R"({
-  "name": "test: paper set-up, base physics",
-  "beam": {"length_m": 0.6, "width_m": 0.04, "thickness_m": 0.005, "youngs_modulus_Pa": 2.1e11,
-           "density_kg_m3": 7850, "loss_factor": 0.0002},
-  "support": {"polynomial": {"k1_Nm_rad": 150, "k2_Nm_rad2": 0, "k3_Nm_rad3": 3e5, "c_Nms_rad": 0.05}},
-  "excitation": {"channel": "force", "position_m": 0.57},
-  "sensors": [{"channel": "acc1", "position_m": 0.1}, {"channel": "acc2", "position_m": 0.3},
-              {"channel": "acc3", "position_m": 0.57}],
-  "levels": [{"label": "low", "force_amplitude_N": 1.0, "frequencies_Hz": {"start": 51, "stop": 57, "step": 0.75}},
-             {"label": "mid", "force_amplitude_N": 4.0, "frequencies_Hz": {"start": 51, "stop": 57, "step": 0.75}},
-             {"label": "high", "force_amplitude_N": 9.0, "frequencies_Hz": {"start": 51, "stop": 57, "step": 0.75}}],
-  "timing": {"sample_rate_Hz": 5120, "settle_min_s": 0.2, "settle_max_s": 4.0, "transient_s": 0.05, "record_s": 0.4},
-  "noise": {"seed": 11, "clock_offset_ppm": 25,
-            "default": {"relative_rms": 0.003, "absolute": 0.005, "adc_bits": 24, "adc_range": 500},
-            "channels": {"force": {"relative_rms": 0.002, "absolute": 0.002, "adc_bits": 24, "adc_range": 50}}}
-})");
+  return nlohmann::json::parse(PaperScenarioJson(
+      "test: paper set-up, base physics",
+      R"([{"label": "low", "force_amplitude_N": 1.0, "frequencies_Hz": {"start": 51, "stop": 57, "step": 0.75}},
+          {"label": "mid", "force_amplitude_N": 4.0, "frequencies_Hz": {"start": 51, "stop": 57, "step": 0.75}},
+          {"label": "high", "force_amplitude_N": 9.0, "frequencies_Hz": {"start": 51, "stop": 57, "step": 0.75}}])",
+      11));
 }
 
 inline ExtractedCampaign SimulateCampaign(const nlohmann::json& scenario_json, const std::string& name) {
