@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 
 namespace beamid::solver {
@@ -51,6 +52,45 @@ CandidateExtension WithLinear(const ModelStructure& base, std::vector<LinearPara
   return extension;
 }
 
+// k1 of the base's polynomial law (at least 1 N·m/rad: a scale for bounds
+// and starts); `name` extends only that law.
+double PolynomialK1(const ModelStructure& base, const std::string& name) {
+  const auto* polynomial = dynamic_cast<const hb::PolynomialSupportLaw*>(base.law.get());
+  if (!polynomial) throw std::invalid_argument(name + " extends the polynomial support law");
+  return std::max(polynomial->coefficients().k1_Nm_rad, 1.0);
+}
+
+// The base optimum's law parameters (the polynomial's).
+std::vector<double> BaseLawValues(const ModelStructure& base) {
+  const std::vector<double> values = base.Values();
+  return {values.begin(), values.begin() + static_cast<std::ptrdiff_t>(base.law_bounds.size())};
+}
+
+// The base's law in parallel with `added` (its parameters after the base
+// law's, with `bounds`), on a copy of the base. `law_starts`: the law
+// parameters of each start; the base's other parameters keep their optimum.
+CandidateExtension InParallelWithBaseLaw(const ModelStructure& base, std::unique_ptr<hb::SupportLaw> added,
+                                         const std::vector<ParameterBounds>& bounds,
+                                         std::vector<std::string> extra_parameters,
+                                         const std::vector<std::vector<double>>& law_starts) {
+  CandidateExtension extension;
+  extension.structure = base;
+  auto composite = std::make_unique<hb::CompositeSupportLaw>();
+  composite->Add(base.law->Clone());
+  composite->Add(std::move(added));
+  extension.structure.law = std::move(composite);
+  extension.structure.law_bounds.insert(extension.structure.law_bounds.end(), bounds.begin(), bounds.end());
+  extension.extra_parameters = std::move(extra_parameters);
+  const std::vector<double> base_values = base.Values();
+  for (std::vector<double> start : law_starts) {
+    start.insert(start.end(), base_values.begin() + static_cast<std::ptrdiff_t>(base.law_bounds.size()),
+                 base_values.end());
+    extension.starts.push_back(std::move(start));
+  }
+  extension.test_dof = static_cast<int>(extension.extra_parameters.size());
+  return extension;
+}
+
 // A stiffness-like linear error: in phase, the misfit scales with the
 // response (growth exponent 1), mostly on the fundamental.
 double LinearStiffnessSignature(const MisfitLocation& l) {
@@ -68,35 +108,25 @@ CandidatePhysics SupportFriction() {
                      "with the contact's spring and damper; it softens and damps more as the amplitude grows",
       .extend =
           [](const ModelStructure& base, const BaseFitContext& context) {
-            const auto* polynomial = dynamic_cast<const hb::PolynomialSupportLaw*>(base.law.get());
-            if (!polynomial) throw std::invalid_argument("support_friction extends the polynomial support law");
-            CandidateExtension extension;
-            extension.structure = base;
-            auto composite = std::make_unique<hb::CompositeSupportLaw>();
-            composite->Add(base.law->Clone());
-            composite->Add(std::make_unique<hb::JenkinsSupportLaw>(hb::JenkinsSupportLaw::Parameters_{1.0, 1.0}));
-            extension.structure.law = std::move(composite);
-            const double k1 = std::max(polynomial->coefficients().k1_Nm_rad, 1.0);
-            extension.structure.law_bounds.push_back({.lower = 1e-4 * k1, .upper = 100.0 * k1, .typical = k1});
-            extension.structure.law_bounds.push_back({.lower = 1e-7, .upper = 1e3, .typical = 0.1});
-            extension.extra_parameters = {"jenkins_stiffness", "jenkins_slip_moment"};
             // The base's k1 is shared between the spring and the Jenkins element
             // (equal small-amplitude stiffness); the slider slips at a rotation
             // the test reaches.
-            const std::vector<double> base_values = base.Values();
-            const std::size_t num_law = base.law_bounds.size();
+            const double k1 = PolynomialK1(base, "support_friction");
+            std::vector<std::vector<double>> starts;
             for (const auto& [share, quantile] : std::vector<std::pair<double, double>>{
                      {0.3, 0.5}, {0.3, 0.9}, {0.6, 0.25}, {0.6, 0.75}}) {
-              std::vector<double> start(base_values.begin(), base_values.begin() + num_law);
-              start[0] = (1.0 - share) * k1;
+              std::vector<double> law = BaseLawValues(base);
+              law[0] = (1.0 - share) * k1;
               const double k_t = share * k1;
-              start.push_back(k_t);
-              start.push_back(k_t * RotationQuantile(context, quantile));
-              start.insert(start.end(), base_values.begin() + num_law, base_values.end());
-              extension.starts.push_back(start);
+              law.push_back(k_t);
+              law.push_back(k_t * RotationQuantile(context, quantile));
+              starts.push_back(law);
             }
+            CandidateExtension extension = InParallelWithBaseLaw(
+                base, std::make_unique<hb::JenkinsSupportLaw>(hb::JenkinsSupportLaw::Parameters_{1.0, 1.0}),
+                {{.lower = 1e-4 * k1, .upper = 100.0 * k1, .typical = k1}, {.lower = 1e-7, .upper = 1e3, .typical = 0.1}},
+                {"jenkins_stiffness", "jenkins_slip_moment"}, starts);
             extension.model_harmonics = context.model_harmonics;
-            extension.test_dof = 2;
             return extension;
           },
       .signature =
@@ -185,27 +215,18 @@ CandidatePhysics SupportAsymmetry() {
       .description = "a support stiffer for one sense of rotation than for the other (one-sided stiffness k_a·max(θ, 0))",
       .extend =
           [](const ModelStructure& base, const BaseFitContext& context) {
-            const auto* polynomial = dynamic_cast<const hb::PolynomialSupportLaw*>(base.law.get());
-            if (!polynomial) throw std::invalid_argument("support_asymmetry extends the polynomial support law");
-            CandidateExtension extension;
-            extension.structure = base;
-            auto composite = std::make_unique<hb::CompositeSupportLaw>();
-            composite->Add(base.law->Clone());
-            composite->Add(std::make_unique<hb::OneSidedStiffnessLaw>(0.0));
-            extension.structure.law = std::move(composite);
-            const double k1 = std::max(polynomial->coefficients().k1_Nm_rad, 1.0);
-            extension.structure.law_bounds.push_back({.lower = -k1, .upper = 10.0 * k1, .typical = k1});
-            extension.extra_parameters = {"one_sided_stiffness"};
-            const std::vector<double> base_values = base.Values();
-            const std::size_t num_law = base.law_bounds.size();
+            const double k1 = PolynomialK1(base, "support_asymmetry");
+            std::vector<std::vector<double>> starts;
             for (double share : {0.1, -0.1}) {
-              std::vector<double> start(base_values.begin(), base_values.begin() + num_law);
+              std::vector<double> law = BaseLawValues(base);
               // Keep the small-amplitude mean stiffness k1 + k_a/2.
-              start[0] = k1 * (1.0 - 0.5 * share);
-              start.push_back(share * k1);
-              start.insert(start.end(), base_values.begin() + num_law, base_values.end());
-              extension.starts.push_back(start);
+              law[0] = k1 * (1.0 - 0.5 * share);
+              law.push_back(share * k1);
+              starts.push_back(law);
             }
+            CandidateExtension extension =
+                InParallelWithBaseLaw(base, std::make_unique<hb::OneSidedStiffnessLaw>(0.0),
+                                      {{.lower = -k1, .upper = 10.0 * k1, .typical = k1}}, {"one_sided_stiffness"}, starts);
             // The kink's harmonics decay only like 1/k²: balanced with the
             // base's five, k_a came out 1.7σ high (0.9 %) on every one of 8
             // noise realisations of the proof campaign; with 9 or 15, within
@@ -213,7 +234,6 @@ CandidatePhysics SupportAsymmetry() {
             // that the diagnosis tests k_a against that refit (the base at
             // these harmonics), not against the truncated base.
             extension.model_harmonics = ExtendedHarmonics(context);
-            extension.test_dof = 1;
             return extension;
           },
       .signature =
