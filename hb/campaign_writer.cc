@@ -1,5 +1,7 @@
 #include "hb/campaign_writer.h"
 
+#include "hb/errors.h"
+
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -51,7 +53,7 @@ void WriteFile(const std::filesystem::path& path, const std::string& text, std::
   std::ofstream out(path, std::ios::binary);
   out << text;
   out.close();
-  if (!out) throw std::runtime_error(path.string() + ": cannot write the file (disk full or no permission?)");
+  if (!out) throw EnvironmentError(path.string() + ": cannot write the file (disk full or no permission?)");
   bytes += text.size();
 }
 

@@ -1,5 +1,7 @@
 #include "hb/fe_beam.h"
 
+#include "hb/errors.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -119,7 +121,7 @@ std::vector<double> FeBeam::NaturalFrequencies_rad_s(int count, double support_s
   Eigen::MatrixXd k = stiffness_;
   k(support_rotation_dof_, support_rotation_dof_) += support_stiffness_Nm_rad;
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(k, mass_, Eigen::EigenvaluesOnly);
-  if (solver.info() != Eigen::Success) throw std::runtime_error("finite-element beam: eigen-solution failed");
+  if (solver.info() != Eigen::Success) throw NumericalError("finite-element beam: eigen-solution failed");
   std::vector<double> omegas;
   for (int i = 0; i < std::min<int>(count, NumDofs()); ++i) omegas.push_back(std::sqrt(std::max(0.0, solver.eigenvalues()(i))));
   return omegas;

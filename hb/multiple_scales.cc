@@ -1,5 +1,7 @@
 #include "hb/multiple_scales.h"
 
+#include "hb/errors.h"
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -103,7 +105,7 @@ double MultipleScalesModel::CubicCoefficient_N_m3(double omega_rad_s) const {
   const double gamma =
       (2.0 * k2 * k2 * (2.0 * static_rotation_per_moment_rad_Nm_ + g2) - 3.0 * support_.k3_Nm_rad3) * slope2 * slope2;
   if (!std::isfinite(gamma))
-    throw std::runtime_error("multiple-scales model: 2*Omega = " + std::to_string(2.0 * base) +
+    throw NumericalError("multiple-scales model: 2*Omega = " + std::to_string(2.0 * base) +
                              " rad/s is a natural frequency of the linear beam (internal resonance)");
   return gamma;
 }
@@ -128,7 +130,7 @@ Complex MultipleScalesModel::SecondHarmonicCompliance_rad_Nm(double omega_rad_s)
   const double second = 2.0 * HarmonicBase_rad_s(omega_rad_s);
   const Complex compliance = closed_form_.RotationPerEndMoment_rad_Nm(second) * DamperFactor(second);
   if (!std::isfinite(std::abs(compliance)))
-    throw std::runtime_error("multiple-scales model: 2*Omega = " + std::to_string(second) +
+    throw NumericalError("multiple-scales model: 2*Omega = " + std::to_string(second) +
                              " rad/s is a natural frequency of the linear beam (internal resonance)");
   return compliance;
 }
@@ -239,7 +241,7 @@ std::vector<Complex> MultipleScalesModel::Solve(double omega_rad_s, Complex forc
   std::vector<double> squares;
   if (beta == 0.0) {
     if (std::norm(alpha) == 0.0)
-      throw std::runtime_error("multiple-scales model: undamped linear beam forced at its natural frequency");
+      throw NumericalError("multiple-scales model: undamped linear beam forced at its natural frequency");
     squares.push_back(f2 / std::norm(alpha));
   } else {
     squares = PositiveCubicRoots(std::norm(beta), -2.0 * (alpha * std::conj(beta)).real(), std::norm(alpha), -f2);
@@ -261,7 +263,7 @@ std::vector<MultipleScalesModel::SweepPoint> MultipleScalesModel::Sweep(const st
 double MultipleScalesModel::DisplacementPerEndMoment_m_Nm(double position_m, double omega_rad_s) const {
   const double value = closed_form_.EndMomentShape(omega_rad_s).Value(position_m) / beam_.BendingStiffness_Nm2();
   if (!std::isfinite(value))
-    throw std::runtime_error("multiple-scales model: " + std::to_string(omega_rad_s) +
+    throw NumericalError("multiple-scales model: " + std::to_string(omega_rad_s) +
                              " rad/s is a natural frequency of the linear beam (internal resonance)");
   return value;
 }
@@ -296,7 +298,7 @@ double MultipleScalesModel::NonResonantMoment_m_Nm(double position_m, double ome
   auto rest = [&](double omega) {
     const double exact = closed_form_.EndMomentShape(omega).Value(position_m, derivative) / ei;
     if (!std::isfinite(exact))
-      throw std::runtime_error("multiple-scales model: " + std::to_string(omega) +
+      throw NumericalError("multiple-scales model: " + std::to_string(omega) +
                                " rad/s is a natural frequency of the linear beam (internal resonance)");
     return exact -
            mode_x * support_slope_per_m_ / (modal_mass_kg_ * (omega0_rad_s_ * omega0_rad_s_ - omega * omega));
@@ -325,13 +327,13 @@ double MultipleScalesModel::Backbone_rad_s(double amplitude_m) const {
   for (int iteration = 0; iteration < 200; ++iteration) {
     const double square = w0 * w0 - CubicCoefficient_N_m3(omega) * shift;
     if (!(square > 0.0))
-      throw std::runtime_error("multiple-scales model: no backbone frequency at amplitude " +
+      throw NumericalError("multiple-scales model: no backbone frequency at amplitude " +
                                std::to_string(amplitude_m) + " m (softening beyond the model's range)");
     const double next = std::sqrt(square);
     if (std::abs(next - omega) <= 1e-14 * w0) return next;
     omega = next;
   }
-  throw std::runtime_error("multiple-scales model: the backbone fixed point did not converge at amplitude " +
+  throw NumericalError("multiple-scales model: the backbone fixed point did not converge at amplitude " +
                            std::to_string(amplitude_m) + " m");
 }
 

@@ -203,6 +203,12 @@ Scenario ParseScenario(const std::string& json_text, const std::string& source) 
     timing.record_s = t.Positive("record_s", timing.record_s);
     timing.restart_each_level = t.Bool("restart_each_level", timing.restart_each_level);
     if (timing.settle_max_s < timing.settle_min_s) t.FailField("settle_max_s", "must not be below settle_min_s");
+    // Limits that keep one simulated step within memory and minutes: at
+    // most 2^24 samples per record, and a time step no finer than 1e-7 s.
+    if (timing.record_s * timing.sample_rate_hz > 16777216.0)
+      t.FailField("record_s", "times sample_rate_Hz gives more than 16777216 samples per record; record shorter");
+    if (timing.max_time_step_s < 1e-7) t.FailField("max_time_step_s", "must be at least 1e-7 s");
+    if (timing.settle_max_s > 3600.0) t.FailField("settle_max_s", "must not exceed 3600 s");
   }
   if (top.Has("noise")) {
     ObjectReader n(top.Raw("noise"), source, "noise");

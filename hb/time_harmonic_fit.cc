@@ -1,5 +1,7 @@
 #include "hb/time_harmonic_fit.h"
 
+#include "hb/errors.h"
+
 #include <cmath>
 #include <stdexcept>
 
@@ -39,14 +41,14 @@ void TimeHarmonicFit::Clear() {
 
 std::vector<Eigen::VectorXcd> TimeHarmonicFit::Solve() const {
   const int n = 2 * num_harmonics_ + 1;
-  if (num_samples_ < n) throw std::runtime_error("harmonic fit: fewer samples than coefficients");
+  if (num_samples_ < n) throw NumericalError("harmonic fit: fewer samples than coefficients");
   const Eigen::MatrixXd normal = normal_.selfadjointView<Eigen::Lower>();
   const Eigen::LDLT<Eigen::MatrixXd> ldlt(normal);
   // A rank-deficient basis (samples over a tiny part of a period) shows up as
   // a pivot many orders below the largest one.
   const Eigen::VectorXd pivots = ldlt.vectorD().cwiseAbs();
   if (ldlt.info() != Eigen::Success || pivots.minCoeff() < 1e-10 * pivots.maxCoeff())
-    throw std::runtime_error("harmonic fit: the samples do not determine the harmonics");
+    throw NumericalError("harmonic fit: the samples do not determine the harmonics");
   const Eigen::MatrixXd coefficients = ldlt.solve(projected_);
   std::vector<Eigen::VectorXcd> phasors;
   for (Eigen::Index s = 0; s < coefficients.cols(); ++s) {

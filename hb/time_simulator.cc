@@ -1,5 +1,7 @@
 #include "hb/time_simulator.h"
 
+#include "hb/errors.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -91,7 +93,7 @@ TimeSimulator::TimeSimulator(const TimeSimulatorModel& model, const SupportLaw& 
     throw std::invalid_argument("time simulator: the force acts at a constrained point (x = 0 or a rigid support)");
 
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> modes(fe_beam_.Stiffness(), fe_beam_.Mass());
-  if (modes.info() != Eigen::Success) throw std::runtime_error("time simulator: modal decomposition failed");
+  if (modes.info() != Eigen::Success) throw NumericalError("time simulator: modal decomposition failed");
   const Eigen::MatrixXd& phi = modes.eigenvectors();  // Φᵀ M Φ = I
   modal_stiffness_ = modes.eigenvalues().array().max(0.0);
   omega_ = modal_stiffness_.sqrt();
@@ -184,7 +186,7 @@ double TimeSimulator::SolveSupport(double theta_predicted, double rate_predicted
   for (int i = 0; i < 200 && residual(lo, &slope, &moment) > 0.0; ++i) lo -= (scale *= 2.0);
   for (int i = 0; i < 200 && residual(hi, &slope, &moment) < 0.0; ++i) hi += (scale *= 2.0);
   if (!(residual(lo, &slope, &moment) <= 0.0 && residual(hi, &slope, &moment) >= 0.0))
-    throw std::runtime_error("time simulator: the support equation has no solution at t = " +
+    throw NumericalError("time simulator: the support equation has no solution at t = " +
                              std::to_string(state_.time_s) + " s (law " + law_->Name() + ")");
   for (int i = 0; i < 200 && hi - lo > 1e-15 * (std::abs(lo) + std::abs(hi)); ++i) {
     const double mid = 0.5 * (lo + hi);

@@ -1,5 +1,6 @@
 #include "signal/campaign.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <initializer_list>
@@ -119,11 +120,26 @@ std::vector<const ChannelSpec*> Campaign::Channels() const {
 Campaign ParseCampaign(std::string_view json_text, const std::filesystem::path& folder, const std::string& source) {
   Reader reader(source);
   json root;
+  // A key written twice in one object would silently take its second value.
+  std::vector<std::set<std::string>> keys_seen;
+  std::string duplicate_key;
+  const json::parser_callback_t refuse_duplicates = [&](int, json::parse_event_t event, json& parsed) {
+    if (event == json::parse_event_t::object_start) keys_seen.emplace_back();
+    if (event == json::parse_event_t::object_end && !keys_seen.empty()) keys_seen.pop_back();
+    if (event == json::parse_event_t::key && !keys_seen.empty() && !keys_seen.back().insert(parsed.get<std::string>()).second &&
+        duplicate_key.empty())
+      duplicate_key = parsed.get<std::string>();
+    return true;
+  };
   try {
-    root = json::parse(json_text);
-  } catch (const json::parse_error& e) {
-    reader.Fail("", "", std::string("not valid JSON (") + e.what() + ")", "correct the JSON syntax at that byte");
+    root = json::parse(json_text, refuse_duplicates);
+  } catch (const json::exception& e) {
+    // Syntax errors, and numbers beyond double's range (1e400).
+    reader.Fail("", "", std::string("not valid JSON (") + e.what() + ")", "correct the JSON at that byte");
   }
+  if (!duplicate_key.empty())
+    reader.Fail("", "", "the key \"" + duplicate_key + "\" is written twice in one object",
+                "keep one of the two entries");
   reader.RequireObject(root, "");
   reader.OnlyKeys(root, "", {"format", "name", "beam", "excitation", "sensors", "steps", "sample_rate_Hz"});
 
@@ -185,9 +201,25 @@ Campaign ReadCampaign(const std::filesystem::path& folder) {
   std::ostringstream text;
   text << stream.rdbuf();
   Campaign campaign = ParseCampaign(text.str(), folder, file.string());
+  std::error_code error;
+  const std::filesystem::path root = std::filesystem::weakly_canonical(std::filesystem::absolute(folder), error);
+  std::set<std::filesystem::path> recordings;
   for (std::size_t i = 0; i < campaign.steps.size(); ++i) {
     const auto path = campaign.StepPath(campaign.steps[i]);
-    std::error_code error;
+    const std::string where = "steps[" + std::to_string(i) + "]";
+    // Recordings stay inside the campaign folder, links resolved: a
+    // campaign.json from elsewhere must not make beamid read (and quote in
+    // its errors) any file on the machine.
+    const std::filesystem::path resolved = std::filesystem::weakly_canonical(std::filesystem::absolute(path), error);
+    const auto [mismatch, unused] = std::mismatch(root.begin(), root.end(), resolved.begin(), resolved.end());
+    if (error || mismatch != root.end() || resolved == root)
+      throw InputError(file.string(), "",
+                       where + "'s file \"" + campaign.steps[i].file + "\" lies outside the campaign folder",
+                       "keep every recording inside the campaign folder and name it relative to it");
+    if (!recordings.insert(resolved).second)
+      throw InputError(file.string(), "",
+                       where + "'s file \"" + campaign.steps[i].file + "\" is named by another step too",
+                       "give every step its own recording (a step listed twice would count twice in the fit)");
     if (!std::filesystem::is_regular_file(path, error))
       throw InputError(path.string(), "",
                        "recording of steps[" + std::to_string(i) + "] is missing (named in " + file.string() + ")",

@@ -1,5 +1,8 @@
 #include "signal/campaign_extractor.h"
 
+#include "hb/errors.h"
+#include "signal/input_error.h"
+
 #include <algorithm>
 #include <atomic>
 #include <exception>
@@ -32,10 +35,11 @@ PhasorSet ExtractCampaign(const Campaign& campaign, const ExtractOptions& option
         const Recording recording = ReadRecording(campaign, step, options.checks);
         try {
           set.steps[i] = EstimateStepPhasors(recording, campaign, step, options.estimator);
-        } catch (const std::invalid_argument&) {
-          throw;
-        } catch (const std::runtime_error& e) {
-          throw std::runtime_error(recording.file + ": " + e.what());
+        } catch (const NumericalError& e) {
+          // Estimation fails on a recording only when its data do not hold
+          // a steady sine: the user's to fix, in that file.
+          throw InputError(recording.file, "", e.what(),
+                           "look for wild samples, a missing excitation or a record cut short in this file");
         }
         if (options.progress) {
           std::lock_guard lock(progress_mutex);

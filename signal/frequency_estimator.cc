@@ -1,5 +1,7 @@
 #include "signal/frequency_estimator.h"
 
+#include "hb/errors.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -94,7 +96,7 @@ FrequencyEstimate EstimateFrequency(const Eigen::Ref<const Eigen::VectorXd>& sam
       return estimate;
     }
   }
-  throw std::runtime_error("the excitation frequency did not converge in " + std::to_string(options.max_iterations) +
+  throw NumericalError("the excitation frequency did not converge in " + std::to_string(options.max_iterations) +
                            " Gauss-Newton iterations (start " + internal::FormatNumber(estimate.initial_frequency_hz) +
                            " Hz, last " + internal::FormatNumber(frequency_hz) + " Hz)");
 }

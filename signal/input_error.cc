@@ -17,7 +17,7 @@ std::string ComposeMessage(const std::string& file, const std::string& channel, 
 }  // namespace
 
 InputError::InputError(std::string file, std::string channel, const std::string& problem, const std::string& fix)
-    : std::invalid_argument(ComposeMessage(file, channel, problem, fix)),
+    : beamid::InputError(ComposeMessage(file, channel, problem, fix)),
       file_(std::move(file)),
       channel_(std::move(channel)) {}
 

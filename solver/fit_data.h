@@ -8,6 +8,7 @@
 // so that Σ|r|² is χ² when the uncertainties are right.
 #pragma once
 
+#include <complex>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,14 @@ struct FitChannel {
   double position_m = 0.0;
   int derivative_order = 2;  // 0 displacement, 1 velocity, 2 acceleration
 };
+
+// (ikω)^d: turns harmonic k's displacement phasor into the phasor of a
+// channel that measures the d-th time derivative (e^{+iωt} convention).
+inline std::complex<double> DerivativeFactor(int derivative_order, double k_omega_rad_s) {
+  std::complex<double> factor(1.0);
+  for (int d = 0; d < derivative_order; ++d) factor *= std::complex<double>(0.0, k_omega_rad_s);
+  return factor;
+}
 
 struct FitStep {
   std::string level;

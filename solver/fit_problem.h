@@ -32,6 +32,13 @@ class FitProblem {
   // A point with these parameters whose states satisfy the constraints as
   // well as the model allows (the count of steps where that failed).
   virtual Eigen::VectorXd FeasiblePoint(const std::vector<double>& parameters, int* failed_steps = nullptr) = 0;
+  // A point with these parameters whose states are the ones the
+  // measurements show (not, in general, feasible): a start on the measured
+  // branch whatever the parameters. Models that cannot reconstruct their
+  // states from the data return FeasiblePoint's.
+  virtual Eigen::VectorXd MeasuredStatePoint(const std::vector<double>& parameters) {
+    return FeasiblePoint(parameters);
+  }
   virtual void Bounds(Eigen::VectorXd* lower, Eigen::VectorXd* upper) const = 0;
 
   virtual double Objective(const Eigen::VectorXd& x) = 0;

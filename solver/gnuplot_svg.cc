@@ -1,5 +1,7 @@
 #include "solver/gnuplot_svg.h"
 
+#include "hb/errors.h"
+
 #include <unistd.h>
 
 #include <cstdlib>
@@ -74,13 +76,13 @@ std::string GnuplotSvg(const std::string& script, const SvgSize& size) {
   if (status != 0) {
     const std::string message = ReadAll(error_file);
     if (WIFEXITED(status) && WEXITSTATUS(status) == 127)
-      throw std::runtime_error("gnuplot is not installed: install the Debian package gnuplot-nox "
+      throw EnvironmentError("gnuplot is not installed: install the Debian package gnuplot-nox "
                                "(scripts/install-deps.sh)");
-    throw std::runtime_error("gnuplot failed to draw a plot: " + message.substr(0, 2000));
+    throw EnvironmentError("gnuplot failed to draw a plot: " + message.substr(0, 2000));
   }
   std::string svg = ReadAll(svg_file);
   const std::size_t start = svg.find("<svg");
-  if (start == std::string::npos) throw std::runtime_error("gnuplot wrote no SVG: " + ReadAll(error_file));
+  if (start == std::string::npos) throw EnvironmentError("gnuplot wrote no SVG: " + ReadAll(error_file));
   return svg.substr(start);
 }
 

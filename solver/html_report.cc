@@ -17,6 +17,8 @@ constexpr const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", 
 
 const char* Colour(std::size_t i) { return kColours[i % std::size(kColours)]; }
 
+// The one escaping of every text the page shows, in element content and in
+// quoted attribute values alike (labels and channel names are the user's).
 std::string Escape(const std::string& text) {
   std::string out;
   for (char c : text) {
@@ -25,6 +27,7 @@ std::string Escape(const std::string& text) {
       case '>': out += "&gt;"; break;
       case '&': out += "&amp;"; break;
       case '"': out += "&quot;"; break;
+      case '\'': out += "&#39;"; break;
       default: out += c;
     }
   }
@@ -42,8 +45,8 @@ std::string PlotText(const std::string& text) {
 }
 
 std::string Figure(const std::string& id, const std::string& svg, const std::string& caption) {
-  return fmt::format("<figure class=\"plot\" id=\"{}\">\n{}\n<figcaption>{}</figcaption>\n</figure>\n", id, svg,
-                     caption);
+  return fmt::format("<figure class=\"plot\" id=\"{}\">\n{}\n<figcaption>{}</figcaption>\n</figure>\n", Escape(id),
+                     svg, caption);
 }
 
 std::string Number(double value) { return fmt::format("{:.6g}", value); }

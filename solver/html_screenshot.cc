@@ -1,5 +1,7 @@
 #include "solver/html_screenshot.h"
 
+#include "hb/errors.h"
+
 #include <cstdlib>
 #include <stdexcept>
 #include <string_view>
@@ -29,7 +31,7 @@ std::optional<fs::path> FindChromium() {
 void ScreenshotHtml(const fs::path& html_file, const fs::path& png_file, const ScreenshotOptions& options) {
   const auto chromium = FindChromium();
   if (!chromium)
-    throw std::runtime_error("no Chromium for the screenshot: install the Debian package chromium "
+    throw EnvironmentError("no Chromium for the screenshot: install the Debian package chromium "
                              "(scripts/install-deps.sh)");
   std::error_code error;
   if (png_file.has_parent_path()) fs::create_directories(png_file.parent_path(), error);
@@ -42,7 +44,7 @@ void ScreenshotHtml(const fs::path& html_file, const fs::path& png_file, const S
       fs::absolute(html_file).string());
   const int status = std::system(command.c_str());
   if (status != 0 || !fs::is_regular_file(png_file, error) || fs::file_size(png_file, error) == 0)
-    throw std::runtime_error(fmt::format("Chromium wrote no screenshot {} (exit status {})", png_file.string(), status));
+    throw EnvironmentError(fmt::format("Chromium wrote no screenshot {} (exit status {})", png_file.string(), status));
 }
 
 }  // namespace beamid::solver

@@ -28,11 +28,6 @@ namespace {
 // Relative nudge of a linear parameter for its difference quotient.
 constexpr double kLinearNudge = 1e-6;
 
-Complex DerivativeFactor(int order, double k_omega) {
-  Complex factor(1.0);
-  for (int d = 0; d < order; ++d) factor *= Complex(0.0, k_omega);
-  return factor;
-}
 }  // namespace
 
 IdentificationProblem::IdentificationProblem(const FitData& data, const ModelStructure& structure,
@@ -165,6 +160,30 @@ void IdentificationProblem::Evaluate(const Eigen::VectorXd& x) {
   cached_x_ = x;
 }
 
+std::vector<ReconstructedStep> IdentificationProblem::MeasuredRotations(const std::vector<double>& parameters) const {
+  try {
+    ModelStructure current = structure_;
+    current.SetValues(parameters);
+    return ReconstructSupport(data_, current.ApplyLinear(base_model_));
+  } catch (const std::exception&) {
+    return {};  // too few channels to reconstruct: the sweep alone decides
+  }
+}
+
+Eigen::VectorXd IdentificationProblem::MeasuredStatePoint(const std::vector<double>& parameters) {
+  Eigen::VectorXd x = FeasiblePoint(parameters);
+  const std::vector<ReconstructedStep> measured = MeasuredRotations(parameters);
+  if (measured.empty()) return x;
+  for (int i = 0; i < num_steps(); ++i) {
+    Eigen::VectorXcd theta = HarmonicBalance::ToComplex(States(x, i));
+    const Eigen::VectorXcd& m = measured[i].theta_rad;
+    for (Eigen::Index k = 1; k < std::min<Eigen::Index>(m.size(), theta.size()); ++k) theta[k] = m[k];
+    x.segment(num_parameters_ + i * state_size_, state_size_) = HarmonicBalance::ToReal(theta) / theta_scale_rad_[i];
+  }
+  cached_x_.resize(0);
+  return x;
+}
+
 Eigen::VectorXd IdentificationProblem::FeasiblePoint(const std::vector<double>& parameters, int* failed_steps) {
   if (static_cast<int>(parameters.size()) != num_parameters_)
     throw std::invalid_argument("FeasiblePoint: wrong number of parameters");
@@ -177,14 +196,7 @@ Eigen::VectorXd IdentificationProblem::FeasiblePoint(const std::vector<double>& 
   // these linear parameters, solver/support_reconstruction.h): Newton
   // started there lands on the branch the test was on, whatever branch a
   // sweep with far-off parameters would have followed.
-  std::vector<ReconstructedStep> measured;
-  try {
-    ModelStructure current = structure_;
-    current.SetValues(parameters);
-    measured = ReconstructSupport(data_, current.ApplyLinear(base_model_));
-  } catch (const std::exception&) {
-    measured.clear();  // too few channels to reconstruct: the sweep alone decides
-  }
+  const std::vector<ReconstructedStep> measured = MeasuredRotations(parameters);
   std::vector<Eigen::VectorXd> states(num_steps());
   int failures = 0;
   Eigen::VectorXd previous;

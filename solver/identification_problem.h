@@ -23,6 +23,7 @@
 #include "solver/fit_data.h"
 #include "solver/fit_problem.h"
 #include "solver/model_structure.h"
+#include "solver/support_reconstruction.h"
 
 namespace beamid::solver {
 
@@ -65,6 +66,7 @@ class IdentificationProblem : public FitProblem {
   // driven by the measured force (warm-started along each sweep). Steps where
   // Newton fails keep the linear response; the count is returned.
   Eigen::VectorXd FeasiblePoint(const std::vector<double>& parameters, int* failed_steps = nullptr) override;
+  Eigen::VectorXd MeasuredStatePoint(const std::vector<double>& parameters) override;
   void Bounds(Eigen::VectorXd* lower, Eigen::VectorXd* upper) const override;
 
   double Objective(const Eigen::VectorXd& x) override;
@@ -102,6 +104,9 @@ class IdentificationProblem : public FitProblem {
  private:
   struct StepCache;
   void Evaluate(const Eigen::VectorXd& x);
+  // The support rotation the measurements show through the linear beam with
+  // these linear parameters (empty when too few channels reconstruct it).
+  std::vector<ReconstructedStep> MeasuredRotations(const std::vector<double>& parameters) const;
   void UpdateLinear(const std::vector<double>& linear_values);
   Eigen::VectorXd ModelResidual(int step, const Eigen::VectorXd& z, const hb::LinearHarmonics& linear) const;
 

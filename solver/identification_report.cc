@@ -70,7 +70,12 @@ nlohmann::json IdentificationReport(const FitData& fit, const FitData& validatio
   nlohmann::json starts = nlohmann::json::array();
   for (const auto& s : result.starts)
     starts.push_back({{"start", s.start}, {"parameters", s.parameters}, {"objective", s.objective},
-                      {"converged", s.success}, {"iterations", s.iterations}, {"status", s.status}});
+                      {"converged", s.success}, {"iterations", s.iterations}, {"status", s.status},
+                      {"states_seeded", s.route == StartRoute::kMeasuredStates ? "measured" : "feasible"},
+                      {"branch_repairs", s.branch_repairs}});
+  nlohmann::json minima = nlohmann::json::array();
+  for (const auto& m : result.minima.minima)
+    minima.push_back({{"parameters", m.parameters}, {"chi_square", m.chi_square}, {"starts", m.num_starts}});
   out["fit"] = {{"chi_square", result.chi_square},
                 {"degrees_of_freedom", result.degrees_of_freedom},
                 {"reduced_chi_square", result.reduced_chi_square},
@@ -78,6 +83,9 @@ nlohmann::json IdentificationReport(const FitData& fit, const FitData& validatio
                 {"starts", starts},
                 {"best_start", result.best_start},
                 {"starts_at_best", result.starts_at_best},
+                {"minima", minima},
+                {"second_minimum_chi_square_gap", result.minima.second_chi_square_gap},
+                {"minimum_decisive", result.minima.decisive},
                 {"direct_estimate",
                  {{"k1", result.direct.k1_Nm_rad}, {"k2", result.direct.k2_Nm_rad2}, {"k3", result.direct.k3_Nm_rad3},
                   {"c", result.direct.c_Nms_rad}, {"relative_residual", result.direct.relative_residual}}}};

@@ -1,5 +1,7 @@
 #include "solver/identify.h"
 
+#include "hb/errors.h"
+
 #include "solver/internal/ipopt_program.h"
 #include "solver/internal/worker_processes.h"
 #include "solver/multiple_scales_problem.h"
@@ -35,22 +37,135 @@ std::vector<std::vector<double>> LatinHypercube(int count, int dimensions, unsig
 // iterations; the further starts are exploratory and keep the cap, because a
 // start on another branch of the response stalls rather than converges.
 constexpr int kFirstStartMaxIterations = 1000;
+// Re-seeding an end point's states on the measured branch must lower the
+// misfit by more than this (relative) to be worth another run.
+constexpr double kRepairGain = 1e-6;
+constexpr int kMaxBranchRepairs = 3;
+
+// One Ipopt run from x0, which `problem` has just scaled at `scaled_at`.
+StartOutcome RunFrom(FitProblem& problem, const internal::IpoptOptions& ipopt, const Eigen::VectorXd& x0,
+                     const std::vector<double>& scaled_at, Eigen::VectorXd* x_out) {
+  const internal::IpoptOutcome outcome = internal::RunIpopt(problem, x0, ipopt);
+  *x_out = outcome.x;
+  return {.parameters = problem.Parameters(outcome.x),
+          .objective = problem.Objective(outcome.x),
+          .success = outcome.success,
+          .iterations = outcome.iterations,
+          .status = outcome.status_text,
+          .status_code = outcome.status,
+          .scaled_at = scaled_at};
+}
+
+// Where a start's states begin. Solved by harmonic balance at the start's
+// own parameters, they describe the data only as well as those parameters
+// do: far from the optimum they lie off the data, often on the other branch
+// of a fold, and Ipopt then wandered (measured: from a factor 3 away 1 of 9
+// starts converged, and to a local minimum with one step of the top level
+// on the wrong branch). Seeded instead at the rotation the sensors show (the
+// measured branch), the constraints are nearly linear in a polynomial law's
+// parameters and such a start converges in < 10 iterations. With other laws
+// (friction, one-sided stiffness) the seeded start may converge slowly or
+// not at all where the feasible one converges in ~20 iterations, so the
+// seeded start is a probe of kSeededProbeIterations; a start it does not
+// settle goes on from feasible states with the full budget, and, should that
+// fail too, seeded with the full budget.
+constexpr int kSeededProbeIterations = 25;
 
 StartOutcome RunStart(FitProblem& problem, const IdentifyOptions& options, const std::vector<double>& start,
                       bool first, Eigen::VectorXd* x_out) {
-  const Eigen::VectorXd x0 = problem.FeasiblePoint(start);
   internal::IpoptOptions ipopt = options.ipopt;
   if (first) ipopt.max_iterations = std::max(ipopt.max_iterations, kFirstStartMaxIterations);
-  const internal::IpoptOutcome outcome = internal::RunIpopt(problem, x0, ipopt);
-  StartOutcome result{.start = start,
-                      .parameters = problem.Parameters(outcome.x),
-                      .objective = problem.Objective(outcome.x),
-                      .success = outcome.success,
-                      .iterations = outcome.iterations,
-                      .status = outcome.status_text,
-                      .status_code = outcome.status};
-  if (x_out) *x_out = outcome.x;
-  return result;
+  struct Attempt {
+    StartRoute route;
+    int max_iterations;
+  };
+  std::vector<Attempt> attempts = {{StartRoute::kFeasibleStates, ipopt.max_iterations}};
+  if (options.seed_states_from_measurements) {
+    attempts.insert(attempts.begin(),
+                    {StartRoute::kMeasuredStates, std::min(kSeededProbeIterations, ipopt.max_iterations)});
+    if (ipopt.max_iterations > kSeededProbeIterations)
+      attempts.push_back({StartRoute::kMeasuredStates, ipopt.max_iterations});
+  }
+  StartOutcome best;
+  Eigen::VectorXd x;
+  int iterations = 0;
+  for (const Attempt& attempt : attempts) {
+    const Eigen::VectorXd x0 = attempt.route == StartRoute::kMeasuredStates ? problem.MeasuredStatePoint(start)
+                                                                            : problem.FeasiblePoint(start);
+    internal::IpoptOptions limited = ipopt;
+    limited.max_iterations = attempt.max_iterations;
+    Eigen::VectorXd x_attempt;
+    StartOutcome outcome = RunFrom(problem, limited, x0, start, &x_attempt);
+    outcome.route = attempt.route;
+    const bool better = iterations == 0 || (outcome.success && !best.success) ||
+                        (outcome.success == best.success && outcome.objective < best.objective);
+    iterations += outcome.iterations;
+    if (better) {
+      best = outcome;
+      x = x_attempt;
+    }
+    if (best.success) break;
+  }
+  best.start = start;
+  best.iterations = iterations;
+  *x_out = x;
+  return best;
+}
+
+// The best end point's states re-seeded on the measured branch at its own
+// parameters: if that lowers the misfit, a step had converged on the other
+// branch of a fold (a local minimum whose intervals would not hold the
+// answer), and the fit is re-run from there, up to kMaxBranchRepairs times.
+// Done for the winner only: the other starts do not change the result.
+void RepairBranches(FitProblem& problem, const IdentifyOptions& options, StartOutcome* best, Eigen::VectorXd* x) {
+  internal::IpoptOptions ipopt = options.ipopt;
+  ipopt.max_iterations = std::max(ipopt.max_iterations, kFirstStartMaxIterations);
+  for (int repair = 0; best->success && repair < kMaxBranchRepairs; ++repair) {
+    const std::vector<double> at = best->parameters;
+    const Eigen::VectorXd reseeded = problem.FeasiblePoint(at);
+    if (!(problem.Objective(reseeded) < best->objective * (1.0 - kRepairGain))) return;
+    Eigen::VectorXd x_repaired;
+    StartOutcome repaired = RunFrom(problem, ipopt, reseeded, at, &x_repaired);
+    if (!repaired.success || !(repaired.objective < best->objective)) return;
+    repaired.start = best->start;
+    repaired.route = best->route;
+    repaired.iterations += best->iterations;
+    repaired.branch_repairs = best->branch_repairs + 1;
+    *best = repaired;
+    *x = x_repaired;
+  }
+}
+
+// A start's outcome through a worker process's pipe of doubles: the one
+// place that knows the layout.
+std::vector<double> EncodeOutcome(const StartOutcome& outcome, const Eigen::VectorXd& x) {
+  std::vector<double> record = {outcome.objective,
+                                outcome.success ? 1.0 : 0.0,
+                                static_cast<double>(outcome.iterations),
+                                static_cast<double>(outcome.status_code),
+                                static_cast<double>(outcome.route),
+                                static_cast<double>(outcome.branch_repairs)};
+  record.insert(record.end(), outcome.parameters.begin(), outcome.parameters.end());
+  record.insert(record.end(), outcome.scaled_at.begin(), outcome.scaled_at.end());
+  record.insert(record.end(), x.data(), x.data() + x.size());
+  return record;
+}
+
+void DecodeOutcome(const std::vector<double>& record, int num_parameters, StartOutcome* outcome,
+                   Eigen::VectorXd* x) {
+  constexpr int kHead = 6;
+  outcome->objective = record[0];
+  outcome->success = record[1] != 0.0;
+  outcome->iterations = static_cast<int>(record[2]);
+  outcome->status_code = static_cast<int>(record[3]);
+  outcome->status = internal::IpoptStatusText(outcome->status_code);
+  outcome->route = static_cast<StartRoute>(static_cast<int>(record[4]));
+  outcome->branch_repairs = static_cast<int>(record[5]);
+  const auto parameters = record.begin() + kHead;
+  outcome->parameters.assign(parameters, parameters + num_parameters);
+  outcome->scaled_at.assign(parameters + num_parameters, parameters + 2 * num_parameters);
+  const int offset = kHead + 2 * num_parameters;
+  *x = Eigen::Map<const Eigen::VectorXd>(record.data() + offset, static_cast<Eigen::Index>(record.size()) - offset);
 }
 
 // Physical bounds on k2 and k3 from the data: over the rotations the test
@@ -164,30 +279,15 @@ IdentifyResult IdentifyWith(const ProblemFactory& make_problem, const ModelStruc
         const std::unique_ptr<FitProblem> problem = make_problem();
         Eigen::VectorXd x;
         const StartOutcome outcome = RunStart(*problem, options, starts[i], i == 0, &x);
-        // Worker processes send doubles: the Ipopt status travels as its code.
-        std::vector<double> record = {outcome.objective, outcome.success ? 1.0 : 0.0,
-                                      static_cast<double>(outcome.iterations),
-                                      static_cast<double>(outcome.status_code)};
-        record.insert(record.end(), outcome.parameters.begin(), outcome.parameters.end());
-        record.insert(record.end(), x.data(), x.data() + x.size());
-        return record;
+        return EncodeOutcome(outcome, x);
       },
       [&](int i, const std::vector<double>& record, const std::string& error, int done) {
         StartOutcome& outcome = result.starts[i];
         outcome.start = starts[i];
-        if (!error.empty()) {
+        if (!error.empty())
           outcome.status = "failed: " + error;
-        } else {
-          outcome.objective = record[0];
-          outcome.success = record[1] != 0.0;
-          outcome.iterations = static_cast<int>(record[2]);
-          outcome.status_code = static_cast<int>(record[3]);
-          outcome.status = internal::IpoptStatusText(outcome.status_code);
-          constexpr int kHead = 4;
-          outcome.parameters.assign(record.begin() + kHead, record.begin() + kHead + num_parameters);
-          finals[i] = Eigen::Map<const Eigen::VectorXd>(
-              record.data() + kHead + num_parameters, static_cast<Eigen::Index>(record.size()) - kHead - num_parameters);
-        }
+        else
+          DecodeOutcome(record, num_parameters, &outcome, &finals[i]);
         if (progress)
           progress(0.05 + 0.9 * done / starts.size(),
                    "start " + std::to_string(done) + "/" + std::to_string(starts.size()));
@@ -199,18 +299,19 @@ IdentifyResult IdentifyWith(const ProblemFactory& make_problem, const ModelStruc
     if (result.starts[i].success && (best < 0 || result.starts[i].objective < result.starts[best].objective)) best = i;
   if (best < 0) {
     std::string why = result.starts[0].status;
-    throw std::runtime_error("no start converged (first start: " + why + ")");
+    throw NumericalError("no start converged (first start: " + why + ")");
+  }
+  if (options.branch_repair) {
+    const std::unique_ptr<FitProblem> problem = make_problem();
+    RepairBranches(*problem, options, &result.starts[best], &finals[best]);
   }
   result.best_start = best;
-  const double best_objective = result.starts[best].objective;
-  for (const auto& s : result.starts)
-    if (s.success && s.objective <= best_objective * (1.0 + 1e-4) + 1e-9) ++result.starts_at_best;
   result.x = finals[best];
 
   // 4. Covariance in the reduced space.
   const std::unique_ptr<FitProblem> problem = make_problem();
-  // The same start sets the problem's internal scales as in the winning run.
-  problem->FeasiblePoint(starts[best]);
+  // The same parameters set the problem's internal scales as in the winning run.
+  problem->FeasiblePoint(result.starts[best].scaled_at);
   const Eigen::VectorXd x = result.x;
   const Eigen::VectorXd residuals = problem->WeightedResiduals(x);
   const Eigen::MatrixXd j = problem->ReducedResidualJacobian(x);
@@ -246,6 +347,18 @@ IdentifyResult IdentifyWith(const ProblemFactory& make_problem, const ModelStruc
   // Collinearity on the scale-free information matrix.
   if (normalised.eigenvalues().minCoeff() < 1e-8 * normalised.eigenvalues().maxCoeff())
     result.warnings.push_back("the parameters are nearly collinear: some combination of them is not identifiable");
+  result.minima = SummarizeMinima(result.starts, bounds, result.degrees_of_freedom, options.decisive_chi_square_gap);
+  result.starts_at_best = result.minima.minima.front().num_starts;
+  if (!result.minima.decisive) {
+    const LocalMinimum& second = result.minima.minima[1];
+    std::string where;
+    for (int k = 0; k < num_parameters; ++k)
+      where += (k ? ", " : "") + names[k] + " = " + std::to_string(second.parameters[k]);
+    result.warnings.push_back("the data do not decide between two fits: a second minimum (" + where +
+                              ") is only " + std::to_string(result.minima.second_chi_square_gap) +
+                              " worse in chi-square (decisive: " + std::to_string(options.decisive_chi_square_gap) +
+                              "); the intervals describe the best one alone");
+  }
   if (result.reduced_chi_square > 4.0)
     result.warnings.push_back("the fit is worse than the phasor uncertainties allow (reduced chi-square " +
                               std::to_string(result.reduced_chi_square) + "): run 'beamid diagnose'");

@@ -20,6 +20,7 @@
 #include "solver/identification_problem.h"
 #include "solver/internal/ipopt_program.h"
 #include "solver/model_structure.h"
+#include "solver/multistart.h"
 #include "solver/support_reconstruction.h"
 
 namespace beamid::solver {
@@ -37,6 +38,13 @@ struct IdentifyOptions {
   // Start from the structure's own values instead of the direct estimate
   // (the direct estimate needs a polynomial law).
   bool use_direct_estimate = true;
+  double decisive_chi_square_gap = kDecisiveChiSquareGap;  // solver/multistart.h
+  // Seed every start's states at the rotation the data show (else only at
+  // the harmonic-balance solution of the start's parameters), and re-seed an
+  // end point's states there to repair a step converged on the other branch
+  // of a fold. Off only to compare with the old search.
+  bool seed_states_from_measurements = true;
+  bool branch_repair = true;
 };
 
 struct ParameterEstimate {
@@ -46,16 +54,6 @@ struct ParameterEstimate {
   double std = 0.0;
   double lower_95 = 0.0;
   double upper_95 = 0.0;
-};
-
-struct StartOutcome {
-  std::vector<double> start;
-  std::vector<double> parameters;
-  double objective = 0.0;
-  bool success = false;
-  int iterations = 0;
-  std::string status;   // Ipopt's outcome in words
-  int status_code = 0;  // Ipopt's ApplicationReturnStatus
 };
 
 struct IdentifyResult {
@@ -69,6 +67,9 @@ struct IdentifyResult {
   std::vector<StartOutcome> starts;   // [0]: from the direct estimate
   int best_start = 0;
   int starts_at_best = 0;             // starts that reached the best fit
+  // Every distinct minimum the converged starts reached, best first, and
+  // whether the data decide between the best two.
+  MinimaSummary minima;
   std::vector<std::string> warnings;
   Eigen::VectorXd x;                  // optimiser variables at the best fit
   double seconds = 0.0;

@@ -43,12 +43,6 @@ namespace {
 constexpr double kStateStep = 1e-6;
 constexpr double kParameterStep = 1e-5;
 
-Complex DerivativeFactor(int order, double k_omega) {
-  Complex factor(1.0);
-  for (int d = 0; d < order; ++d) factor *= Complex(0.0, k_omega);
-  return factor;
-}
-
 bool IsPlainBeam(const hb::LinearAttachments& a) {
   return a.point_masses.empty() && std::isinf(a.clamp_rotational_stiffness_Nm_rad) &&
          std::isinf(a.support_translational_stiffness_N_m);

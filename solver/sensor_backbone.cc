@@ -1,5 +1,7 @@
 #include "solver/sensor_backbone.h"
 
+#include "hb/errors.h"
+
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -20,7 +22,7 @@ std::vector<SensorBackbonePoint> ModelBackboneAtSensor(const hb::LinearBeamModel
   const hb::LinearBeam linear(beam, force_position_m, {.max_frequency_hz = 1.5 * (num_harmonics + 1) * 1.5 * f_guess_hz});
   const hb::HarmonicBalance balance(linear, law, {.num_harmonics = num_harmonics});
   const hb::BackboneSummary summary = hb::TraceBackbone(balance, options);
-  if (summary.points.empty()) throw std::runtime_error("model backbone: " + summary.message);
+  if (summary.points.empty()) throw NumericalError("model backbone: " + summary.message);
   std::vector<SensorBackbonePoint> out;
   for (const auto& p : summary.points) {
     // From θ's phase resonance at this force to the sensor's: secant steps on
@@ -46,7 +48,7 @@ std::vector<SensorBackbonePoint> ModelBackboneAtSensor(const hb::LinearBeamModel
     const Eigen::MatrixXcd y = balance.Displacements(solution, force, {sensor_position_m});
     out.push_back({std::abs(y(0, 1)), solution.omega_rad_s / (2 * std::numbers::pi)});
   }
-  if (out.empty()) throw std::runtime_error("model backbone: no phase resonance of the sensor found");
+  if (out.empty()) throw NumericalError("model backbone: no phase resonance of the sensor found");
   return out;
 }
 

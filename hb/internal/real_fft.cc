@@ -1,5 +1,7 @@
 #include "hb/internal/real_fft.h"
 
+#include "hb/errors.h"
+
 #include <cstring>
 #include <mutex>
 #include <stdexcept>
@@ -37,7 +39,7 @@ RealFft::RealFft(int num_samples) : num_samples_(num_samples), plans_(std::make_
   plans_->forward = fftw_plan_dft_r2c_1d(num_samples, plans_->real, plans_->spectrum, FFTW_ESTIMATE);
   plans_->inverse = fftw_plan_dft_c2r_1d(num_samples, plans_->spectrum, plans_->real, FFTW_ESTIMATE);
   if (!plans_->real || !plans_->spectrum || !plans_->forward || !plans_->inverse)
-    throw std::runtime_error("FFTW could not plan a real transform of length " + std::to_string(num_samples));
+    throw EnvironmentError("FFTW could not plan a real transform of length " + std::to_string(num_samples));
 }
 
 RealFft::~RealFft() = default;

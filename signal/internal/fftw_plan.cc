@@ -1,5 +1,7 @@
 #include "signal/internal/fftw_plan.h"
 
+#include "hb/errors.h"
+
 #include <algorithm>
 #include <cstring>
 #include <mutex>
@@ -41,7 +43,7 @@ RealFft::RealFft(int size) : impl_(std::make_unique<Impl>()), size_(size) {
   if (!impl_->in || !impl_->out) throw std::bad_alloc();
   std::lock_guard lock(PlannerMutex());
   impl_->plan.reset(fftw_plan_dft_r2c_1d(size, impl_->in.get(), impl_->out.get(), FFTW_ESTIMATE));
-  if (!impl_->plan) throw std::runtime_error("FFTW could not plan a real transform of size " + std::to_string(size));
+  if (!impl_->plan) throw EnvironmentError("FFTW could not plan a real transform of size " + std::to_string(size));
 }
 
 RealFft::~RealFft() = default;

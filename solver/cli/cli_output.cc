@@ -8,6 +8,7 @@
 #include <fmt/core.h>
 #include <unistd.h>
 
+#include "hb/errors.h"
 #include "signal/campaign_extractor.h"
 #include "signal/phasor_set_io.h"
 
@@ -67,10 +68,41 @@ nlohmann::json PhasorsToJson(const Eigen::VectorXcd& phasors) {
 void WriteTextFile(const std::filesystem::path& path, const std::string& text) {
   std::error_code error;
   if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), error);
-  std::ofstream out(path);
-  if (!out) throw std::invalid_argument(path.string() + ": cannot write this file (check the folder and permissions)");
-  out << text;
-  if (!out) throw std::invalid_argument(path.string() + ": writing failed (disk full?)");
+  // Whole or absent: written under a temporary name in the same folder and
+  // renamed (atomic on one file system), so a killed run or a full disk
+  // never leaves a truncated file where a reader expects a complete one.
+  std::filesystem::path temporary = path;
+  temporary += ".partial-" + std::to_string(::getpid());
+  {
+    std::ofstream out(temporary, std::ios::binary);
+    if (!out)
+      throw InputError(path.string() + ": cannot write this file (check the folder and permissions)");
+    out << text;
+    out.flush();
+    if (!out) {
+      out.close();
+      std::filesystem::remove(temporary, error);
+      throw EnvironmentError(path.string() + ": writing failed (disk full?)");
+    }
+  }
+  std::filesystem::rename(temporary, path, error);
+  if (error) {
+    std::filesystem::remove(temporary, error);
+    throw InputError(path.string() + ": cannot replace this file (is it a folder, or read-only?)");
+  }
+}
+
+void AddModelHarmonicsOptions(CLI::App* command, int* harmonics, int* fit_harmonics, const std::string& model_help) {
+  command->add_option("-H,--harmonics", *harmonics, model_help)->check(CLI::Range(1, 50))->capture_default_str();
+  command->add_option("--fit-harmonics", *fit_harmonics, "Harmonics 1..K fitted (K <= -H)")
+      ->check(CLI::Range(1, 50))
+      ->capture_default_str();
+}
+
+void RequireFitWithinModelHarmonics(int fit_harmonics, int harmonics) {
+  if (fit_harmonics > harmonics)
+    throw InputError("--fit-harmonics " + std::to_string(fit_harmonics) + " exceeds the model's -H " +
+                     std::to_string(harmonics) + ": fit at most the harmonics the model holds");
 }
 
 signal::PhasorSet ReadOrExtractPhasors(const signal::Campaign& campaign, const std::string& phasors_file,

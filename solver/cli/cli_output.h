@@ -55,6 +55,12 @@ nlohmann::json PhasorsToJson(const Eigen::VectorXcd& phasors);
 // naming the path if it cannot.
 void WriteTextFile(const std::filesystem::path& path, const std::string& text);
 
+// -H/--harmonics (the model's H, 1..50) and --fit-harmonics (K, 1..50), as
+// identify and diagnose take them; and the check, before any work, that the
+// model holds every fitted harmonic (K <= H).
+void AddModelHarmonicsOptions(CLI::App* command, int* harmonics, int* fit_harmonics, const std::string& model_help);
+void RequireFitWithinModelHarmonics(int fit_harmonics, int harmonics);
+
 // The phasors of a campaign: read from `phasors_file` (the output of
 // `beamid extract`) when given, else extracted with harmonics 1..num_harmonics
 // and progress on stderr.

@@ -9,6 +9,7 @@
 
 #include <fmt/core.h>
 
+#include "hb/errors.h"
 #include "hb/backbone.h"
 #include "hb/model_file.h"
 #include "hb/multiple_scales.h"
@@ -76,7 +77,7 @@ void RunBackbone(const BackboneCommandOptions& options, const GlobalOptions& glo
       try {
         ms_hz = ms->Backbone_rad_s(p.theta_amplitude_rad / std::abs(ms->SupportSlope_per_m())) /
                 (2 * std::numbers::pi);
-      } catch (const std::runtime_error&) {
+      } catch (const NumericalError&) {
         // beyond the perturbation model's range: no value
       }
     }
@@ -117,7 +118,7 @@ void RunBackbone(const BackboneCommandOptions& options, const GlobalOptions& glo
   }
   // The partial backbone is written; the run still failed to converge.
   if (!summary.complete)
-    throw std::runtime_error("the backbone stopped early (" + summary.message +
+    throw NumericalError("the backbone stopped early (" + summary.message +
                              "); try a smaller --max-theta-rad or fewer harmonics");
 }
 

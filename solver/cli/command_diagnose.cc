@@ -60,6 +60,7 @@ std::string PlotScript(const solver::DiagnosisResult& result, const std::string&
 }
 
 void RunDiagnose(const DiagnoseCommandOptions& options, const GlobalOptions& global) {
+  RequireFitWithinModelHarmonics(options.fit_harmonics, options.harmonics);
   for (const auto& name : options.candidates) {
     const auto names = solver::CandidateNames();
     if (std::find(names.begin() + 1, names.end(), name) == names.end())
@@ -114,17 +115,20 @@ void RunDiagnose(const DiagnoseCommandOptions& options, const GlobalOptions& glo
     fmt::print("diagnosed {} steps in {:.2f} s: {}\n", fit.steps.size(), result.seconds, result.verdict);
     fmt::print("  {:<20} {:>6} {:>12} {:>9} {:>11} {:>10}  {} / {}\n", "candidate", "score", "chi-square", "drop",
                "BIC", "p", "held-out h1", "chi-square");
-    fmt::print("  {:<20} {:>6} {:>12.5g} {:>9} {:>11.5g} {:>10}  {:.3g} % / {:.4g}\n", "(base)", "",
-               result.base.chi_square, "", result.base.bic, "", 100.0 * result.base.held_out_h1_relative_error,
-               result.base.held_out_chi_square);
+    // Without a held-out channel there is no held-out error: say so, not "nan %".
+    const auto held_out = [](const solver::FitSummary& summary) {
+      if (!std::isfinite(summary.held_out_h1_relative_error)) return std::string("(no held-out channel)");
+      return fmt::format("{:.3g} % / {:.4g}", 100.0 * summary.held_out_h1_relative_error, summary.held_out_chi_square);
+    };
+    fmt::print("  {:<20} {:>6} {:>12.5g} {:>9} {:>11.5g} {:>10}  {}\n", "(base)", "", result.base.chi_square, "",
+               result.base.bic, "", held_out(result.base));
     for (const auto& c : result.candidates)
       if (!c.converged)
         fmt::print("  {:<20} {:>6.2f}  refit failed ({})\n", c.name, c.signature_score, c.status);
       else
-        fmt::print("  {:<20} {:>6.2f} {:>12.5g} {:>8.3g}x {:>11.5g} {:>10.2g}  {:.3g} % / {:.4g}  ({:.1f} s){}\n",
-                   c.name, c.signature_score, c.fit.chi_square, c.residual_drop, c.fit.bic, c.p_value,
-                   100.0 * c.fit.held_out_h1_relative_error, c.fit.held_out_chi_square, c.seconds,
-                   c.significant ? "  significant" : "");
+        fmt::print("  {:<20} {:>6.2f} {:>12.5g} {:>8.3g}x {:>11.5g} {:>10.2g}  {}  ({:.1f} s){}\n", c.name,
+                   c.signature_score, c.fit.chi_square, c.residual_drop, c.fit.bic, c.p_value, held_out(c.fit),
+                   c.seconds, c.significant ? "  significant" : "");
     fmt::print("{}\nwrote {}\n", result.summary, options.output);
   }
 }
@@ -143,10 +147,12 @@ BEAMID_REGISTER_COMMAND("diagnose", [](CLI::App& app, const GlobalOptions& globa
       ->delimiter(',');
   sub->add_option("--candidates", options->candidates, "Candidates to try (default: all)")->delimiter(',');
   sub->add_option("--phasors", options->phasors_file, "Use phasors from 'beamid extract' instead of extracting");
-  sub->add_option("-H,--harmonics", options->harmonics, "Harmonics of the base model")->capture_default_str();
-  sub->add_option("--fit-harmonics", options->fit_harmonics, "Harmonics 1..K fitted")->capture_default_str();
-  sub->add_option("--workers", options->workers, "Parallel refits (0: one per core)")->capture_default_str();
-  sub->add_option("--significance", options->significance, "Family-wise significance of naming a cause")
+  AddModelHarmonicsOptions(sub, &options->harmonics, &options->fit_harmonics, "Harmonics of the base model");
+  sub->add_option("--workers", options->workers, "Parallel refits (0: one per core)")
+      ->check(CLI::Range(0, 256))
+      ->capture_default_str();
+  sub->add_option("--significance", options->significance, "Family-wise significance of naming a cause (0 < α < 1)")
+      ->check(CLI::Range(1e-12, 0.5))
       ->capture_default_str();
   sub->add_option("--curves", options->curves,
                   "Write PREFIX.csv with the first-harmonic response of measurements, base and diagnosed model per "

@@ -7,6 +7,7 @@
 #include <fmt/core.h>
 #include <fmt/format.h>
 
+#include "hb/errors.h"
 #include "hb/continuation.h"
 #include "hb/model_file.h"
 #include "solver/cli/cli_output.h"
@@ -129,7 +130,7 @@ void RunFrc(const FrcOptions& options, const GlobalOptions& global) {
   if (!global.quiet) fmt::print("wrote {0}.csv and {0}.json\n", options.output);
   // The partial curves are written; the run still failed to converge.
   if (!incomplete.empty())
-    throw std::runtime_error(incomplete + "; try a smaller range, more --max-points or fewer harmonics");
+    throw NumericalError(incomplete + "; try a smaller range, more --max-points or fewer harmonics");
 }
 
 BEAMID_REGISTER_COMMAND("frc", [](CLI::App& app, const GlobalOptions& global) {

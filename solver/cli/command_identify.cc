@@ -40,6 +40,7 @@ void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& glo
   if (!multiple_scales && options.model != "hb")
     throw std::invalid_argument("--model " + options.model +
                                 ": unknown model (use hb for exact harmonic balance or ms for multiple scales)");
+  RequireFitWithinModelHarmonics(options.fit_harmonics, options.harmonics);
   const signal::Campaign campaign = signal::ReadCampaign(options.campaign_folder);
   const signal::PhasorSet phasors =
       ReadOrExtractPhasors(campaign, options.phasors_file, std::max(5, options.fit_harmonics), global);
@@ -73,7 +74,7 @@ void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& glo
         fit, structure, solver::MultipleScalesProblemOptions{.beam_loss_factor = options.beam_loss_factor});
   else
     problem = std::make_unique<solver::IdentificationProblem>(fit, structure, identify.model);
-  problem->FeasiblePoint(result.starts[result.best_start].start);  // the winning run's scales
+  problem->FeasiblePoint(result.starts[result.best_start].scaled_at);  // the winning run's scales
   solver::FitData fit_with_loss = fit;
   fit_with_loss.beam.loss_factor = options.beam_loss_factor;
   nlohmann::json report = solver::IdentificationReport(
@@ -92,6 +93,10 @@ void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& glo
       fmt::print("  {:<10} = {:>12.6g} ± {:<10.3g} {}   (95 %: {:.6g} … {:.6g})\n", p.name, p.value, p.std, p.unit,
                  p.lower_95, p.upper_95);
     fmt::print("  reduced chi-square {:.3g} ({} residuals)\n", result.reduced_chi_square, result.degrees_of_freedom);
+    if (result.minima.minima.size() > 1)
+      fmt::print("  the starts reached {} distinct minima; the second is {:.3g} worse in chi-square ({})\n",
+                 result.minima.minima.size(), result.minima.second_chi_square_gap,
+                 result.minima.decisive ? "ruled out by the data" : "NOT ruled out by the data");
     if (report.contains("validation"))
       for (const auto& [channel, v] : report["validation"].items())
         fmt::print("  held-out {}: worst error {:.2f} % on the 1st harmonic ({} steps), {:.2f} % on the 3rd ({} steps; "
@@ -118,10 +123,13 @@ BEAMID_REGISTER_COMMAND("identify", [](CLI::App& app, const GlobalOptions& globa
                   "harmonics 1..3, small amplitudes near the first resonance, no sensor masses)")
       ->capture_default_str();
   sub->add_option("--phasors", options->phasors_file, "Use phasors from 'beamid extract' instead of extracting");
-  sub->add_option("-H,--harmonics", options->harmonics, "Harmonics of the model (hb; ms has 3)")->capture_default_str();
-  sub->add_option("--fit-harmonics", options->fit_harmonics, "Harmonics 1..K fitted")->capture_default_str();
-  sub->add_option("--starts", options->starts, "Further starts besides the direct estimate")->capture_default_str();
-  sub->add_option("--threads", options->threads, "Parallel starts (0: one per core)")->capture_default_str();
+  AddModelHarmonicsOptions(sub, &options->harmonics, &options->fit_harmonics, "Harmonics of the model (hb; ms has 3)");
+  sub->add_option("--starts", options->starts, "Further starts besides the direct estimate")
+      ->check(CLI::Range(0, 1000))
+      ->capture_default_str();
+  sub->add_option("--threads", options->threads, "Parallel starts (0: one per core)")
+      ->check(CLI::Range(0, 256))
+      ->capture_default_str();
   sub->add_flag("--fit-ei-scale", options->fit_ei_scale, "Also fit a scale of the nominal bending stiffness EI");
   sub->add_flag("--fix-loss-factor", options->fix_loss_factor,
                 "Do not fit the beam's structural loss factor η; hold it at --beam-loss-factor");

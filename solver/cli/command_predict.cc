@@ -8,6 +8,7 @@
 
 #include <fmt/core.h>
 
+#include "hb/errors.h"
 #include "signal/campaign.h"
 #include "signal/campaign_extractor.h"
 #include "solver/cli/cli_output.h"
@@ -32,6 +33,7 @@ void RunPredict(const PredictOptions& options, const GlobalOptions& global) {
   progress.Done();
   // A campaign sensor within 1 mm of x is compared with the prediction.
   std::string compared;
+  int compared_order = 2;  // the compared channel's quantity: 0 displacement, 1 velocity, 2 acceleration
   std::vector<Eigen::VectorXcd> measured;
   if (!options.campaign_folder.empty()) {
     const signal::Campaign campaign = signal::ReadCampaign(options.campaign_folder);
@@ -40,14 +42,24 @@ void RunPredict(const PredictOptions& options, const GlobalOptions& global) {
     if (!compared.empty()) {
       const signal::PhasorSet phasors = signal::ExtractCampaign(campaign);
       const solver::FitData data = solver::MakeFitData(campaign, phasors, {.channels = {compared}});
+      compared_order = data.channels.front().derivative_order;
+      int matched = 0;
       for (const solver::PredictedStep& p : steps) {
         Eigen::VectorXcd m;
         for (const auto& s : data.steps)
           if (s.file == p.file) m = s.measured.row(0).transpose();
+        matched += m.size() > 0;
         measured.push_back(m);
       }
+      // A result from another campaign matches none of its steps: a "worst
+      // error" over no step would read 0 %.
+      if (matched == 0)
+        throw InputError(options.result_file + ": none of its steps is a step of the campaign " +
+                         options.campaign_folder +
+                         ". Fix: compare a result with the campaign it was identified from");
     }
   }
+  const char* const quantity = compared_order == 0 ? "displacement_m" : compared_order == 1 ? "velocity_m_s" : "acceleration_m_s2";
   nlohmann::json out_steps = nlohmann::json::array();
   double worst = 0.0;
   for (std::size_t i = 0; i < steps.size(); ++i) {
@@ -62,9 +74,13 @@ void RunPredict(const PredictOptions& options, const GlobalOptions& global) {
                           {"acceleration_m_s2", {acc.real(), acc.imag()}},
                           {"acceleration_amplitude_m_s2", std::abs(acc)}};
       if (!measured.empty() && measured[i].size() >= k) {
+        // In the compared channel's own quantity (a velocity channel is
+        // compared with the predicted velocity, not the acceleration).
         const auto m = measured[i][k - 1];
-        h["measured_acceleration_m_s2"] = {m.real(), m.imag()};
-        h["relative_error"] = std::abs(acc - m) / std::max(std::abs(m), 1e-300);
+        const std::complex<double> predicted = solver::DerivativeFactor(compared_order, k * omega) * p.displacement_m[k];
+        h[std::string("measured_") + quantity] = {m.real(), m.imag()};
+        h[std::string("predicted_") + quantity] = {predicted.real(), predicted.imag()};
+        h["relative_error"] = std::abs(predicted - m) / std::max(std::abs(m), 1e-300);
         if (k == 1) worst = std::max(worst, h["relative_error"].get<double>());
       }
       harmonics.push_back(h);
@@ -98,7 +114,7 @@ void RunPredict(const PredictOptions& options, const GlobalOptions& global) {
   for (const solver::PredictedStep& p : steps)
     if (!p.converged) unconverged += (unconverged.empty() ? "" : ", ") + p.file;
   if (!unconverged.empty())
-    throw std::runtime_error("the harmonic balance did not converge at " + unconverged + " (written to " +
+    throw NumericalError("the harmonic balance did not converge at " + unconverged + " (written to " +
                              options.output + " all the same)");
 }
 

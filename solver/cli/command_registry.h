@@ -1,8 +1,9 @@
 // The beamid program is a set of subcommands, one per file in solver/cli/.
 // Each file registers itself with BEAMID_REGISTER_COMMAND, so adding a command
-// never touches main.cc. Exit codes: 0 success, 1 internal error, 2 bad input
-// (std::invalid_argument and its subclasses: the user can fix it), 3 a
-// numerical failure (no convergence), reported with what was tried.
+// never touches main.cc. Exit codes (hb/errors.h, mapped in main.cc): 0
+// success, 1 internal error, 2 bad input (the user can fix it), 3 a numerical
+// failure (no convergence), 4 the environment (missing program, disk, fork,
+// memory).
 #pragma once
 
 #include <functional>
@@ -11,10 +12,9 @@
 
 #include <CLI/CLI.hpp>
 
-namespace beamid::cli {
+#include "hb/errors.h"
 
-inline constexpr int kExitBadInput = 2;
-inline constexpr int kExitNoConvergence = 3;
+namespace beamid::cli {
 
 // Options every subcommand understands (before or after its name).
 struct GlobalOptions {

@@ -1,9 +1,12 @@
 #include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
+#include <new>
 #include <stdexcept>
 
 #include <fmt/core.h>
+#include <nlohmann/json.hpp>
 
 #include "solver/cli/cli_output.h"
 #include "solver/cli/command_registry.h"
@@ -16,11 +19,14 @@ std::vector<CommandEntry>& CommandRegistry() {
 }  // namespace beamid::cli
 
 int main(int argc, char** argv) {
+  using namespace beamid;
   using namespace beamid::cli;
   CLI::App app{
       "beamid: identify the nonlinear support of a vibrating beam from stepped-sine tests.\n"
       "Run 'beamid COMMAND --help' for the options and an example of each command.\n"
-      "Exit codes: 0 success, 2 bad input (the message says what to fix), 3 failure to converge, 1 internal error."};
+      "Exit codes: 0 success, 2 bad input (the message says what to fix), 3 failure to converge,\n"
+      "4 environment (a missing program, a full disk, too little memory), 1 internal error."};
+  app.set_version_flag("--version", std::string("beamid ") + BEAMID_VERSION);
   app.require_subcommand(1);
   // --quiet and --progress may also follow the command's name.
   app.fallthrough();
@@ -40,7 +46,7 @@ int main(int argc, char** argv) {
         "  -q,--quiet                  No progress and no summary on the terminal, only errors\n"
         "  --progress text|json        json: one JSON object per line on stderr ({\"event\": \"progress\", ...},\n"
         "                              {\"event\": \"done\", ...}, last {\"event\": \"exit\", \"exit_code\": N, ...})\n"
-        "Exit codes: 0 success, 2 bad input, 3 failure to converge, 1 internal error.");
+        "Exit codes: 0 success, 2 bad input, 3 failure to converge, 4 environment, 1 internal error.");
   // With --progress json, stderr holds JSON lines only: the error goes into
   // the last one.
   auto fail = [&](int code, const std::string& prefix, const std::string& message) {
@@ -64,12 +70,23 @@ int main(int argc, char** argv) {
     if (global.JsonProgress()) return fail(kExitBadInput, "error", e.what());
     app.exit(e);
     return kExitBadInput;
-  } catch (const std::invalid_argument& e) {
+  } catch (const std::invalid_argument& e) {  // beamid::InputError and the readers' older throws
     return fail(kExitBadInput, "error", e.what());
-  } catch (const std::runtime_error& e) {
+  } catch (const nlohmann::json::exception& e) {
+    // A JSON value a reader did not check (a number beyond double's range,
+    // a wrong type): the input's, not beamid's, fault.
+    return fail(kExitBadInput, "error", std::string("a JSON input holds a value beamid cannot use: ") + e.what());
+  } catch (const NumericalError& e) {
     return fail(kExitNoConvergence, "failed", e.what());
+  } catch (const EnvironmentError& e) {
+    return fail(kExitEnvironment, "environment", e.what());
+  } catch (const std::filesystem::filesystem_error& e) {
+    return fail(kExitEnvironment, "environment", e.what());
+  } catch (const std::bad_alloc&) {
+    return fail(kExitEnvironment, "environment",
+                "not enough memory for this problem: use fewer steps, harmonics or samples");
   } catch (const std::exception& e) {
-    return fail(1, "internal error", e.what());
+    return fail(kExitInternalError, "internal error", std::string(e.what()) + " (please report this as a bug)");
   }
   if (global.JsonProgress()) PrintJsonExit(0, "");
   return 0;

@@ -73,6 +73,10 @@ void RunMeasuredBackbone(const MeasuredBackboneCommandOptions& options, const Gl
     if (position < 0)
       throw std::invalid_argument("--result: the tables do not say where the sensor is. Fix: give --position-m");
     const solver::IdentifiedModel identified = solver::ReadIdentifiedModel(options.result_file);
+    if (!(position >= 0.0 && position <= identified.beam.beam.length_m))
+      throw InputError("--position-m " + std::to_string(position) + " lies off the beam of " + options.result_file +
+                       " (0 to " + std::to_string(identified.beam.beam.length_m) +
+                       " m). Fix: give the sensor's position on the beam in metres");
     model = solver::ModelBackboneAtSensor(identified.structure.ApplyLinear(identified.beam), *identified.structure.law,
                                           identified.force_position_m, position,
                                           {.min_theta_amplitude_rad = 1e-5, .max_theta_amplitude_rad = 3e-2, .num_points = 120});

@@ -1,5 +1,7 @@
 #include "solver/internal/ipopt_program.h"
 
+#include "hb/errors.h"
+
 #include <exception>
 #include <stdexcept>
 
@@ -157,7 +159,7 @@ IpoptOutcome RunIpopt(FitProblem& problem, const Eigen::VectorXd& start, const I
     set(app->Options()->SetNumericValue("derivative_test_perturbation", 1e-6), "derivative_test_perturbation");
   }
   // Read no ipopt.opt lying around in the working folder.
-  if (app->Initialize("") != Ipopt::Solve_Succeeded) throw std::runtime_error("Ipopt failed to initialise");
+  if (app->Initialize("") != Ipopt::Solve_Succeeded) throw EnvironmentError("Ipopt failed to initialise");
   const Ipopt::ApplicationReturnStatus status = app->OptimizeTNLP(program);
   if (program->error) std::rethrow_exception(program->error);
   IpoptOutcome outcome = program->outcome;

@@ -1,7 +1,10 @@
 #include "solver/internal/worker_processes.h"
 
+#include "hb/errors.h"
+
 #include <cerrno>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <exception>
 #include <stdexcept>
@@ -70,11 +73,15 @@ void RunInWorkers(int num_jobs, int num_workers, const std::function<std::vector
   };
   std::vector<Worker> workers(num_workers);
   for (int i = 0; i < num_jobs; ++i) workers[i % num_workers].jobs.push_back(i);
+  // A child inherits the parent's unflushed stdio buffers, and whatever it
+  // prints flushes them again: the parent's pending output appeared once per
+  // worker.
+  std::fflush(nullptr);
   for (Worker& w : workers) {
     int fds[2];
-    if (::pipe(fds) != 0) throw std::runtime_error(std::string("cannot create a pipe: ") + std::strerror(errno));
+    if (::pipe(fds) != 0) throw EnvironmentError(std::string("cannot create a pipe: ") + std::strerror(errno));
     const pid_t pid = ::fork();
-    if (pid < 0) throw std::runtime_error(std::string("cannot start a worker process: ") + std::strerror(errno));
+    if (pid < 0) throw EnvironmentError(std::string("cannot start a worker process: ") + std::strerror(errno));
     if (pid == 0) {
       ::close(fds[0]);
       for (int i : w.jobs) {

@@ -82,6 +82,15 @@ TEST(ScenarioTest, RejectsMistakesWithFileAndField) {
   ExpectRejected(With("\"force_amplitude_N\": 2", "\"force_amplitude_N\": -2"), "force_amplitude_N must be positive");
 }
 
+// Sizes that would exhaust memory or run without bound are refused with the
+// field named, before any simulation (they ended as bad_alloc or an endless run).
+TEST(ScenarioTest, RejectsTimingBeyondItsLimits) {
+  const std::string levels = R"("direction": "down"}])";
+  ExpectRejected(With(levels, levels + R"(, "timing": {"record_s": 1e6})"), "timing.record_s");
+  ExpectRejected(With(levels, levels + R"(, "timing": {"max_time_step_s": 1e-12})"), "timing.max_time_step_s");
+  ExpectRejected(With(levels, levels + R"(, "timing": {"settle_max_s": 1e5})"), "timing.settle_max_s");
+}
+
 TEST(ScenarioTest, EveryExampleScenarioLoads) {
   int count = 0;
   for (const auto& entry : std::filesystem::directory_iterator("examples/scenarios")) {

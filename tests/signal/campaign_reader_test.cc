@@ -305,5 +305,40 @@ TEST(QuantityTest, UnitFactorsAndNames) {
   EXPECT_THROW(DerivativeOrder(Quantity::kForce), std::invalid_argument);
 }
 
+// A campaign names its recordings relative to its folder; one that reaches
+// outside (../, an absolute path, a link out) would make beamid read, and
+// quote in its errors, any file on the machine.
+TEST_F(CampaignReaderTest, RefusesARecordingOutsideTheCampaignFolder) {
+  for (const std::string file : {"../../../../etc/passwd", "/etc/passwd", "link_out.csv"}) {
+    fs::remove(folder_ / "link_out.csv");
+    fs::create_symlink("/etc/hostname", folder_ / "link_out.csv");
+    std::string json = CampaignJson();
+    json.replace(json.find("step_000.csv"), 12, file);
+    Write("campaign.json", json);
+    const InputError e = ExpectError();
+    ExpectNames(e, CampaignFile(), "", "lies outside the campaign folder");
+    EXPECT_EQ(std::string(e.what()).find("root:"), std::string::npos) << "no line of the file is quoted";
+  }
+}
+
+TEST_F(CampaignReaderTest, RefusesTwoStepsThatShareARecording) {
+  std::string json = CampaignJson();
+  const std::string step = R"({"file": "step_000.csv", "frequency_Hz": 50.0, "level": "low"})";
+  json.replace(json.find(step), step.size(), step + ", " + R"({"file": "./step_000.csv", "frequency_Hz": 51.0, "level": "low"})");
+  Write("campaign.json", json);
+  ExpectNames(ExpectError(), CampaignFile(), "", "is named by another step too");
+}
+
+TEST_F(CampaignReaderTest, RefusesAKeyWrittenTwiceAndANumberBeyondRange) {
+  std::string json = CampaignJson();
+  json.replace(json.find(R"("name": "reader test",)"), 22, R"("name": "a", "name": "b",)");
+  Write("campaign.json", json);
+  ExpectNames(ExpectError(), CampaignFile(), "", "\"name\" is written twice");
+  json = CampaignJson();
+  json.replace(json.find("2.1e11"), 6, "1e400");
+  Write("campaign.json", json);
+  ExpectNames(ExpectError(), CampaignFile(), "", "not valid JSON");
+}
+
 }  // namespace
 }  // namespace beamid::signal

@@ -97,6 +97,38 @@ TEST_F(CommandLine, BadInputEndsWithExitCodeTwoAndSaysWhatToFix) {
   EXPECT_THAT(run.output, HasSubstr("gravity"));
 }
 
+// Option values out of range are refused before any file is read or any
+// computation starts, naming the option (they used to end as exit 3 "did not
+// converge", as exit 1, or not at all).
+TEST_F(CommandLine, OptionsOutOfRangeAreBadInputNamedBeforeAnyWork) {
+  const std::string campaign = (folder_ / "no_campaign").string();
+  const struct {
+    std::string arguments, named;
+  } cases[] = {
+      {"identify " + campaign + " --starts -1", "--starts"},
+      {"identify " + campaign + " --threads -3", "--threads"},
+      {"identify " + campaign + " -H 0", "--harmonics"},
+      {"identify " + campaign + " -H 100000", "--harmonics"},
+      {"identify " + campaign + " -H 2", "--fit-harmonics 3 exceeds the model's -H 2"},
+      {"identify " + campaign + " --fit-harmonics 9", "--fit-harmonics 9 exceeds"},
+      {"diagnose " + campaign + " --significance 5", "--significance"},
+      {"diagnose " + campaign + " --workers -1", "--workers"},
+      {"diagnose " + campaign + " -H 1", "--fit-harmonics 3 exceeds the model's -H 1"},
+  };
+  for (const auto& c : cases) {
+    const ProgramRun run = Beamid(c.arguments);
+    EXPECT_EQ(run.exit_code, 2) << c.arguments << "\n" << run.output;
+    EXPECT_THAT(run.output, HasSubstr(c.named)) << c.arguments;
+    EXPECT_THAT(run.output, ::testing::Not(HasSubstr("no_campaign"))) << "refused before reading: " << c.arguments;
+  }
+}
+
+TEST_F(CommandLine, VersionIsPrinted) {
+  const ProgramRun run = Beamid("--version");
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_THAT(run.output, ::testing::MatchesRegex("beamid [0-9]+\\.[0-9]+\\.[0-9]+\n"));
+}
+
 TEST_F(CommandLine, IdentifyWithTheMultipleScalesModelAndPredictWithIt) {
   // Three steps around the resonance at a small force, from the simulator.
   std::ofstream(folder_ / "scenario.json") << beamid::testing::PaperScenarioJson("cli test: --model ms", R"([
@@ -115,6 +147,8 @@ TEST_F(CommandLine, IdentifyWithTheMultipleScalesModelAndPredictWithIt) {
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_THAT(run.output, HasSubstr("with the multiple-scales model"));
   EXPECT_THAT(ReadFile(folder_ / "pred.json"), HasSubstr("\"model\": \"ms\""));
+  // Compared in the channel's own quantity (acc3 measures acceleration).
+  EXPECT_THAT(ReadFile(folder_ / "pred.json"), HasSubstr("\"predicted_acceleration_m_s2\""));
 
   // The model gives harmonics 1..3 only: bad input, not a failed fit.
   run = Beamid("identify " + campaign + " --fit acc1,acc2 --model ms --fit-harmonics 5");

@@ -3,10 +3,12 @@
 // physics (polynomial support), three force levels, realistic noise.
 #include "solver/identify.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <random>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -66,7 +68,7 @@ TEST_F(IdentifyOnSimulatedCampaign, PredictsTheHeldOutAccelerometerAndAHiddenPos
   const ModelStructure structure = PolynomialModel({.k1_Nm_rad = 100.0});
   const IdentifyResult result = Identify(fit, structure, {});
   IdentificationProblem problem(fit, structure, {});
-  problem.FeasiblePoint(result.starts[result.best_start].start);
+  problem.FeasiblePoint(result.starts[result.best_start].scaled_at);
   // First harmonic against the measurement; the third against the truth
   // file's noise-free phasors, since at the low level it lies below the
   // noise floor of the measured acc3. The truth is itself a time
@@ -108,26 +110,94 @@ TEST_F(IdentifyOnSimulatedCampaign, PredictsTheHeldOutAccelerometerAndAHiddenPos
   EXPECT_LT(worst_hidden, 0.02);
 }
 
-TEST_F(IdentifyOnSimulatedCampaign, FindsTheSameFitFromStartsAFactorThreeAway) {
+// The data, every measured and force phasor, changed by ±1e-12 relative: the
+// size of the differences between machines (libm variants, FFTW's SIMD
+// codelets), which must not change the best fit.
+FitData PerturbedAtTheLastBits(FitData data, unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (FitStep& step : data.steps) {
+    for (Eigen::Index j = 0; j < step.measured.size(); ++j) step.measured(j) *= 1.0 + 1e-12 * unit(random);
+    for (Eigen::Index j = 0; j < step.force_N.size(); ++j) step.force_N(j) *= 1.0 + 1e-12 * unit(random);
+  }
+  return data;
+}
+
+TEST_F(IdentifyOnSimulatedCampaign, FindsTheSameFitFromFarStartsWhateverTheLastBitsAndTheSeed) {
   const FitData fit = Fit({"acc1", "acc2"});
   const IdentifyResult reference = Identify(fit, PolynomialModel({.k1_Nm_rad = 100.0}), {});
-  for (double factor : {3.0, 1.0 / 3.0}) {
-    // No direct estimate: only the far start and the global search's
-    // space-filling starts over a factor 9 either way of it (so that the
-    // range covers the truth well inside, not at its edge) are tried.
-    IdentifyOptions far;
-    far.use_direct_estimate = false;
-    far.num_starts = 8;
-    far.start_spread = 9.0;
-    // k2 is 0 in truth: start it at ±3 % of k3's scale instead.
-    const IdentifyResult result = Identify(
-        fit,
-        PolynomialModel({.k1_Nm_rad = kK1 * factor, .k2_Nm_rad2 = 3e3 * factor, .k3_Nm_rad3 = kK3 * factor,
-                         .c_Nms_rad = kC * factor}),
-        far);
-    EXPECT_NEAR(Value(result, "k1"), Value(reference, "k1"), 1e-4 * Value(reference, "k1")) << "factor " << factor;
-    EXPECT_NEAR(Value(result, "k3"), Value(reference, "k3"), 1e-3 * Value(reference, "k3")) << "factor " << factor;
-    EXPECT_NEAR(Value(result, "c"), Value(reference, "c"), 1e-3 * Value(reference, "c")) << "factor " << factor;
+  int reached = 0, tried = 0;
+  double seconds = 0.0;
+  for (double factor : {3.0, 1.0 / 3.0, 5.0, 1.0 / 5.0})
+    for (unsigned variant : {0u, 1u, 2u})
+      for (bool direct : {false, true}) {
+        // The far start and eight space-filling starts over a factor 9
+        // either way of it (so that the range holds the truth well inside);
+        // with the direct estimate, those start around that estimate.
+        IdentifyOptions far;
+        far.use_direct_estimate = direct;
+        far.num_starts = 8;
+        far.start_spread = 9.0;
+        far.seed = 1 + variant;
+        const double nudge = variant == 0 ? 1.0 : 1.0 + (variant == 1 ? 1e-12 : -1e-12);
+        // k2 is 0 in truth: start it at ±3 % of k3's scale instead.
+        const ModelStructure start = PolynomialModel({.k1_Nm_rad = kK1 * factor * nudge,
+                                                      .k2_Nm_rad2 = 3e3 * factor * nudge,
+                                                      .k3_Nm_rad3 = kK3 * factor * nudge,
+                                                      .c_Nms_rad = kC * factor * nudge});
+        const IdentifyResult result = Identify(variant == 0 ? fit : PerturbedAtTheLastBits(fit, variant), start, far);
+        const std::string where = "factor " + std::to_string(factor) + ", variant " + std::to_string(variant) +
+                                  (direct ? ", with" : ", without") + " the direct estimate";
+        EXPECT_NEAR(Value(result, "k1"), Value(reference, "k1"), 1e-4 * Value(reference, "k1")) << where;
+        EXPECT_NEAR(Value(result, "k3"), Value(reference, "k3"), 1e-3 * Value(reference, "k3")) << where;
+        EXPECT_NEAR(Value(result, "c"), Value(reference, "c"), 1e-3 * Value(reference, "c")) << where;
+        // No other minimum the data cannot rule out; and most starts reach
+        // the best fit (before the states were seeded on the measured
+        // branch, 1 or 2 of 9 did, and on some machines none).
+        EXPECT_TRUE(result.minima.decisive) << where;
+        EXPECT_GE(3 * result.starts_at_best, 2 * static_cast<int>(result.starts.size())) << where;
+        reached += result.starts_at_best;
+        tried += static_cast<int>(result.starts.size());
+        seconds += result.seconds;
+      }
+  std::printf("%d of %d starts reached the best fit, %.2f s per search of 9 starts\n", reached, tried,
+              seconds / (tried / 9));
+}
+
+TEST_F(IdentifyOnSimulatedCampaign, BranchRepairTakesTheOldSearchOutOfItsLocalMinimum) {
+  // The old search (states solved at each start's parameters, never seeded
+  // on the measured branch) from a factor 3 away, as the test that failed on
+  // an AVX-512 machine ran it: there its one converged start ended in a
+  // local minimum with one step of the top level (55.05 Hz) on the lower
+  // branch of the fold, k1 150.71, k3 323233, χ² 1.8e8 against 108. Where
+  // it does, re-seeding that end point's states on the measured branch
+  // lowers the misfit, and the re-run reaches the best fit.
+  const FitData fit = Fit({"acc1", "acc2"});
+  const IdentifyResult reference = Identify(fit, PolynomialModel({.k1_Nm_rad = 100.0}), {});
+  IdentifyOptions old_search;
+  old_search.use_direct_estimate = false;
+  old_search.seed_states_from_measurements = false;
+  old_search.num_starts = 8;
+  old_search.start_spread = 9.0;
+  const ModelStructure start = PolynomialModel(
+      {.k1_Nm_rad = 3 * kK1, .k2_Nm_rad2 = 9e3, .k3_Nm_rad3 = 3 * kK3, .c_Nms_rad = 3 * kC});
+  const IdentifyResult repaired = Identify(fit, start, old_search);
+  EXPECT_NEAR(Value(repaired, "k1"), Value(reference, "k1"), 1e-4 * Value(reference, "k1"));
+  EXPECT_NEAR(Value(repaired, "k3"), Value(reference, "k3"), 1e-3 * Value(reference, "k3"));
+  EXPECT_NEAR(Value(repaired, "c"), Value(reference, "c"), 1e-3 * Value(reference, "c"));
+  old_search.branch_repair = false;
+  const IdentifyResult unrepaired = Identify(fit, start, old_search);
+  int repairs = 0;
+  for (const auto& s : repaired.starts) repairs += s.branch_repairs;
+  std::printf("old search: %d of %zu starts converged; without branch repair k1 = %.6g (%d minima), with it "
+              "k1 = %.6g after %d repair(s)\n",
+              static_cast<int>(std::count_if(unrepaired.starts.begin(), unrepaired.starts.end(),
+                                             [](const StartOutcome& s) { return s.success; })),
+              unrepaired.starts.size(), Value(unrepaired, "k1"), static_cast<int>(unrepaired.minima.minima.size()),
+              Value(repaired, "k1"), repairs);
+  // Where the old search ended elsewhere, that minimum was repaired.
+  if (std::abs(Value(unrepaired, "k1") - Value(reference, "k1")) > 1e-4 * Value(reference, "k1")) {
+    EXPECT_GT(repairs, 0);
   }
 }
 
@@ -146,7 +216,7 @@ TEST_F(IdentifyOnSimulatedCampaign, ThePapersOwnFlowOneStepTwoAccelerometers) {
   const ModelStructure structure = PolynomialModel({.k1_Nm_rad = 100.0});
   const IdentifyResult result = Identify(fit, structure, {});
   IdentificationProblem problem(fit, structure, {});
-  problem.FeasiblePoint(result.starts[result.best_start].start);
+  problem.FeasiblePoint(result.starts[result.best_start].scaled_at);
   const double omega = fit.steps[0].omega_rad_s;
   const std::complex<double> acc3 = -omega * omega * problem.DisplacementPhasors(result.x, 0, {0.57})(0, 1);
   const std::complex<double> measured = held_out.steps[chosen].measured(0, 0);
@@ -162,7 +232,7 @@ TEST_F(IdentifyOnSimulatedCampaign, PredictFromTheResultFileMatchesTheTruthWithI
   const ModelStructure structure = PolynomialModel({.k1_Nm_rad = 100.0});
   const IdentifyResult result = Identify(fit, structure, {});
   IdentificationProblem problem(fit, structure, {});
-  problem.FeasiblePoint(result.starts[result.best_start].start);
+  problem.FeasiblePoint(result.starts[result.best_start].scaled_at);
   const auto file = simulated_->folder / "result.json";
   std::ofstream(file) << IdentificationReport(fit, FitData{}, problem, result, {}).dump();
   const IdentifiedModel model = ReadIdentifiedModel(file);

@@ -128,7 +128,7 @@ MisfitLocation FitBaseModelAndLocate(const SimulatedCampaign& campaign) {
   options.ipopt.max_iterations = 1000;
   const IdentifyResult result = Identify(fit, structure, options);
   IdentificationProblem problem(fit, structure, options.model);
-  problem.FeasiblePoint(result.starts[result.best_start].start);
+  problem.FeasiblePoint(result.starts[result.best_start].scaled_at);
   const FitData examined = campaign.Data(kAllChannels, 5);
   const std::vector<Eigen::MatrixXcd> model = ModelPhasors(examined, problem, result.x);
   std::vector<double> values;

@@ -107,7 +107,7 @@ TEST_F(MultipleScalesIdentification, RecoversK1AndCAndAgreesWithHarmonicBalance)
 TEST_F(MultipleScalesIdentification, PredictsTheHeldOutChannelAndAHiddenPositionFromTheResultFile) {
   const ModelStructure structure = PolynomialModel({.k1_Nm_rad = 100.0});
   MultipleScalesProblem problem(*fit_, structure, {.beam_loss_factor = kLossFactor});
-  problem.FeasiblePoint(ms_->starts[ms_->best_start].start);
+  problem.FeasiblePoint(ms_->starts[ms_->best_start].scaled_at);
   FitData fit_with_loss = *fit_;
   fit_with_loss.beam.loss_factor = kLossFactor;
   const nlohmann::json report = IdentificationReport(fit_with_loss, Fit({"acc3"}), problem, *ms_, {.model_kind = "ms"});
@@ -149,7 +149,7 @@ TEST_F(MultipleScalesIdentification, ThePapersOwnFlowOneStepTwoAccelerometers) {
   const ModelStructure structure = PolynomialModel({.k1_Nm_rad = 100.0});
   const IdentifyResult result = IdentifyMultipleScales(fit, structure, KnownLossFactor());
   MultipleScalesProblem problem(fit, structure, {.beam_loss_factor = kLossFactor});
-  problem.FeasiblePoint(result.starts[result.best_start].start);
+  problem.FeasiblePoint(result.starts[result.best_start].scaled_at);
   const double omega = fit.steps[0].omega_rad_s;
   const std::complex<double> acc3 = -omega * omega * problem.DisplacementPhasors(result.x, 0, {0.57})(0, 1);
   const std::complex<double> measured = held_out.steps[chosen].measured(0, 0);
