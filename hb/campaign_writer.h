@@ -1,5 +1,5 @@
 // Writes a simulated stepped-sine test to disk: the campaign exactly as
-// /work/shared/spec/campaign-format.md defines it (campaign.json with the
+// docs/campaign-format.md defines it (campaign.json with the
 // NOMINAL beam, one CSV per step with time_s and every channel in its written
 // unit, noise added by hb/noise.h) and, beside it, truth.json: the true
 // physics and the noise-free harmonic phasors of every step

@@ -2,7 +2,7 @@
 // support law, attachments, damping, force distortion) and how the test is
 // run and recorded (levels, frequency steps, timing, sensors, noise). The
 // JSON format is documented in docs/simulator.md; `beamid simulate` turns a
-// scenario into a campaign (campaign-format.md) plus a truth file.
+// scenario into a campaign (docs/campaign-format.md) plus a truth file.
 //
 // Everything is SI except where a field names its unit (frequencies in Hz,
 // clock offset in ppm, noise of a channel in the channel's written unit).
@@ -26,7 +26,7 @@ struct ScenarioSensor {
   std::string channel;
   double position_m = 0.0;
   std::string quantity = "acceleration";  // acceleration | velocity | displacement
-  std::string unit = "m/s^2";             // a unit of campaign-format.md matching the quantity
+  std::string unit = "m/s^2";             // a unit of docs/campaign-format.md matching the quantity
   // The sensor's mass: a point mass of the true beam, and written to
   // campaign.json (the engineer knows it). 0 = massless, not written.
   double mass_kg = 0.0;
@@ -108,7 +108,7 @@ struct Scenario {
   int NumSteps() const;
 };
 
-// Size of a written unit in SI for a quantity (campaign-format.md): 9.80665
+// Size of a written unit in SI for a quantity (docs/campaign-format.md): 9.80665
 // for acceleration in g, 1e-3 for mm or mm/s, 1 for SI; 0 if the unit does
 // not belong to the quantity.
 double UnitToSi(const std::string& quantity, const std::string& unit);

@@ -1,4 +1,4 @@
-// A stepped-sine campaign (/work/shared/spec/campaign-format.md, format
+// A stepped-sine campaign (docs/campaign-format.md, format
 // "stepped-sine-campaign/1"): the beam's nominal properties, the force channel,
 // the response channels and the list of steps (one recording per nominal
 // generator frequency and level). ReadCampaign validates campaign.json
