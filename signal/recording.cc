@@ -13,6 +13,7 @@ namespace beamid::signal {
 namespace {
 
 constexpr int kTimeColumn = -1;
+constexpr double kLargestPlausibleValue = 1e15;
 
 bool IsBlank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
 
@@ -122,6 +123,13 @@ Recording ParseRecording(std::string_view csv_text, const Campaign& campaign, co
         throw InputError(source, std::string(channel_name),
                          "NaN or infinite value at line " + std::to_string(line_number),
                          "remove or repair the invalid samples (a NaN is no measurement)");
+      // No acquisition system writes 1e15 in any unit; such a value is a
+      // corrupted sample, and 1e308 would overflow every sum of squares.
+      if (std::abs(value) > kLargestPlausibleValue)
+        throw InputError(source, std::string(channel_name),
+                         "value " + std::string(token) + " at line " + std::to_string(line_number) +
+                             " is beyond any measurement (|value| > 1e15)",
+                         "remove or repair the corrupted sample");
       if (columns[field] == kTimeColumn)
         time_s[static_cast<std::size_t>(rows)] = value;
       else

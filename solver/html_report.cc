@@ -1,5 +1,7 @@
 #include "solver/html_report.h"
 
+#include "solver/html_escape.h"
+
 #include <cmath>
 #include <numbers>
 
@@ -17,23 +19,6 @@ constexpr const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", 
 
 const char* Colour(std::size_t i) { return kColours[i % std::size(kColours)]; }
 
-// The one escaping of every text the page shows, in element content and in
-// quoted attribute values alike (labels and channel names are the user's).
-std::string Escape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '&': out += "&amp;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&#39;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
-
 // gnuplot's enhanced text treats _ ^ @ & { } as markup.
 std::string PlotText(const std::string& text) {
   std::string out;
@@ -45,7 +30,7 @@ std::string PlotText(const std::string& text) {
 }
 
 std::string Figure(const std::string& id, const std::string& svg, const std::string& caption) {
-  return fmt::format("<figure class=\"plot\" id=\"{}\">\n{}\n<figcaption>{}</figcaption>\n</figure>\n", Escape(id),
+  return fmt::format("<figure class=\"plot\" id=\"{}\">\n{}\n<figcaption>{}</figcaption>\n</figure>\n", HtmlEscape(id),
                      svg, caption);
 }
 
@@ -165,7 +150,7 @@ std::string DampingPlot(const ReportCurves& curves) {
 
 std::string Warnings(const std::vector<std::string>& warnings) {
   std::string html;
-  for (const auto& w : warnings) html += "<p class=\"warning\">warning: " + Escape(w) + "</p>\n";
+  for (const auto& w : warnings) html += "<p class=\"warning\">warning: " + HtmlEscape(w) + "</p>\n";
   return html;
 }
 
@@ -175,15 +160,15 @@ std::string ResonanceTable(const ReportCurves& curves) {
   std::string html = fmt::format(
       "<table class=\"resonance\"><tr><th>level</th><th>phase resonance [Hz]</th><th>|X_1| [{}]</th>"
       "<th>damping ratio ζ</th><th>model backbone there [Hz]</th><th>measured − model</th><th>note</th></tr>\n",
-      Escape(ch.si_unit));
+      HtmlEscape(ch.si_unit));
   for (const auto& p : curves.phase_resonance)
     html += fmt::format(
         "<tr><td>{}</td><td>{:.4f} ± {:.4f}</td><td>{:.5g} ± {:.2g}</td><td>{:.5f} ± {:.2g}</td><td>{}</td>"
         "<td class=\"z\">{}</td><td>{}</td></tr>\n",
-        Escape(p.level), p.frequency_hz, p.frequency_std_hz, p.amplitude, p.amplitude_std,
+        HtmlEscape(p.level), p.frequency_hz, p.frequency_std_hz, p.amplitude, p.amplitude_std,
         p.damping_ratio, p.damping_ratio_std,
         std::isfinite(p.model_frequency_hz) ? fmt::format("{:.4f}", p.model_frequency_hz) : "outside its range",
-        std::isfinite(p.z) ? fmt::format("{:+.2f} σ", p.z) : "", Escape(p.note));
+        std::isfinite(p.z) ? fmt::format("{:+.2f} σ", p.z) : "", HtmlEscape(p.note));
   return html + "</table>\n";
 }
 
@@ -239,8 +224,8 @@ std::string ParameterTable(const Json& result) {
   for (const auto& name : result.at("parameter_order")) {
     const Json& p = result.at("parameters").at(name.get<std::string>());
     html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{} … {}</td><td>{}</td></tr>\n",
-                        Escape(name.get<std::string>()), Number(p.at("value")), Number(p.at("std")),
-                        Number(p.at("ci95")[0]), Number(p.at("ci95")[1]), Escape(p.value("unit", "")));
+                        HtmlEscape(name.get<std::string>()), Number(p.at("value")), Number(p.at("std")),
+                        Number(p.at("ci95")[0]), Number(p.at("ci95")[1]), HtmlEscape(p.value("unit", "")));
   }
   return html + "</table>\n";
 }
@@ -248,11 +233,11 @@ std::string ParameterTable(const Json& result) {
 // Any JSON value as HTML: objects as definition lists, arrays of objects as
 // tables, the rest as text.
 std::string JsonHtml(const Json& value) {
-  if (value.is_string()) return Escape(value.get<std::string>());
+  if (value.is_string()) return HtmlEscape(value.get<std::string>());
   if (value.is_number_float()) return Number(value.get<double>());
   if (value.is_object()) {
     std::string html = "<dl>";
-    for (const auto& [key, item] : value.items()) html += "<dt>" + Escape(key) + "</dt><dd>" + JsonHtml(item) + "</dd>";
+    for (const auto& [key, item] : value.items()) html += "<dt>" + HtmlEscape(key) + "</dt><dd>" + JsonHtml(item) + "</dd>";
     return html + "</dl>";
   }
   if (value.is_array() && !value.empty() && value.front().is_object()) {
@@ -261,7 +246,7 @@ std::string JsonHtml(const Json& value) {
       for (const auto& [key, unused] : item.items())
         if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
     std::string html = "<table><tr>";
-    for (const auto& key : keys) html += "<th>" + Escape(key) + "</th>";
+    for (const auto& key : keys) html += "<th>" + HtmlEscape(key) + "</th>";
     html += "</tr>";
     for (const auto& item : value) {
       html += "<tr>";
@@ -275,7 +260,7 @@ std::string JsonHtml(const Json& value) {
     for (const auto& item : value) html += (html.empty() ? "" : ", ") + JsonHtml(item);
     return html;
   }
-  return Escape(value.dump());
+  return HtmlEscape(value.dump());
 }
 
 // What a test engineer reads of a diagnosis (diagnosis.json of `beamid
@@ -314,8 +299,8 @@ std::string DiagnosisSection(const Json& diagnosis) {
         // A refit that did not move a parameter off its base value leaves it
         // undetermined (its std is that of a flat direction): say so.
         const bool determined = std::isfinite(std) && std < 100 * std::abs(value);
-        const std::string unit = p.value("unit", "") == "1" ? "" : " " + Escape(p.value("unit", ""));
-        extra += fmt::format("{}{} = {}", extra.empty() ? "" : "<br>", Escape(name),
+        const std::string unit = p.value("unit", "") == "1" ? "" : " " + HtmlEscape(p.value("unit", ""));
+        extra += fmt::format("{}{} = {}", extra.empty() ? "" : "<br>", HtmlEscape(name),
                              determined ? Number(value) + " ± " + Number(std) + unit
                                         : Number(value) + unit + " (not determined by these data)");
       }
@@ -348,12 +333,12 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves) {
   const Json& fit = result.at("fit");
   std::string title = "beamid report";
   if (result.contains("campaign")) title += ": " + result["campaign"].value("name", std::string());
-  std::string html = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" + Escape(title) +
-                     "</title>\n<style>" + kStyle + "</style>\n</head>\n<body>\n<h1>" + Escape(title) + "</h1>\n";
+  std::string html = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" + HtmlEscape(title) +
+                     "</title>\n<style>" + kStyle + "</style>\n</head>\n<body>\n<h1>" + HtmlEscape(title) + "</h1>\n";
   html += fmt::format("<p>Result <code>{}</code>, campaign <code>{}</code>; support law {}; fitted channels {}, "
                       "harmonics 1..{}; reduced χ² = {} ({} residuals).</p>\n",
-                      Escape(input.result_file.string()), Escape(input.campaign_folder.string()),
-                      Escape(result.at("model").value("law", "")), JsonHtml(result.at("model").at("fit_channels")),
+                      HtmlEscape(input.result_file.string()), HtmlEscape(input.campaign_folder.string()),
+                      HtmlEscape(result.at("model").value("law", "")), JsonHtml(result.at("model").at("fit_channels")),
                       result.at("model").value("num_fit_harmonics", 0), Number(fit.value("reduced_chi_square", 0.0)),
                       fit.value("degrees_of_freedom", 0));
   if (!input.diagnosis.is_null()) html += DiagnosisSection(input.diagnosis);
@@ -363,20 +348,20 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves) {
     for (const auto& [channel, v] : result["validation"].items())
       html += fmt::format("<p>Held-out {}: worst relative error {:.2f} % on the first harmonic, {:.2f} % on the "
                           "third.</p>\n",
-                          Escape(channel), 100 * v.value("worst_h1_relative_error", 0.0),
+                          HtmlEscape(channel), 100 * v.value("worst_h1_relative_error", 0.0),
                           100 * v.value("worst_h3_relative_error", 0.0));
   html += Warnings(result.value("warnings", Json::array()).get<std::vector<std::string>>()) + "</section>\n";
 
   html += "<section id=\"frc\"><h2>Frequency response curves</h2>\n";
   for (std::size_t c = 0; c < curves.channels.size(); ++c)
     html += Figure("frc-" + curves.channels[c].channel, GnuplotSvg(FrcPlot(curves, c)),
-                   "First-harmonic amplitude of " + Escape(curves.channels[c].channel) +
+                   "First-harmonic amplitude of " + HtmlEscape(curves.channels[c].channel) +
                        ": measured steps (dots) and the identified model under each level's mean force "
                        "(harmonic balance and continuation; solid stable, dashed unstable).");
   for (const auto& level : curves.levels)
     if (!level.model_complete)
-      html += "<p class=\"warning\">The model curve of level " + Escape(level.level) +
-              " stopped early: " + Escape(level.model_message) + "</p>\n";
+      html += "<p class=\"warning\">The model curve of level " + HtmlEscape(level.level) +
+              " stopped early: " + HtmlEscape(level.model_message) + "</p>\n";
   html += "</section>\n";
 
   html += "<section id=\"backbone\"><h2>Backbone</h2>\n" +
@@ -400,7 +385,7 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves) {
       trend = fmt::format("No significant trend of the damping ratio with amplitude ({:+.1f} σ).", mode.damping_trend_z);
     html += Figure("damping-plot", GnuplotSvg(DampingPlot(curves)),
                    "The measured damping ratio of each level by three estimators (±2σ), and the single nonlinear "
-                   "mode fitted across levels (" + Escape(mode.fit_form) + "). " + trend);
+                   "mode fitted across levels (" + HtmlEscape(mode.fit_form) + "). " + trend);
   }
   html += "</section>\n";
 
@@ -409,8 +394,8 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves) {
     html += "<p>This result has no held-out channel (identify with <code>--validate CHANNEL</code>).</p>\n";
   for (const auto& history : curves.time_histories)
     html += Figure("time-" + history.level, GnuplotSvg(TimePlot(history, curves.held_out_channel)),
-                   "Steady-state acceleration at " + Escape(curves.held_out_channel) + ", level " +
-                       Escape(history.level) + ": predicted by the identified model (band: ±2 standard "
+                   "Steady-state acceleration at " + HtmlEscape(curves.held_out_channel) + ", level " +
+                       HtmlEscape(history.level) + ": predicted by the identified model (band: ±2 standard "
                        "uncertainties from the parameter covariance) and measured.");
   html += "</section>\n";
 

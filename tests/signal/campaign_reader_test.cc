@@ -235,6 +235,13 @@ TEST_F(CampaignReaderTest, NaNSample) {
   ExpectNames(ExpectError(), StepFile(), "vel2", "NaN or infinite value at line 414");
 }
 
+// One corrupted sample of 1e308 was accepted and gave h1 = 7e304 with a
+// null standard deviation.
+TEST_F(CampaignReaderTest, SampleBeyondAnyMeasurement) {
+  EditRecording(412, 413, 0, "1e308");
+  ExpectNames(ExpectError(), StepFile(), "acc1", "value 1e308 at line 414 is beyond any measurement");
+}
+
 TEST_F(CampaignReaderTest, UnreadableNumber) {
   EditRecording(20, 21, 0, "1,5");
   InputError e = ExpectError();

@@ -201,6 +201,29 @@ TEST_F(IdentifyOnSimulatedCampaign, BranchRepairTakesTheOldSearchOutOfItsLocalMi
   }
 }
 
+// The same numbers, to the last bit, on two runs and in one process or in
+// parallel worker processes (the starts are independent; which worker runs
+// which must not matter).
+TEST_F(IdentifyOnSimulatedCampaign, GivesIdenticalNumbersOnEveryRunAndAnyNumberOfWorkers) {
+  const FitData fit = Fit({"acc1", "acc2"});
+  IdentifyOptions options;
+  options.num_starts = 4;
+  options.num_threads = 2;
+  const IdentifyResult parallel = Identify(fit, PolynomialModel({.k1_Nm_rad = 100.0}), options);
+  const IdentifyResult again = Identify(fit, PolynomialModel({.k1_Nm_rad = 100.0}), options);
+  options.num_threads = 1;
+  const IdentifyResult serial = Identify(fit, PolynomialModel({.k1_Nm_rad = 100.0}), options);
+  for (const IdentifyResult* other : {&again, &serial}) {
+    ASSERT_EQ(other->parameters.size(), parallel.parameters.size());
+    for (std::size_t j = 0; j < parallel.parameters.size(); ++j) {
+      EXPECT_EQ(other->parameters[j].value, parallel.parameters[j].value) << parallel.parameters[j].name;
+      EXPECT_EQ(other->parameters[j].std, parallel.parameters[j].std) << parallel.parameters[j].name;
+    }
+    EXPECT_EQ(other->chi_square, parallel.chi_square);
+    EXPECT_EQ(other->best_start, parallel.best_start);
+  }
+}
+
 TEST_F(IdentifyOnSimulatedCampaign, ThePapersOwnFlowOneStepTwoAccelerometers) {
   // One step of the top level near 54.2 Hz, fit on acc1 and acc2, predict acc3.
   FitData fit = Fit({"acc1", "acc2"});
