@@ -1,6 +1,7 @@
 #include "hb/campaign_writer.h"
 
 #include "hb/errors.h"
+#include "hb/text_file.h"
 
 #include <charconv>
 #include <cmath>
@@ -50,10 +51,7 @@ Json NoiseJson(const ChannelNoise& n) {
 }
 
 void WriteFile(const std::filesystem::path& path, const std::string& text, std::uintmax_t& bytes) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  out.close();
-  if (!out) throw EnvironmentError(path.string() + ": cannot write the file (disk full or no permission?)");
+  WriteTextFileAtomically(path, text);
   bytes += text.size();
 }
 
@@ -73,6 +71,9 @@ CampaignWriter::CampaignWriter(const SteppedSineSimulation& simulation, const st
   if (!options.overwrite && std::filesystem::exists(directory_ / "campaign.json"))
     throw std::invalid_argument(directory_.string() +
                                 ": holds a campaign.json already; choose another directory or pass --overwrite");
+  // campaign.json is the folder's completion mark, written last (Finish):
+  // while the steps are rewritten the folder must not read as a campaign.
+  std::filesystem::remove(directory_ / "campaign.json", error);
   for (const ScenarioLevel& level : s.levels) {
     std::filesystem::create_directories(directory_ / level.label, error);
     if (error) throw std::invalid_argument((directory_ / level.label).string() + ": cannot create (" + error.message() + ")");
@@ -155,7 +156,6 @@ void CampaignWriter::Finish() {
       {"sensors", sensors},
       {"sample_rate_Hz", s.timing.sample_rate_hz},
       {"steps", *campaign_steps_}};
-  WriteFile(directory_ / "campaign.json", campaign.dump(2) + "\n", bytes_written_);
 
   const std::unique_ptr<SupportLaw> law = s.MakeSupportLaw();
   Json parameters = Json::array();
@@ -213,6 +213,8 @@ void CampaignWriter::Finish() {
       {"clipped_samples", clipped_samples_},
       {"steps", *truth_steps_}};
   WriteFile(directory_ / "truth.json", truth.dump(1) + "\n", bytes_written_);
+  // Last: a folder with campaign.json is a complete campaign.
+  WriteFile(directory_ / "campaign.json", campaign.dump(2) + "\n", bytes_written_);
 }
 
 }  // namespace beamid::hb

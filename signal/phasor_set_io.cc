@@ -1,5 +1,7 @@
 #include "signal/phasor_set_io.h"
 
+#include "hb/text_file.h"
+
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -67,12 +69,7 @@ ChannelPhasors ChannelFromJson(const json& j) {
   return channel;
 }
 
-void WriteText(const std::string& text, const std::filesystem::path& file) {
-  std::ofstream stream(file, std::ios::binary);
-  if (!stream || !(stream << text) || !stream.flush())
-    throw InputError(file.string(), "", "cannot write the output file",
-                     "check that the folder exists and is writable");
-}
+void WriteText(const std::string& text, const std::filesystem::path& file) { WriteTextFileAtomically(file, text); }
 
 }  // namespace
 

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "hb/errors.h"
+#include "hb/text_file.h"
 #include "signal/campaign_extractor.h"
 #include "signal/phasor_set_io.h"
 
@@ -68,28 +69,7 @@ nlohmann::json PhasorsToJson(const Eigen::VectorXcd& phasors) {
 void WriteTextFile(const std::filesystem::path& path, const std::string& text) {
   std::error_code error;
   if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), error);
-  // Whole or absent: written under a temporary name in the same folder and
-  // renamed (atomic on one file system), so a killed run or a full disk
-  // never leaves a truncated file where a reader expects a complete one.
-  std::filesystem::path temporary = path;
-  temporary += ".partial-" + std::to_string(::getpid());
-  {
-    std::ofstream out(temporary, std::ios::binary);
-    if (!out)
-      throw InputError(path.string() + ": cannot write this file (check the folder and permissions)");
-    out << text;
-    out.flush();
-    if (!out) {
-      out.close();
-      std::filesystem::remove(temporary, error);
-      throw EnvironmentError(path.string() + ": writing failed (disk full?)");
-    }
-  }
-  std::filesystem::rename(temporary, path, error);
-  if (error) {
-    std::filesystem::remove(temporary, error);
-    throw InputError(path.string() + ": cannot replace this file (is it a folder, or read-only?)");
-  }
+  WriteTextFileAtomically(path, text);
 }
 
 void AddModelHarmonicsOptions(CLI::App* command, int* harmonics, int* fit_harmonics, const std::string& model_help) {

@@ -29,16 +29,21 @@ struct ProgramRun {
   std::string output;  // stdout and stderr
 };
 
-// stderr_only: stdout is dropped (for the JSON lines on stderr).
-ProgramRun Beamid(const std::string& arguments, bool stderr_only = false) {
+// Runs `prefix beamid arguments`; stderr_only: stdout is dropped (for the
+// JSON lines on stderr).
+ProgramRun BeamidAfter(const std::string& prefix, const std::string& arguments, bool stderr_only = false) {
   const auto log = beamid::testing::UniqueTempPath("beamid_cli_test") += ".log";
-  const std::string command = std::string(BEAMID_EXECUTABLE) + " " + arguments +
+  const std::string command = prefix + std::string(BEAMID_EXECUTABLE) + " " + arguments +
                               (stderr_only ? " 2> " + log.string() + " > /dev/null" : " > " + log.string() + " 2>&1");
   const int status = std::system(command.c_str());
   std::ifstream in(log);
   std::stringstream text;
   text << in.rdbuf();
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
+}
+
+ProgramRun Beamid(const std::string& arguments, bool stderr_only = false) {
+  return BeamidAfter("", arguments, stderr_only);
 }
 
 std::string ReadFile(const std::filesystem::path& path) {
@@ -127,6 +132,32 @@ TEST_F(CommandLine, VersionIsPrinted) {
   const ProgramRun run = Beamid("--version");
   EXPECT_EQ(run.exit_code, 0) << run.output;
   EXPECT_THAT(run.output, ::testing::MatchesRegex("beamid [0-9]+\\.[0-9]+\\.[0-9]+\n"));
+}
+
+// Outputs are whole or absent: `simulate` killed at any moment leaves either
+// a complete campaign or a folder without campaign.json (which no command
+// reads as a campaign), also when it was replacing an earlier campaign.
+TEST_F(CommandLine, AKilledSimulationNeverLeavesAHalfCampaignThatReads) {
+  std::ofstream(folder_ / "scenario.json") << beamid::testing::PaperScenarioJson("cli test: kill", R"([
+    {"label": "low", "force_amplitude_N": 0.5, "frequencies_Hz": {"start": 53.6, "stop": 54.6, "step": 0.25}}])", 5);
+  const std::string campaign = (folder_ / "campaign").string();
+  const std::string simulate = "-q simulate " + (folder_ / "scenario.json").string() + " --overwrite -o " + campaign;
+  int complete = 0, absent = 0;
+  for (const char* seconds : {"0.05", "0.3", "0.8", "1.5", "3", "60"}) {
+    BeamidAfter(std::string("timeout -s KILL ") + seconds + " ", simulate);
+    const ProgramRun extract = Beamid("-q extract " + campaign + " -o " + (folder_ / "phasors.json").string());
+    if (std::filesystem::exists(folder_ / "campaign" / "campaign.json")) {
+      EXPECT_EQ(extract.exit_code, 0) << "killed after " << seconds << " s:\n" << extract.output;
+      ++complete;
+    } else {
+      EXPECT_EQ(extract.exit_code, 2) << "killed after " << seconds << " s:\n" << extract.output;
+      EXPECT_THAT(extract.output, HasSubstr("campaign.json"));
+      ++absent;
+    }
+  }
+  // The last run was given time to finish; an early kill leaves no campaign.
+  EXPECT_GE(complete, 1);
+  EXPECT_GE(absent, 1);
 }
 
 TEST_F(CommandLine, IdentifyWithTheMultipleScalesModelAndPredictWithIt) {
