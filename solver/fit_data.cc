@@ -1,5 +1,7 @@
 #include "solver/fit_data.h"
 
+#include "hb/errors.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -42,6 +44,10 @@ FitData MakeFitData(const signal::Campaign& campaign, const signal::PhasorSet& p
   std::vector<std::string> names = options.channels;
   if (names.empty())
     for (const auto& sensor : campaign.sensors) names.push_back(sensor.channel);
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (std::find(names.begin(), names.begin() + static_cast<std::ptrdiff_t>(i), names[i]) != names.begin() + static_cast<std::ptrdiff_t>(i))
+      // Fitted twice, a channel would count double and its σ shrink by √2.
+      throw InputError("channel '" + names[i] + "' is listed twice: list every channel once");
   for (const auto& name : names) {
     const auto it = std::find_if(campaign.sensors.begin(), campaign.sensors.end(),
                                  [&](const signal::ChannelSpec& s) { return s.channel == name; });

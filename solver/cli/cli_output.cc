@@ -87,7 +87,21 @@ void RequireFitWithinModelHarmonics(int fit_harmonics, int harmonics) {
 
 signal::PhasorSet ReadOrExtractPhasors(const signal::Campaign& campaign, const std::string& phasors_file,
                                        int num_harmonics, const GlobalOptions& global) {
-  if (!phasors_file.empty()) return signal::ReadPhasorSetJson(phasors_file);
+  if (!phasors_file.empty()) {
+    signal::PhasorSet phasors = signal::ReadPhasorSetJson(phasors_file);
+    // The phasors must be this campaign's, every step once and in its order:
+    // a file from another campaign or of a subset would be fitted silently.
+    bool same = phasors.steps.size() == campaign.steps.size();
+    for (std::size_t i = 0; same && i < campaign.steps.size(); ++i)
+      same = phasors.steps[i].file == campaign.steps[i].file && phasors.steps[i].level == campaign.steps[i].level;
+    if (!same)
+      throw InputError(phasors_file + ": these phasors are not the campaign's (" +
+                       std::to_string(phasors.steps.size()) + " steps against the campaign's " +
+                       std::to_string(campaign.steps.size()) +
+                       ", or other files or levels). Fix: extract this campaign again (beamid extract) or give "
+                       "the phasor file extracted from it");
+    return phasors;
+  }
   Progress progress("extract", global);
   signal::ExtractOptions extract;
   extract.estimator.num_harmonics = num_harmonics;

@@ -188,6 +188,19 @@ TEST_F(CommandLine, IdentifyWithTheMultipleScalesModelAndPredictWithIt) {
   run = Beamid("identify " + campaign + " --fit acc1,acc2 --model duffing");
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_THAT(run.output, HasSubstr("--model duffing: unknown model (use hb"));
+  // A channel fitted twice would count double.
+  run = Beamid("identify " + campaign + " --fit acc1,acc1");
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.output, HasSubstr("channel 'acc1' is listed twice"));
+  // Phasors of a subset of the campaign (here: without its last step).
+  const auto phasors = folder_ / "phasors.json";
+  ASSERT_EQ(Beamid("-q extract " + campaign + " -o " + phasors.string()).exit_code, 0);
+  nlohmann::json subset = nlohmann::json::parse(ReadFile(phasors));
+  subset["steps"].erase(subset["steps"].size() - 1);
+  std::ofstream(phasors) << subset.dump();
+  run = Beamid("identify " + campaign + " --fit acc1,acc2 --phasors " + phasors.string());
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_THAT(run.output, HasSubstr("these phasors are not the campaign's (2 steps against the campaign's 3"));
 }
 
 TEST_F(CommandLine, MeasuredBackboneRejectsABadTableNamingFileAndColumn) {
