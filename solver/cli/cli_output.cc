@@ -72,6 +72,26 @@ void WriteTextFile(const std::filesystem::path& path, const std::string& text) {
   WriteTextFileAtomically(path, text);
 }
 
+void RequireWritableOutput(const std::filesystem::path& output, const std::vector<std::filesystem::path>& inputs) {
+  std::error_code error;
+  const auto canonical = [&](const std::filesystem::path& p) {
+    return std::filesystem::weakly_canonical(std::filesystem::absolute(p), error);
+  };
+  const std::filesystem::path target = canonical(output);
+  for (const auto& input : inputs)
+    if (!input.empty() && canonical(input) == target)
+      throw InputError("-o " + output.string() + " is also an input of this command (" + input.string() +
+                       "): choose another output name, or beamid would overwrite what it reads");
+  if (std::filesystem::is_directory(output, error))
+    throw InputError("-o " + output.string() + " is a folder: give a file name");
+  if (output.has_parent_path()) std::filesystem::create_directories(output.parent_path(), error);
+  std::filesystem::path probe = output;
+  probe += ".probe-" + std::to_string(::getpid());
+  if (!std::ofstream(probe, std::ios::binary))
+    throw InputError("-o " + output.string() + ": cannot write there (check the folder and its permissions)");
+  std::filesystem::remove(probe, error);
+}
+
 void AddModelHarmonicsOptions(CLI::App* command, int* harmonics, int* fit_harmonics, const std::string& model_help) {
   command->add_option("-H,--harmonics", *harmonics, model_help)->check(CLI::Range(1, 50))->capture_default_str();
   command->add_option("--fit-harmonics", *fit_harmonics, "Harmonics 1..K fitted (K <= -H)")

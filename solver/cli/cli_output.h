@@ -55,6 +55,12 @@ nlohmann::json PhasorsToJson(const Eigen::VectorXcd& phasors);
 // naming the path if it cannot.
 void WriteTextFile(const std::filesystem::path& path, const std::string& text);
 
+// Before any computation: an output that cannot be written, or that is one
+// of the command's inputs (-o over the user's data), is refused at once
+// (InputError naming the output), instead of after minutes of work or by
+// overwriting what was read.
+void RequireWritableOutput(const std::filesystem::path& output, const std::vector<std::filesystem::path>& inputs);
+
 // -H/--harmonics (the model's H, 1..50) and --fit-harmonics (K, 1..50), as
 // identify and diagnose take them; and the check, before any work, that the
 // model holds every fitted harmonic (K <= H).

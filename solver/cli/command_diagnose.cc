@@ -60,6 +60,8 @@ std::string PlotScript(const solver::DiagnosisResult& result, const std::string&
 }
 
 void RunDiagnose(const DiagnoseCommandOptions& options, const GlobalOptions& global) {
+  RequireWritableOutput(options.output, {std::filesystem::path(options.campaign_folder) / "campaign.json",
+                                         options.phasors_file, options.result_file});
   RequireFitWithinModelHarmonics(options.fit_harmonics, options.harmonics);
   for (const auto& name : options.candidates) {
     const auto names = solver::CandidateNames();

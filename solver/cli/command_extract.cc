@@ -25,6 +25,7 @@ struct ExtractCommandOptions {
 };
 
 void RunExtract(const ExtractCommandOptions& options, const GlobalOptions& global) {
+  RequireWritableOutput(options.output, {std::filesystem::path(options.campaign_folder) / "campaign.json"});
   if (options.harmonics < 1 || options.harmonics > 50)
     throw std::invalid_argument("-H/--harmonics must lie between 1 and 50 (got " + std::to_string(options.harmonics) +
                                 ")");

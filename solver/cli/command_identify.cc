@@ -36,6 +36,7 @@ struct IdentifyCommandOptions {
 };
 
 void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& global) {
+  RequireWritableOutput(options.output, {std::filesystem::path(options.campaign_folder) / "campaign.json", options.phasors_file});
   const bool multiple_scales = options.model == "ms";
   if (!multiple_scales && options.model != "hb")
     throw std::invalid_argument("--model " + options.model +

@@ -27,6 +27,7 @@ struct PredictOptions {
 };
 
 void RunPredict(const PredictOptions& options, const GlobalOptions& global) {
+  RequireWritableOutput(options.output, {options.result_file});
   const solver::IdentifiedModel model = solver::ReadIdentifiedModel(options.result_file);
   Progress progress("predict", global);
   const std::vector<solver::PredictedStep> steps = solver::PredictAt(model, options.position_m);

@@ -27,6 +27,8 @@ struct ReportOptions {
 };
 
 void RunReport(const ReportOptions& options, const GlobalOptions& global) {
+  RequireWritableOutput(options.output, {options.input_file});
+  if (!options.screenshot.empty()) RequireWritableOutput(options.screenshot, {options.input_file, options.output});
   const auto start = std::chrono::steady_clock::now();
   const solver::ReportInput input = solver::LoadReportInput(
       options.input_file,

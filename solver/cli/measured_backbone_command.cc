@@ -64,6 +64,9 @@ std::string Cell(const solver::Estimate& e) {
 }  // namespace
 
 void RunMeasuredBackbone(const MeasuredBackboneCommandOptions& options, const GlobalOptions& global) {
+  std::vector<std::filesystem::path> inputs(options.inputs.begin(), options.inputs.end());
+  inputs.push_back(options.result_file);
+  for (const char* suffix : {".csv", "_curves.csv", ".json"}) RequireWritableOutput(options.output + suffix, inputs);
   const auto levels = ReadLevels(options, global.quiet);
   const solver::MeasuredBackbone measured = solver::AnalyseMeasuredBackbone(levels);
 

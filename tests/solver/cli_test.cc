@@ -119,6 +119,10 @@ TEST_F(CommandLine, OptionsOutOfRangeAreBadInputNamedBeforeAnyWork) {
       {"diagnose " + campaign + " --significance 5", "--significance"},
       {"diagnose " + campaign + " --workers -1", "--workers"},
       {"diagnose " + campaign + " -H 1", "--fit-harmonics 3 exceeds the model's -H 1"},
+      {"identify " + campaign + " -o /proc/beamid/result.json", "-o /proc/beamid/result.json: cannot write there"},
+      {"identify " + campaign + " -o " + folder_.string(), "is a folder"},
+      {"extract " + (folder_ / "data").string() + " -o " + (folder_ / "data" / "campaign.json").string(),
+       "is also an input of this command"},
   };
   for (const auto& c : cases) {
     const ProgramRun run = Beamid(c.arguments);
