@@ -16,7 +16,7 @@ ModelFile ParseModelFile(const std::string& json_text, const std::string& source
   Json root;
   try {
     root = Json::parse(json_text);
-  } catch (const Json::parse_error& e) {
+  } catch (const Json::exception& e) {  // syntax, and numbers beyond double (1e400)
     throw std::invalid_argument(source + ": not valid JSON (" + e.what() + ")");
   }
   constexpr const char* kDoc = "README.md, Model files";

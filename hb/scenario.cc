@@ -105,7 +105,7 @@ Scenario ParseScenario(const std::string& json_text, const std::string& source) 
   Json root;
   try {
     root = Json::parse(json_text);
-  } catch (const Json::parse_error& e) {
+  } catch (const Json::exception& e) {  // syntax, and numbers beyond double (1e400)
     throw std::invalid_argument(source + ": not valid JSON (" + e.what() + ")");
   }
   Scenario s;

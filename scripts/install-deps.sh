@@ -7,6 +7,7 @@ packages=(
   libeigen3-dev libfftw3-dev coinor-libipopt-dev libgtest-dev libbenchmark-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev gnuplot-nox zlib1g-dev
   chromium
+  clang libclang-rt-14-dev
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -14,7 +14,7 @@ Json ReadJson(const fs::path& file, const std::string& what) {
   if (!in) throw std::invalid_argument(file.string() + ": cannot open the " + what + " (check the path)");
   try {
     return Json::parse(in);
-  } catch (const Json::parse_error& e) {
+  } catch (const Json::exception& e) {  // syntax, and numbers beyond double (1e400)
     throw std::invalid_argument(file.string() + ": not valid JSON (" + e.what() + ")");
   }
 }

@@ -70,6 +70,7 @@ TEST(ScenarioTest, JenkinsIsAddedInParallel) {
 
 TEST(ScenarioTest, RejectsMistakesWithFileAndField) {
   ExpectRejected("{", "not valid JSON");
+  ExpectRejected(With("\"youngs_modulus_Pa\": 2.0e11", "\"youngs_modulus_Pa\": 1e400"), "not valid JSON");  // fuzz finding
   ExpectRejected(With("\"loss_factor\"", "\"loss_factr\""), "unknown field 'loss_factr'");
   ExpectRejected(With("\"unit\": \"g\"", "\"unit\": \"mm\""), "sensors[0].unit");
   ExpectRejected(With("\"position_m\": 0.57}", "\"position_m\": 0.7}"), "excitation.position_m");
