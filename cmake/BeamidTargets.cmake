@@ -3,8 +3,12 @@
 
 # Designated initialisers may leave members at their defaults: that is the
 # point of options structs, so that warning is off.
-# GCC 12 reports false -Wrestrict positives inside std::string (GCC PR 105329).
-set(BEAMID_WARNINGS -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wno-missing-field-initializers -Wno-restrict)
+# GCC 12 reports false -Wrestrict positives inside std::string (GCC PR 105329);
+# clang (the fuzz build) has no such option.
+set(BEAMID_WARNINGS -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wno-missing-field-initializers)
+if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+  list(APPEND BEAMID_WARNINGS -Wno-restrict)
+endif()
 
 # beamid_add_folder_library(NAME <target> FOLDER <dir> [DEPS ...])
 # Compiles every .cc of the folder (and its internal/) into one library, so a
