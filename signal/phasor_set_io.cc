@@ -69,8 +69,6 @@ ChannelPhasors ChannelFromJson(const json& j) {
   return channel;
 }
 
-void WriteText(const std::string& text, const std::filesystem::path& file) { WriteTextFileAtomically(file, text); }
-
 }  // namespace
 
 std::string PhasorSetToJson(const PhasorSet& set) {
@@ -163,11 +161,11 @@ std::string PhasorSetToCsv(const PhasorSet& set) {
 }
 
 void WritePhasorSetJson(const PhasorSet& set, const std::filesystem::path& file) {
-  WriteText(PhasorSetToJson(set), file);
+  WriteTextFileAtomically(file, PhasorSetToJson(set));
 }
 
 void WritePhasorSetCsv(const PhasorSet& set, const std::filesystem::path& file) {
-  WriteText(PhasorSetToCsv(set), file);
+  WriteTextFileAtomically(file, PhasorSetToCsv(set));
 }
 
 PhasorSet ReadPhasorSetJson(const std::filesystem::path& file) {

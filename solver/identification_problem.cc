@@ -171,8 +171,10 @@ std::vector<ReconstructedStep> IdentificationProblem::MeasuredRotations(const st
 }
 
 Eigen::VectorXd IdentificationProblem::MeasuredStatePoint(const std::vector<double>& parameters) {
-  Eigen::VectorXd x = FeasiblePoint(parameters);
+  // The feasible point sets the scales and the harmonics the sensors do not
+  // resolve (0 and above K); the measured ones replace the rest.
   const std::vector<ReconstructedStep> measured = MeasuredRotations(parameters);
+  Eigen::VectorXd x = FeasiblePointFrom(parameters, measured, nullptr);
   if (measured.empty()) return x;
   for (int i = 0; i < num_steps(); ++i) {
     Eigen::VectorXcd theta = HarmonicBalance::ToComplex(States(x, i));
@@ -185,6 +187,12 @@ Eigen::VectorXd IdentificationProblem::MeasuredStatePoint(const std::vector<doub
 }
 
 Eigen::VectorXd IdentificationProblem::FeasiblePoint(const std::vector<double>& parameters, int* failed_steps) {
+  return FeasiblePointFrom(parameters, MeasuredRotations(parameters), failed_steps);
+}
+
+Eigen::VectorXd IdentificationProblem::FeasiblePointFrom(const std::vector<double>& parameters,
+                                                         const std::vector<ReconstructedStep>& measured,
+                                                         int* failed_steps) {
   if (static_cast<int>(parameters.size()) != num_parameters_)
     throw std::invalid_argument("FeasiblePoint: wrong number of parameters");
   balance_->SetLawParameters(std::span<const double>(parameters.data(), num_law_));
@@ -192,11 +200,9 @@ Eigen::VectorXd IdentificationProblem::FeasiblePoint(const std::vector<double>& 
   const int h = options_.num_harmonics;
   const double k_law = balance_->law().InitialStiffness_Nm_rad();
   const double c_law = balance_->law().InitialDamping_Nms_rad();
-  // The support rotation the measurements show (exact linear beam with
-  // these linear parameters, solver/support_reconstruction.h): Newton
-  // started there lands on the branch the test was on, whatever branch a
-  // sweep with far-off parameters would have followed.
-  const std::vector<ReconstructedStep> measured = MeasuredRotations(parameters);
+  // Newton started at the support rotation the measurements show lands on
+  // the branch the test was on, whatever branch a sweep with far-off
+  // parameters would have followed.
   std::vector<Eigen::VectorXd> states(num_steps());
   int failures = 0;
   Eigen::VectorXd previous;

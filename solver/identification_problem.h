@@ -104,9 +104,13 @@ class IdentificationProblem : public FitProblem {
  private:
   struct StepCache;
   void Evaluate(const Eigen::VectorXd& x);
-  // The support rotation the measurements show through the linear beam with
-  // these linear parameters (empty when too few channels reconstruct it).
+  // The support rotation the measurements show through the exact linear beam
+  // with these linear parameters (solver/support_reconstruction.h; empty
+  // when too few channels reconstruct it).
   std::vector<ReconstructedStep> MeasuredRotations(const std::vector<double>& parameters) const;
+  // FeasiblePoint with Newton started at `measured` where it is given.
+  Eigen::VectorXd FeasiblePointFrom(const std::vector<double>& parameters,
+                                    const std::vector<ReconstructedStep>& measured, int* failed_steps);
   void UpdateLinear(const std::vector<double>& linear_values);
   Eigen::VectorXd ModelResidual(int step, const Eigen::VectorXd& z, const hb::LinearHarmonics& linear) const;
 

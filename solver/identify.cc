@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <random>
 #include <thread>
 
@@ -86,16 +87,19 @@ StartOutcome RunStart(FitProblem& problem, const IdentifyOptions& options, const
     if (ipopt.max_iterations > kSeededProbeIterations)
       attempts.push_back({StartRoute::kMeasuredStates, ipopt.max_iterations});
   }
+  // Each route's starting point is made once (both set the same scales).
+  std::optional<Eigen::VectorXd> seeded, feasible;
   StartOutcome best;
   Eigen::VectorXd x;
   int iterations = 0;
   for (const Attempt& attempt : attempts) {
-    const Eigen::VectorXd x0 = attempt.route == StartRoute::kMeasuredStates ? problem.MeasuredStatePoint(start)
-                                                                            : problem.FeasiblePoint(start);
+    std::optional<Eigen::VectorXd>& x0 = attempt.route == StartRoute::kMeasuredStates ? seeded : feasible;
+    if (!x0)
+      x0 = attempt.route == StartRoute::kMeasuredStates ? problem.MeasuredStatePoint(start) : problem.FeasiblePoint(start);
     internal::IpoptOptions limited = ipopt;
     limited.max_iterations = attempt.max_iterations;
     Eigen::VectorXd x_attempt;
-    StartOutcome outcome = RunFrom(problem, limited, x0, start, &x_attempt);
+    StartOutcome outcome = RunFrom(problem, limited, *x0, start, &x_attempt);
     outcome.route = attempt.route;
     const bool better = iterations == 0 || (outcome.success && !best.success) ||
                         (outcome.success == best.success && outcome.objective < best.objective);

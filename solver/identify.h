@@ -40,10 +40,12 @@ struct IdentifyOptions {
   bool use_direct_estimate = true;
   double decisive_chi_square_gap = kDecisiveChiSquareGap;  // solver/multistart.h
   // Seed every start's states at the rotation the data show (else only at
-  // the harmonic-balance solution of the start's parameters), and re-seed an
-  // end point's states there to repair a step converged on the other branch
-  // of a fold. Off only to compare with the old search.
+  // the harmonic-balance solution of the start's parameters). Off for refits
+  // from a neighbouring fit, and to compare with the old search.
   bool seed_states_from_measurements = true;
+  // Re-seed the best end point's states on the measured branch and re-run
+  // the fit if that lowers the misfit (a step converged on the other branch
+  // of a fold).
   bool branch_repair = true;
 };
 
