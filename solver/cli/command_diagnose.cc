@@ -10,7 +10,7 @@
 #include "signal/phasor_set_io.h"
 #include "solver/cli/cli_output.h"
 #include "solver/cli/command_registry.h"
-#include "solver/diagnosis.h"
+#include "solver/diagnosis/diagnosis.h"
 
 namespace beamid::cli {
 namespace {

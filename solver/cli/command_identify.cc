@@ -12,9 +12,9 @@
 #include "signal/phasor_set_io.h"
 #include "solver/cli/cli_output.h"
 #include "solver/cli/command_registry.h"
-#include "solver/identification_report.h"
-#include "solver/identify.h"
-#include "solver/multiple_scales_problem.h"
+#include "solver/estimation/identification_report.h"
+#include "solver/estimation/identify.h"
+#include "solver/estimation/multiple_scales_problem.h"
 
 namespace beamid::cli {
 namespace {

@@ -13,8 +13,8 @@
 #include "signal/campaign_extractor.h"
 #include "solver/cli/cli_output.h"
 #include "solver/cli/command_registry.h"
-#include "solver/fit_data.h"
-#include "solver/prediction.h"
+#include "solver/estimation/fit_data.h"
+#include "solver/estimation/prediction.h"
 
 namespace beamid::cli {
 namespace {

@@ -11,10 +11,10 @@
 #include "signal/campaign_extractor.h"
 #include "solver/cli/cli_output.h"
 #include "solver/cli/command_registry.h"
-#include "solver/html_report.h"
-#include "solver/html_screenshot.h"
-#include "solver/report_curves.h"
-#include "solver/report_input.h"
+#include "solver/report/html_report.h"
+#include "solver/report/html_screenshot.h"
+#include "solver/report/report_curves.h"
+#include "solver/report/report_input.h"
 
 namespace beamid::cli {
 namespace {

@@ -8,6 +8,7 @@
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
+#include "hb/version.h"
 #include "solver/cli/cli_output.h"
 #include "solver/cli/command_registry.h"
 
@@ -26,7 +27,7 @@ int main(int argc, char** argv) {
       "Run 'beamid COMMAND --help' for the options and an example of each command.\n"
       "Exit codes: 0 success, 2 bad input (the message says what to fix), 3 failure to converge,\n"
       "4 environment (a missing program, a full disk, too little memory), 1 internal error."};
-  app.set_version_flag("--version", std::string("beamid ") + BEAMID_VERSION);
+  app.set_version_flag("--version", std::string("beamid ") + kVersion);
   app.require_subcommand(1);
   // --quiet and --progress may also follow the command's name.
   app.fallthrough();

@@ -16,9 +16,9 @@
 #include "signal/phasor_set_io.h"
 #include "signal/phasor_table.h"
 #include "solver/cli/cli_output.h"
-#include "solver/measured_backbone.h"
-#include "solver/prediction.h"
-#include "solver/sensor_backbone.h"
+#include "solver/backbone/measured_backbone.h"
+#include "solver/estimation/prediction.h"
+#include "solver/backbone/sensor_backbone.h"
 
 namespace beamid::cli {
 namespace {

@@ -13,7 +13,7 @@
 #include "hb/stepped_sine.h"
 #include "signal/campaign.h"
 #include "signal/campaign_extractor.h"
-#include "solver/diagnosis.h"
+#include "solver/diagnosis/diagnosis.h"
 
 namespace {
 

@@ -12,8 +12,8 @@
 #include "hb/stepped_sine.h"
 #include "signal/campaign.h"
 #include "signal/campaign_extractor.h"
-#include "solver/identify.h"
-#include "solver/nested_fit.h"
+#include "solver/estimation/identify.h"
+#include "solver/estimation/nested_fit.h"
 
 namespace {
 

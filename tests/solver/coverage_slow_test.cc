@@ -24,7 +24,7 @@
 #include "hb/stepped_sine.h"
 #include "signal/campaign.h"
 #include "signal/phasor_estimator.h"
-#include "solver/identify.h"
+#include "solver/estimation/identify.h"
 #include "tests/support/temp_path.h"
 
 namespace beamid::solver {

@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "solver/diagnosis.h"
+#include "solver/diagnosis/diagnosis.h"
 #include "tests/support/simulated_campaign.h"
 
 namespace beamid::solver {

@@ -4,7 +4,7 @@
 // drops at least 5x, and the held-out accelerometer (acc3) is predicted
 // better, and the effect's parameters are found within their 95 % intervals.
 // Three levels, nine steps around the resonance, realistic noise.
-#include "solver/diagnosis.h"
+#include "solver/diagnosis/diagnosis.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // Hostile labels, channel and campaign names stay text in the report.
-#include "solver/html_escape.h"
+#include "solver/report/html_escape.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // Identification on a campaign from the independent time-domain simulator
 // (never from the harmonic-balance model it fits): the paper's set-up, base
 // physics (polynomial support), three force levels, realistic noise.
-#include "solver/identify.h"
+#include "solver/estimation/identify.h"
 
 #include <algorithm>
 #include <cmath>
@@ -13,8 +13,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "solver/identification_report.h"
-#include "solver/prediction.h"
+#include "solver/estimation/identification_report.h"
+#include "solver/estimation/prediction.h"
 #include "tests/support/paper_scenario.h"
 #include "tests/support/simulated_campaign.h"
 

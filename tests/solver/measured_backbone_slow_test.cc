@@ -6,7 +6,7 @@
 // TRUE parameters (an independent method: nothing of it enters the analysis),
 // and first-harmonic tables written from the campaign's phasors in an
 // acquisition system's variants must give the same results.
-#include "solver/measured_backbone.h"
+#include "solver/backbone/measured_backbone.h"
 
 #include <cmath>
 #include <cstdio>
@@ -26,7 +26,7 @@
 #include "signal/first_harmonic_level.h"
 #include "signal/phasor_table.h"
 #include "signal/quantity_conversion.h"
-#include "solver/sensor_backbone.h"
+#include "solver/backbone/sensor_backbone.h"
 #include "tests/support/temp_path.h"
 
 namespace beamid::solver {

@@ -3,7 +3,7 @@
 // concealed Jenkins element of paper_friction shows as dissipation growing
 // faster than a viscous damper's and as hysteretic loop harmonics; the base
 // physics of paper_base (cubic spring, viscous damper) shows neither.
-#include "solver/misfit_location.h"
+#include "solver/diagnosis/misfit_location.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -15,9 +15,9 @@
 #include "hb/stepped_sine.h"
 #include "signal/campaign.h"
 #include "signal/campaign_extractor.h"
-#include "solver/identification_problem.h"
-#include "solver/identify.h"
-#include "solver/model_phasors.h"
+#include "solver/estimation/identification_problem.h"
+#include "solver/estimation/identify.h"
+#include "solver/estimation/model_phasors.h"
 #include "tests/support/temp_path.h"
 
 namespace beamid::solver {

@@ -3,7 +3,7 @@
 // raises no family-wise alarm more often than the nominal significance, and
 // a misfit is found where it was put and described by its kind: a changed
 // stiffness as stiffness-like, a changed damping as dissipation-like.
-#include "solver/misfit_location.h"
+#include "solver/diagnosis/misfit_location.h"
 
 #include <cmath>
 #include <numbers>
@@ -12,7 +12,7 @@
 #include <Eigen/LU>
 #include <gtest/gtest.h>
 
-#include "solver/chi_square.h"
+#include "solver/estimation/chi_square.h"
 
 namespace beamid::solver {
 namespace {

@@ -8,10 +8,10 @@
 
 #include <gtest/gtest.h>
 
-#include "solver/identification_report.h"
-#include "solver/identify.h"
-#include "solver/multiple_scales_problem.h"
-#include "solver/prediction.h"
+#include "solver/estimation/identification_report.h"
+#include "solver/estimation/identify.h"
+#include "solver/estimation/multiple_scales_problem.h"
+#include "solver/estimation/prediction.h"
 #include "tests/support/paper_scenario.h"
 #include "tests/support/simulated_campaign.h"
 

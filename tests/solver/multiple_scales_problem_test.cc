@@ -4,7 +4,7 @@
 // Gauss–Newton Hessian against JᵀJ of the differenced residuals, and the
 // reduced residual Jacobian (states eliminated through the constraints)
 // against residuals re-solved on the constraint manifold.
-#include "solver/multiple_scales_problem.h"
+#include "solver/estimation/multiple_scales_problem.h"
 
 #include <cmath>
 #include <numbers>

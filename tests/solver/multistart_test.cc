@@ -1,6 +1,6 @@
 // The distinct minima of a multistart search and whether the data decide
 // between the best two (solver/multistart.h), on hand-made start outcomes.
-#include "solver/multistart.h"
+#include "solver/estimation/multistart.h"
 
 #include <gtest/gtest.h>
 

@@ -21,7 +21,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "solver/html_screenshot.h"
+#include "solver/report/html_screenshot.h"
 #include "tests/support/paper_scenario.h"
 #include "tests/support/png_image.h"
 #include "tests/support/temp_path.h"

@@ -5,7 +5,7 @@
 // all three methods. A nonlinear mode in closed form — microslip power laws
 // for stiffness and damping, a complex modal constant that changes with
 // amplitude — must give back its exponents, A(a) and its phase resonances.
-#include "solver/single_mode_fit.h"
+#include "solver/backbone/single_mode_fit.h"
 
 #include <cmath>
 #include <complex>
@@ -14,7 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "signal/first_harmonic_level.h"
-#include "solver/measured_backbone.h"
+#include "solver/backbone/measured_backbone.h"
 
 namespace beamid::solver {
 namespace {

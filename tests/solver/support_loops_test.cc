@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "hb/linear_beam.h"
-#include "solver/support_loops.h"
+#include "solver/diagnosis/support_loops.h"
 #include "tests/support/paper_setup.h"
 
 namespace beamid::solver {

@@ -24,7 +24,7 @@
 #include "hb/stepped_sine.h"
 #include "signal/campaign.h"
 #include "signal/campaign_extractor.h"
-#include "solver/fit_data.h"
+#include "solver/estimation/fit_data.h"
 #include "tests/support/paper_scenario.h"
 #include "tests/support/temp_path.h"
 

@@ -1,0 +1,570 @@
+#include "solver/backbone/measured_backbone.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+
+
+#include <Eigen/Cholesky>
+#include <Eigen/QR>
+
+#include "signal/quantity_conversion.h"
+
+namespace beamid::solver {
+namespace {
+
+constexpr double kTwoPi = 2 * std::numbers::pi;
+constexpr int kInputsPerPoint = 5;  // ω, Re F, Im F, Re X_d, Im X_d
+
+// One level sorted by frequency, the response as displacement. The raw
+// vector holds every point's inputs; its covariance is block diagonal.
+struct LevelData {
+  Eigen::VectorXd raw;
+  Eigen::MatrixXd raw_covariance;
+  int order = 2;  // derivative order of the response quantity
+  int size() const { return static_cast<int>(raw.size() / kInputsPerPoint); }
+};
+
+struct PointView {
+  double omega;
+  std::complex<double> force, disp;
+  std::complex<double> G() const { return force / disp; }
+  double H() const { return std::abs(disp / force); }
+};
+
+PointView At(const Eigen::VectorXd& raw, int i) {
+  const double* r = raw.data() + kInputsPerPoint * i;
+  return {r[0], {r[1], r[2]}, {r[3], r[4]}};
+}
+
+LevelData MakeLevelData(const signal::FirstHarmonicLevel& level) {
+  std::vector<const signal::FirstHarmonicPoint*> sorted;
+  for (const auto& p : level.points) sorted.push_back(&p);
+  std::stable_sort(sorted.begin(), sorted.end(),
+                   [](const auto* a, const auto* b) { return a->frequency_hz < b->frequency_hz; });
+  const int n = static_cast<int>(sorted.size());
+  LevelData data;
+  data.order = signal::DerivativeOrder(level.response_quantity);
+  data.raw.resize(kInputsPerPoint * n);
+  data.raw_covariance = Eigen::MatrixXd::Zero(kInputsPerPoint * n, kInputsPerPoint * n);
+  for (int i = 0; i < n; ++i) {
+    const auto& p = *sorted[i];
+    const double omega = kTwoPi * p.frequency_hz;
+    const signal::HarmonicPhasor disp =
+        signal::ConvertHarmonic(p.response, level.response_quantity, signal::Quantity::kDisplacement, omega);
+    const int o = kInputsPerPoint * i;
+    data.raw.segment(o, kInputsPerPoint) << omega, p.force.value.real(), p.force.value.imag(), disp.value.real(),
+        disp.value.imag();
+    data.raw_covariance(o, o) = std::pow(kTwoPi * p.frequency_std_hz, 2);
+    data.raw_covariance.block(o + 1, o + 1, 2, 2) = p.force.Covariance();
+    data.raw_covariance.block(o + 3, o + 3, 2, 2) = disp.Covariance();
+  }
+  return data;
+}
+
+// Values and standard uncertainties of f(raw), linearised about the level's raw inputs.
+std::vector<Estimate> Propagate(const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& f, const LevelData& data) {
+  const Eigen::VectorXd value = f(data.raw);
+  Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(value.size(), data.raw.size());
+  for (int j = 0; j < data.raw.size(); ++j) {
+    const double sigma = std::sqrt(data.raw_covariance(j, j));
+    if (sigma == 0.0) continue;  // exact input: no contribution
+    const double h = 1e-3 * sigma;
+    Eigen::VectorXd plus = data.raw, minus = data.raw;
+    plus[j] += h;
+    minus[j] -= h;
+    jacobian.col(j) = (f(plus) - f(minus)) / (2 * h);
+  }
+  const Eigen::MatrixXd covariance = jacobian * data.raw_covariance * jacobian.transpose();
+  std::vector<Estimate> out;
+  for (int k = 0; k < value.size(); ++k)
+    out.push_back({value[k], std::sqrt(std::max(0.0, covariance(k, k))), std::isfinite(value[k])});
+  return out;
+}
+
+// Covariance of G = F/X_d from those of F and X_d (independent).
+Eigen::Matrix2d InverseReceptanceCovariance(const LevelData& data, int i) {
+  const PointView p = At(data.raw, i);
+  auto real_matrix = [](std::complex<double> c) {
+    Eigen::Matrix2d m;
+    m << c.real(), -c.imag(), c.imag(), c.real();
+    return m;
+  };
+  const Eigen::Matrix2d d_force = real_matrix(1.0 / p.disp);
+  const Eigen::Matrix2d d_disp = real_matrix(-p.force / (p.disp * p.disp));
+  const int o = kInputsPerPoint * i;
+  return d_force * data.raw_covariance.block(o + 1, o + 1, 2, 2) * d_force.transpose() +
+         d_disp * data.raw_covariance.block(o + 3, o + 3, 2, 2) * d_disp.transpose();
+}
+
+// Phase-resonance point from the step k nearest quadrature: frequency [Hz],
+// |X_d|, |F|, ζ. The last three raw inputs are Re A, Im A at the step's
+// amplitude and the other modes' share R. Each step is a point of the
+// backbone at its own (modal) amplitude a' = |X_d − R·F|: with
+// A·G' = D = ω_n² − ω² + 2iω·ζω_n (G' = F/(X_d − R·F)), the sensor is in
+// quadrature with the force where Re(A/D) + R = 0, i.e. with Δ = ω_n² − ω_q²
+// and E = 2ω_q·ζω_n, Re A·Δ + Im A·E + R·(Δ² + E²) = 0 — a small move near
+// quadrature, where Re G is small. The sensor's amplitude there is
+// a'·|1 + R·D_q/A|. Interpolating Re G in ω² between the two bracketing
+// steps instead is biased by the curvature of the backbone when the amplitude
+// changes much between them (the far side of a hardening peak), and
+// impossible across a jump.
+Eigen::VectorXd QuadratureFrom(const Eigen::VectorXd& raw, int k) {
+  const PointView p = At(raw, k);
+  const std::complex<double> modal_constant(raw[raw.size() - 3], raw[raw.size() - 2]);
+  const double residual = raw[raw.size() - 1];
+  const std::complex<double> modal_disp = p.disp - residual * p.force;
+  const std::complex<double> ag = modal_constant * p.force / modal_disp;
+  const double omega_n_sq = p.omega * p.omega + ag.real();
+  const double zeta_omega_n = ag.imag() / (2 * p.omega);
+  double delta = 0.0, w2 = omega_n_sq;
+  for (int iteration = 0; iteration < 4; ++iteration) {
+    const double e = 2 * std::sqrt(w2) * zeta_omega_n;
+    delta = -(modal_constant.imag() * e + residual * (delta * delta + e * e)) / modal_constant.real();
+    w2 = omega_n_sq - delta;
+  }
+  const std::complex<double> d_q(delta, 2 * std::sqrt(w2) * zeta_omega_n);
+  Eigen::VectorXd out(4);
+  out << std::sqrt(w2) / kTwoPi, std::abs(modal_disp) * std::abs(1.0 + residual * d_q / modal_constant), std::abs(p.force),
+      zeta_omega_n / std::sqrt(omega_n_sq);
+  return out;
+}
+
+double PairSlope(const Eigen::VectorXd& raw, int i, int j) {
+  const PointView a = At(raw, i), b = At(raw, j);
+  return (b.omega * b.omega - a.omega * a.omega) / (a.G().real() - b.G().real());
+}
+
+// `modal_fit` gives A(a): the global fit, or the most linear level's local fit.
+void FindQuadrature(const LevelData& data, const SingleModeFit& modal_fit, const SingleModeFit& local_fit,
+                    const MeasuredBackboneOptions& options, LevelResonance& out) {
+  const int n = data.size();
+  int best = -1;
+  double best_h = 0.0;
+  for (int i = 0; i + 1 < n; ++i) {
+    const PointView a = At(data.raw, i), b = At(data.raw, i + 1);
+    if ((a.G().real() > 0) == (b.G().real() > 0)) continue;
+    // Among several crossings (noise far from the mode), the one of largest response.
+    const double h = std::max(a.H(), b.H());
+    if (h > best_h) best_h = h, best = i;
+  }
+  if (best < 0) {
+    out.quadrature_note = "the response never crosses quadrature with the force: widen the sweep";
+    return;
+  }
+  int i = best, j = best + 1;
+  const PointView a = At(data.raw, i), b = At(data.raw, j);
+  const double ratio = std::max(a.H(), b.H()) / std::min(a.H(), b.H());
+  if (ratio > options.jump_amplitude_ratio) {
+    // A jump between the two steps? Then Re G's slope between them differs
+    // from that along the branch the larger response belongs to.
+    const bool upper_is_first = a.H() > b.H();
+    const int k0 = upper_is_first ? i - 1 : j, k1 = upper_is_first ? i : j + 1;
+    if (k0 >= 0 && k1 < n) {
+      const double branch = PairSlope(data.raw, k0, k1), pair = PairSlope(data.raw, i, j);
+      if (!(std::abs(pair / branch) > 0.5 && std::abs(pair / branch) < 2.0)) {
+        i = k0;
+        j = k1;
+        out.quadrature_after_jump = true;
+        out.quadrature_note = "a jump (fold) between the steps around quadrature: the phase resonance is taken on the branch before it";
+      }
+    }
+  }
+  if (!modal_fit.ok) {
+    out.quadrature_note = "too few points near the mode for the modal constant";
+    return;
+  }
+  const int k = std::abs(At(data.raw, i).G().real()) / std::abs(At(data.raw, i).G()) <
+                        std::abs(At(data.raw, j).G().real()) / std::abs(At(data.raw, j).G())
+                    ? i
+                    : j;
+  // The modal constant at the step's amplitude as two more inputs, with their
+  // covariance: where the step lies far from the amplitudes that pin A(a)
+  // down (the top of a folding curve), that is the extrapolation's
+  // uncertainty. Then R (its uncertainty is left out: it moves the phase
+  // resonance by R·E², a fraction of a mHz).
+  const double residual = modal_fit.residual_receptance_m_N;
+  const double step_amplitude = std::abs(At(data.raw, k).disp - residual * At(data.raw, k).force);
+  const std::complex<double> modal_constant = modal_fit.ModalConstantAt(step_amplitude);
+  LevelData with_constant = data;
+  const int n_raw = static_cast<int>(data.raw.size());
+  with_constant.raw.conservativeResize(n_raw + 3);
+  with_constant.raw.tail(3) << modal_constant.real(), modal_constant.imag(), residual;
+  with_constant.raw_covariance.conservativeResizeLike(Eigen::MatrixXd::Zero(n_raw + 3, n_raw + 3));
+  with_constant.raw_covariance.block(n_raw, n_raw, 2, 2) = modal_fit.ModalConstantCovariance(step_amplitude);
+  const auto e = Propagate([&](const Eigen::VectorXd& raw) { return QuadratureFrom(raw, k); }, with_constant);
+  out.quadrature_frequency_hz = e[0];
+  // Beyond the noise: how far this level strays from one nonlinear mode
+  // (from the fit across levels when the level has too few points near the
+  // mode for its own).
+  const double model_residual_rad2_s2 =
+      local_fit.ok ? local_fit.backbone_residual_rms_rad2_s2 : modal_fit.backbone_residual_rms_rad2_s2;
+  const double model_std_hz = model_residual_rad2_s2 / (2 * kTwoPi * e[0].value) / kTwoPi;
+  out.quadrature_frequency_hz.std = std::hypot(e[0].std, model_std_hz);
+  out.quadrature_amplitude_m = e[1];
+  out.quadrature_force_N = e[2];
+  out.quadrature_damping_ratio = e[3];
+  const double scale = std::pow(kTwoPi * e[0].value, data.order);
+  out.quadrature_response_amplitude = {e[1].value * scale, e[1].std * scale, true};
+}
+
+int PeakIndex(const Eigen::VectorXd& raw, int n) {
+  int best = 0;
+  for (int i = 1; i < n; ++i)
+    if (At(raw, i).H() > At(raw, best).H()) best = i;
+  return best;
+}
+
+// The quadratic through three points (x, y): y = c0 + c1·x + c2·x².
+Eigen::Vector3d Quadratic(const double x[3], const double y[3]) {
+  Eigen::Matrix3d m;
+  for (int k = 0; k < 3; ++k) m.row(k) << 1.0, x[k], x[k] * x[k];
+  return m.colPivHouseholderQr().solve(Eigen::Vector3d(y[0], y[1], y[2]));
+}
+
+// Peak frequency [Hz], |X_d/F| and |X_d| there, then the half-power ζ (NaN
+// if not available). For one mode 1/|H|² is a quadratic in ω² exactly,
+// ((ω_n² − ω²)² + (2ζω_nω)²)/A², so the peak is the vertex of the quadratic
+// through the three highest steps and each half-power crossing is solved on
+// the quadratic through the three steps around it.
+Eigen::VectorXd PeakAndHalfPower(const Eigen::VectorXd& raw, int n, int m) {
+  auto x_of = [&](int i) { return At(raw, i).omega * At(raw, i).omega; };
+  auto y_of = [&](int i) { return 1.0 / (At(raw, i).H() * At(raw, i).H()); };
+  double x[3], y[3], a[3];
+  for (int k = 0; k < 3; ++k) {
+    x[k] = x_of(m - 1 + k);
+    y[k] = y_of(m - 1 + k);
+    a[k] = std::abs(At(raw, m - 1 + k).disp);
+  }
+  const Eigen::Vector3d peak = Quadratic(x, y);
+  const double x_peak = -peak[1] / (2 * peak[2]);
+  const double y_peak = peak[0] + peak[1] * x_peak + peak[2] * x_peak * x_peak;
+  const Eigen::Vector3d amplitude = Quadratic(x, a);
+  const double level = 2 * y_peak;
+  auto crossing = [&](int from, int step) {
+    for (int i = from; i + step >= 0 && i + step < n; i += step) {
+      if (y_of(i + step) <= level) continue;
+      // Three steps around the crossing: i − step, i, i + step (or i, i + step, i + 2·step).
+      int c = i;
+      if (c - step < 0 || c - step >= n) c = i + step;
+      if (c + step < 0 || c + step >= n) c = i;
+      double xs[3], ys[3];
+      for (int k = -1; k <= 1; ++k) {
+        xs[k + 1] = x_of(c + k * step);
+        ys[k + 1] = y_of(c + k * step);
+      }
+      const Eigen::Vector3d q = Quadratic(xs, ys);
+      const double disc = q[1] * q[1] - 4 * q[2] * (q[0] - level);
+      const double lo = std::min(x_of(i), x_of(i + step)), hi = std::max(x_of(i), x_of(i + step));
+      if (disc >= 0 && q[2] != 0)
+        for (double sign : {-1.0, 1.0}) {
+          const double root = (-q[1] + sign * std::sqrt(disc)) / (2 * q[2]);
+          if (root >= lo && root <= hi) return std::sqrt(root);
+        }
+      // Not one mode's shape there: linear interpolation.
+      return std::sqrt(x_of(i) + (level - y_of(i)) / (y_of(i + step) - y_of(i)) * (x_of(i + step) - x_of(i)));
+    }
+    return std::numeric_limits<double>::quiet_NaN();
+  };
+  const double w1 = crossing(m, -1), w2 = crossing(m, +1);
+  Eigen::VectorXd out(4);
+  out << std::sqrt(x_peak) / kTwoPi, 1 / std::sqrt(y_peak),
+      amplitude[0] + amplitude[1] * x_peak + amplitude[2] * x_peak * x_peak, (w2 * w2 - w1 * w1) / (4 * x_peak);
+  return out;
+}
+
+void FindPeakAndHalfPower(const LevelData& data, LevelResonance& out) {
+  const int n = data.size();
+  const int m = PeakIndex(data.raw, n);
+  if (m == 0 || m == n - 1) {
+    out.half_power_note = "the largest response is at the end of the sweep: no peak, no half-power points";
+    return;
+  }
+  const auto e = Propagate([&](const Eigen::VectorXd& raw) { return PeakAndHalfPower(raw, n, m); }, data);
+  out.peak_frequency_hz = e[0];
+  out.peak_receptance_m_N = e[1];
+  out.peak_amplitude_m = e[2];
+  out.half_power_damping_ratio = e[3];
+  if (!e[3].valid) out.half_power_note = "the response does not fall to 1/√2 of its peak on both sides";
+  if (out.quadrature_after_jump) {
+    // One side of the peak lies on the other branch of a fold.
+    out.half_power_damping_ratio.valid = false;
+    out.half_power_note = "a jump (fold) next to the peak: no half-power estimate";
+  }
+}
+
+LevelControl DetectControl(const LevelData& data, double tolerance) {
+  double f_min = INFINITY, f_max = 0, x_min = INFINITY, x_max = 0;
+  for (int i = 0; i < data.size(); ++i) {
+    const PointView p = At(data.raw, i);
+    const double x = std::abs(p.disp) * std::pow(p.omega, data.order);
+    f_min = std::min(f_min, std::abs(p.force));
+    f_max = std::max(f_max, std::abs(p.force));
+    x_min = std::min(x_min, x);
+    x_max = std::max(x_max, x);
+  }
+  if (f_max / f_min - 1 <= tolerance) return LevelControl::kForce;
+  if (x_max / x_min - 1 <= tolerance) return LevelControl::kResponse;
+  return LevelControl::kNeither;
+}
+
+std::vector<SingleModePoint> FitPoints(const LevelData& data, double window) {
+  const int n = data.size();
+  const double peak = At(data.raw, PeakIndex(data.raw, n)).H();
+  std::vector<SingleModePoint> points;
+  for (int i = 0; i < n; ++i) {
+    const PointView p = At(data.raw, i);
+    if (p.H() < window * peak) continue;
+    points.push_back({.omega_rad_s = p.omega,
+                      .omega_std_rad_s = std::sqrt(data.raw_covariance(kInputsPerPoint * i, kInputsPerPoint * i)),
+                      .inverse_receptance_N_m = p.G(),
+                      .inverse_receptance_covariance = InverseReceptanceCovariance(data, i),
+                      .amplitude_m = std::abs(p.disp)});
+  }
+  return points;
+}
+
+SingleModeFit LocalFit(const std::vector<SingleModePoint>& points, double tolerance, double residual) {
+  double a_min = INFINITY, a_max = 0;
+  for (const auto& p : points) a_min = std::min(a_min, p.amplitude_m), a_max = std::max(a_max, p.amplitude_m);
+  // A level held at one amplitude cannot tell how ω_n and ζ change with it.
+  const int degree = a_max / a_min - 1 > tolerance ? 1 : 0;
+  return FitSingleMode(points, {.frequency_degree = 2 * degree,
+                                .damping_degree = degree,
+                                .residual_receptance_m_N = residual,
+                                .reference_amplitude_m = a_max});
+}
+
+void EvaluateLocalFit(const SingleModeFit& fit, LevelResonance& out) {
+  if (!fit.ok) return;
+  const double a = out.quadrature_amplitude_m.valid ? out.quadrature_amplitude_m.value : fit.reference_amplitude_m;
+  out.local_natural_frequency_hz = {fit.NaturalFrequency_rad_s(a) / kTwoPi, fit.NaturalFrequencyStd_rad_s(a) / kTwoPi,
+                                    true};
+  out.local_damping_ratio = {fit.DampingRatio(a), fit.DampingRatioStd(a), true};
+  out.local_reduced_chi_square = fit.ReducedChiSquare();
+}
+
+// The amplitude a ∈ (0, a_max] with a·|D(a, ω)| = |A·F| closest to `measured`
+// (several on a folded curve); NaN if there is none.
+double SolveAmplitude(const SingleModeFit& fit, double omega, double force_amplitude, double a_max, double measured) {
+  auto g = [&](double a) {
+    return a * std::abs(fit.DynamicTerm(a, omega)) - std::abs(fit.ModalConstantAt(a)) * force_amplitude;
+  };
+  constexpr int kGrid = 400;
+  double best = std::numeric_limits<double>::quiet_NaN();
+  double lo = 0.0, g_lo = g(0.0);
+  for (int k = 1; k <= kGrid; ++k) {
+    const double hi = a_max * k / kGrid, g_hi = g(hi);
+    if ((g_lo <= 0) != (g_hi <= 0)) {
+      double x0 = lo, x1 = hi, g0 = g_lo;
+      for (int it = 0; it < 60; ++it) {
+        const double xm = 0.5 * (x0 + x1), gm = g(xm);
+        if ((gm <= 0) == (g0 <= 0)) x0 = xm, g0 = gm;
+        else x1 = xm;
+      }
+      const double root = 0.5 * (x0 + x1);
+      if (!(std::abs(root - measured) >= std::abs(best - measured))) best = root;
+    }
+    lo = hi;
+    g_lo = g_hi;
+  }
+  return best;
+}
+
+void Regenerate(const SingleModeFit& fit, const LevelData& data, double window, double a_max, LevelResonance& out) {
+  const auto points = FitPoints(data, window);
+  double sum_sq = 0, worst = 0, chi_square = 0;
+  int count = 0;
+  for (int i = 0; i < data.size(); ++i) {
+    const PointView p = At(data.raw, i);
+    if (std::none_of(points.begin(), points.end(), [&](const auto& q) { return q.omega_rad_s == p.omega; })) continue;
+    std::complex<double> predicted, measured;
+    Eigen::Matrix2d covariance;
+    const int o = kInputsPerPoint * i;
+    const double residual = fit.residual_receptance_m_N;
+    if (out.control == LevelControl::kResponse) {
+      // X_d = F·(A/D + R) at the modal amplitude the measurement shows.
+      const double a = std::abs(p.disp - residual * p.force);
+      predicted = p.disp / (fit.ModalConstantAt(a) / fit.DynamicTerm(a, p.omega) + residual);
+      measured = p.force;
+      covariance = data.raw_covariance.block(o + 1, o + 1, 2, 2);
+    } else {
+      const double a = SolveAmplitude(fit, p.omega, std::abs(p.force), 2 * a_max, std::abs(p.disp - residual * p.force));
+      predicted = (fit.ModalConstantAt(a) / fit.DynamicTerm(a, p.omega) + residual) * p.force;
+      measured = p.disp;
+      covariance = data.raw_covariance.block(o + 3, o + 3, 2, 2);
+    }
+    const std::complex<double> error = predicted - measured;
+    const double relative = std::abs(error) / std::abs(measured);
+    sum_sq += relative * relative;
+    worst = std::max(worst, std::isfinite(relative) ? relative : INFINITY);
+    if (covariance.trace() > 0) {
+      const Eigen::Vector2d e(error.real(), error.imag());
+      chi_square += e.dot(covariance.ldlt().solve(e));
+    }
+    ++count;
+  }
+  out.regeneration_relative_rms = count ? std::sqrt(sum_sq / count) : 0.0;
+  out.regeneration_max_relative = worst;
+  out.regeneration_reduced_chi_square = count ? chi_square / (2 * count) : 0.0;
+}
+
+// The global single-nonlinear-mode fit: every form of ω_n²(a) and ζω_n(a)
+// (polynomial degrees, Iwan-like power laws) with A constant or A(a), by AICc.
+void ChooseGlobalFit(const std::vector<SingleModePoint>& points, double reference_amplitude_m, double residual,
+                     const MeasuredBackboneOptions& options, MeasuredBackbone& result) {
+  constexpr double kPowerLaw = 1.0;  // "choose the exponent"
+  double a_min = INFINITY, a_max = 0;
+  for (const auto& p : points) a_min = std::min(a_min, p.amplitude_m), a_max = std::max(a_max, p.amplitude_m);
+  // Levels held at one amplitude cannot tell how anything changes with it.
+  const bool spans = a_max / a_min - 1 > options.constant_tolerance;
+  std::vector<std::pair<int, double>> frequency_forms, damping_forms;  // (degree, exponent)
+  for (int p = 0; p <= (spans ? options.max_frequency_degree : 0); ++p) frequency_forms.push_back({p, 0.0});
+  for (int q = 0; q <= (spans ? options.max_damping_degree : 0); ++q) damping_forms.push_back({q, 0.0});
+  if (options.try_power_laws && spans) {
+    frequency_forms.push_back({1, kPowerLaw});
+    damping_forms.push_back({1, kPowerLaw});
+  }
+  for (bool varying : {false, true}) {
+    if (varying && !(options.try_amplitude_dependent_modal_constant && spans)) continue;
+    for (const auto& [p, alpha] : frequency_forms)
+      for (const auto& [q, beta] : damping_forms) {
+        const SingleModeFit fit = FitSingleModeChoosingExponents(points, {.frequency_degree = p,
+                                                                          .damping_degree = q,
+                                                                          .frequency_exponent = alpha,
+                                                                          .damping_exponent = beta,
+                                                                          .amplitude_dependent_modal_constant = varying,
+                                                                          .residual_receptance_m_N = residual,
+                                                                          .reference_amplitude_m = reference_amplitude_m});
+        if (!fit.ok) continue;
+        result.candidates.push_back({.frequency_degree = fit.frequency_degree,
+                                     .damping_degree = fit.damping_degree,
+                                     .aicc = fit.aicc,
+                                     .reduced_chi_square = fit.ReducedChiSquare(),
+                                     .frequency_exponent = fit.frequency_exponent,
+                                     .damping_exponent = fit.damping_exponent,
+                                     .amplitude_dependent_modal_constant = varying,
+                                     .form = fit.FormName()});
+        if (!result.fit.ok || fit.aicc < result.fit.aicc) result.fit = fit;
+      }
+  }
+}
+
+}  // namespace
+
+std::string_view LevelControlName(LevelControl control) {
+  switch (control) {
+    case LevelControl::kForce: return "force";
+    case LevelControl::kResponse: return "response";
+    case LevelControl::kNeither: return "neither";
+  }
+  return "";
+}
+
+MeasuredBackbone AnalyseMeasuredBackbone(const std::vector<signal::FirstHarmonicLevel>& levels,
+                                         const MeasuredBackboneOptions& options) {
+  if (levels.empty()) throw std::invalid_argument("measured backbone: no levels to analyse");
+  MeasuredBackbone result;
+  result.response_quantity = signal::QuantityName(levels.front().response_quantity);
+  std::vector<LevelData> data;
+  std::vector<SingleModePoint> all_points;
+  std::vector<SingleModeFit> local_fits;
+  std::vector<std::vector<SingleModePoint>> level_points;
+  for (const auto& level : levels) {
+    if (level.response_quantity == signal::Quantity::kForce)
+      throw std::invalid_argument(level.source + ": level '" + level.label + "': the response is a force");
+    if (level.response_quantity != levels.front().response_quantity)
+      throw std::invalid_argument(level.source + ": level '" + level.label + "' holds a " +
+                                  std::string(signal::QuantityName(level.response_quantity)) + ", level '" +
+                                  levels.front().label + "' a " + result.response_quantity +
+                                  ": give the levels of one sensor, in one quantity");
+    if (level.points.size() < 3)
+      throw std::invalid_argument(level.source + ": level '" + level.label + "' has " +
+                                  std::to_string(level.points.size()) + " steps; at least 3 are needed");
+    data.push_back(MakeLevelData(level));
+    level_points.push_back(FitPoints(data.back(), options.fit_window));
+  }
+  for (const auto& points : level_points) all_points.insert(all_points.end(), points.begin(), points.end());
+  result.min_amplitude_m = INFINITY;
+  for (const auto& p : all_points) {
+    result.min_amplitude_m = std::min(result.min_amplitude_m, p.amplitude_m);
+    result.max_amplitude_m = std::max(result.max_amplitude_m, p.amplitude_m);
+  }
+  // The other modes' share R, once for all levels (it does not depend on
+  // amplitude): first with the most flexible polynomial form, then again with
+  // the form chosen with it (R and the form bias each other's choice).
+  double residual = 0.0;
+  if (options.estimate_residual) {
+    const bool spans = result.max_amplitude_m / result.min_amplitude_m - 1 > options.constant_tolerance;
+    residual = FitResidualReceptance(all_points, {.frequency_degree = spans ? options.max_frequency_degree : 0,
+                                                  .damping_degree = spans ? options.max_damping_degree : 0,
+                                                  .amplitude_dependent_modal_constant =
+                                                      spans && options.try_amplitude_dependent_modal_constant,
+                                                  .reference_amplitude_m = result.max_amplitude_m});
+    ChooseGlobalFit(all_points, result.max_amplitude_m, residual, options, result);
+    if (result.fit.ok) {
+      const SingleModeFit& f = result.fit;
+      residual = FitResidualReceptance(all_points, {.frequency_degree = f.frequency_degree,
+                                                    .damping_degree = f.damping_degree,
+                                                    .frequency_exponent = f.frequency_exponent,
+                                                    .damping_exponent = f.damping_exponent,
+                                                    .amplitude_dependent_modal_constant = f.amplitude_dependent_modal_constant,
+                                                    .reference_amplitude_m = f.reference_amplitude_m});
+    }
+    result.fit = SingleModeFit();
+    result.candidates.clear();
+  }
+  for (const auto& points : level_points) local_fits.push_back(LocalFit(points, options.constant_tolerance, residual));
+  ChooseGlobalFit(all_points, result.max_amplitude_m, residual, options, result);
+  if (!result.fit.ok) result.warnings.push_back("too few points near the mode for a single-mode fit across levels");
+
+  // A(a) for the phase resonances: from the global fit, which sees every
+  // level (the amplitudes at which each is pinned down by points on both
+  // sides of a resonance); without one, from the most linear level's local fit.
+  int linear_level = -1;
+  for (std::size_t l = 0; l < levels.size(); ++l) {
+    if (!local_fits[l].ok) continue;
+    if (linear_level < 0 || local_fits[l].reference_amplitude_m < local_fits[linear_level].reference_amplitude_m)
+      linear_level = static_cast<int>(l);
+  }
+  for (std::size_t l = 0; l < levels.size(); ++l) {
+    LevelResonance r;
+    r.label = levels[l].label;
+    r.num_points = data[l].size();
+    r.num_fit_points = static_cast<int>(level_points[l].size());
+    r.control = DetectControl(data[l], options.constant_tolerance);
+    const SingleModeFit& modal_fit = result.fit.ok ? result.fit : linear_level >= 0 ? local_fits[linear_level] : local_fits[l];
+    FindQuadrature(data[l], modal_fit, local_fits[l], options, r);
+    FindPeakAndHalfPower(data[l], r);
+    EvaluateLocalFit(local_fits[l], r);
+    if (!r.quadrature_note.empty()) result.warnings.push_back("level '" + r.label + "': " + r.quadrature_note);
+    if (result.fit.ok) Regenerate(result.fit, data[l], options.fit_window, result.max_amplitude_m, r);
+    result.levels.push_back(std::move(r));
+  }
+  if (!result.fit.ok) return result;
+
+  // Damping trend: ζω_n linear in a, the frequency and A(a) as chosen.
+  const SingleModeFit linear = FitSingleModeChoosingExponents(
+      all_points, {.frequency_degree = result.fit.frequency_degree,
+                   .damping_degree = 1,
+                   .frequency_exponent = result.fit.frequency_exponent,
+                   .amplitude_dependent_modal_constant = result.fit.amplitude_dependent_modal_constant,
+                   .residual_receptance_m_N = result.fit.residual_receptance_m_N,
+                   .reference_amplitude_m = result.max_amplitude_m});
+  if (linear.ok) {
+    DampingTrend& trend = result.damping_trend;
+    trend.amplitude_m = 0.5 * (result.min_amplitude_m + result.max_amplitude_m);
+    trend.slope_per_m = linear.DampingSlope_per_m(trend.amplitude_m);
+    trend.slope_std_per_m = linear.DampingSlopeStd_per_m(trend.amplitude_m);
+    trend.z = trend.slope_per_m / trend.slope_std_per_m;
+    trend.verdict = trend.z > options.trend_significance    ? "rises"
+                    : trend.z < -options.trend_significance ? "falls"
+                                                            : "no significant trend";
+  }
+  return result;
+}
+
+}  // namespace beamid::solver

@@ -1,0 +1,321 @@
+#include "solver/backbone/single_mode_fit.h"
+
+#include <cmath>
+#include <functional>
+#include <limits>
+
+#include <Eigen/Cholesky>
+#include <Eigen/QR>
+#include <fmt/core.h>
+
+namespace beamid::solver {
+namespace {
+
+// Central-difference gradient of a scalar function of the parameters.
+Eigen::VectorXd Gradient(const std::function<double(const Eigen::VectorXd&)>& f, const Eigen::VectorXd& x) {
+  Eigen::VectorXd g(x.size());
+  for (int j = 0; j < x.size(); ++j) {
+    const double h = 1e-6 * std::max(std::abs(x[j]), 1e-6 * x.cwiseAbs().maxCoeff() + 1e-300);
+    Eigen::VectorXd plus = x, minus = x;
+    plus[j] += h;
+    minus[j] -= h;
+    g[j] = (f(plus) - f(minus)) / (2 * h);
+  }
+  return g;
+}
+
+// AICc with the noise scale left free (see the header).
+double Aicc(double chi_square, int n, int k) {
+  return n * std::log(std::max(chi_square, 1e-300) / n) + 2.0 * k + 2.0 * k * (k + 1) / std::max(1, n - k - 1);
+}
+
+double Std(const Eigen::VectorXd& gradient, const Eigen::MatrixXd& covariance) {
+  return std::sqrt(std::max(0.0, gradient.dot(covariance * gradient)));
+}
+
+// 1, s, …, s^degree; or 1, s^exponent when exponent > 0.
+Eigen::VectorXd Terms(double s, int degree, double exponent) {
+  if (exponent > 0) return Eigen::Vector2d(1.0, std::pow(s, exponent));
+  Eigen::VectorXd b(degree + 1);
+  b[0] = 1.0;
+  for (int j = 1; j <= degree; ++j) b[j] = b[j - 1] * s;
+  return b;
+}
+
+}  // namespace
+
+double SingleModeFit::ReducedChiSquare() const {
+  const int dof = num_residuals - NumParameters();
+  return dof > 0 ? chi_square / dof : std::numeric_limits<double>::quiet_NaN();
+}
+
+Eigen::VectorXd SingleModeFit::FrequencyBasis(double a) const {
+  return Terms(a / reference_amplitude_m, frequency_degree, frequency_exponent);
+}
+
+Eigen::VectorXd SingleModeFit::DampingBasis(double a) const {
+  return Terms(a / reference_amplitude_m, damping_degree, damping_exponent);
+}
+
+namespace {
+// A(a), ω_n and ζ from a parameter vector at amplitude `a`.
+struct ModalValues {
+  std::complex<double> modal_constant;
+  double omega_n, zeta;
+};
+ModalValues Evaluate(const SingleModeFit& fit, const Eigen::VectorXd& x, double a) {
+  const int na = fit.NumModalConstantTerms();
+  const auto bp = fit.FrequencyBasis(a), bq = fit.DampingBasis(a);
+  const double s = a / fit.reference_amplitude_m;
+  std::complex<double> modal_constant(x[0], x[1]);
+  if (na == 3) modal_constant += x[2] * s * s;
+  const double omega_n_sq = x.segment(na, bp.size()).dot(bp);
+  const double omega_n = std::sqrt(std::max(omega_n_sq, 0.0));
+  const double zeta_omega = x.segment(na + bp.size(), bq.size()).dot(bq);
+  return {modal_constant, omega_n, omega_n > 0 ? zeta_omega / omega_n : std::numeric_limits<double>::quiet_NaN()};
+}
+
+}  // namespace
+
+std::complex<double> SingleModeFit::ModalConstantAt(double a) const { return Evaluate(*this, parameters, a).modal_constant; }
+
+Eigen::Matrix2d SingleModeFit::ModalConstantCovariance(double a) const {
+  Eigen::MatrixXd gradients(2, parameters.size());
+  gradients.row(0) = Gradient([&](const Eigen::VectorXd& x) { return Evaluate(*this, x, a).modal_constant.real(); }, parameters);
+  gradients.row(1) = Gradient([&](const Eigen::VectorXd& x) { return Evaluate(*this, x, a).modal_constant.imag(); }, parameters);
+  return gradients * covariance * gradients.transpose();
+}
+
+double SingleModeFit::NaturalFrequency_rad_s(double a) const { return Evaluate(*this, parameters, a).omega_n; }
+
+double SingleModeFit::DampingRatio(double a) const { return Evaluate(*this, parameters, a).zeta; }
+
+Eigen::VectorXd SingleModeFit::NaturalFrequencyGradient(double a) const {
+  return Gradient([&](const Eigen::VectorXd& x) { return Evaluate(*this, x, a).omega_n; }, parameters);
+}
+
+Eigen::VectorXd SingleModeFit::DampingGradient(double a) const {
+  return Gradient([&](const Eigen::VectorXd& x) { return Evaluate(*this, x, a).zeta; }, parameters);
+}
+
+double SingleModeFit::NaturalFrequencyStd_rad_s(double a) const {
+  return Std(NaturalFrequencyGradient(a), covariance);
+}
+
+double SingleModeFit::DampingRatioStd(double a) const { return Std(DampingGradient(a), covariance); }
+
+namespace {
+// dζ/da by a central difference in amplitude.
+double Slope(const SingleModeFit& fit, const Eigen::VectorXd& x, double a) {
+  const double h = 1e-4 * fit.reference_amplitude_m;
+  return (Evaluate(fit, x, a + h).zeta - Evaluate(fit, x, a - h).zeta) / (2 * h);
+}
+
+std::string FormOf(int degree, double exponent) {
+  return exponent > 0 ? fmt::format("power {:g}", exponent) : fmt::format("polynomial {}", degree);
+}
+}  // namespace
+
+double SingleModeFit::DampingSlope_per_m(double a) const { return Slope(*this, parameters, a); }
+
+double SingleModeFit::DampingSlopeStd_per_m(double a) const {
+  return Std(Gradient([&](const Eigen::VectorXd& x) { return Slope(*this, x, a); }, parameters), covariance);
+}
+
+std::string SingleModeFit::FormName() const {
+  return "wn^2: " + FormOf(frequency_degree, frequency_exponent) + ", zeta*wn: " + FormOf(damping_degree, damping_exponent) +
+         (amplitude_dependent_modal_constant ? ", A(a) = A0 + A2*s^2" : ", A constant");
+}
+
+std::complex<double> SingleModeFit::DynamicTerm(double a, double omega) const {
+  const int na = NumModalConstantTerms();
+  const auto bp = FrequencyBasis(a), bq = DampingBasis(a);
+  const double omega_n_sq = parameters.segment(na, bp.size()).dot(bp);
+  const double zeta_omega = parameters.segment(na + bp.size(), bq.size()).dot(bq);
+  return {omega_n_sq - omega * omega, 2 * omega * zeta_omega};
+}
+
+std::vector<SingleModePoint> WithoutResidual(const std::vector<SingleModePoint>& points, double residual) {
+  std::vector<SingleModePoint> out = points;
+  if (residual == 0.0) return out;
+  for (auto& p : out) {
+    // X_d/F − R: the mode's own part; G' = 1/(1/G − R), dG'/dG = (G'/G)².
+    const std::complex<double> g = p.inverse_receptance_N_m;
+    const std::complex<double> modal = 1.0 / (1.0 / g - residual);
+    const std::complex<double> d = (modal / g) * (modal / g);
+    Eigen::Matrix2d jacobian;
+    jacobian << d.real(), -d.imag(), d.imag(), d.real();
+    p.inverse_receptance_N_m = modal;
+    p.inverse_receptance_covariance = jacobian * p.inverse_receptance_covariance * jacobian.transpose();
+    p.amplitude_m *= std::abs(g / modal);
+  }
+  return out;
+}
+
+SingleModeFit FitSingleMode(const std::vector<SingleModePoint>& measured_points, const SingleModeFitOptions& options) {
+  const std::vector<SingleModePoint> points = WithoutResidual(measured_points, options.residual_receptance_m_N);
+  SingleModeFit fit;
+  fit.residual_receptance_m_N = options.residual_receptance_m_N;
+  fit.num_searched_parameters = options.residual_receptance_m_N != 0.0 ? 1 : 0;
+  fit.frequency_degree = options.frequency_exponent > 0 ? 1 : options.frequency_degree;
+  fit.damping_degree = options.damping_exponent > 0 ? 1 : options.damping_degree;
+  fit.frequency_exponent = options.frequency_exponent;
+  fit.damping_exponent = options.damping_exponent;
+  fit.amplitude_dependent_modal_constant = options.amplitude_dependent_modal_constant;
+  fit.reference_amplitude_m = options.reference_amplitude_m;
+  const int na = fit.NumModalConstantTerms();
+  const int np = static_cast<int>(fit.FrequencyBasis(1.0).size()), nq = static_cast<int>(fit.DampingBasis(1.0).size());
+  const int k = na + np + nq;
+  const int n = 2 * static_cast<int>(points.size());
+  fit.num_residuals = n;
+  fit.parameters = Eigen::VectorXd::Zero(k);
+  fit.covariance = Eigen::MatrixXd::Zero(k, k);
+  if (n < k + 2) return fit;
+
+  // A·G = D with A = A_r + i·A_i (+ A_2·s²), per point:
+  //   real: [Re G, −Im G, s²·Re G, −b_p, 0] x = −ω²;  imaginary: [Im G, Re G, s²·Im G, 0, −2ω b_q] x = 0.
+  Eigen::MatrixXd design = Eigen::MatrixXd::Zero(n, k);
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
+  std::vector<Eigen::Matrix2d> g_cov(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const auto& p = points[i];
+    const std::complex<double> g = p.inverse_receptance_N_m;
+    const double s = p.amplitude_m / fit.reference_amplitude_m;
+    design.block(2 * i, 0, 2, 2) << g.real(), -g.imag(), g.imag(), g.real();
+    if (na == 3) design.block(2 * i, 2, 2, 1) << s * s * g.real(), s * s * g.imag();
+    design.block(2 * i, na, 1, np) = -fit.FrequencyBasis(p.amplitude_m).transpose();
+    rhs[2 * i] = -p.omega_rad_s * p.omega_rad_s;
+    design.block(2 * i + 1, na + np, 1, nq) = -2 * p.omega_rad_s * fit.DampingBasis(p.amplitude_m).transpose();
+    g_cov[i] = p.inverse_receptance_covariance;
+    if (g_cov[i].trace() <= 0)
+      g_cov[i] = Eigen::Matrix2d::Identity() * std::pow(options.default_relative_std * std::abs(g), 2);
+  }
+  // Column scaling for conditioning; A starts from the unweighted solution.
+  const Eigen::VectorXd scale = design.colwise().norm().cwiseMax(1e-300).cwiseInverse();
+  auto solve = [&](const Eigen::MatrixXd& a, const Eigen::VectorXd& b) -> Eigen::VectorXd {
+    return scale.asDiagonal() * Eigen::ColPivHouseholderQR<Eigen::MatrixXd>(a * scale.asDiagonal()).solve(b);
+  };
+  Eigen::VectorXd x = solve(design, rhs);
+  Eigen::MatrixXd whitened_design = design;
+  Eigen::VectorXd whitened_rhs = rhs;
+  for (int iteration = 0; iteration <= options.reweighting_iterations; ++iteration) {
+    fit.parameters = x;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      // Cov(A·G) = |A|²·Cov(G) for the rotation by A (to first order, the noise being isotropic-ish).
+      const std::complex<double> modal_constant = fit.ModalConstantAt(points[i].amplitude_m);
+      Eigen::Matrix2d rotation;
+      rotation << modal_constant.real(), -modal_constant.imag(), modal_constant.imag(), modal_constant.real();
+      Eigen::Matrix2d cov = rotation * g_cov[i] * rotation.transpose();
+      cov(0, 0) += std::pow(2 * points[i].omega_rad_s * points[i].omega_std_rad_s, 2);
+      // Inverse of the Cholesky factor L of the pair's covariance, by hand for 2×2.
+      const double l11 = std::sqrt(cov(0, 0)), l21 = cov(1, 0) / l11;
+      const double l22 = std::sqrt(std::max(cov(1, 1) - l21 * l21, 1e-30 * cov(1, 1)));
+      Eigen::Matrix2d l_inverse;
+      l_inverse << 1 / l11, 0, -l21 / (l11 * l22), 1 / l22;
+      whitened_design.middleRows(2 * i, 2) = l_inverse * design.middleRows(2 * i, 2);
+      const double r0 = rhs[2 * i], r1 = rhs[2 * i + 1];
+      whitened_rhs[2 * i] = l_inverse(0, 0) * r0;
+      whitened_rhs[2 * i + 1] = l_inverse(1, 0) * r0 + l_inverse(1, 1) * r1;
+    }
+    x = solve(whitened_design, whitened_rhs);
+  }
+  fit.parameters = x;
+  fit.chi_square = (whitened_design * x - whitened_rhs).squaredNorm();
+  const Eigen::MatrixXd scaled = whitened_design * scale.asDiagonal();
+  const Eigen::MatrixXd normal_inverse = (scaled.transpose() * scaled).ldlt().solve(Eigen::MatrixXd::Identity(k, k));
+  fit.covariance = scale.asDiagonal() * normal_inverse * scale.asDiagonal();
+  fit.covariance *= std::max(1.0, fit.ReducedChiSquare());
+  fit.aicc = Aicc(fit.chi_square, n, fit.NumParameters());
+  const Eigen::VectorXd unweighted = design * x - rhs;
+  double sum_sq = 0.0;
+  for (int i = 0; i < n; i += 2) sum_sq += unweighted[i] * unweighted[i];
+  fit.backbone_residual_rms_rad2_s2 = std::sqrt(sum_sq / (n / 2));
+  // Terms the data cannot tell apart (a level held at one amplitude makes
+  // s, s², … copies of 1): no fit.
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(scaled);
+  qr.setThreshold(1e-10);
+  fit.ok = std::isfinite(fit.chi_square) && fit.parameters.allFinite() && qr.rank() == k;
+  return fit;
+}
+
+std::vector<double> PowerLawExponentGrid() {
+  std::vector<double> grid;
+  for (int k = 1; k <= 16; ++k) grid.push_back(0.25 * k);  // 0.25 … 4
+  return grid;
+}
+
+SingleModeFit FitSingleModeChoosingExponents(const std::vector<SingleModePoint>& points,
+                                             const SingleModeFitOptions& options) {
+  const std::vector<double> none = {0.0};
+  const std::vector<double> grid = PowerLawExponentGrid();
+  SingleModeFit best;
+  for (double alpha : options.frequency_exponent > 0 ? grid : none)
+    for (double beta : options.damping_exponent > 0 ? grid : none) {
+      SingleModeFitOptions o = options;
+      o.frequency_exponent = alpha;
+      o.damping_exponent = beta;
+      SingleModeFit fit = FitSingleMode(points, o);
+      if (!fit.ok) continue;
+      if (!best.ok || fit.chi_square < best.chi_square) best = std::move(fit);
+    }
+  if (!best.ok) return best;
+  // Count the chosen exponents as parameters: redo the scaling and the AICc.
+  best.num_searched_parameters += (options.frequency_exponent > 0) + (options.damping_exponent > 0);
+  const double reduced = best.ReducedChiSquare();
+  if (reduced > 1) {
+    const int searched_before = best.residual_receptance_m_N != 0.0 ? 1 : 0;
+    const int dof_before = best.num_residuals - static_cast<int>(best.parameters.size()) - searched_before;
+    best.covariance *= reduced / std::max(1.0, best.chi_square / dof_before);
+  }
+  best.aicc = Aicc(best.chi_square, best.num_residuals, best.NumParameters());
+  best.ok = best.num_residuals > best.NumParameters() + 1;
+  return best;
+}
+
+}  // namespace beamid::solver
+
+namespace beamid::solver {
+
+double FitResidualReceptance(const std::vector<SingleModePoint>& points, const SingleModeFitOptions& options) {
+  double peak = 0.0;
+  for (const auto& p : points) peak = std::max(peak, 1.0 / std::abs(p.inverse_receptance_N_m));
+  auto chi_square = [&](double residual) {
+    SingleModeFitOptions o = options;
+    o.residual_receptance_m_N = residual;
+    const SingleModeFit fit = FitSingleMode(points, o);
+    return fit.ok ? fit.chi_square : std::numeric_limits<double>::infinity();
+  };
+  // A coarse scan (χ² need not be convex in R), then golden section in the best cell.
+  constexpr int kScan = 40;
+  constexpr double kRange = 0.02;  // |R| up to 2 % of the peak receptance
+  double best = 0.0, best_chi = chi_square(0.0);
+  const double step = 2 * kRange * peak / kScan;
+  for (int k = 0; k <= kScan; ++k) {
+    const double r = -kRange * peak + k * step;
+    const double c = chi_square(r);
+    if (c < best_chi) best_chi = c, best = r;
+  }
+  double lo = best - step, hi = best + step;
+  const double ratio = (std::sqrt(5.0) - 1) / 2;
+  double x1 = hi - ratio * (hi - lo), x2 = lo + ratio * (hi - lo);
+  double c1 = chi_square(x1), c2 = chi_square(x2);
+  for (int iteration = 0; iteration < 40; ++iteration) {
+    if (c1 < c2) {
+      hi = x2, x2 = x1, c2 = c1;
+      x1 = hi - ratio * (hi - lo), c1 = chi_square(x1);
+    } else {
+      lo = x1, x1 = x2, c1 = c2;
+      x2 = lo + ratio * (hi - lo), c2 = chi_square(x2);
+    }
+  }
+  double r = 0.5 * (lo + hi);
+  if (chi_square(r) > best_chi) r = best;
+  // Only when the data ask for it: R must lower the AICc (one parameter more).
+  SingleModeFitOptions with = options, without = options;
+  with.residual_receptance_m_N = r;
+  without.residual_receptance_m_N = 0.0;
+  const SingleModeFit fit_with = FitSingleMode(points, with), fit_without = FitSingleMode(points, without);
+  return fit_with.ok && (!fit_without.ok || fit_with.aicc < fit_without.aicc) ? r : 0.0;
+}
+
+}  // namespace beamid::solver

@@ -1,0 +1,289 @@
+#include "solver/diagnosis/candidate_physics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+
+namespace beamid::solver {
+namespace {
+
+// Harmonics of a balance beyond the base's: 2H + 1, at least 9.
+int ExtendedHarmonics(const BaseFitContext& context) { return std::max(2 * context.model_harmonics + 1, 9); }
+
+// exp(−((x − target)/width)²): 1 at the target, small a few widths away; 0 for NaN.
+double Near(double x, double target, double width) {
+  if (!std::isfinite(x)) return 0.0;
+  const double u = (x - target) / width;
+  return std::exp(-u * u);
+}
+
+double Mean(std::initializer_list<double> values) {
+  double sum = 0.0;
+  for (double v : values) sum += v;
+  return sum / static_cast<double>(values.size());
+}
+
+// Quantile q of the steps' support rotation amplitudes.
+double RotationQuantile(const BaseFitContext& context, double q) {
+  std::vector<double> a = context.theta_amplitude_rad;
+  if (a.empty()) return 1e-3;
+  std::sort(a.begin(), a.end());
+  return a[std::min(a.size() - 1, static_cast<std::size_t>(q * (a.size() - 1) + 0.5))];
+}
+
+// Appends the extra linear parameters to a copy of the base and builds the
+// starts: the base optimum, the extras at each of `extra_starts`.
+CandidateExtension WithLinear(const ModelStructure& base, std::vector<LinearParameter> extras,
+                              const std::vector<std::vector<double>>& extra_starts, const BaseFitContext& context) {
+  CandidateExtension extension;
+  extension.structure = base;
+  for (auto& p : extras) {
+    extension.extra_parameters.push_back(p.name);
+    extension.structure.linear.push_back(std::move(p));
+  }
+  for (const auto& extra : extra_starts) {
+    std::vector<double> start = base.Values();
+    start.insert(start.end(), extra.begin(), extra.end());
+    extension.starts.push_back(start);
+  }
+  extension.model_harmonics = context.model_harmonics;
+  extension.test_dof = static_cast<int>(extension.extra_parameters.size());
+  return extension;
+}
+
+// k1 of the base's polynomial law (at least 1 N·m/rad: a scale for bounds
+// and starts); `name` extends only that law.
+double PolynomialK1(const ModelStructure& base, const std::string& name) {
+  const auto* polynomial = dynamic_cast<const hb::PolynomialSupportLaw*>(base.law.get());
+  if (!polynomial) throw std::invalid_argument(name + " extends the polynomial support law");
+  return std::max(polynomial->coefficients().k1_Nm_rad, 1.0);
+}
+
+// The base optimum's law parameters (the polynomial's).
+std::vector<double> BaseLawValues(const ModelStructure& base) {
+  const std::vector<double> values = base.Values();
+  return {values.begin(), values.begin() + static_cast<std::ptrdiff_t>(base.law_bounds.size())};
+}
+
+// The base's law in parallel with `added` (its parameters after the base
+// law's, with `bounds`), on a copy of the base. `law_starts`: the law
+// parameters of each start; the base's other parameters keep their optimum.
+CandidateExtension InParallelWithBaseLaw(const ModelStructure& base, std::unique_ptr<hb::SupportLaw> added,
+                                         const std::vector<ParameterBounds>& bounds,
+                                         std::vector<std::string> extra_parameters,
+                                         const std::vector<std::vector<double>>& law_starts) {
+  CandidateExtension extension;
+  extension.structure = base;
+  auto composite = std::make_unique<hb::CompositeSupportLaw>();
+  composite->Add(base.law->Clone());
+  composite->Add(std::move(added));
+  extension.structure.law = std::move(composite);
+  extension.structure.law_bounds.insert(extension.structure.law_bounds.end(), bounds.begin(), bounds.end());
+  extension.extra_parameters = std::move(extra_parameters);
+  const std::vector<double> base_values = base.Values();
+  for (std::vector<double> start : law_starts) {
+    start.insert(start.end(), base_values.begin() + static_cast<std::ptrdiff_t>(base.law_bounds.size()),
+                 base_values.end());
+    extension.starts.push_back(std::move(start));
+  }
+  extension.test_dof = static_cast<int>(extension.extra_parameters.size());
+  return extension;
+}
+
+// A stiffness-like linear error: in phase, the misfit scales with the
+// response (growth exponent 1), mostly on the fundamental.
+double LinearStiffnessSignature(const MisfitLocation& l) {
+  if (!l.significant) return 0.0;
+  return Mean({l.in_phase_fraction, Near(l.level_growth_exponent, 1.0, 0.4), l.fundamental_fraction,
+               1.0 - l.even_harmonic_fraction});
+}
+
+}  // namespace
+
+CandidatePhysics SupportFriction() {
+  return {
+      .name = "support_friction",
+      .description = "friction at the support: a Jenkins element (spring in series with a Coulomb slider) in parallel "
+                     "with the contact's spring and damper; it softens and damps more as the amplitude grows",
+      .extend =
+          [](const ModelStructure& base, const BaseFitContext& context) {
+            // The base's k1 is shared between the spring and the Jenkins element
+            // (equal small-amplitude stiffness); the slider slips at a rotation
+            // the test reaches.
+            const double k1 = PolynomialK1(base, "support_friction");
+            std::vector<std::vector<double>> starts;
+            for (const auto& [share, quantile] : std::vector<std::pair<double, double>>{
+                     {0.3, 0.5}, {0.3, 0.9}, {0.6, 0.25}, {0.6, 0.75}}) {
+              std::vector<double> law = BaseLawValues(base);
+              law[0] = (1.0 - share) * k1;
+              const double k_t = share * k1;
+              law.push_back(k_t);
+              law.push_back(k_t * RotationQuantile(context, quantile));
+              starts.push_back(law);
+            }
+            CandidateExtension extension = InParallelWithBaseLaw(
+                base, std::make_unique<hb::JenkinsSupportLaw>(hb::JenkinsSupportLaw::Parameters_{1.0, 1.0}),
+                {{.lower = 1e-4 * k1, .upper = 100.0 * k1, .typical = k1}, {.lower = 1e-7, .upper = 1e3, .typical = 0.1}},
+                {"jenkins_stiffness", "jenkins_slip_moment"}, starts);
+            extension.model_harmonics = context.model_harmonics;
+            return extension;
+          },
+      .signature =
+          [](const MisfitLocation& l) {
+            if (!l.significant) return 0.0;
+            return Mean({1.0 - l.in_phase_fraction, l.near_resonance_fraction,
+                         std::isfinite(l.level_growth_exponent) && l.level_growth_exponent > 1.2 ? 1.0 : 0.0,
+                         l.loops.dissipation_not_viscous || l.loops.hysteretic_shape ? 1.0 : 0.0});
+          },
+  };
+}
+
+CandidatePhysics ClampCompliance() {
+  return {
+      .name = "clamp_compliance",
+      .description = "a clamp that is not rigid: a rotational spring at x = 0 (its compliance 1/k_clamp)",
+      .extend =
+          [](const ModelStructure& base, const BaseFitContext& context) {
+            LinearParameter compliance{
+                .name = "clamp_compliance",
+                .unit = "rad/(N*m)",
+                .initial = 0.0,
+                .bounds = {.lower = 0.0, .upper = 1e-2, .typical = 1e-4},
+                .apply = [](hb::LinearBeamModel& model, double value) {
+                  model.attachments.clamp_rotational_stiffness_Nm_rad =
+                      value > 0.0 ? 1.0 / value : hb::LinearAttachments::kRigid;
+                }};
+            return WithLinear(base, {compliance}, {{1e-6}, {3e-5}}, context);
+          },
+      .signature = LinearStiffnessSignature,
+  };
+}
+
+CandidatePhysics AddedMass() {
+  return {
+      .name = "added_mass",
+      .description = "a mass on the beam that the campaign does not report (a cable clamp, a sensor or the shaker's "
+                     "moving part heavier than stated), of unknown size and position",
+      .extend =
+          [](const ModelStructure& base, const BaseFitContext& context) {
+            const double length = context.data->beam.length_m;
+            const double force_at = context.data->force_position_m;
+            // The mass is written first with a placeholder position that the
+            // position parameter then sets (the two parameters describe one mass).
+            LinearParameter mass{.name = "added_mass",
+                                 .unit = "kg",
+                                 .initial = 0.0,
+                                 .bounds = {.lower = 0.0, .upper = 1.0, .typical = 0.01},
+                                 .apply = [](hb::LinearBeamModel& model, double value) {
+                                   model.attachments.point_masses.push_back({-1.0, std::max(value, 0.0)});
+                                 }};
+            LinearParameter position{
+                .name = "added_mass_position",
+                .unit = "m",
+                .initial = 0.5 * length,
+                .bounds = {.lower = 0.03 * length, .upper = 0.97 * length, .typical = 0.5 * length},
+                .apply = [force_at](hb::LinearBeamModel& model, double value) {
+                  for (auto& m : model.attachments.point_masses)
+                    if (m.position_m < 0.0) {
+                      // Within a millimetre of the force node the mass sits on it:
+                      // a sliver of beam between the two would spoil the conditioning.
+                      m.position_m = std::abs(value - force_at) < 1e-3 ? force_at : value;
+                      return;
+                    }
+                }};
+            return WithLinear(base, {mass, position},
+                              {{0.005, 0.25 * length}, {0.005, 0.5 * length}, {0.005, 0.75 * length}}, context);
+          },
+      .signature = LinearStiffnessSignature,
+  };
+}
+
+CandidatePhysics ModulusError() {
+  return {
+      .name = "modulus_error",
+      .description = "a bending stiffness EI different from the nominal one (Young's modulus or thickness)",
+      .extend = [](const ModelStructure& base,
+                   const BaseFitContext& context) { return WithLinear(base, {BendingStiffnessScale()}, {{1.0}}, context); },
+      .signature = LinearStiffnessSignature,
+  };
+}
+
+CandidatePhysics SupportAsymmetry() {
+  return {
+      .name = "support_asymmetry",
+      .description = "a support stiffer for one sense of rotation than for the other (one-sided stiffness k_a·max(θ, 0))",
+      .extend =
+          [](const ModelStructure& base, const BaseFitContext& context) {
+            const double k1 = PolynomialK1(base, "support_asymmetry");
+            std::vector<std::vector<double>> starts;
+            for (double share : {0.1, -0.1}) {
+              std::vector<double> law = BaseLawValues(base);
+              // Keep the small-amplitude mean stiffness k1 + k_a/2.
+              law[0] = k1 * (1.0 - 0.5 * share);
+              law.push_back(share * k1);
+              starts.push_back(law);
+            }
+            CandidateExtension extension =
+                InParallelWithBaseLaw(base, std::make_unique<hb::OneSidedStiffnessLaw>(0.0),
+                                      {{.lower = -k1, .upper = 10.0 * k1, .typical = k1}}, {"one_sided_stiffness"}, starts);
+            // The kink's harmonics decay only like 1/k²: balanced with the
+            // base's five, k_a came out 1.7σ high (0.9 %) on every one of 8
+            // noise realisations of the proof campaign; with 9 or 15, within
+            // 0.1σ of the truth. As many as harmonic_truncation balances, so
+            // that the diagnosis tests k_a against that refit (the base at
+            // these harmonics), not against the truncated base.
+            extension.model_harmonics = ExtendedHarmonics(context);
+            return extension;
+          },
+      .signature =
+          [](const MisfitLocation& l) {
+            if (!l.significant) return 0.0;
+            return Mean({std::min(1.0, 2.0 * l.even_harmonic_fraction), l.loops.asymmetric ? 1.0 : 0.0});
+          },
+  };
+}
+
+CandidatePhysics HarmonicTruncation() {
+  return {
+      .name = "harmonic_truncation",
+      .description = "response content beyond the harmonics the model balances: the same support with more harmonics",
+      .extend =
+          [](const ModelStructure& base, const BaseFitContext& context) {
+            CandidateExtension extension;
+            extension.structure = base;
+            extension.starts = {base.Values()};
+            extension.model_harmonics = ExtendedHarmonics(context);
+            // No parameter of its own; tested as one (conservative).
+            extension.test_dof = 1;
+            return extension;
+          },
+      .signature =
+          [](const MisfitLocation& l) {
+            if (!l.significant) return 0.0;
+            const double higher = l.harmonic_excess_chi2.size() >= 3 ? [&] {
+              double total = 0.0, above = 0.0;
+              for (std::size_t k = 0; k < l.harmonic_excess_chi2.size(); ++k) {
+                total += l.harmonic_excess_chi2[k];
+                if (k >= 2) above += l.harmonic_excess_chi2[k];
+              }
+              return total > 0.0 ? above / total : 0.0;
+            }()
+                                                                     : 0.0;
+            return Mean({higher, l.beyond_fitted_fraction,
+                         std::isfinite(l.level_growth_exponent) && l.level_growth_exponent > 1.5 ? 1.0 : 0.0});
+          },
+  };
+}
+
+std::vector<CandidatePhysics> CandidateLibrary() {
+  return {SupportFriction(), ClampCompliance(), AddedMass(), ModulusError(), SupportAsymmetry(), HarmonicTruncation()};
+}
+
+std::vector<std::string> CandidateNames() {
+  std::vector<std::string> names = {"none"};
+  for (const auto& c : CandidateLibrary()) names.push_back(c.name);
+  return names;
+}
+
+}  // namespace beamid::solver

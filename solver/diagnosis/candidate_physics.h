@@ -1,0 +1,91 @@
+// Candidate physics: the effects a real test holds that the base model (the
+// polynomial support M = k1·θ + k2·θ² + k3·θ³ + c·θ̇ on the nominal beam with
+// its loss factor η) leaves out. Each candidate is a NESTED extension of the
+// base: its extra parameters at their base values (jenkins stiffness → 0,
+// clamp compliance 0, added mass 0, EI scale 1, one-sided stiffness 0, more
+// harmonics) give back the base model, so a likelihood-ratio test compares
+// the two:
+//     Λ = (χ²_base − χ²_candidate) / s²  ~  χ²(q)  under the base,
+// q the extra parameters, s² = max(1, χ²_candidate/dof) (quasi-likelihood:
+// the scatter is trusted only when it is worse than the stated uncertainties).
+//
+// Each candidate also states the signature it leaves in the base fit's
+// residuals (solver/misfit_location.h), as a score in [0, 1]: a ranking hint
+// before the refits, which decide.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "solver/estimation/fit_data.h"
+#include "solver/diagnosis/misfit_location.h"
+#include "solver/estimation/model_structure.h"
+
+namespace beamid::solver {
+
+// What a candidate may look at to extend the fitted base model.
+struct BaseFitContext {
+  const FitData* data = nullptr;
+  // Largest first-harmonic support rotation |Θ₁| of every step at the base fit [rad].
+  std::vector<double> theta_amplitude_rad;
+  int model_harmonics = 5;  // H of the base model
+};
+
+struct CandidateExtension {
+  ModelStructure structure;                 // base parameters first, then the extra ones
+  std::vector<std::string> extra_parameters;
+  // Starts of the refit (physical values, structure order): the base optimum
+  // with the extra parameters at one or more plausible sizes.
+  std::vector<std::vector<double>> starts;
+  // H of the refit. A candidate with parameters of its own balanced with
+  // more harmonics than the base is tested against the refit with no
+  // parameters of its own at the same H (HarmonicTruncation), when there is one.
+  int model_harmonics = 5;
+  // Extra degrees of freedom of the likelihood-ratio test (the parameter
+  // count; 1 for an extension with no parameter of its own, see
+  // HarmonicTruncation).
+  int test_dof = 0;
+};
+
+struct CandidatePhysics {
+  std::string name;         // one of the names of issue 7 (support_friction, …)
+  std::string description;  // what it is, in a test engineer's words
+  // Extends the base structure (its values are the base optimum).
+  std::function<CandidateExtension(const ModelStructure& base, const BaseFitContext& context)> extend;
+  // How well the located misfit matches the candidate's signature, 0..1.
+  std::function<double(const MisfitLocation& location)> signature;
+};
+
+// Friction at the support: a Jenkins element (spring k_t in series with a
+// Coulomb slider slipping at M_slip) in parallel with the polynomial; the
+// base's k1 is shared between the two at the start. Signature: quadrature
+// (dissipation) misfit near resonance that grows with level, a loop whose
+// equivalent damping changes with amplitude.
+CandidatePhysics SupportFriction();
+// A rotational spring at the clamp (x = 0), compliance 1/k_clamp from 0:
+// shifts the mode shapes (the sensors' amplitude ratios), in phase, at every level alike.
+CandidatePhysics ClampCompliance();
+// An unreported point mass (a cable clamp, a sensor or the shaker's moving
+// part heavier than stated) of unknown mass and position.
+CandidatePhysics AddedMass();
+// A bending stiffness EI different from the nominal one (modulus, thickness).
+CandidatePhysics ModulusError();
+// A support stiffer for one sense of rotation than for the other:
+// M_extra = k_a·max(θ, 0) (a contact whose patch grows when the beam rotates
+// into the rod). Even harmonics whose share does not grow with amplitude, which
+// k2·θ² cannot follow over several levels. Its kink has slowly decaying
+// harmonics: it is balanced with as many as HarmonicTruncation (2H + 1, at
+// least 9).
+CandidatePhysics SupportAsymmetry();
+// Content beyond the modelled harmonics: the same law with more harmonics in
+// the balance (2H + 1, at least 9; no new parameter).
+CandidatePhysics HarmonicTruncation();
+
+// All of the above, in the order of issue 7.
+std::vector<CandidatePhysics> CandidateLibrary();
+
+// Names accepted by diagnose: "none" and the library's.
+std::vector<std::string> CandidateNames();
+
+}  // namespace beamid::solver

@@ -1,0 +1,104 @@
+#include "solver/estimation/fit_data.h"
+
+#include "hb/errors.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+
+namespace beamid::solver {
+namespace {
+
+bool IsSignificant(const signal::HarmonicPhasor& h, double chi2_threshold) {
+  const Eigen::Vector2d x(h.value.real(), h.value.imag());
+  const Eigen::Matrix2d covariance = h.Covariance();
+  // A phasor without an uncertainty (noise-free data) is taken as it is.
+  if (!(covariance.trace() > 0.0)) return true;
+  return x.dot(covariance.ldlt().solve(x)) >= chi2_threshold;
+}
+
+}  // namespace
+
+
+FitData MakeFitData(const signal::Campaign& campaign, const signal::PhasorSet& phasors,
+                    const FitDataOptions& options) {
+  if (options.num_fit_harmonics < 1) throw std::invalid_argument("at least one harmonic must be fitted");
+  if (phasors.num_harmonics < options.num_fit_harmonics)
+    throw std::invalid_argument("the phasors hold " + std::to_string(phasors.num_harmonics) +
+                                " harmonics, the fit needs " + std::to_string(options.num_fit_harmonics) +
+                                " (re-extract with -H " + std::to_string(options.num_fit_harmonics) + ")");
+  FitData data;
+  data.beam = {.length_m = campaign.beam.length_m,
+               .width_m = campaign.beam.width_m,
+               .thickness_m = campaign.beam.thickness_m,
+               .youngs_modulus_Pa = campaign.beam.youngs_modulus_Pa,
+               .density_kg_m3 = campaign.beam.density_kg_m3};
+  data.force_position_m = campaign.excitation.position_m;
+  data.num_fit_harmonics = options.num_fit_harmonics;
+  for (const auto& sensor : campaign.sensors)
+    if (sensor.mass_kg && *sensor.mass_kg > 0.0)
+      data.sensor_masses.point_masses.push_back({sensor.position_m, *sensor.mass_kg});
+  std::vector<std::string> names = options.channels;
+  if (names.empty())
+    for (const auto& sensor : campaign.sensors) names.push_back(sensor.channel);
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (std::find(names.begin(), names.begin() + static_cast<std::ptrdiff_t>(i), names[i]) != names.begin() + static_cast<std::ptrdiff_t>(i))
+      // Fitted twice, a channel would count double and its σ shrink by √2.
+      throw InputError("channel '" + names[i] + "' is listed twice: list every channel once");
+  for (const auto& name : names) {
+    const auto it = std::find_if(campaign.sensors.begin(), campaign.sensors.end(),
+                                 [&](const signal::ChannelSpec& s) { return s.channel == name; });
+    if (it == campaign.sensors.end()) {
+      std::string known;
+      for (const auto& s : campaign.sensors) known += (known.empty() ? "" : ", ") + s.channel;
+      throw std::invalid_argument("channel '" + name + "' is not a sensor of the campaign (sensors: " + known + ")");
+    }
+    data.channels.push_back({it->channel, it->position_m, signal::DerivativeOrder(it->quantity)});
+  }
+
+  const int channels = static_cast<int>(data.channels.size());
+  const int k_max = options.num_fit_harmonics;
+  std::vector<double> largest(channels, 0.0);
+  for (const auto& step : phasors.steps)
+    for (int c = 0; c < channels; ++c)
+      if (const auto* p = step.Find(data.channels[c].channel)) largest[c] = std::max(largest[c], p->Harmonic(1).Amplitude());
+
+  for (const auto& step : phasors.steps) {
+    FitStep fit;
+    fit.level = step.level;
+    fit.file = step.file;
+    fit.omega_rad_s = step.Omega_rad_s();
+    fit.force_N = Eigen::VectorXcd::Zero(phasors.num_harmonics + 1);
+    for (const auto& h : step.force.harmonics) {
+      if (h.harmonic >= 2 && !IsSignificant(h, options.force_harmonic_chi2_threshold)) continue;
+      fit.force_N[h.harmonic] = h.value;
+    }
+    fit.measured.resize(channels, k_max);
+    fit.std_amplitude.resize(channels, k_max);
+    fit.whitening.resize(channels);
+    for (int c = 0; c < channels; ++c) {
+      const auto* p = step.Find(data.channels[c].channel);
+      if (!p) throw std::invalid_argument(step.file + ": no phasors for channel " + data.channels[c].channel);
+      const double floor = options.relative_uncertainty_floor * largest[c];
+      for (int k = 1; k <= k_max; ++k) {
+        const signal::HarmonicPhasor& h = p->Harmonic(k);
+        fit.measured(c, k - 1) = h.value;
+        Eigen::Matrix2d covariance = h.Covariance();
+        covariance.diagonal().array() += floor * floor;
+        fit.std_amplitude(c, k - 1) = std::sqrt(0.5 * covariance.trace());
+        const Eigen::Matrix2d lower = covariance.llt().matrixL();
+        fit.whitening[c].push_back(lower.inverse());
+      }
+    }
+    if (std::find(data.levels.begin(), data.levels.end(), fit.level) == data.levels.end())
+      data.levels.push_back(fit.level);
+    data.steps.push_back(std::move(fit));
+  }
+  if (data.steps.empty()) throw std::invalid_argument("the campaign has no steps to fit");
+  return data;
+}
+
+}  // namespace beamid::solver

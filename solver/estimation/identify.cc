@@ -1,0 +1,374 @@
+#include "solver/estimation/identify.h"
+
+#include "hb/errors.h"
+
+#include "solver/estimation/internal/ipopt_program.h"
+#include "solver/estimation/internal/worker_processes.h"
+#include "solver/estimation/multiple_scales_problem.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <random>
+#include <thread>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+
+namespace beamid::solver {
+namespace {
+
+// Latin hypercube in [0, 1)^dimensions.
+std::vector<std::vector<double>> LatinHypercube(int count, int dimensions, unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  std::vector<std::vector<double>> points(count, std::vector<double>(dimensions));
+  for (int d = 0; d < dimensions; ++d) {
+    std::vector<int> order(count);
+    for (int i = 0; i < count; ++i) order[i] = i;
+    std::shuffle(order.begin(), order.end(), random);
+    for (int i = 0; i < count; ++i) points[i][d] = (order[i] + uniform(random)) / count;
+  }
+  return points;
+}
+
+// The first start (the direct estimate, or the caller's own start) is the one
+// a single-start fit rests on, and from a factor 3 away it may need ~400
+// iterations; the further starts are exploratory and keep the cap, because a
+// start on another branch of the response stalls rather than converges.
+constexpr int kFirstStartMaxIterations = 1000;
+// Re-seeding an end point's states on the measured branch must lower the
+// misfit by more than this (relative) to be worth another run.
+constexpr double kRepairGain = 1e-6;
+constexpr int kMaxBranchRepairs = 3;
+
+// One Ipopt run from x0, which `problem` has just scaled at `scaled_at`.
+StartOutcome RunFrom(FitProblem& problem, const internal::IpoptOptions& ipopt, const Eigen::VectorXd& x0,
+                     const std::vector<double>& scaled_at, Eigen::VectorXd* x_out) {
+  const internal::IpoptOutcome outcome = internal::RunIpopt(problem, x0, ipopt);
+  *x_out = outcome.x;
+  return {.parameters = problem.Parameters(outcome.x),
+          .objective = problem.Objective(outcome.x),
+          .success = outcome.success,
+          .iterations = outcome.iterations,
+          .status = outcome.status_text,
+          .status_code = outcome.status,
+          .scaled_at = scaled_at};
+}
+
+// Where a start's states begin. Solved by harmonic balance at the start's
+// own parameters, they describe the data only as well as those parameters
+// do: far from the optimum they lie off the data, often on the other branch
+// of a fold, and Ipopt then wandered (measured: from a factor 3 away 1 of 9
+// starts converged, and to a local minimum with one step of the top level
+// on the wrong branch). Seeded instead at the rotation the sensors show (the
+// measured branch), the constraints are nearly linear in a polynomial law's
+// parameters and such a start converges in < 10 iterations. With other laws
+// (friction, one-sided stiffness) the seeded start may converge slowly or
+// not at all where the feasible one converges in ~20 iterations, so the
+// seeded start is a probe of kSeededProbeIterations; a start it does not
+// settle goes on from feasible states with the full budget, and, should that
+// fail too, seeded with the full budget.
+constexpr int kSeededProbeIterations = 25;
+
+StartOutcome RunStart(FitProblem& problem, const IdentifyOptions& options, const std::vector<double>& start,
+                      bool first, Eigen::VectorXd* x_out) {
+  internal::IpoptOptions ipopt = options.ipopt;
+  if (first) ipopt.max_iterations = std::max(ipopt.max_iterations, kFirstStartMaxIterations);
+  struct Attempt {
+    StartRoute route;
+    int max_iterations;
+  };
+  std::vector<Attempt> attempts = {{StartRoute::kFeasibleStates, ipopt.max_iterations}};
+  if (options.seed_states_from_measurements) {
+    attempts.insert(attempts.begin(),
+                    {StartRoute::kMeasuredStates, std::min(kSeededProbeIterations, ipopt.max_iterations)});
+    if (ipopt.max_iterations > kSeededProbeIterations)
+      attempts.push_back({StartRoute::kMeasuredStates, ipopt.max_iterations});
+  }
+  // Each route's starting point is made once (both set the same scales).
+  std::optional<Eigen::VectorXd> seeded, feasible;
+  StartOutcome best;
+  Eigen::VectorXd x;
+  int iterations = 0;
+  for (const Attempt& attempt : attempts) {
+    std::optional<Eigen::VectorXd>& x0 = attempt.route == StartRoute::kMeasuredStates ? seeded : feasible;
+    if (!x0)
+      x0 = attempt.route == StartRoute::kMeasuredStates ? problem.MeasuredStatePoint(start) : problem.FeasiblePoint(start);
+    internal::IpoptOptions limited = ipopt;
+    limited.max_iterations = attempt.max_iterations;
+    Eigen::VectorXd x_attempt;
+    StartOutcome outcome = RunFrom(problem, limited, *x0, start, &x_attempt);
+    outcome.route = attempt.route;
+    const bool better = iterations == 0 || (outcome.success && !best.success) ||
+                        (outcome.success == best.success && outcome.objective < best.objective);
+    iterations += outcome.iterations;
+    if (better) {
+      best = outcome;
+      x = x_attempt;
+    }
+    if (best.success) break;
+  }
+  best.start = start;
+  best.iterations = iterations;
+  *x_out = x;
+  return best;
+}
+
+// The best end point's states re-seeded on the measured branch at its own
+// parameters: if that lowers the misfit, a step had converged on the other
+// branch of a fold (a local minimum whose intervals would not hold the
+// answer), and the fit is re-run from there, up to kMaxBranchRepairs times.
+// Done for the winner only: the other starts do not change the result.
+void RepairBranches(FitProblem& problem, const IdentifyOptions& options, StartOutcome* best, Eigen::VectorXd* x) {
+  internal::IpoptOptions ipopt = options.ipopt;
+  ipopt.max_iterations = std::max(ipopt.max_iterations, kFirstStartMaxIterations);
+  for (int repair = 0; best->success && repair < kMaxBranchRepairs; ++repair) {
+    const std::vector<double> at = best->parameters;
+    const Eigen::VectorXd reseeded = problem.FeasiblePoint(at);
+    if (!(problem.Objective(reseeded) < best->objective * (1.0 - kRepairGain))) return;
+    Eigen::VectorXd x_repaired;
+    StartOutcome repaired = RunFrom(problem, ipopt, reseeded, at, &x_repaired);
+    if (!repaired.success || !(repaired.objective < best->objective)) return;
+    repaired.start = best->start;
+    repaired.route = best->route;
+    repaired.iterations += best->iterations;
+    repaired.branch_repairs = best->branch_repairs + 1;
+    *best = repaired;
+    *x = x_repaired;
+  }
+}
+
+// A start's outcome through a worker process's pipe of doubles: the one
+// place that knows the layout.
+std::vector<double> EncodeOutcome(const StartOutcome& outcome, const Eigen::VectorXd& x) {
+  std::vector<double> record = {outcome.objective,
+                                outcome.success ? 1.0 : 0.0,
+                                static_cast<double>(outcome.iterations),
+                                static_cast<double>(outcome.status_code),
+                                static_cast<double>(outcome.route),
+                                static_cast<double>(outcome.branch_repairs)};
+  record.insert(record.end(), outcome.parameters.begin(), outcome.parameters.end());
+  record.insert(record.end(), outcome.scaled_at.begin(), outcome.scaled_at.end());
+  record.insert(record.end(), x.data(), x.data() + x.size());
+  return record;
+}
+
+void DecodeOutcome(const std::vector<double>& record, int num_parameters, StartOutcome* outcome,
+                   Eigen::VectorXd* x) {
+  constexpr int kHead = 6;
+  outcome->objective = record[0];
+  outcome->success = record[1] != 0.0;
+  outcome->iterations = static_cast<int>(record[2]);
+  outcome->status_code = static_cast<int>(record[3]);
+  outcome->status = internal::IpoptStatusText(outcome->status_code);
+  outcome->route = static_cast<StartRoute>(static_cast<int>(record[4]));
+  outcome->branch_repairs = static_cast<int>(record[5]);
+  const auto parameters = record.begin() + kHead;
+  outcome->parameters.assign(parameters, parameters + num_parameters);
+  outcome->scaled_at.assign(parameters + num_parameters, parameters + 2 * num_parameters);
+  const int offset = kHead + 2 * num_parameters;
+  *x = Eigen::Map<const Eigen::VectorXd>(record.data() + offset, static_cast<Eigen::Index>(record.size()) - offset);
+}
+
+// Physical bounds on k2 and k3 from the data: over the rotations the test
+// reached, the nonlinear terms cannot change the support's stiffness by more
+// than kMaxStiffnessChange times the beam's own rotational stiffness EI/L (a
+// support that much stiffer acts as a clamp; the data could not tell more).
+// Without them a start far from the optimum can run off to |k3| ~ 1e11.
+ModelStructure WithDataBounds(const ModelStructure& structure, const hb::BeamProperties& beam, double max_rotation_rad) {
+  constexpr double kMaxStiffnessChange = 100.0;
+  ModelStructure bounded = structure;
+  if (!dynamic_cast<const hb::PolynomialSupportLaw*>(structure.law.get()) || !(max_rotation_rad > 0.0)) return bounded;
+  const double beam_stiffness_Nm_rad = beam.BendingStiffness_Nm2() / beam.length_m;
+  const double k2_limit = kMaxStiffnessChange * beam_stiffness_Nm_rad / max_rotation_rad;
+  const double k3_limit = k2_limit / max_rotation_rad;
+  const std::vector<double> values = structure.Values();
+  for (auto [j, limit] : {std::pair{1, k2_limit}, std::pair{2, k3_limit}}) {
+    ParameterBounds& b = bounded.law_bounds[j];
+    // Never exclude the caller's own start.
+    const double reach = std::max(limit, 2.0 * std::abs(values[j]));
+    b.lower = std::max(b.lower, -reach);
+    b.upper = std::min(b.upper, reach);
+  }
+  return bounded;
+}
+
+// Starts from the direct estimate of the polynomial law with any model; the
+// model is built on the structure with the data's bounds.
+using BoundedProblemFactory = std::function<std::unique_ptr<FitProblem>(const ModelStructure&)>;
+IdentifyResult IdentifyFromDirectEstimate(const BoundedProblemFactory& make_problem, const FitData& data,
+                                          const ModelStructure& structure, const IdentifyOptions& options,
+                                          const ProgressCallback& progress) {
+  // 1. Direct estimate from the reconstructed support (polynomial part).
+  if (progress) progress(0.0, "direct estimate");
+  hb::LinearBeamModel nominal{.beam = data.beam, .attachments = data.sensor_masses};
+  nominal.beam.loss_factor = options.model.beam_loss_factor;
+  const DirectEstimate direct = EstimatePolynomialDirectly(ReconstructSupport(data, structure.ApplyLinear(nominal)));
+  const ModelStructure bounded = WithDataBounds(structure, nominal.beam, direct.max_rotation_rad);
+  std::vector<double> first = structure.Values();
+  if (options.use_direct_estimate && dynamic_cast<const hb::PolynomialSupportLaw*>(structure.law.get())) {
+    first[0] = direct.k1_Nm_rad;
+    first[1] = direct.k2_Nm_rad2;
+    first[2] = direct.k3_Nm_rad3;
+    first[3] = direct.c_Nms_rad;
+    const auto bounds = bounded.Bounds();
+    for (int j = 0; j < 4; ++j) first[j] = std::clamp(first[j], bounds[j].lower, bounds[j].upper);
+    // A zero damping start sits on its bound, where the interior method
+    // cannot start: nudge it inside.
+    first[3] = std::max(first[3], 1e-3 * bounds[3].typical);
+  }
+  IdentifyResult result =
+      IdentifyWith([&] { return make_problem(bounded); }, bounded, first, options, progress);
+  result.direct = direct;
+  return result;
+}
+
+}  // namespace
+
+IdentifyResult Identify(const FitData& data, const ModelStructure& structure, const IdentifyOptions& options,
+                        const ProgressCallback& progress) {
+  return IdentifyFromDirectEstimate(
+      [&](const ModelStructure& bounded) {
+        return std::make_unique<IdentificationProblem>(data, bounded, options.model);
+      },
+      data, structure, options, progress);
+}
+
+IdentifyResult IdentifyMultipleScales(const FitData& data, const ModelStructure& structure,
+                                      const IdentifyOptions& options, const ProgressCallback& progress) {
+  const MultipleScalesProblemOptions model{.beam_loss_factor = options.model.beam_loss_factor};
+  // What the model cannot hold (sensor masses, harmonics above 3) is bad
+  // input: refuse it here, not as a failure of every start.
+  { const MultipleScalesProblem check(data, structure, model); }
+  return IdentifyFromDirectEstimate(
+      [&](const ModelStructure& bounded) { return std::make_unique<MultipleScalesProblem>(data, bounded, model); },
+      data, structure, options, progress);
+}
+
+IdentifyResult IdentifyWith(const ProblemFactory& make_problem, const ModelStructure& structure,
+                            const std::vector<double>& first, const IdentifyOptions& options,
+                            const ProgressCallback& progress) {
+  const auto started = std::chrono::steady_clock::now();
+  IdentifyResult result;
+  const ModelStructure& initial = structure;
+
+  // 2. Starts: the direct estimate, then a Latin hypercube around it.
+  std::vector<std::vector<double>> starts = {first};
+  const auto bounds = initial.Bounds();
+  const int num_parameters = initial.NumParameters();
+  for (const auto& u : LatinHypercube(options.num_starts, num_parameters, options.seed)) {
+    std::vector<double> start = first;
+    for (int j = 0; j < num_parameters; ++j) {
+      const double base = std::abs(first[j]) > 0 ? first[j] : bounds[j].typical;
+      const double spread = options.start_spread;
+      start[j] = bounds[j].lower >= 0.0 ? std::abs(base) * std::pow(spread, 2.0 * u[j] - 1.0)
+                                        : base + spread * std::abs(base) * (2.0 * u[j] - 1.0);
+      start[j] = std::clamp(start[j], bounds[j].lower, bounds[j].upper);
+    }
+    starts.push_back(start);
+  }
+  result.starts.resize(starts.size());
+  std::vector<Eigen::VectorXd> finals(starts.size());
+  const int workers = std::max(1, std::min<int>(options.num_threads > 0
+                                                    ? options.num_threads
+                                                    : static_cast<int>(std::thread::hardware_concurrency()),
+                                                static_cast<int>(starts.size())));
+  // Ipopt's MUMPS keeps global Fortran state and cannot run in two threads
+  // at once, so parallel starts run in worker processes.
+  internal::RunInWorkers(
+      static_cast<int>(starts.size()), workers,
+      [&](int i) {
+        const std::unique_ptr<FitProblem> problem = make_problem();
+        Eigen::VectorXd x;
+        const StartOutcome outcome = RunStart(*problem, options, starts[i], i == 0, &x);
+        return EncodeOutcome(outcome, x);
+      },
+      [&](int i, const std::vector<double>& record, const std::string& error, int done) {
+        StartOutcome& outcome = result.starts[i];
+        outcome.start = starts[i];
+        if (!error.empty())
+          outcome.status = "failed: " + error;
+        else
+          DecodeOutcome(record, num_parameters, &outcome, &finals[i]);
+        if (progress)
+          progress(0.05 + 0.9 * done / starts.size(),
+                   "start " + std::to_string(done) + "/" + std::to_string(starts.size()));
+      });
+
+  // 3. The best start, and how many reached it.
+  int best = -1;
+  for (int i = 0; i < static_cast<int>(starts.size()); ++i)
+    if (result.starts[i].success && (best < 0 || result.starts[i].objective < result.starts[best].objective)) best = i;
+  if (best < 0) {
+    std::string why = result.starts[0].status;
+    throw NumericalError("no start converged (first start: " + why + ")");
+  }
+  if (options.branch_repair) {
+    const std::unique_ptr<FitProblem> problem = make_problem();
+    RepairBranches(*problem, options, &result.starts[best], &finals[best]);
+  }
+  result.best_start = best;
+  result.x = finals[best];
+
+  // 4. Covariance in the reduced space.
+  const std::unique_ptr<FitProblem> problem = make_problem();
+  // The same parameters set the problem's internal scales as in the winning run.
+  problem->FeasiblePoint(result.starts[best].scaled_at);
+  const Eigen::VectorXd x = result.x;
+  const Eigen::VectorXd residuals = problem->WeightedResiduals(x);
+  const Eigen::MatrixXd j = problem->ReducedResidualJacobian(x);
+  result.chi_square = residuals.squaredNorm();
+  result.degrees_of_freedom = std::max(1, problem->num_residuals() - num_parameters);
+  result.reduced_chi_square = result.chi_square / result.degrees_of_freedom;
+  const double variance_scale = std::max(1.0, result.reduced_chi_square);
+  // Inverted scale-free (unit diagonal, the correlation's inverse): in
+  // physical units the diagonal spans 20 orders of magnitude (k3 in
+  // N·m/rad³ beside a clamp compliance in rad/(N·m)), beyond double
+  // precision, and rounding made eigenvalues of well-determined
+  // directions negative (intervals of ±1e143).
+  const Eigen::MatrixXd information = j.transpose() * j;
+  const Eigen::VectorXd scale = information.diagonal().cwiseSqrt().cwiseMax(1e-300);
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> normalised(scale.cwiseInverse().asDiagonal() * information *
+                                                            scale.cwiseInverse().asDiagonal());
+  const Eigen::VectorXd values = normalised.eigenvalues().cwiseMax(1e-300);
+  result.covariance = variance_scale * scale.cwiseInverse().asDiagonal() * normalised.eigenvectors() *
+                      values.cwiseInverse().asDiagonal() * normalised.eigenvectors().transpose() *
+                      scale.cwiseInverse().asDiagonal();
+  const Eigen::VectorXd std = result.covariance.diagonal().cwiseSqrt();
+  result.correlation = std.cwiseInverse().asDiagonal() * result.covariance * std.cwiseInverse().asDiagonal();
+  const auto names = initial.Names();
+  const auto units = initial.Units();
+  const auto& p = result.starts[best].parameters;
+  for (int k = 0; k < num_parameters; ++k) {
+    result.parameters.push_back({.name = names[k], .unit = units[k], .value = p[k], .std = std[k],
+                                 .lower_95 = p[k] - 1.96 * std[k], .upper_95 = p[k] + 1.96 * std[k]});
+    if (std[k] > std::max(std::abs(p[k]), 1e-12))
+      result.warnings.push_back(names[k] + " is not identifiable from these data: its standard uncertainty (" +
+                                std::to_string(std[k]) + ") exceeds its value");
+  }
+  // Collinearity on the scale-free information matrix.
+  if (normalised.eigenvalues().minCoeff() < 1e-8 * normalised.eigenvalues().maxCoeff())
+    result.warnings.push_back("the parameters are nearly collinear: some combination of them is not identifiable");
+  result.minima = SummarizeMinima(result.starts, bounds, result.degrees_of_freedom, options.decisive_chi_square_gap);
+  result.starts_at_best = result.minima.minima.front().num_starts;
+  if (!result.minima.decisive) {
+    const LocalMinimum& second = result.minima.minima[1];
+    std::string where;
+    for (int k = 0; k < num_parameters; ++k)
+      where += (k ? ", " : "") + names[k] + " = " + std::to_string(second.parameters[k]);
+    result.warnings.push_back("the data do not decide between two fits: a second minimum (" + where +
+                              ") is only " + std::to_string(result.minima.second_chi_square_gap) +
+                              " worse in chi-square (decisive: " + std::to_string(options.decisive_chi_square_gap) +
+                              "); the intervals describe the best one alone");
+  }
+  if (result.reduced_chi_square > 4.0)
+    result.warnings.push_back("the fit is worse than the phasor uncertainties allow (reduced chi-square " +
+                              std::to_string(result.reduced_chi_square) + "): run 'beamid diagnose'");
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  if (progress) progress(1.0, "done");
+  return result;
+}
+
+}  // namespace beamid::solver

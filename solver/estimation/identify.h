@@ -1,0 +1,103 @@
+// Identification of the support (and optional linear parameters) from a
+// whole stepped-sine campaign: a direct linear least-squares estimate from
+// the reconstructed support, then Ipopt on the constrained program of
+// solver/identification_problem.h from that estimate and from a
+// space-filling set of further starts (in parallel), then the Gauss–Newton
+// covariance in the reduced parameter space:
+//     Cov(p) = s²·(JᵀJ)⁻¹,  J = dr/dp along the constraint manifold,
+//     s² = max(1, χ²/(n − P))  (the scatter is trusted only when it is worse
+//                               than the stated phasor uncertainties).
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "solver/estimation/fit_data.h"
+#include "solver/estimation/identification_problem.h"
+#include "solver/estimation/internal/ipopt_program.h"
+#include "solver/estimation/model_structure.h"
+#include "solver/estimation/multistart.h"
+#include "solver/estimation/support_reconstruction.h"
+
+namespace beamid::solver {
+
+struct IdentifyOptions {
+  IdentificationProblemOptions model;
+  internal::IpoptOptions ipopt;
+  // Further starts besides the direct estimate (0: only that one).
+  int num_starts = 0;
+  // Space-filling starts cover [value/spread, value·spread] around the direct
+  // estimate for positive parameters and ±spread·|value| for signed ones.
+  double start_spread = 3.0;
+  int num_threads = 0;  // 0: one per hardware core
+  unsigned seed = 1;
+  // Start from the structure's own values instead of the direct estimate
+  // (the direct estimate needs a polynomial law).
+  bool use_direct_estimate = true;
+  double decisive_chi_square_gap = kDecisiveChiSquareGap;  // solver/multistart.h
+  // Seed every start's states at the rotation the data show (else only at
+  // the harmonic-balance solution of the start's parameters). Off for refits
+  // from a neighbouring fit, and to compare with the old search.
+  bool seed_states_from_measurements = true;
+  // Re-seed the best end point's states on the measured branch and re-run
+  // the fit if that lowers the misfit (a step converged on the other branch
+  // of a fold).
+  bool branch_repair = true;
+};
+
+struct ParameterEstimate {
+  std::string name;
+  std::string unit;
+  double value = 0.0;
+  double std = 0.0;
+  double lower_95 = 0.0;
+  double upper_95 = 0.0;
+};
+
+struct IdentifyResult {
+  std::vector<ParameterEstimate> parameters;
+  Eigen::MatrixXd covariance;
+  Eigen::MatrixXd correlation;
+  double chi_square = 0.0;
+  int degrees_of_freedom = 0;
+  double reduced_chi_square = 0.0;
+  DirectEstimate direct;
+  std::vector<StartOutcome> starts;   // [0]: from the direct estimate
+  int best_start = 0;
+  int starts_at_best = 0;             // starts that reached the best fit
+  // Every distinct minimum the converged starts reached, best first, and
+  // whether the data decide between the best two.
+  MinimaSummary minima;
+  std::vector<std::string> warnings;
+  Eigen::VectorXd x;                  // optimiser variables at the best fit
+  double seconds = 0.0;
+};
+
+using ProgressCallback = std::function<void(double fraction, const std::string& what)>;
+// Makes a fresh problem (each parallel start owns one).
+using ProblemFactory = std::function<std::unique_ptr<FitProblem>()>;
+
+// The exact harmonic-balance model (IdentificationProblem), started from the
+// direct estimate of the polynomial law.
+IdentifyResult Identify(const FitData& data, const ModelStructure& structure, const IdentifyOptions& options,
+                        const ProgressCallback& progress = {});
+
+// The seed's multiple-scales model (MultipleScalesProblem, `--model ms`),
+// started from the same direct estimate; options.model.beam_loss_factor is
+// the beam's known η, the other model options are the harmonic balance's.
+// Throws std::invalid_argument for data the model cannot hold (sensor
+// masses, more than 3 fitted harmonics, another law).
+IdentifyResult IdentifyMultipleScales(const FitData& data, const ModelStructure& structure,
+                                      const IdentifyOptions& options, const ProgressCallback& progress = {});
+
+// Any model: starts at `first` (physical parameters, structure order) and
+// around it; the structure gives names, units and bounds.
+IdentifyResult IdentifyWith(const ProblemFactory& make_problem, const ModelStructure& structure,
+                            const std::vector<double>& first, const IdentifyOptions& options,
+                            const ProgressCallback& progress = {});
+
+}  // namespace beamid::solver

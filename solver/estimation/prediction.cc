@@ -1,0 +1,202 @@
+#include "solver/estimation/prediction.h"
+
+#include "solver/estimation/multiple_scales_problem.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <stdexcept>
+
+namespace beamid::solver {
+namespace {
+
+using Complex = std::complex<double>;
+using Json = nlohmann::json;
+
+Eigen::VectorXcd Phasors(const Json& array) {
+  Eigen::VectorXcd out(array.size());
+  for (std::size_t i = 0; i < array.size(); ++i) out[i] = Complex(array[i][0].get<double>(), array[i][1].get<double>());
+  return out;
+}
+
+// Displacement phasors at x for every step with parameters p (warm-started).
+std::vector<Eigen::VectorXcd> SolveHarmonicBalance(const IdentifiedModel& model, const std::vector<double>& p, double x,
+                                    std::vector<bool>* converged) {
+  const hb::HarmonicBalance balance = IdentifiedHarmonicBalance(model, p);
+  std::vector<Eigen::VectorXcd> out;
+  for (std::size_t i = 0; i < model.steps.size(); ++i) {
+    const IdentifiedStep& s = model.steps[i];
+    const auto solution = balance.Solve(s.omega_rad_s, s.force_N,
+                                        hb::HarmonicBalance::ToReal(hb::PadHarmonics(s.theta_rad, model.num_harmonics)));
+    if (converged) (*converged)[i] = solution.converged;
+    out.push_back(balance.Displacements(solution, s.force_N, {x}).row(0).transpose());
+  }
+  return out;
+}
+
+// The same with the multiple-scales model: per step the root of the
+// amplitude equation nearest the identified U (the branch the test was on).
+std::vector<Eigen::VectorXcd> SolveMultipleScales(const IdentifiedModel& model, const std::vector<double>& p, double x,
+                                                  std::vector<bool>* converged) {
+  const hb::MultipleScalesModel ms = MakeMultipleScalesModel(model.beam.beam, model.force_position_m, model.structure, p);
+  std::vector<Eigen::VectorXcd> out;
+  for (std::size_t i = 0; i < model.steps.size(); ++i) {
+    const IdentifiedStep& s = model.steps[i];
+    Eigen::VectorXcd y = Eigen::VectorXcd::Zero(4);
+    bool solved = false;
+    try {
+      const std::vector<Complex> roots = ms.Solve(s.omega_rad_s, s.force_N[1]);
+      const Complex u = *std::min_element(roots.begin(), roots.end(), [&](Complex a, Complex b) {
+        return std::abs(a - s.modal_phasor_m) < std::abs(b - s.modal_phasor_m);
+      });
+      const hb::MultipleScalesModel::Harmonics h = ms.Response(x, u, s.omega_rad_s, s.force_N[1]);
+      y << h.h0_m, h.h1_m, h.h2_m, h.h3_m;
+      solved = true;
+    } catch (const std::runtime_error&) {
+      // An internal resonance at 2Ω or 3Ω: the model has no steady state here.
+    }
+    if (converged) (*converged)[i] = solved;
+    out.push_back(y);
+  }
+  return out;
+}
+
+std::vector<Eigen::VectorXcd> Solve(const IdentifiedModel& model, const std::vector<double>& p, double x,
+                                    std::vector<bool>* converged) {
+  return model.kind == "ms" ? SolveMultipleScales(model, p, x, converged)
+                            : SolveHarmonicBalance(model, p, x, converged);
+}
+
+}  // namespace
+
+hb::HarmonicBalance IdentifiedHarmonicBalance(const IdentifiedModel& model, const std::vector<double>& p) {
+  ModelStructure structure = model.structure;
+  if (!p.empty()) structure.SetValues(p);
+  const hb::LinearBeam beam(structure.ApplyLinear(model.beam), model.force_position_m);
+  return hb::HarmonicBalance(beam, *structure.law, {.num_harmonics = model.num_harmonics});
+}
+
+IdentifiedModel ReadIdentifiedModel(const std::filesystem::path& result_file) {
+  std::ifstream in(result_file);
+  if (!in) throw std::invalid_argument(result_file.string() + ": cannot open the result file");
+  Json j;
+  try {
+    j = Json::parse(in);
+  } catch (const Json::exception& e) {
+    throw std::invalid_argument(result_file.string() + ": " + e.what());
+  }
+  return IdentifiedModelFromJson(j, result_file.string());
+}
+
+IdentifiedModel IdentifiedModelFromJson(const nlohmann::json& j, const std::string& source) {
+  try {
+    if (j.value("format", "") != "beamid-result/1")
+      throw std::invalid_argument("not a beamid result (format must be beamid-result/1)");
+    IdentifiedModel model;
+    const Json& m = j.at("model");
+    model.kind = m.value("kind", "hb");
+    if (model.kind != "hb" && model.kind != "ms")
+      throw std::invalid_argument("model.kind '" + model.kind + "' is unknown (hb or ms)");
+    const Json& b = m.at("beam");
+    model.beam.beam = {.length_m = b.at("length_m"), .width_m = b.at("width_m"), .thickness_m = b.at("thickness_m"),
+                       .youngs_modulus_Pa = b.at("youngs_modulus_Pa"), .density_kg_m3 = b.at("density_kg_m3"),
+                       .loss_factor = b.value("loss_factor", 0.0)};
+    for (const Json& mass : m.at("sensor_masses"))
+      model.beam.attachments.point_masses.push_back({mass.at("position_m"), mass.at("mass_kg")});
+    model.force_position_m = m.at("force_position_m");
+    model.num_harmonics = m.at("num_harmonics");
+    std::vector<double> values;
+    for (const Json& name : j.at("parameter_order")) values.push_back(j.at("parameters").at(name.get<std::string>()).at("value"));
+    if (m.at("law") != "polynomial") throw std::invalid_argument("only the polynomial law can be predicted so far");
+    model.structure = PolynomialModel({});
+    for (const Json& name : j.at("linear_parameters"))
+      model.structure.linear.push_back(LinearParameterByName(name.get<std::string>(), 0.0));
+    model.structure.SetValues(values);
+    const Json& covariance = j.at("covariance");
+    model.covariance.resize(covariance.size(), covariance.size());
+    for (std::size_t r = 0; r < covariance.size(); ++r)
+      for (std::size_t c = 0; c < covariance.size(); ++c) model.covariance(r, c) = covariance[r][c];
+    for (const Json& s : j.at("steps")) {
+      IdentifiedStep step{.level = s.at("level"),
+                          .file = s.at("file"),
+                          .omega_rad_s = 2 * std::numbers::pi * s.at("frequency_Hz").get<double>(),
+                          .force_N = Phasors(s.at("force_N"))};
+      if (model.kind == "ms") {
+        const Eigen::VectorXcd u = Phasors(s.at("modal_phasor_m"));
+        if (u.size() != 1 || step.force_N.size() < 2)
+          throw std::invalid_argument("step " + step.file + ": modal_phasor_m must hold one phasor and force_N the fundamental");
+        step.modal_phasor_m = u[0];
+      } else {
+        step.theta_rad = Phasors(s.at("theta_rad"));
+      }
+      model.steps.push_back(std::move(step));
+    }
+    return model;
+  } catch (const Json::exception& e) {
+    throw std::invalid_argument(source + ": " + e.what());
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(source + ": " + e.what());
+  }
+}
+
+std::vector<PredictedStep> PredictAt(const IdentifiedModel& model, double position_m, int samples_per_period) {
+  if (!(position_m >= 0.0 && position_m <= model.beam.beam.length_m))
+    throw std::invalid_argument("--x " + std::to_string(position_m) + " m lies outside the beam [0, " +
+                                std::to_string(model.beam.beam.length_m) + "] m");
+  const std::vector<double> p = model.structure.Values();
+  const int np = static_cast<int>(p.size()), h = model.num_harmonics;
+  std::vector<bool> converged(model.steps.size(), true);
+  const std::vector<Eigen::VectorXcd> nominal = Solve(model, p, position_m, &converged);
+  // ∂Y/∂p_j, j = 1..P, central differences of the re-solved model.
+  std::vector<std::vector<Eigen::VectorXcd>> derivative(np);
+  const auto bounds = model.structure.Bounds();
+  for (int j = 0; j < np; ++j) {
+    const double step = 1e-4 * std::max(std::abs(p[j]), bounds[j].typical * 1e-2);
+    // One-sided at a bound (a loss factor fitted to ~0 must not go negative).
+    std::vector<double> up = p, down = p;
+    up[j] = std::min(p[j] + step, bounds[j].upper);
+    down[j] = std::max(p[j] - step, bounds[j].lower);
+    const auto y_up = Solve(model, up, position_m, nullptr);
+    const auto y_down = Solve(model, down, position_m, nullptr);
+    for (std::size_t i = 0; i < model.steps.size(); ++i)
+      derivative[j].push_back((y_up[i] - y_down[i]) / (up[j] - down[j]));
+  }
+  std::vector<PredictedStep> out;
+  for (std::size_t i = 0; i < model.steps.size(); ++i) {
+    const IdentifiedStep& s = model.steps[i];
+    PredictedStep step{.level = s.level, .file = s.file, .frequency_hz = s.omega_rad_s / (2 * std::numbers::pi),
+                       .displacement_m = nominal[i], .converged = converged[i]};
+    step.std_real_m.resize(h + 1);
+    step.std_imag_m.resize(h + 1);
+    Eigen::MatrixXd jr(h + 1, np), ji(h + 1, np);
+    for (int j = 0; j < np; ++j) {
+      jr.col(j) = derivative[j][i].real();
+      ji.col(j) = derivative[j][i].imag();
+    }
+    step.std_real_m = (jr * model.covariance * jr.transpose()).diagonal().cwiseMax(0.0).cwiseSqrt();
+    step.std_imag_m = (ji * model.covariance * ji.transpose()).diagonal().cwiseMax(0.0).cwiseSqrt();
+    // a(t) = Σ Re(−(kω)² Y_k e^{ikωt}); its sensitivity row per sample.
+    step.time_s.resize(samples_per_period);
+    step.acceleration_m_s2.resize(samples_per_period);
+    step.acceleration_std_m_s2.resize(samples_per_period);
+    for (int n = 0; n < samples_per_period; ++n) {
+      const double t = 2 * std::numbers::pi / s.omega_rad_s * n / samples_per_period;
+      step.time_s[n] = t;
+      double a = 0.0;
+      Eigen::RowVectorXd sensitivity = Eigen::RowVectorXd::Zero(np);
+      for (int k = 1; k <= h; ++k) {
+        const double kw = k * s.omega_rad_s;
+        const Complex e = std::polar(1.0, kw * t);
+        a += std::real(-kw * kw * nominal[i][k] * e);
+        for (int j = 0; j < np; ++j) sensitivity[j] += std::real(-kw * kw * derivative[j][i][k] * e);
+      }
+      step.acceleration_m_s2[n] = a;
+      step.acceleration_std_m_s2[n] = std::sqrt(std::max(0.0, (sensitivity * model.covariance * sensitivity.transpose())(0, 0)));
+    }
+    out.push_back(std::move(step));
+  }
+  return out;
+}
+
+}  // namespace beamid::solver

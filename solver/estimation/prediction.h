@@ -1,0 +1,69 @@
+// Prediction from an identified model (result.json of `beamid identify`):
+// for every step of the fit, the steady state of the model that was
+// identified, driven by that step's measured force, evaluated at any
+// position x, with its uncertainty propagated from the parameter covariance,
+//     Cov(Y) = J·Cov(p)·Jᵀ,   J = ∂Y/∂p by central differences (each
+//     perturbed model solved again),
+// and the steady-state time history over one period with a 95 % band.
+// The model is the one the parameters were fitted with (their values absorb
+// that model's own error): harmonic balance (kind "hb": harmonics 0..H,
+// all force harmonics) or multiple scales (kind "ms": harmonics 0..3 from the
+// force's fundamental, on the branch of the identified modal phasor).
+#pragma once
+
+#include <complex>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+
+#include "hb/harmonic_balance.h"
+#include "solver/estimation/model_structure.h"
+
+namespace beamid::solver {
+
+struct IdentifiedStep {
+  std::string level;
+  std::string file;
+  double omega_rad_s = 0.0;
+  Eigen::VectorXcd force_N;
+  Eigen::VectorXcd theta_rad;       // hb: Θ_0..Θ_H at the fit
+  std::complex<double> modal_phasor_m;  // ms: U at the fit
+};
+
+struct IdentifiedModel {
+  std::string kind = "hb";   // "hb" harmonic balance, "ms" multiple scales
+  hb::LinearBeamModel beam;  // nominal beam with sensor masses, before linear parameters
+  double force_position_m = 0.0;
+  int num_harmonics = 5;     // H (3 for ms)
+  ModelStructure structure;  // values = identified
+  Eigen::MatrixXd covariance;
+  std::vector<IdentifiedStep> steps;
+};
+
+// Throws std::invalid_argument naming the file and the missing field.
+IdentifiedModel ReadIdentifiedModel(const std::filesystem::path& result_file);
+// The same from result.json's content (source names it in messages).
+IdentifiedModel IdentifiedModelFromJson(const nlohmann::json& result, const std::string& source);
+
+// The harmonic balance of the identified model with parameters p (structure
+// order; empty: the identified values), as PredictAt solves it.
+hb::HarmonicBalance IdentifiedHarmonicBalance(const IdentifiedModel& model, const std::vector<double>& p = {});
+
+struct PredictedStep {
+  std::string level;
+  std::string file;
+  double frequency_hz = 0.0;
+  Eigen::VectorXcd displacement_m;       // Y_0..Y_H at x
+  Eigen::VectorXd std_real_m, std_imag_m;  // standard uncertainty of Re, Im
+  Eigen::VectorXd time_s;                // one period
+  Eigen::VectorXd acceleration_m_s2;     // steady-state history at x
+  Eigen::VectorXd acceleration_std_m_s2; // its standard uncertainty
+  bool converged = true;
+};
+
+std::vector<PredictedStep> PredictAt(const IdentifiedModel& model, double position_m, int samples_per_period = 64);
+
+}  // namespace beamid::solver

@@ -1,0 +1,410 @@
+#include "solver/report/html_report.h"
+
+#include "solver/report/html_escape.h"
+
+#include <cmath>
+#include <numbers>
+
+#include <fmt/core.h>
+
+#include "solver/report/gnuplot_svg.h"
+
+namespace beamid::solver {
+namespace {
+
+using Json = nlohmann::json;
+using Rows = std::vector<std::vector<double>>;
+
+constexpr const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"};
+
+const char* Colour(std::size_t i) { return kColours[i % std::size(kColours)]; }
+
+// gnuplot's enhanced text treats _ ^ @ & { } as markup.
+std::string PlotText(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '_' || c == '^' || c == '@' || c == '&' || c == '{' || c == '}') out += "\\\\";
+    out += c;
+  }
+  return out;
+}
+
+std::string Figure(const std::string& id, const std::string& svg, const std::string& caption) {
+  return fmt::format("<figure class=\"plot\" id=\"{}\">\n{}\n<figcaption>{}</figcaption>\n</figure>\n", HtmlEscape(id),
+                     svg, caption);
+}
+
+std::string Number(double value) { return fmt::format("{:.6g}", value); }
+
+// Model curve split into stable and unstable segments (a blank row between
+// segments; a switch point belongs to both so the curve stays connected).
+void SplitByStability(const LevelCurves& level, std::size_t channel, Rows& stable, Rows& unstable) {
+  for (std::size_t i = 0; i < level.model.size(); ++i) {
+    const auto& p = level.model[i];
+    const std::vector<double> row = {p.frequency_hz, p.amplitude[channel]};
+    Rows& mine = p.stable ? stable : unstable;
+    Rows& other = p.stable ? unstable : stable;
+    if (i > 0 && level.model[i - 1].stable != p.stable) {
+      other.push_back(row);
+      other.push_back({});
+      const auto& q = level.model[i - 1];
+      mine.push_back({q.frequency_hz, q.amplitude[channel]});
+    }
+    mine.push_back(row);
+  }
+}
+
+std::string FrcPlot(const ReportCurves& curves, std::size_t channel) {
+  const ReportChannel& ch = curves.channels[channel];
+  std::string script = fmt::format(
+      "set title {}\nset xlabel 'frequency [Hz]'\nset ylabel {}\nset grid\nset key top left box opaque\n",
+      GnuplotQuote(PlotText(fmt::format("{} at x = {:.3f} m ({}): first harmonic", ch.channel, ch.position_m,
+                                        ch.fitted ? "fitted" : "held out"))),
+      GnuplotQuote(PlotText(fmt::format("|X_1| [{}]", ch.si_unit))));
+  std::string plot = "plot ";
+  for (std::size_t l = 0; l < curves.levels.size(); ++l) {
+    const LevelCurves& level = curves.levels[l];
+    Rows stable, unstable, measured;
+    SplitByStability(level, channel, stable, unstable);
+    for (const auto& m : level.measured) measured.push_back({m.frequency_hz, m.amplitude[channel]});
+    script += Datablock(fmt::format("s{}", l), stable) + Datablock(fmt::format("u{}", l), unstable) +
+              Datablock(fmt::format("m{}", l), measured);
+    const std::string label = PlotText(fmt::format("{} ({:.3g} N)", level.level, level.force_amplitude_N));
+    plot += fmt::format(
+        "{}$s{} with lines lw 2 lc rgb '{}' title {}, $u{} with lines lw 2 dt 2 lc rgb '{}' notitle, "
+        "$m{} with points pt 7 ps 0.7 lc rgb '{}' title {}",
+        l ? ", " : "", l, Colour(l), GnuplotQuote("model " + label), l, Colour(l), l, Colour(l),
+        GnuplotQuote("measured " + label));
+  }
+  return script + plot + "\n";
+}
+
+std::string BackbonePlot(const ReportCurves& curves) {
+  const std::size_t c = static_cast<std::size_t>(curves.reference_channel);
+  const ReportChannel& ch = curves.channels[c];
+  std::string script = fmt::format(
+      "set title {}\nset xlabel 'frequency [Hz]'\nset ylabel {}\nset grid\nset key top left box opaque\n",
+      GnuplotQuote(PlotText(fmt::format("backbone at {} (x = {:.3f} m)", ch.channel, ch.position_m))),
+      GnuplotQuote(PlotText(fmt::format("|X_1| [{}]", ch.si_unit))));
+  Rows frc, backbone, resonance;
+  for (const auto& level : curves.levels) {
+    for (const auto& p : level.model) frc.push_back({p.frequency_hz, p.amplitude[c]});
+    frc.push_back({});
+  }
+  for (const auto& p : curves.backbone) backbone.push_back({p.frequency_hz, p.amplitude});
+  // Error bars and bands of two standard uncertainties.
+  for (const auto& p : curves.phase_resonance)
+    resonance.push_back({p.frequency_hz, p.amplitude, 2 * p.frequency_std_hz, 2 * p.amplitude_std});
+  // The fit's band in frequency, as a closed polygon: up one edge, down the other.
+  Rows single_mode, band;
+  const auto& fit = curves.measured_mode.fit;
+  for (const auto& p : fit) {
+    single_mode.push_back({p.frequency_hz, p.amplitude});
+    band.push_back({p.frequency_hz - 2 * p.frequency_std_hz, p.amplitude});
+  }
+  for (auto p = fit.rbegin(); p != fit.rend(); ++p) band.push_back({p->frequency_hz + 2 * p->frequency_std_hz, p->amplitude});
+  script += Datablock("frc", frc) + Datablock("bb", backbone) + Datablock("pr", resonance) +
+            Datablock("sm", single_mode) + Datablock("band", band);
+  script +=
+      "plot $frc with lines lw 1 lc rgb '#aaaaaa' title 'model FRCs', "
+      "$bb with lines lw 2.5 lc rgb '#000000' title 'model backbone (phase resonance at this sensor)', ";
+  if (!single_mode.empty())
+    script +=
+        "$band with filledcurves closed lc rgb '#f4b6b6' fs transparent solid 0.5 notitle, "
+        "$sm using 1:2 with lines lw 1.5 dt 2 lc rgb '#d62728' title 'measured: one nonlinear mode fitted across levels ±2σ', ";
+  script +=
+      "$pr using 1:2:3:4 with xyerrorbars pt 13 ps 1.6 lw 1.5 lc rgb '#d62728' title 'measured phase resonance ±2σ'\n";
+  return script;
+}
+
+// Damping ratio against amplitude, model-free: each level's three estimates
+// and the single-nonlinear-mode fit's ζ(a).
+std::string DampingPlot(const ReportCurves& curves) {
+  const ReportChannel& ch = curves.channels[static_cast<std::size_t>(curves.reference_channel)];
+  const MeasuredNonlinearMode& mode = curves.measured_mode;
+  Rows quadrature, local, half_power, fit;
+  for (const auto& p : mode.damping) {
+    if (std::isfinite(p.quadrature)) quadrature.push_back({p.amplitude, p.quadrature, 2 * p.quadrature_std});
+    if (std::isfinite(p.local)) local.push_back({p.amplitude, p.local, 2 * p.local_std});
+    if (std::isfinite(p.half_power)) half_power.push_back({p.amplitude, p.half_power, 2 * p.half_power_std});
+  }
+  for (const auto& p : mode.fit)
+    fit.push_back({p.amplitude, p.damping_ratio, p.damping_ratio - 2 * p.damping_ratio_std,
+                   p.damping_ratio + 2 * p.damping_ratio_std});
+  std::string script = fmt::format(
+      "set title {}\nset xlabel {}\nset ylabel 'damping ratio {{/Symbol z}}'\nset grid\nset key outside below\n",
+      GnuplotQuote(PlotText(fmt::format("damping against amplitude at {} (model-free)", ch.channel))),
+      GnuplotQuote(fmt::format("|X_1| at phase resonance [{}]", ch.si_unit)));
+  script += Datablock("q", quadrature) + Datablock("l", local) + Datablock("h", half_power) + Datablock("f", fit);
+  std::string plot = "plot ";
+  auto add = [&](const std::string& item) { plot += (plot.size() > 5 ? ", " : "") + item; };
+  if (!fit.empty()) {
+    add("$f using 1:3:4 with filledcurves lc rgb '#f4b6b6' fs transparent solid 0.5 notitle");
+    add("$f using 1:2 with lines lw 1.5 dt 2 lc rgb '#d62728' title 'one nonlinear mode fitted across levels ±2σ'");
+  }
+  if (!quadrature.empty()) add("$q with yerrorbars pt 13 ps 1.4 lc rgb '#d62728' title 'quadrature point'");
+  if (!local.empty()) add("$l with yerrorbars pt 7 ps 0.9 lc rgb '#1f77b4' title 'local single-mode fit'");
+  if (!half_power.empty()) add("$h with yerrorbars pt 5 ps 0.9 lc rgb '#2ca02c' title 'half-power'");
+  return script + plot + "\n";
+}
+
+std::string Warnings(const std::vector<std::string>& warnings) {
+  std::string html;
+  for (const auto& w : warnings) html += "<p class=\"warning\">warning: " + HtmlEscape(w) + "</p>\n";
+  return html;
+}
+
+// Each level's measured phase resonance against the model's backbone.
+std::string ResonanceTable(const ReportCurves& curves) {
+  const ReportChannel& ch = curves.channels[static_cast<std::size_t>(curves.reference_channel)];
+  std::string html = fmt::format(
+      "<table class=\"resonance\"><tr><th>level</th><th>phase resonance [Hz]</th><th>|X_1| [{}]</th>"
+      "<th>damping ratio ζ</th><th>model backbone there [Hz]</th><th>measured − model</th><th>note</th></tr>\n",
+      HtmlEscape(ch.si_unit));
+  for (const auto& p : curves.phase_resonance)
+    html += fmt::format(
+        "<tr><td>{}</td><td>{:.4f} ± {:.4f}</td><td>{:.5g} ± {:.2g}</td><td>{:.5f} ± {:.2g}</td><td>{}</td>"
+        "<td class=\"z\">{}</td><td>{}</td></tr>\n",
+        HtmlEscape(p.level), p.frequency_hz, p.frequency_std_hz, p.amplitude, p.amplitude_std,
+        p.damping_ratio, p.damping_ratio_std,
+        std::isfinite(p.model_frequency_hz) ? fmt::format("{:.4f}", p.model_frequency_hz) : "outside its range",
+        std::isfinite(p.z) ? fmt::format("{:+.2f} σ", p.z) : "", HtmlEscape(p.note));
+  return html + "</table>\n";
+}
+
+std::string TimePlot(const TimeHistory& history, const std::string& channel) {
+  Rows rows;
+  for (std::size_t n = 0; n < history.time_s.size(); ++n)
+    rows.push_back({1e3 * history.time_s[n], history.predicted[n], history.predicted_std[n], history.measured[n]});
+  return fmt::format(
+             "set title {}\nset xlabel 'time [ms]'\nset ylabel 'acceleration [m/s^2]'\nset grid\n"
+             "set key top right box opaque\n",
+             GnuplotQuote(PlotText(fmt::format("{} (held out), level {}, {:.3f} Hz: one period of the steady state",
+                                               channel, history.level, history.frequency_hz)))) +
+         Datablock("t", rows) +
+         "plot $t using 1:($2-2*$3):($2+2*$3) with filledcurves fc rgb '#c6dbef' title 'prediction ±2σ', "
+         "$t using 1:2 with lines lw 2 lc rgb '#1f77b4' title 'predicted', "
+         "$t using 1:4 with lines lw 2 dt 2 lc rgb '#d62728' title 'measured (harmonics of the recording)'\n";
+}
+
+std::string ResidualPlot(const ResidualMap& map) {
+  const Eigen::Index rows = map.whitened_norm.rows(), steps = map.whitened_norm.cols();
+  Rows data;
+  for (Eigen::Index r = 0; r < rows; ++r) {
+    for (Eigen::Index i = 0; i < steps; ++i)
+      data.push_back({static_cast<double>(i), static_cast<double>(r), std::max(map.whitened_norm(r, i), 1e-3)});
+    data.push_back({});
+  }
+  std::string ytics, xtics, arrows;
+  for (Eigen::Index r = 0; r < rows; ++r)
+    ytics += fmt::format("{}{} {}", r ? ", " : "", GnuplotQuote(PlotText(map.rows[r])), r);
+  std::size_t start = 0;
+  for (std::size_t i = 1; i <= map.step_level.size(); ++i) {
+    if (i < map.step_level.size() && map.step_level[i] == map.step_level[start]) continue;
+    xtics += fmt::format("{}{} {}", xtics.empty() ? "" : ", ", GnuplotQuote(PlotText(map.step_level[start])),
+                         0.5 * (start + i - 1));
+    if (i < map.step_level.size())
+      arrows += fmt::format("set arrow from {0}, graph 0 to {0}, graph 1 nohead lc rgb '#ffffff' lw 2 front\n", i - 0.5);
+    start = i;
+  }
+  return fmt::format(
+             "set title 'whitened residual |L^{{-1}}(Y_{{model}} - Y_{{measured}})| per channel, harmonic and step'\n"
+             "set xlabel 'steps (by level, in campaign order)'\nset ytics ({})\nset xtics ({})\n"
+             "set logscale cb\nset cblabel 'residual (1 = one standard uncertainty)'\n"
+             "set palette defined (0 '#f7fbff', 1 '#6baed6', 2 '#fd8d3c', 3 '#a50f15')\n"
+             "set xrange [-0.5:{}]\nset yrange [-0.5:{}]\n{}",
+             ytics, xtics, steps - 0.5, rows - 0.5, arrows) +
+         Datablock("r", data) + "plot $r using 1:2:3 with image pixels notitle\n";
+}
+
+std::string ParameterTable(const Json& result) {
+  std::string html =
+      "<table class=\"parameters\"><tr><th>parameter</th><th>value</th><th>standard uncertainty</th>"
+      "<th>95 % interval</th><th>unit</th></tr>\n";
+  for (const auto& name : result.at("parameter_order")) {
+    const Json& p = result.at("parameters").at(name.get<std::string>());
+    html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{} … {}</td><td>{}</td></tr>\n",
+                        HtmlEscape(name.get<std::string>()), Number(p.at("value")), Number(p.at("std")),
+                        Number(p.at("ci95")[0]), Number(p.at("ci95")[1]), HtmlEscape(p.value("unit", "")));
+  }
+  return html + "</table>\n";
+}
+
+// Any JSON value as HTML: objects as definition lists, arrays of objects as
+// tables, the rest as text.
+std::string JsonHtml(const Json& value) {
+  if (value.is_string()) return HtmlEscape(value.get<std::string>());
+  if (value.is_number_float()) return Number(value.get<double>());
+  if (value.is_object()) {
+    std::string html = "<dl>";
+    for (const auto& [key, item] : value.items()) html += "<dt>" + HtmlEscape(key) + "</dt><dd>" + JsonHtml(item) + "</dd>";
+    return html + "</dl>";
+  }
+  if (value.is_array() && !value.empty() && value.front().is_object()) {
+    std::vector<std::string> keys;
+    for (const auto& item : value)
+      for (const auto& [key, unused] : item.items())
+        if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
+    std::string html = "<table><tr>";
+    for (const auto& key : keys) html += "<th>" + HtmlEscape(key) + "</th>";
+    html += "</tr>";
+    for (const auto& item : value) {
+      html += "<tr>";
+      for (const auto& key : keys) html += "<td>" + (item.contains(key) ? JsonHtml(item[key]) : "") + "</td>";
+      html += "</tr>";
+    }
+    return html + "</table>";
+  }
+  if (value.is_array()) {
+    std::string html;
+    for (const auto& item : value) html += (html.empty() ? "" : ", ") + JsonHtml(item);
+    return html;
+  }
+  return HtmlEscape(value.dump());
+}
+
+// What a test engineer reads of a diagnosis (diagnosis.json of `beamid
+// diagnose`): the verdict, the findings, only the residual groups that stand
+// out of the noise, and one row per candidate; the full statistics stay in
+// the JSON file.
+std::string DiagnosisSection(const Json& diagnosis) {
+  std::string html = "<section id=\"diagnosis\"><h2>Diagnosis</h2>\n";
+  if (diagnosis.contains("verdict")) html += "<p><b>Verdict:</b> " + JsonHtml(diagnosis["verdict"]) + "</p>\n";
+  if (diagnosis.contains("selected")) html += "<p><b>Selected:</b> " + JsonHtml(diagnosis["selected"]) + "</p>\n";
+  if (diagnosis.contains("summary")) html += "<p class=\"diagnosis-summary\">" + JsonHtml(diagnosis["summary"]) + "</p>\n";
+  const Json location = diagnosis.value("location", Json::object());
+  if (location.contains("findings") && location["findings"].is_array()) {
+    html += "<h3>Where the misfit sits</h3>\n<ul>";
+    for (const auto& finding : location["findings"]) html += "<li>" + JsonHtml(finding) + "</li>";
+    html += "</ul>\n";
+  }
+  if (location.contains("groups") && location["groups"].is_array()) {
+    Json significant = Json::array();
+    for (const auto& g : location["groups"])
+      if (g.value("significant", false)) significant.push_back(g);
+    html += fmt::format("<h3>Residual groups beyond the noise ({} of {})</h3>\n", significant.size(),
+                        location["groups"].size());
+    if (!significant.empty()) html += JsonHtml(significant) + "\n";
+  }
+  if (diagnosis.contains("candidates") && diagnosis["candidates"].is_array()) {
+    html += "<h3>Candidate physics, each refitted</h3>\n<table><tr><th>candidate</th><th>signature score</th>"
+            "<th>χ² before</th><th>χ² after</th><th>drop</th><th>p</th><th>significant</th>"
+            "<th>extra parameters ± standard uncertainty</th></tr>\n";
+    for (const auto& c : diagnosis["candidates"]) {
+      std::string extra;
+      const Json extra_parameters = c.value("extra_parameters", Json::object());
+      for (const auto& [name, p] : extra_parameters.items()) {
+        const auto number = [&](const char* key) { return p.contains(key) && p[key].is_number() ? p[key].get<double>() : NAN; };
+        const double value = number("value"), std = number("std");
+        // A refit that did not move a parameter off its base value leaves it
+        // undetermined (its std is that of a flat direction): say so.
+        const bool determined = std::isfinite(std) && std < 100 * std::abs(value);
+        const std::string unit = p.value("unit", "") == "1" ? "" : " " + HtmlEscape(p.value("unit", ""));
+        extra += fmt::format("{}{} = {}", extra.empty() ? "" : "<br>", HtmlEscape(name),
+                             determined ? Number(value) + " ± " + Number(std) + unit
+                                        : Number(value) + unit + " (not determined by these data)");
+      }
+      const auto field = [&](const char* key) { return c.contains(key) ? JsonHtml(c[key]) : std::string(); };
+      html += "<tr><td>" + field("name") + "</td><td>" + field("score") + "</td><td>" + field("residual_before") +
+              "</td><td>" + field("residual_after") + "</td><td>" + field("residual_drop") + "</td><td>" +
+              field("p_value") + "</td><td>" + field("significant") + "</td><td>" + extra + "</td></tr>\n";
+    }
+    html += "</table>\n";
+  }
+  return html + "</section>\n";
+}
+
+constexpr const char* kStyle = R"(
+body { font-family: Helvetica, Arial, sans-serif; margin: 2em auto; max-width: 1600px; color: #222; }
+h1 { font-size: 1.6em; } h2 { border-bottom: 1px solid #ccc; padding-bottom: 0.2em; margin-top: 1.6em; }
+table { border-collapse: collapse; margin: 0.8em 0; } td, th { border: 1px solid #ccc; padding: 0.3em 0.7em; text-align: right; }
+th { background: #f3f3f3; } td:first-child { text-align: left; }
+figure.plot { display: inline-block; margin: 0.5em; vertical-align: top; }
+figure.plot svg { display: block; }
+figcaption { font-size: 0.9em; color: #555; max-width: 760px; }
+dl { display: grid; grid-template-columns: max-content auto; gap: 0.2em 1em; } dt { font-weight: bold; }
+.warning { color: #a50f15; }
+)";
+
+}  // namespace
+
+std::string HtmlReport(const ReportInput& input, const ReportCurves& curves) {
+  const Json& result = input.result;
+  const Json& fit = result.at("fit");
+  std::string title = "beamid report";
+  if (result.contains("campaign")) title += ": " + result["campaign"].value("name", std::string());
+  std::string html = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" + HtmlEscape(title) +
+                     "</title>\n<style>" + kStyle + "</style>\n</head>\n<body>\n<h1>" + HtmlEscape(title) + "</h1>\n";
+  html += fmt::format("<p>Result <code>{}</code>, campaign <code>{}</code>; support law {}; fitted channels {}, "
+                      "harmonics 1..{}; reduced χ² = {} ({} residuals).</p>\n",
+                      HtmlEscape(input.result_file.string()), HtmlEscape(input.campaign_folder.string()),
+                      HtmlEscape(result.at("model").value("law", "")), JsonHtml(result.at("model").at("fit_channels")),
+                      result.at("model").value("num_fit_harmonics", 0), Number(fit.value("reduced_chi_square", 0.0)),
+                      fit.value("degrees_of_freedom", 0));
+  if (!input.diagnosis.is_null()) html += DiagnosisSection(input.diagnosis);
+
+  html += "<section id=\"parameters\"><h2>Identified parameters</h2>\n" + ParameterTable(result);
+  if (result.contains("validation"))
+    for (const auto& [channel, v] : result["validation"].items())
+      html += fmt::format("<p>Held-out {}: worst relative error {:.2f} % on the first harmonic, {:.2f} % on the "
+                          "third.</p>\n",
+                          HtmlEscape(channel), 100 * v.value("worst_h1_relative_error", 0.0),
+                          100 * v.value("worst_h3_relative_error", 0.0));
+  html += Warnings(result.value("warnings", Json::array()).get<std::vector<std::string>>()) + "</section>\n";
+
+  html += "<section id=\"frc\"><h2>Frequency response curves</h2>\n";
+  for (std::size_t c = 0; c < curves.channels.size(); ++c)
+    html += Figure("frc-" + curves.channels[c].channel, GnuplotSvg(FrcPlot(curves, c)),
+                   "First-harmonic amplitude of " + HtmlEscape(curves.channels[c].channel) +
+                       ": measured steps (dots) and the identified model under each level's mean force "
+                       "(harmonic balance and continuation; solid stable, dashed unstable).");
+  for (const auto& level : curves.levels)
+    if (!level.model_complete)
+      html += "<p class=\"warning\">The model curve of level " + HtmlEscape(level.level) +
+              " stopped early: " + HtmlEscape(level.model_message) + "</p>\n";
+  html += "</section>\n";
+
+  html += "<section id=\"backbone\"><h2>Backbone</h2>\n" +
+          Figure("backbone-plot", GnuplotSvg(BackbonePlot(curves)),
+                 "The model's backbone as this sensor sees it (its first harmonic in quadrature with the force) "
+                 "and each level's measured phase resonance with ±2σ bars, from the model-free analysis of "
+                 "<code>beamid backbone --measured</code> (the step nearest quadrature moved there along one "
+                 "nonlinear mode; on a level that jumps before quadrature, from the branch before the jump).") +
+          (curves.phase_resonance.empty() ? "<p>No level crosses phase resonance.</p>\n" : ResonanceTable(curves)) +
+          Warnings(curves.phase_resonance_warnings);
+  if (!curves.measured_mode.damping.empty()) {
+    const MeasuredNonlinearMode& mode = curves.measured_mode;
+    std::string trend;
+    if (mode.damping_trend == "rises")
+      trend = fmt::format("The damping ratio rises with amplitude ({:.1f} σ): dissipation that grows faster than a "
+                          "viscous damper's, as friction's does.", mode.damping_trend_z);
+    else if (mode.damping_trend == "falls")
+      trend = fmt::format("The damping ratio falls with amplitude ({:.1f} σ), as a damper of constant "
+                          "coefficient gives when the frequency rises.", mode.damping_trend_z);
+    else if (!mode.damping_trend.empty())
+      trend = fmt::format("No significant trend of the damping ratio with amplitude ({:+.1f} σ).", mode.damping_trend_z);
+    html += Figure("damping-plot", GnuplotSvg(DampingPlot(curves)),
+                   "The measured damping ratio of each level by three estimators (±2σ), and the single nonlinear "
+                   "mode fitted across levels (" + HtmlEscape(mode.fit_form) + "). " + trend);
+  }
+  html += "</section>\n";
+
+  html += "<section id=\"prediction\"><h2>Prediction at the held-out sensor</h2>\n";
+  if (curves.time_histories.empty())
+    html += "<p>This result has no held-out channel (identify with <code>--validate CHANNEL</code>).</p>\n";
+  for (const auto& history : curves.time_histories)
+    html += Figure("time-" + history.level, GnuplotSvg(TimePlot(history, curves.held_out_channel)),
+                   "Steady-state acceleration at " + HtmlEscape(curves.held_out_channel) + ", level " +
+                       HtmlEscape(history.level) + ": predicted by the identified model (band: ±2 standard "
+                       "uncertainties from the parameter covariance) and measured.");
+  html += "</section>\n";
+
+  html += "<section id=\"residuals\"><h2>Residual map</h2>\n" +
+          Figure("residual-map", GnuplotSvg(ResidualPlot(curves.residuals), {.width_px = 900, .height_px = 360}),
+                 "Per fitted channel, harmonic and step: the misfit in units of its standard uncertainty; "
+                 "values well above 1 point at what the model misses.") +
+          "</section>\n";
+  return html + "</body>\n</html>\n";
+}
+
+}  // namespace beamid::solver

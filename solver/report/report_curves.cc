@@ -1,0 +1,293 @@
+#include "solver/report/report_curves.h"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <map>
+#include <numbers>
+#include <stdexcept>
+
+
+#include "hb/continuation.h"
+#include "signal/quantity.h"
+#include "signal/first_harmonic_level.h"
+#include "solver/estimation/fit_data.h"
+#include "solver/backbone/measured_backbone.h"
+#include "solver/backbone/sensor_backbone.h"
+
+namespace beamid::solver {
+namespace {
+
+using Complex = std::complex<double>;
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+
+// Phasor of the channel's quantity from a displacement phasor: (ikω)^order.
+Complex FromDisplacement(Complex displacement, int order, double k_omega) {
+  for (int d = 0; d < order; ++d) displacement *= Complex(0.0, k_omega);
+  return displacement;
+}
+
+std::vector<double> Positions(const std::vector<ReportChannel>& channels) {
+  std::vector<double> out;
+  for (const auto& c : channels) out.push_back(c.position_m);
+  return out;
+}
+
+const IdentifiedStep* FindStep(const IdentifiedModel& model, const std::string& file) {
+  for (const auto& s : model.steps)
+    if (s.file == file) return &s;
+  return nullptr;
+}
+
+std::vector<ReportChannel> Channels(const nlohmann::json& result, const signal::Campaign& campaign) {
+  std::vector<std::string> fitted;
+  for (const auto& name : result.at("model").at("fit_channels")) fitted.push_back(name.get<std::string>());
+  std::vector<ReportChannel> out;
+  for (const auto& s : campaign.sensors)
+    out.push_back({.channel = s.channel, .position_m = s.position_m,
+                   .derivative_order = signal::DerivativeOrder(s.quantity),
+                   .si_unit = std::string(signal::SiUnit(s.quantity)),
+                   .fitted = std::find(fitted.begin(), fitted.end(), s.channel) != fitted.end()});
+  return out;
+}
+
+// The measured phase-resonance points of every level at `reference`, set
+// beside the model's backbone there (amplitudes of displacement).
+void MeasuredPhaseResonance(const signal::PhasorSet& phasors, const ReportChannel& reference,
+                            const std::vector<SensorBackbonePoint>& model_backbone, ReportCurves& curves) {
+  MeasuredBackbone measured;
+  try {
+    measured = AnalyseMeasuredBackbone(signal::FirstHarmonicLevels(phasors, reference.channel, "the phasors"));
+  } catch (const std::exception& error) {
+    curves.phase_resonance_warnings.push_back(error.what());
+    return;
+  }
+  // The levels' own notes go beside their points; the rest are warnings.
+  for (const auto& warning : measured.warnings)
+    if (std::none_of(measured.levels.begin(), measured.levels.end(), [&](const LevelResonance& level) {
+          return level.quadrature_frequency_hz.valid && !level.quadrature_note.empty() &&
+                 warning.ends_with(level.quadrature_note);
+        }))
+      curves.phase_resonance_warnings.push_back(warning);
+  const auto to_channel = [&](double displacement_m, double frequency_hz) {
+    return displacement_m * std::pow(kTwoPi * frequency_hz, reference.derivative_order);
+  };
+  MeasuredNonlinearMode& mode = curves.measured_mode;
+  for (const auto& level : measured.levels) {
+    if (!level.quadrature_frequency_hz.valid) continue;
+    auto value = [](const Estimate& e) { return e.valid ? e.value : NAN; };
+    auto std = [](const Estimate& e) { return e.valid ? e.std : NAN; };
+    mode.damping.push_back({.level = level.label,
+                            .amplitude = to_channel(level.quadrature_amplitude_m.value, level.quadrature_frequency_hz.value),
+                            .quadrature = value(level.quadrature_damping_ratio),
+                            .quadrature_std = std(level.quadrature_damping_ratio),
+                            .local = value(level.local_damping_ratio),
+                            .local_std = std(level.local_damping_ratio),
+                            .half_power = value(level.half_power_damping_ratio),
+                            .half_power_std = std(level.half_power_damping_ratio)});
+    const double f = level.quadrature_frequency_hz.value, f_std = level.quadrature_frequency_hz.std;
+    const double a = level.quadrature_amplitude_m.value, a_std = level.quadrature_amplitude_m.std;
+    // σ of the difference: the point's frequency and, through the backbone's slope, its amplitude.
+    const double model_f = BackboneFrequencyAt_hz(model_backbone, a);
+    const double slope = (BackboneFrequencyAt_hz(model_backbone, 1.01 * a) -
+                          BackboneFrequencyAt_hz(model_backbone, 0.99 * a)) / (0.02 * a);
+    const double sigma = std::hypot(f_std, std::isfinite(slope) ? slope * a_std : 0.0);
+    curves.phase_resonance.push_back({.level = level.label,
+                                      .frequency_hz = f,
+                                      .frequency_std_hz = f_std,
+                                      .amplitude = to_channel(a, f),
+                                      .amplitude_std = to_channel(a_std, f),
+                                      .damping_ratio = level.quadrature_damping_ratio.value,
+                                      .damping_ratio_std = level.quadrature_damping_ratio.std,
+                                      .model_frequency_hz = model_f,
+                                      .z = (f - model_f) / sigma,
+                                      .note = level.quadrature_note});
+  }
+  const SingleModeFit& fit = measured.fit;
+  if (!fit.ok) return;
+  mode.fit_form = fit.FormName();
+  mode.damping_trend = measured.damping_trend.verdict;
+  mode.damping_trend_z = measured.damping_trend.z;
+  constexpr int kCurvePoints = 60;
+  for (int k = 0; k <= kCurvePoints; ++k) {
+    const double a = measured.min_amplitude_m +
+                     (measured.max_amplitude_m - measured.min_amplitude_m) * k / static_cast<double>(kCurvePoints);
+    const double f = fit.NaturalFrequency_rad_s(a) / kTwoPi;
+    mode.fit.push_back({.amplitude = to_channel(a, f),
+                        .frequency_hz = f,
+                        .frequency_std_hz = fit.NaturalFrequencyStd_rad_s(a) / kTwoPi,
+                        .damping_ratio = fit.DampingRatio(a),
+                        .damping_ratio_std = fit.DampingRatioStd(a)});
+  }
+}
+
+}  // namespace
+
+ReportCurves ComputeReportCurves(const nlohmann::json& result, const signal::Campaign& campaign,
+                                 const signal::PhasorSet& phasors, const ReportCurveOptions& options,
+                                 const std::function<void(double, const std::string&)>& progress) {
+  auto report = [&](double fraction, const std::string& what) {
+    if (progress) progress(fraction, what);
+  };
+  const IdentifiedModel model = IdentifiedModelFromJson(result, "result");
+  const hb::HarmonicBalance balance = IdentifiedHarmonicBalance(model);
+  const int h = model.num_harmonics;
+  ReportCurves curves;
+  curves.channels = Channels(result, campaign);
+  const std::vector<double> positions = Positions(curves.channels);
+  for (std::size_t c = 0; c < curves.channels.size(); ++c)
+    if (curves.channels[c].fitted) {
+      curves.reference_channel = static_cast<int>(c);
+      break;
+    }
+
+  // Levels in campaign order, with the measured points and the mean force.
+  std::vector<std::string> level_names;
+  for (const auto& step : phasors.steps)
+    if (std::find(level_names.begin(), level_names.end(), step.level) == level_names.end())
+      level_names.push_back(step.level);
+  for (std::size_t l = 0; l < level_names.size(); ++l) {
+    LevelCurves level{.level = level_names[l]};
+    double force_sum = 0.0, f_min = 1e300, f_max = 0.0;
+    for (const auto& step : phasors.steps) {
+      if (step.level != level.level) continue;
+      MeasuredPoint point{.frequency_hz = step.frequency_hz};
+      for (const auto& channel : curves.channels) {
+        const signal::ChannelPhasors* p = step.Find(channel.channel);
+        point.amplitude.push_back(p ? p->Harmonic(1).Amplitude() : std::nan(""));
+      }
+      force_sum += step.force.Harmonic(1).Amplitude();
+      f_min = std::min(f_min, step.frequency_hz);
+      f_max = std::max(f_max, step.frequency_hz);
+      level.measured.push_back(std::move(point));
+    }
+    level.force_amplitude_N = force_sum / static_cast<double>(level.measured.size());
+    report(0.5 * l / level_names.size(), "frequency response of level " + level.level);
+    Eigen::VectorXcd force = Eigen::VectorXcd::Zero(2);
+    force[1] = level.force_amplitude_N;
+    const double margin = 0.01 * (f_max - f_min) + 1e-3 * f_min;
+    const auto summary = hb::TraceFrequencyResponse(
+        balance, force,
+        {.omega_start_rad_s = kTwoPi * (f_min - margin), .omega_end_rad_s = kTwoPi * (f_max + margin),
+         .max_points = options.frc_max_points},
+        [&](double fraction) { report(0.5 * (l + fraction) / level_names.size(), "frequency response"); });
+    level.model_complete = summary.reached_end;
+    level.model_message = summary.message;
+    for (const auto& p : summary.points) {
+      const hb::HarmonicBalanceSolution solution{.omega_rad_s = p.omega_rad_s, .theta_rad = p.theta_rad};
+      const Eigen::MatrixXcd y = balance.Displacements(solution, force, positions);
+      ModelCurvePoint point{.frequency_hz = p.omega_rad_s / kTwoPi, .stable = p.stable};
+      for (std::size_t c = 0; c < curves.channels.size(); ++c)
+        point.amplitude.push_back(
+            std::abs(FromDisplacement(y(static_cast<Eigen::Index>(c), 1), curves.channels[c].derivative_order,
+                                      p.omega_rad_s)));
+      level.model.push_back(std::move(point));
+    }
+    curves.levels.push_back(std::move(level));
+  }
+
+  // Backbone over the identified steps' range of |Θ_1|.
+  report(0.5, "backbone");
+  const ReportChannel& reference = curves.channels[static_cast<std::size_t>(curves.reference_channel)];
+  double theta_max = 0.0;
+  for (const auto& s : model.steps)
+    if (s.theta_rad.size() > 1) theta_max = std::max(theta_max, std::abs(s.theta_rad[1]));
+  std::vector<SensorBackbonePoint> model_backbone;
+  if (theta_max > 0.0) {
+    try {
+      model_backbone = ModelBackboneAtSensor(model.structure.ApplyLinear(model.beam), *model.structure.law,
+                                             model.force_position_m, reference.position_m,
+                                             {.min_theta_amplitude_rad = theta_max / 30.0,
+                                              .max_theta_amplitude_rad = 1.3 * theta_max,
+                                              .num_points = options.backbone_points},
+                                             h);
+    } catch (const std::runtime_error& error) {
+      // The page is still worth having without it.
+      curves.phase_resonance_warnings.push_back(std::string("the model's backbone: ") + error.what());
+    }
+    for (const auto& p : model_backbone)
+      curves.backbone.push_back(
+          {p.frequency_hz, p.amplitude_m * std::pow(kTwoPi * p.frequency_hz, reference.derivative_order), ""});
+  }
+  MeasuredPhaseResonance(phasors, reference, model_backbone, curves);
+
+  // Predicted and measured histories at the first held-out channel.
+  report(0.6, "prediction at the held-out channel");
+  if (result.contains("validation") && result["validation"].is_object() && !result["validation"].empty()) {
+    curves.held_out_channel = result["validation"].begin().key();
+    const auto it = std::find_if(curves.channels.begin(), curves.channels.end(),
+                                 [&](const ReportChannel& c) { return c.channel == curves.held_out_channel; });
+    if (it == curves.channels.end())
+      throw std::invalid_argument("the held-out channel '" + curves.held_out_channel +
+                                  "' of the result is not a sensor of campaign " + campaign.folder.string());
+    const std::vector<PredictedStep> predicted = PredictAt(model, it->position_m, options.samples_per_period);
+    for (const auto& name : level_names) {
+      const PredictedStep* best = nullptr;
+      for (const auto& p : predicted)
+        if (p.level == name && (!best || std::abs(p.displacement_m[1]) * p.frequency_hz * p.frequency_hz >
+                                             std::abs(best->displacement_m[1]) * best->frequency_hz * best->frequency_hz))
+          best = &p;
+      if (!best) continue;
+      const signal::StepPhasors* measured = nullptr;
+      for (const auto& s : phasors.steps)
+        if (s.file == best->file) measured = &s;
+      const signal::ChannelPhasors* channel = measured ? measured->Find(curves.held_out_channel) : nullptr;
+      if (!channel) continue;
+      TimeHistory history{.level = name, .frequency_hz = best->frequency_hz};
+      const double omega = kTwoPi * best->frequency_hz;
+      for (Eigen::Index n = 0; n < best->time_s.size(); ++n) {
+        const double t = best->time_s[n];
+        double a = 0.0;
+        for (const auto& harmonic : channel->harmonics) {
+          const double kw = harmonic.harmonic * omega;
+          Complex acc = harmonic.value;  // to acceleration: (ikω)^(2 − order)
+          for (int d = it->derivative_order; d < 2; ++d) acc *= Complex(0.0, kw);
+          a += std::real(acc * std::polar(1.0, kw * t));
+        }
+        history.time_s.push_back(t);
+        history.predicted.push_back(best->acceleration_m_s2[n]);
+        history.predicted_std.push_back(best->acceleration_std_m_s2[n]);
+        history.measured.push_back(a);
+      }
+      curves.time_histories.push_back(std::move(history));
+    }
+  }
+
+  // Residual map of the fitted channels, from the fitted states.
+  report(0.9, "residual map");
+  std::vector<std::string> fitted;
+  for (const auto& c : curves.channels)
+    if (c.fitted) fitted.push_back(c.channel);
+  const int k_fit = result.at("model").at("num_fit_harmonics").get<int>();
+  const FitData fit = MakeFitData(campaign, phasors, {.channels = fitted, .num_fit_harmonics = k_fit});
+  std::vector<double> fit_positions;
+  for (const auto& c : fit.channels) fit_positions.push_back(c.position_m);
+  for (const auto& c : fit.channels)
+    for (int k = 1; k <= k_fit; ++k) curves.residuals.rows.push_back(c.channel + " h" + std::to_string(k));
+  curves.residuals.whitened_norm =
+      Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(curves.residuals.rows.size()),
+                                static_cast<Eigen::Index>(fit.steps.size()), std::nan(""));
+  for (std::size_t i = 0; i < fit.steps.size(); ++i) {
+    const FitStep& s = fit.steps[i];
+    curves.residuals.step_level.push_back(s.level);
+    curves.residuals.step_frequency_hz.push_back(s.omega_rad_s / kTwoPi);
+    const IdentifiedStep* identified = FindStep(model, s.file);
+    if (!identified) continue;
+    const hb::HarmonicBalanceSolution solution{.omega_rad_s = identified->omega_rad_s,
+                                               .theta_rad = hb::PadHarmonics(identified->theta_rad, h)};
+    const Eigen::MatrixXcd y = balance.Displacements(solution, identified->force_N, fit_positions);
+    for (std::size_t c = 0; c < fit.channels.size(); ++c)
+      for (int k = 1; k <= k_fit; ++k) {
+        const Complex misfit =
+            FromDisplacement(y(static_cast<Eigen::Index>(c), k), fit.channels[c].derivative_order,
+                             k * identified->omega_rad_s) -
+            s.measured(static_cast<Eigen::Index>(c), k - 1);
+        curves.residuals.whitened_norm(static_cast<Eigen::Index>(c * k_fit + k - 1), static_cast<Eigen::Index>(i)) =
+            (s.whitening[c][k - 1] * Eigen::Vector2d(misfit.real(), misfit.imag())).norm();
+      }
+  }
+  report(1.0, "done");
+  return curves;
+}
+
+}  // namespace beamid::solver
