@@ -5,13 +5,20 @@
 
 #include <Eigen/LU>
 
+#include "hb/option_checks.h"
+
 namespace beamid::hb {
+
+void BackboneOptions::Validate() const {
+  using namespace option_checks;
+  RequirePositive("BackboneOptions.min_theta_amplitude_rad", min_theta_amplitude_rad);
+  RequireAbove("BackboneOptions.max_theta_amplitude_rad", max_theta_amplitude_rad, min_theta_amplitude_rad);
+  RequireAtLeast("BackboneOptions.num_points", num_points, 2);
+}
 
 BackboneSummary TraceBackbone(const HarmonicBalance& balance, const BackboneOptions& options,
                               const Eigen::VectorXcd& force_shape, const std::function<void(double)>& progress) {
-  if (!(options.min_theta_amplitude_rad > 0.0) ||
-      !(options.max_theta_amplitude_rad > options.min_theta_amplitude_rad) || options.num_points < 2)
-    throw std::invalid_argument("backbone: need 0 < min amplitude < max amplitude and at least 2 points");
+  options.Validate();
   const int h = balance.num_harmonics();
   const int m = balance.num_unknowns();
   Eigen::VectorXcd shape = force_shape.size() ? PadHarmonics(force_shape, h) : PadHarmonics(Eigen::VectorXcd::Ones(2), h);

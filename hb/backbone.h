@@ -25,6 +25,9 @@ struct BackboneOptions {
   double max_theta_amplitude_rad = 2e-2;
   int num_points = 200;
   bool geometric_spacing = true;  // amplitudes equally spaced in log
+
+  // Throws InputError naming the field, its value and the allowed range.
+  void Validate() const;
 };
 
 struct BackbonePoint {

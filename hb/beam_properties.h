@@ -25,16 +25,20 @@ struct BeamProperties {
   // ρA [kg/m]
   double MassPerLength_kg_m() const { return density_kg_m3 * Area_m2(); }
 
-  // Throws std::invalid_argument naming the first field that is not physical.
+  // Throws std::invalid_argument naming the first field that is not physical
+  // or lies outside what a beam test can have (the stated limits keep a
+  // typing error such as 1e300 from reaching the solvers as a number).
   void Validate() const {
-    auto positive = [](double v, const char* name) {
-      if (!(v > 0.0)) throw std::invalid_argument(std::string("beam: ") + name + " must be a positive number");
+    auto within = [](double v, double low, double high, const char* name, const char* range) {
+      if (!(v >= low && v <= high))
+        throw std::invalid_argument(std::string("beam: ") + name + " = " + std::to_string(v) +
+                                    " is not a beam test's (" + range + ")");
     };
-    positive(length_m, "length_m");
-    positive(width_m, "width_m");
-    positive(thickness_m, "thickness_m");
-    positive(youngs_modulus_Pa, "youngs_modulus_Pa");
-    positive(density_kg_m3, "density_kg_m3");
+    within(length_m, 1e-3, 100.0, "length_m", "1 mm to 100 m");
+    within(width_m, 1e-6, length_m, "width_m", "1 µm to the length");
+    within(thickness_m, 1e-6, length_m, "thickness_m", "1 µm to the length");
+    within(youngs_modulus_Pa, 1e6, 1e13, "youngs_modulus_Pa", "1e6 to 1e13 Pa");
+    within(density_kg_m3, 1.0, 1e5, "density_kg_m3", "1 to 1e5 kg/m³");
     if (!(loss_factor >= 0.0 && loss_factor < 1.0))
       throw std::invalid_argument("beam: loss_factor must lie in [0, 1)");
   }

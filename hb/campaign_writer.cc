@@ -1,5 +1,6 @@
 #include "hb/campaign_writer.h"
 
+#include "hb/version.h"
 #include "hb/errors.h"
 #include "hb/text_file.h"
 
@@ -150,6 +151,7 @@ void CampaignWriter::Finish() {
   }
   const Json campaign = {
       {"format", "stepped-sine-campaign/1"},
+      {"beamid_version", kVersion},
       {"name", s.name},
       {"beam", BeamJson(s.nominal_beam, false)},
       {"excitation", {{"channel", s.force_channel}, {"position_m", s.force_position_m}, {"quantity", "force"}, {"unit", "N"}}},
@@ -174,6 +176,7 @@ void CampaignWriter::Finish() {
 
   const Json truth = {
       {"format", "beamid-simulation-truth/1"},
+      {"beamid_version", kVersion},
       {"scenario", s.name},
       {"beam", BeamJson(s.beam, true)},
       {"nominal_beam", BeamJson(s.nominal_beam, false)},

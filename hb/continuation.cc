@@ -5,6 +5,8 @@
 
 #include <Eigen/LU>
 
+#include "hb/option_checks.h"
+
 namespace beamid::hb {
 namespace {
 
@@ -16,12 +18,25 @@ struct PathPoint {
 
 }  // namespace
 
+void ContinuationOptions::Validate() const {
+  using namespace option_checks;
+  RequirePositive("ContinuationOptions.omega_start_rad_s", omega_start_rad_s);
+  RequirePositive("ContinuationOptions.omega_end_rad_s", omega_end_rad_s);
+  if (omega_end_rad_s == omega_start_rad_s)
+    Refuse("ContinuationOptions.omega_end_rad_s", FormatValue(omega_end_rad_s), "other than omega_start_rad_s");
+  RequireAtLeast("ContinuationOptions.max_points", max_points, 1);
+  RequirePositive("ContinuationOptions.min_step", min_step);
+  RequireAtLeast("ContinuationOptions.max_step", max_step, min_step);
+  RequireInRange("ContinuationOptions.initial_step", initial_step, min_step, max_step);
+  RequireAtLeast("ContinuationOptions.target_iterations", target_iterations, 1);
+  RequireAtLeast("ContinuationOptions.max_iterations", max_iterations, 1);
+  RequirePositive("ContinuationOptions.tolerance", tolerance);
+}
+
 ContinuationSummary TraceFrequencyResponse(const HarmonicBalance& balance, const Eigen::VectorXcd& force_N,
                                            const ContinuationOptions& options,
                                            const std::function<void(double)>& progress) {
-  if (!(options.omega_start_rad_s > 0.0) || !(options.omega_end_rad_s > 0.0) ||
-      options.omega_start_rad_s == options.omega_end_rad_s)
-    throw std::invalid_argument("continuation needs two distinct positive frequencies");
+  options.Validate();
   const int m = balance.num_unknowns();
   const double direction = options.omega_end_rad_s > options.omega_start_rad_s ? 1.0 : -1.0;
   const double omega_ref = options.omega_start_rad_s;

@@ -36,6 +36,9 @@ struct ContinuationOptions {
   int target_iterations = 4;   // steps grow below this count, shrink above
   int max_iterations = 12;
   double tolerance = 1e-9;     // corrector: scaled step norm
+
+  // Throws InputError naming the field, its value and the allowed range.
+  void Validate() const;
 };
 
 struct FrequencyResponsePoint {

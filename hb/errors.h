@@ -22,7 +22,17 @@ namespace beamid {
 
 class InputError : public std::invalid_argument {
  public:
-  using std::invalid_argument::invalid_argument;
+  explicit InputError(const std::string& message) : std::invalid_argument(message) {}
+  // "<file>: channel '<channel>': <problem>. Fix: <fix>" (channel and fix
+  // left out when empty); file() and channel() let a caller act on them.
+  InputError(std::string file, std::string channel, const std::string& problem, const std::string& fix);
+
+  const std::string& file() const { return file_; }
+  const std::string& channel() const { return channel_; }
+
+ private:
+  std::string file_;
+  std::string channel_;
 };
 
 class NumericalError : public std::runtime_error {

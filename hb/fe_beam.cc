@@ -9,6 +9,8 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "hb/option_checks.h"
+
 namespace beamid::hb {
 namespace {
 
@@ -40,10 +42,16 @@ std::vector<double> MeshNodes(double length_m, std::span<const double> required_
 
 }  // namespace
 
+// The scenario reader's limit (mesh.min_elements): beyond it a step of the
+// simulator costs seconds without changing the first modes.
+void FeBeamOptions::Validate() const {
+  option_checks::RequireInRange("FeBeamOptions.min_elements", min_elements, 1, 2000);
+}
+
 FeBeam::FeBeam(const BeamProperties& beam, const LinearAttachments& attachments,
                std::span<const double> required_nodes_m, const FeBeamOptions& options) {
+  options.Validate();
   beam.Validate();
-  if (options.min_elements < 1) throw std::invalid_argument("finite-element beam: min_elements must be >= 1");
   const bool clamp_spring = std::isfinite(attachments.clamp_rotational_stiffness_Nm_rad);
   const bool support_spring = std::isfinite(attachments.support_translational_stiffness_N_m);
   if (clamp_spring && !(attachments.clamp_rotational_stiffness_Nm_rad > 0.0))

@@ -32,6 +32,9 @@ struct FeBeamOptions {
   // campaign resolves (k1 came out 3e-5 high, 1–2 of its standard
   // deviations); 40 make that 16 times smaller.
   int min_elements = 40;
+
+  // Throws InputError naming the field, its value and the allowed range.
+  void Validate() const;
 };
 
 class FeBeam {

@@ -8,6 +8,7 @@
 #include <Eigen/LU>
 
 #include "hb/internal/real_fft.h"
+#include "hb/option_checks.h"
 
 namespace beamid::hb {
 namespace {
@@ -49,9 +50,19 @@ Eigen::VectorXcd PadHarmonics(const Eigen::VectorXcd& phasors, int num_harmonics
   return out;
 }
 
+void HarmonicBalanceOptions::Validate() const {
+  using namespace option_checks;
+  RequireInRange("HarmonicBalanceOptions.num_harmonics", num_harmonics, 1, kMaxHarmonics);
+  // Fewer than 2H + 2 samples cannot carry H harmonics (Nyquist).
+  if (num_time_samples != 0)
+    RequireAtLeast("HarmonicBalanceOptions.num_time_samples (0: automatic)", num_time_samples, 2 * num_harmonics + 2);
+  RequirePositive("HarmonicBalanceOptions.tolerance", tolerance);
+  RequireAtLeast("HarmonicBalanceOptions.max_iterations", max_iterations, 1);
+}
+
 HarmonicBalance::HarmonicBalance(const LinearBeam& beam, const SupportLaw& law, const HarmonicBalanceOptions& options)
     : beam_(beam), law_(law.Clone()), options_(options) {
-  if (options_.num_harmonics < 1) throw std::invalid_argument("harmonic balance needs at least 1 harmonic");
+  options_.Validate();
   num_time_samples_ = options_.num_time_samples > 0
                           ? options_.num_time_samples
                           : AutomaticSamples(options_.num_harmonics, law_->IsSmooth());

@@ -44,6 +44,9 @@ struct HarmonicBalanceOptions {
   // Newton stops when the step is below tolerance × (|z| + 1e-12 rad).
   double tolerance = 1e-10;
   int max_iterations = 40;
+
+  // Throws InputError naming the field, its value and the allowed range.
+  void Validate() const;
 };
 
 // The beam's linear part at the harmonics of one fundamental frequency.

@@ -10,6 +10,7 @@
 #include <Eigen/LU>
 
 #include "hb/internal/beam_mesh.h"
+#include "hb/option_checks.h"
 
 namespace beamid::hb {
 namespace {
@@ -135,9 +136,13 @@ Complex BeamDeflection::Displacement_m(double position_m) const { return Evaluat
 Complex BeamDeflection::Slope_rad(double position_m) const { return Evaluate(position_m, 1); }
 Complex BeamDeflection::SupportRotation_rad() const { return nodal_[nodal_.size() - 1]; }
 
+void LinearBeamOptions::Validate() const {
+  option_checks::RequirePositive("LinearBeamOptions.max_frequency_hz", max_frequency_hz);
+}
+
 LinearBeam::LinearBeam(const LinearBeamModel& model, double force_position_m, const LinearBeamOptions& options)
     : model_(model), force_position_m_(force_position_m) {
-  if (!(options.max_frequency_hz > 0.0)) throw std::invalid_argument("max_frequency_hz must be positive");
+  options.Validate();
   model_.beam.Validate();
   if (!(model.support_stiffness_Nm_rad >= 0.0) || !(model.support_damping_Nms_rad >= 0.0))
     throw std::invalid_argument("the support stiffness k1 and damping c must be >= 0");

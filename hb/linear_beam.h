@@ -58,6 +58,9 @@ struct LinearBeamOptions {
   // segment matrices keep their accuracy; above it precision degrades
   // gradually (about one digit per further 2.3 of λℓ).
   double max_frequency_hz = 5000.0;
+
+  // Throws InputError naming the field, its value and the allowed range.
+  void Validate() const;
 };
 
 class LinearBeam {

@@ -3,6 +3,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "hb/text_file.h"
 #include "hb/internal/json_object_reader.h"
 
 namespace beamid::hb {
@@ -48,6 +49,11 @@ ModelFile ParseModelFile(const std::string& json_text, const std::string& source
       model.sensors.push_back(sensor);
     }
   }
+  try {
+    model.beam.Validate();
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(source + ": " + e.what() + ". Fix: give the beam in SI (m, Pa, kg/m³)");
+  }
   const double length = model.beam.length_m;
   auto on_beam = [&](double x, const std::string& what) {
     if (x > length) throw std::invalid_argument(source + ": " + what + " at " + std::to_string(x) +
@@ -60,11 +66,7 @@ ModelFile ParseModelFile(const std::string& json_text, const std::string& source
 }
 
 ModelFile ReadModelFile(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw std::invalid_argument(file.string() + ": cannot open the model file (check the path)");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return ParseModelFile(text.str(), file.string());
+  return ParseModelFile(ReadTextFile(file, "model file", "check the path"), file.string());
 }
 
 }  // namespace beamid::hb

@@ -1,6 +1,7 @@
 #include "hb/multiple_scales.h"
 
 #include "hb/errors.h"
+#include "hb/option_checks.h"
 
 #include <algorithm>
 #include <cmath>
@@ -58,6 +59,13 @@ std::vector<double> PositiveCubicRoots(double c3, double c2, double c1, double c
 
 }  // namespace
 
+void MultipleScalesOptions::Validate() const {
+  if (harmonic_frequency != MultipleScalesHarmonicFrequency::kExcitation &&
+      harmonic_frequency != MultipleScalesHarmonicFrequency::kNatural)
+    option_checks::Refuse("MultipleScalesOptions.harmonic_frequency",
+                          option_checks::FormatValue(static_cast<int>(harmonic_frequency)), "kExcitation or kNatural");
+}
+
 MultipleScalesModel::MultipleScalesModel(const BeamProperties& beam,
                                          const PolynomialSupportLaw::Coefficients& support,
                                          double force_position_m, const Options& options)
@@ -66,6 +74,7 @@ MultipleScalesModel::MultipleScalesModel(const BeamProperties& beam,
       force_position_m_(force_position_m),
       options_(options),
       closed_form_(beam, support.k1_Nm_rad) {
+  options.Validate();
   for (double value : {support.k2_Nm_rad2, support.k3_Nm_rad3, support.c_Nms_rad})
     if (!std::isfinite(value))
       throw std::invalid_argument("multiple-scales model: the support coefficients k2, k3 and c must be finite");

@@ -59,6 +59,10 @@ enum class MultipleScalesHarmonicFrequency {
 
 struct MultipleScalesOptions {
   MultipleScalesHarmonicFrequency harmonic_frequency = MultipleScalesHarmonicFrequency::kExcitation;
+
+  // Throws InputError when harmonic_frequency is none of the enumerators
+  // (a value cast from a number read elsewhere).
+  void Validate() const;
 };
 
 class MultipleScalesModel {

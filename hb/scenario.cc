@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "hb/text_file.h"
 #include "hb/internal/json_object_reader.h"
 
 namespace beamid::hb {
@@ -232,8 +233,12 @@ Scenario ParseScenario(const std::string& json_text, const std::string& source) 
   }
 
   // Consistency of the whole.
-  s.beam.Validate();
-  s.nominal_beam.Validate();
+  try {
+    s.beam.Validate();
+    s.nominal_beam.Validate();
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(source + ": " + e.what() + ". Fix: give the beam in SI (m, Pa, kg/m³)");
+  }
   const double length = s.beam.length_m;
   auto inside = [&](double x, const std::string& what, bool allow_ends) {
     if (!(x >= 0.0 && x <= length) || (!allow_ends && (x <= 0.0 || x >= length)))
@@ -279,11 +284,7 @@ Scenario ParseScenario(const std::string& json_text, const std::string& source) 
 }
 
 Scenario ReadScenario(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw std::invalid_argument(file.string() + ": cannot open the scenario file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return ParseScenario(text.str(), file.string());
+  return ParseScenario(ReadTextFile(file, "scenario file", "check the path"), file.string());
 }
 
 }  // namespace beamid::hb

@@ -10,6 +10,8 @@
 #include <Eigen/Eigenvalues>
 #include <unsupported/Eigen/MatrixFunctions>
 
+#include "hb/option_checks.h"
+
 namespace beamid::hb {
 namespace {
 
@@ -74,10 +76,23 @@ ModalStepMap ModalStep(double omega, double damping, double dt) {
 
 }  // namespace
 
+void TimeSimulatorOptions::Validate() const {
+  using namespace option_checks;
+  // Half the readers' floor on max_time_step_s (1e-7 s): the stepped sine
+  // divides the sample period into whole steps, which lie between half that
+  // bound and the bound.
+  RequireAtLeast("TimeSimulatorOptions.time_step_s", time_step_s, 5e-8);
+  RequireNonNegative("TimeSimulatorOptions.damping_reference_rad_s", damping_reference_rad_s);
+  mesh.Validate();
+  RequireAtLeast("TimeSimulatorOptions.max_newton_iterations", max_newton_iterations, 1);
+}
+
 TimeSimulator::TimeSimulator(const TimeSimulatorModel& model, const SupportLaw& law,
                              const TimeSimulatorOptions& options)
     : fe_beam_(model.beam, model.attachments,
                [&] {
+                 // Here, since the mesh is built before the constructor's body.
+                 options.Validate();
                  std::vector<double> nodes = model.output_positions_m;
                  nodes.push_back(model.force_position_m);
                  return nodes;
@@ -86,8 +101,6 @@ TimeSimulator::TimeSimulator(const TimeSimulatorModel& model, const SupportLaw& 
       law_(law.Clone()),
       time_step_s_(options.time_step_s),
       max_newton_iterations_(options.max_newton_iterations) {
-  if (!(time_step_s_ > 0.0 && std::isfinite(time_step_s_)))
-    throw std::invalid_argument("time simulator: time_step_s must be a positive number");
   const int force_dof = fe_beam_.DeflectionDof(model.force_position_m);
   if (force_dof == FeBeam::kConstrained)
     throw std::invalid_argument("time simulator: the force acts at a constrained point (x = 0 or a rigid support)");

@@ -63,6 +63,9 @@ struct TimeSimulatorOptions {
   double damping_reference_rad_s = 0.0;
   FeBeamOptions mesh;
   int max_newton_iterations = 50;
+
+  // Throws InputError naming the field, its value and the allowed range.
+  void Validate() const;
 };
 
 class TimeSimulator {

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "hb/text_file.h"
 #include "signal/input_error.h"
 #include "signal/internal/text.h"
 
@@ -141,7 +142,7 @@ Campaign ParseCampaign(std::string_view json_text, const std::filesystem::path& 
     reader.Fail("", "", "the key \"" + duplicate_key + "\" is written twice in one object",
                 "keep one of the two entries");
   reader.RequireObject(root, "");
-  reader.OnlyKeys(root, "", {"format", "name", "beam", "excitation", "sensors", "steps", "sample_rate_Hz"});
+  reader.OnlyKeys(root, "", {"format", "beamid_version", "name", "beam", "excitation", "sensors", "steps", "sample_rate_Hz"});
 
   Campaign campaign;
   campaign.folder = folder;
@@ -159,6 +160,11 @@ Campaign ParseCampaign(std::string_view json_text, const std::filesystem::path& 
   campaign.beam.thickness_m = reader.Number(beam, "beam", "thickness_m");
   campaign.beam.youngs_modulus_Pa = reader.Number(beam, "beam", "youngs_modulus_Pa");
   campaign.beam.density_kg_m3 = reader.Number(beam, "beam", "density_kg_m3");
+  try {
+    campaign.beam.Validate();
+  } catch (const std::invalid_argument& e) {
+    reader.Fail("beam", "", e.what(), "give the beam's nominal values in SI (m, Pa, kg/m³)");
+  }
 
   campaign.excitation =
       reader.Channel(reader.Member(root, "", "excitation"), "excitation", true, campaign.beam.length_m);
@@ -194,13 +200,9 @@ Campaign ParseCampaign(std::string_view json_text, const std::filesystem::path& 
 
 Campaign ReadCampaign(const std::filesystem::path& folder) {
   const std::filesystem::path file = folder / "campaign.json";
-  std::ifstream stream(file, std::ios::binary);
-  if (!stream)
-    throw InputError(file.string(), "", "cannot open the campaign description",
-                     "give the folder that holds campaign.json (and check read permissions)");
-  std::ostringstream text;
-  text << stream.rdbuf();
-  Campaign campaign = ParseCampaign(text.str(), folder, file.string());
+  Campaign campaign = ParseCampaign(
+      ReadTextFile(file, "campaign description", "give the folder that holds campaign.json (and check read permissions)"),
+      folder, file.string());
   std::error_code error;
   const std::filesystem::path root = std::filesystem::weakly_canonical(std::filesystem::absolute(folder), error);
   std::set<std::filesystem::path> recordings;

@@ -15,20 +15,12 @@
 #include <string_view>
 #include <vector>
 
+#include "hb/beam_properties.h"
 #include "signal/quantity.h"
 
 namespace beamid::signal {
 
 inline constexpr std::string_view kCampaignFormat = "stepped-sine-campaign/1";
-
-// Nominal uniform Euler–Bernoulli beam, clamped at x = 0, on the support at x = L.
-struct BeamNominal {
-  double length_m = 0.0;
-  double width_m = 0.0;
-  double thickness_m = 0.0;
-  double youngs_modulus_Pa = 0.0;
-  double density_kg_m3 = 0.0;
-};
 
 // One channel of the recordings: the force transducer or a response sensor.
 struct ChannelSpec {
@@ -49,7 +41,7 @@ struct Step {
 struct Campaign {
   std::filesystem::path folder;
   std::string name;
-  BeamNominal beam;
+  hb::BeamProperties beam;  // loss_factor 0: campaign.json does not give one
   ChannelSpec excitation;
   std::vector<ChannelSpec> sensors;
   std::vector<Step> steps;  // in the order they were run

@@ -1,6 +1,7 @@
 #include "signal/campaign_extractor.h"
 
 #include "hb/errors.h"
+#include "hb/option_checks.h"
 #include "signal/input_error.h"
 
 #include <algorithm>
@@ -16,7 +17,15 @@
 
 namespace beamid::signal {
 
+void ExtractOptions::Validate() const {
+  estimator.Validate();
+  checks.Validate();
+  // The bound of identify's --threads, which names the same kind of pool.
+  option_checks::RequireInRange("ExtractOptions.num_threads (0: one per core)", num_threads, 0, 256);
+}
+
 PhasorSet ExtractCampaign(const Campaign& campaign, const ExtractOptions& options) {
+  options.Validate();
   const std::size_t total = campaign.steps.size();
   PhasorSet set;
   set.campaign = campaign.name;

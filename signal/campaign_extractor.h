@@ -22,6 +22,9 @@ struct ExtractOptions {
   int num_threads = 0;  // 0: one per hardware core
   // Called (serialised) after each step with the number of steps done.
   std::function<void(std::size_t done, std::size_t total, const StepPhasors& step)> progress;
+
+  // Throws InputError naming the field, its value and the allowed range.
+  void Validate() const;
 };
 
 PhasorSet ExtractCampaign(const Campaign& campaign, const ExtractOptions& options = {});

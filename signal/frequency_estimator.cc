@@ -1,6 +1,7 @@
 #include "signal/frequency_estimator.h"
 
 #include "hb/errors.h"
+#include "hb/option_checks.h"
 
 #include <algorithm>
 #include <cmath>
@@ -50,9 +51,20 @@ double InterpolatedDftFrequency(const Eigen::Ref<const Eigen::VectorXd>& samples
   return (peak + delta) * bin_hz;
 }
 
+void FrequencyEstimatorOptions::Validate() const {
+  using namespace option_checks;
+  RequireInRange("FrequencyEstimatorOptions.num_harmonics", num_harmonics, 1, kMaxHarmonics);
+  // A band of 100 % would search down to 0 Hz.
+  if (!(search_band_rel > 0.0 && search_band_rel < 1.0))
+    Refuse("FrequencyEstimatorOptions.search_band_rel", FormatValue(search_band_rel), "above 0 and below 1");
+  RequireAtLeast("FrequencyEstimatorOptions.max_iterations", max_iterations, 1);
+  RequirePositive("FrequencyEstimatorOptions.tolerance_rel", tolerance_rel);
+}
+
 FrequencyEstimate EstimateFrequency(const Eigen::Ref<const Eigen::VectorXd>& samples, double sample_rate_hz,
                                     double nominal_frequency_hz, const FrequencyEstimatorOptions& options,
                                     double start_frequency_hz) {
+  options.Validate();
   const int n = static_cast<int>(samples.size());
   const int h = options.num_harmonics;
   FrequencyEstimate estimate;

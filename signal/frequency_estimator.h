@@ -22,6 +22,9 @@ struct FrequencyEstimatorOptions {
   double search_band_rel = 0.05;   // peak search: nominal·(1 ± band), at least ±3 bins
   int max_iterations = 30;
   double tolerance_rel = 1e-12;    // stop when |Δf| < tolerance·f
+
+  // Throws InputError naming the field, its value and the allowed range.
+  void Validate() const;
 };
 
 struct FrequencyEstimate {

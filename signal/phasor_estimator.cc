@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "hb/option_checks.h"
 #include "signal/input_error.h"
 #include "signal/internal/text.h"
 
@@ -65,8 +66,23 @@ std::vector<ChannelPhasors> ReferencePhasors(const HarmonicFit& fit, std::size_t
   return result;
 }
 
+void PhasorEstimatorOptions::Validate() const {
+  using namespace option_checks;
+  RequireInRange("PhasorEstimatorOptions.num_harmonics", num_harmonics, 1, kMaxHarmonics);
+  // The frequency estimator runs with H harmonics whatever frequency.num_harmonics says.
+  FrequencyEstimatorOptions used = frequency;
+  used.num_harmonics = num_harmonics;
+  used.Validate();
+  steady_state.Validate();
+  RequireNonNegative("PhasorEstimatorOptions.warn_snr_db", warn_snr_db);
+  RequireNonNegative("PhasorEstimatorOptions.warn_frequency_offset_rel", warn_frequency_offset_rel);
+  RequireInRange("PhasorEstimatorOptions.warn_transient_fraction", warn_transient_fraction, 0.0, 1.0);
+  RequireNonNegative("PhasorEstimatorOptions.min_force_snr", min_force_snr);
+}
+
 StepPhasors EstimateStepPhasors(const Recording& recording, const Campaign& campaign, const Step& step,
                                 const PhasorEstimatorOptions& options) {
+  options.Validate();
   const auto specs = campaign.Channels();
   if (recording.channels.size() != specs.size() || recording.channels.front() != campaign.excitation.channel)
     throw std::invalid_argument(recording.file + ": the recording's channels do not follow campaign.json's");

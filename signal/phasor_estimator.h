@@ -32,6 +32,9 @@ struct PhasorEstimatorOptions {
   double warn_frequency_offset_rel = 0.01; // warn when |f/f_nominal − 1| is larger
   double warn_transient_fraction = 0.5;    // warn when more of the record was dropped
   double min_force_snr = 10.0;             // |F_1|/σ(F_1) below this: no excitation found
+
+  // Throws InputError naming the field, its value and the allowed range.
+  void Validate() const;
 };
 
 // Recording columns in Campaign::Channels() order (as ReadRecording returns).

@@ -1,5 +1,6 @@
 #include "signal/phasor_set_io.h"
 
+#include "hb/version.h"
 #include "hb/text_file.h"
 
 #include <cstdio>
@@ -91,6 +92,7 @@ std::string PhasorSetToJson(const PhasorSet& set) {
                      {"channels", channels}});
   }
   const json root = {{"format", kPhasorFormat},
+                     {"beamid_version", kVersion},
                      {"convention", kConvention},
                      {"campaign", set.campaign},
                      {"num_harmonics", set.num_harmonics},
@@ -169,12 +171,8 @@ void WritePhasorSetCsv(const PhasorSet& set, const std::filesystem::path& file) 
 }
 
 PhasorSet ReadPhasorSetJson(const std::filesystem::path& file) {
-  std::ifstream stream(file, std::ios::binary);
-  if (!stream)
-    throw InputError(file.string(), "", "cannot open the phasors file", "run 'beamid extract' first, or check the path");
-  std::ostringstream text;
-  text << stream.rdbuf();
-  return PhasorSetFromJson(text.str(), file.string());
+  return PhasorSetFromJson(ReadTextFile(file, "phasors file", "run 'beamid extract' first, or check the path"),
+                           file.string());
 }
 
 }  // namespace beamid::signal

@@ -12,6 +12,7 @@
 
 #include <Eigen/Geometry>
 
+#include "hb/text_file.h"
 #include "signal/input_error.h"
 
 namespace beamid::signal {
@@ -327,12 +328,7 @@ FirstHarmonicLevel ParsePhasorTable(std::string_view text, const std::string& so
 }
 
 FirstHarmonicLevel ReadPhasorTable(const std::filesystem::path& file) {
-  std::ifstream stream(file, std::ios::binary);
-  if (!stream)
-    throw InputError(file.string(), "", "cannot open the phasor table", "check the path");
-  std::stringstream text;
-  text << stream.rdbuf();
-  return ParsePhasorTable(text.str(), file.string(), file.stem().string());
+  return ParsePhasorTable(ReadTextFile(file, "phasor table", "check the path"), file.string(), file.stem().string());
 }
 
 }  // namespace beamid::signal

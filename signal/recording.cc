@@ -6,6 +6,7 @@
 #include <cstring>
 #include <fstream>
 
+#include "hb/text_file.h"
 #include "signal/input_error.h"
 #include "signal/uff_recording.h"
 
@@ -80,6 +81,7 @@ int Recording::ChannelIndex(std::string_view channel) const {
 
 Recording ParseRecording(std::string_view csv_text, const Campaign& campaign, const Step& step,
                          const std::string& source, const RecordingChecks& checks) {
+  checks.Validate();
   const auto channels = campaign.Channels();
   std::string_view text = csv_text;
   if (Trim(text).empty()) throw InputError(source, "", "the file is empty", "export the recording again");
@@ -156,18 +158,12 @@ Recording ParseRecording(std::string_view csv_text, const Campaign& campaign, co
 }
 
 Recording ReadRecording(const Campaign& campaign, const Step& step, const RecordingChecks& checks) {
+  checks.Validate();
   const std::filesystem::path path = campaign.StepPath(step);
   const std::string source = path.string();
   if (IsUniversalFile(path)) return RecordingFromUff58(ReadUff58(path), campaign, step, source, checks);
-  std::ifstream stream(path, std::ios::binary | std::ios::ate);
-  if (!stream)
-    throw InputError(source, "", "cannot open the recording",
-                     "check that the file named in campaign.json exists and is readable");
-  const std::streamsize size = stream.tellg();
-  std::string text(static_cast<std::size_t>(std::max<std::streamsize>(size, 0)), '\0');
-  stream.seekg(0);
-  if (!stream.read(text.data(), size))
-    throw InputError(source, "", "cannot read the recording", "check the file and its permissions");
+  const std::string text =
+      ReadTextFile(path, "recording", "check that the file named in campaign.json exists and is readable");
   return ParseRecording(text, campaign, step, source, checks);
 }
 

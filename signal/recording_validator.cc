@@ -1,8 +1,10 @@
 #include "signal/recording_validator.h"
 
 #include <algorithm>
+#include <vector>
 #include <cmath>
 
+#include "hb/option_checks.h"
 #include "signal/input_error.h"
 #include "signal/internal/text.h"
 
@@ -10,8 +12,22 @@ namespace beamid::signal {
 
 using internal::FormatNumber;
 
+void RecordingChecks::Validate() const {
+  using namespace option_checks;
+  RequirePositive("RecordingChecks.min_periods", min_periods);
+  RequirePositive("RecordingChecks.max_time_deviation_samples", max_time_deviation_samples);
+  if (!(sample_rate_tolerance_rel > 0.0 && sample_rate_tolerance_rel < 1.0))
+    Refuse("RecordingChecks.sample_rate_tolerance_rel", FormatValue(sample_rate_tolerance_rel), "above 0 and below 1");
+  // A "run" of one sample is every sample: each would be a dropout.
+  RequireAtLeast("RecordingChecks.min_run_samples", min_run_samples, 2);
+  RequireNonNegative("RecordingChecks.min_run_fraction_of_period", min_run_fraction_of_period);
+  // At 1 or below, the 1 % of samples beyond the 99th percentile would be spikes.
+  RequireAbove("RecordingChecks.max_spike_ratio", max_spike_ratio, 1.0);
+}
+
 double ValidateTimeColumn(std::span<const double> time_s, double expected_sample_rate_hz, const std::string& file,
                           int first_line, const RecordingChecks& checks) {
+  checks.Validate();
   const std::size_t n = time_s.size();
   if (n < 2) throw InputError(file, "time_s", "fewer than two samples", "record the whole step");
   for (std::size_t i = 1; i < n; ++i) {
@@ -44,6 +60,7 @@ double ValidateTimeColumn(std::span<const double> time_s, double expected_sample
 void ValidateChannels(const Eigen::MatrixXd& samples, std::span<const std::string> channels, double sample_rate_hz,
                       double start_time_s, double nominal_frequency_hz, const std::string& file,
                       const RecordingChecks& checks) {
+  checks.Validate();
   const Eigen::Index n = samples.rows();
   const double samples_per_period = sample_rate_hz / nominal_frequency_hz;
   const double periods = static_cast<double>(n) / samples_per_period;
@@ -66,6 +83,20 @@ void ValidateChannels(const Eigen::MatrixXd& samples, std::span<const std::strin
     if (max_value == min_value)
       throw InputError(file, channel, "the channel is constant (" + FormatNumber(max_value) + ") over the whole record",
                        "check that the sensor is connected and its column is the right one");
+    std::vector<double> deviation(x, x + n);
+    std::nth_element(deviation.begin(), deviation.begin() + n / 2, deviation.end());
+    const double median = deviation[static_cast<std::size_t>(n / 2)];
+    for (Eigen::Index i = 0; i < n; ++i) deviation[static_cast<std::size_t>(i)] = std::abs(x[i] - median);
+    const auto p99 = deviation.begin() + static_cast<std::ptrdiff_t>(0.99 * static_cast<double>(n - 1));
+    std::nth_element(deviation.begin(), p99, deviation.end());
+    if (*p99 > 0.0)
+      for (Eigen::Index i = 0; i < n; ++i)
+        if (std::abs(x[i] - median) > checks.max_spike_ratio * *p99)
+          throw InputError(file, channel,
+                           "spike: the sample at t = " + time_at(i) + " s (" + FormatNumber(x[i]) + ") lies " +
+                               FormatNumber(std::abs(x[i] - median) / *p99) +
+                               " times farther from the median than 99 % of the channel's samples",
+                           "repair or remove the corrupted sample, or record the step again");
     Eigen::Index run_start = 0;
     for (Eigen::Index i = 1; i <= n; ++i) {
       if (i < n && x[i] == x[run_start]) continue;

@@ -9,7 +9,13 @@
 //    max(min_run_samples, min_run_fraction_of_period · samples per period)
 //    long: a sine quantised to 4 significant digits repeats a value over less
 //    than 0.5 % of a period at its peak, a clipped or dropped signal for far
-//    longer.
+//    longer;
+//  - per channel: no spike (a sample farther from the median than
+//    max_spike_ratio times the channel's 99th percentile of |x − median|): a
+//    steady vibration never exceeds its own 99th percentile by more than its
+//    noise, while one corrupted sample of 1000× the level shifts every
+//    harmonic of the step by its size / N (an unnoticed 1.8 N error on a
+//    0.5 N force).
 // NaN/Inf values are rejected while parsing (signal/recording.h).
 #pragma once
 
@@ -26,6 +32,10 @@ struct RecordingChecks {
   double sample_rate_tolerance_rel = 1e-3;
   int min_run_samples = 4;
   double min_run_fraction_of_period = 0.02;
+  double max_spike_ratio = 10.0;
+
+  // Throws InputError naming the field, its value and the allowed range.
+  void Validate() const;
 };
 
 // Returns the sample rate [Hz] implied by the time column; throws InputError.
@@ -34,7 +44,7 @@ struct RecordingChecks {
 double ValidateTimeColumn(std::span<const double> time_s, double expected_sample_rate_hz, const std::string& file,
                           int first_line, const RecordingChecks& checks);
 
-// Length, clipping and dropout checks of every column (channel names in
+// Length, clipping, dropout and spike checks of every column (channel names in
 // column order); throws InputError naming the channel, the time and the fix.
 void ValidateChannels(const Eigen::MatrixXd& samples, std::span<const std::string> channels, double sample_rate_hz,
                       double start_time_s, double nominal_frequency_hz, const std::string& file,

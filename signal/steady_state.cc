@@ -6,6 +6,7 @@
 
 #include <Eigen/Cholesky>
 
+#include "hb/option_checks.h"
 #include "signal/frequency_estimator.h"
 #include "signal/input_error.h"
 #include "signal/internal/harmonic_basis.h"
@@ -63,9 +64,23 @@ double Median(std::vector<double> values) {
 
 }  // namespace
 
+void SteadyStateOptions::Validate() const {
+  using namespace option_checks;
+  if (!(reference_fraction > 0.0 && reference_fraction <= 1.0))
+    Refuse("SteadyStateOptions.reference_fraction", FormatValue(reference_fraction), "above 0 and at most 1");
+  RequirePositive("SteadyStateOptions.threshold", threshold);
+  RequireAtLeast("SteadyStateOptions.settled_blocks", settled_blocks, 1);
+  RequirePositive("SteadyStateOptions.min_steady_periods", min_steady_periods);
+  // Below 1 every block would count as decaying, however steady.
+  RequireAtLeast("SteadyStateOptions.max_decay_ratio", max_decay_ratio, 1.0);
+  RequireAtLeast("SteadyStateOptions.max_passes", max_passes, 1);
+  RequireNonNegative("SteadyStateOptions.relative_noise_floor", relative_noise_floor);
+}
+
 SteadyState DetectSteadyState(const Eigen::Ref<const Eigen::MatrixXd>& samples, std::span<const std::string> channels,
                               double sample_rate_hz, double frequency_hz, int num_harmonics, const std::string& file,
                               const SteadyStateOptions& options) {
+  options.Validate();
   const Eigen::Index n = samples.rows();
   const double samples_per_period = sample_rate_hz / frequency_hz;
   // About one period, at least 32 samples, and at least 16 blocks per record.

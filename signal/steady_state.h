@@ -41,6 +41,9 @@ struct SteadyStateOptions {
   // noise-free (simulated) records settle where the transient falls below
   // rounding instead of never.
   double relative_noise_floor = 1e-9;
+
+  // Throws InputError naming the field, its value and the allowed range.
+  void Validate() const;
 };
 
 struct SteadyState {

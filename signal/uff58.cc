@@ -10,6 +10,7 @@
 #include <fstream>
 #include <optional>
 
+#include "hb/text_file.h"
 #include "signal/input_error.h"
 #include "signal/internal/text.h"
 
@@ -370,14 +371,7 @@ std::vector<Uff58Dataset> ParseUff58(std::string_view bytes, const std::string& 
 
 std::vector<Uff58Dataset> ReadUff58(const std::filesystem::path& file) {
   const std::string source = file.string();
-  std::ifstream stream(file, std::ios::binary | std::ios::ate);
-  if (!stream) throw InputError(source, "", "cannot open the universal file", "check that it exists and is readable");
-  const std::streamsize size = stream.tellg();
-  std::string bytes(static_cast<std::size_t>(std::max<std::streamsize>(size, 0)), '\0');
-  stream.seekg(0);
-  if (!stream.read(bytes.data(), size))
-    throw InputError(source, "", "cannot read the universal file", "check the file and its permissions");
-  return ParseUff58(bytes, source);
+  return ParseUff58(ReadTextFile(file, "universal file", "check that it exists and is readable"), source);
 }
 
 bool IsUniversalFile(const std::filesystem::path& file) {

@@ -11,6 +11,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/QR>
 
+#include "hb/option_checks.h"
 #include "signal/quantity_conversion.h"
 
 namespace beamid::solver {
@@ -464,8 +465,21 @@ std::string_view LevelControlName(LevelControl control) {
   return "";
 }
 
+void MeasuredBackboneOptions::Validate() const {
+  using namespace option_checks;
+  if (!(fit_window > 0.0 && fit_window <= 1.0))
+    Refuse("MeasuredBackboneOptions.fit_window", FormatValue(fit_window), "above 0 and at most 1");
+  RequirePositive("MeasuredBackboneOptions.constant_tolerance", constant_tolerance);
+  // Neighbouring steps always differ by a factor of at least 1.
+  RequireAbove("MeasuredBackboneOptions.jump_amplitude_ratio", jump_amplitude_ratio, 1.0);
+  RequireAtLeast("MeasuredBackboneOptions.max_frequency_degree", max_frequency_degree, 0);
+  RequireAtLeast("MeasuredBackboneOptions.max_damping_degree", max_damping_degree, 0);
+  RequirePositive("MeasuredBackboneOptions.trend_significance", trend_significance);
+}
+
 MeasuredBackbone AnalyseMeasuredBackbone(const std::vector<signal::FirstHarmonicLevel>& levels,
                                          const MeasuredBackboneOptions& options) {
+  options.Validate();
   if (levels.empty()) throw std::invalid_argument("measured backbone: no levels to analyse");
   MeasuredBackbone result;
   result.response_quantity = signal::QuantityName(levels.front().response_quantity);

@@ -71,6 +71,9 @@ struct MeasuredBackboneOptions {
   bool estimate_residual = true;
   // |slope|/σ above which the damping trend counts as significant.
   double trend_significance = 3.0;
+
+  // Throws InputError naming the field, its value and the allowed range.
+  void Validate() const;
 };
 
 struct Estimate {

@@ -8,6 +8,8 @@
 #include <Eigen/QR>
 #include <fmt/core.h>
 
+#include "hb/option_checks.h"
+
 namespace beamid::solver {
 namespace {
 
@@ -152,7 +154,21 @@ std::vector<SingleModePoint> WithoutResidual(const std::vector<SingleModePoint>&
   return out;
 }
 
+void SingleModeFitOptions::Validate() const {
+  using namespace option_checks;
+  RequireAtLeast("SingleModeFitOptions.frequency_degree", frequency_degree, 0);
+  RequireAtLeast("SingleModeFitOptions.damping_degree", damping_degree, 0);
+  RequireNonNegative("SingleModeFitOptions.frequency_exponent (0: polynomial)", frequency_exponent);
+  RequireNonNegative("SingleModeFitOptions.damping_exponent (0: polynomial)", damping_exponent);
+  if (!std::isfinite(residual_receptance_m_N))
+    Refuse("SingleModeFitOptions.residual_receptance_m_N", FormatValue(residual_receptance_m_N), "finite");
+  RequirePositive("SingleModeFitOptions.reference_amplitude_m", reference_amplitude_m);
+  RequirePositive("SingleModeFitOptions.default_relative_std", default_relative_std);
+  RequireAtLeast("SingleModeFitOptions.reweighting_iterations", reweighting_iterations, 0);
+}
+
 SingleModeFit FitSingleMode(const std::vector<SingleModePoint>& measured_points, const SingleModeFitOptions& options) {
+  options.Validate();
   const std::vector<SingleModePoint> points = WithoutResidual(measured_points, options.residual_receptance_m_N);
   SingleModeFit fit;
   fit.residual_receptance_m_N = options.residual_receptance_m_N;
@@ -246,6 +262,7 @@ std::vector<double> PowerLawExponentGrid() {
 
 SingleModeFit FitSingleModeChoosingExponents(const std::vector<SingleModePoint>& points,
                                              const SingleModeFitOptions& options) {
+  options.Validate();
   const std::vector<double> none = {0.0};
   const std::vector<double> grid = PowerLawExponentGrid();
   SingleModeFit best;
@@ -277,6 +294,7 @@ SingleModeFit FitSingleModeChoosingExponents(const std::vector<SingleModePoint>&
 namespace beamid::solver {
 
 double FitResidualReceptance(const std::vector<SingleModePoint>& points, const SingleModeFitOptions& options) {
+  options.Validate();
   double peak = 0.0;
   for (const auto& p : points) peak = std::max(peak, 1.0 / std::abs(p.inverse_receptance_N_m));
   auto chi_square = [&](double residual) {

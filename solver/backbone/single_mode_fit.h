@@ -62,6 +62,9 @@ struct SingleModeFitOptions {
   // uncertainty of |G| (the χ² scaling then sets the real scale).
   double default_relative_std = 1e-2;
   int reweighting_iterations = 3;
+
+  // Throws InputError naming the field, its value and the allowed range.
+  void Validate() const;
 };
 
 class SingleModeFit {

@@ -9,6 +9,7 @@
 
 #include <fmt/core.h>
 
+#include "hb/version.h"
 #include "hb/errors.h"
 #include "hb/backbone.h"
 #include "hb/model_file.h"
@@ -101,6 +102,7 @@ void RunBackbone(const BackboneCommandOptions& options, const GlobalOptions& glo
   }
   const nlohmann::json out = {
       {"command", "backbone"},
+      {"beamid_version", kVersion},
       {"model", model.name},
       {"definition", "phase resonance: first harmonic of theta in quadrature with the force"},
       {"harmonics", options.harmonics},

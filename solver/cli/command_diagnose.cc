@@ -11,6 +11,8 @@
 #include "solver/cli/cli_output.h"
 #include "solver/cli/command_registry.h"
 #include "solver/diagnosis/diagnosis.h"
+#include "solver/diagnosis/diagnosis_io.h"
+#include "solver/estimation/result_io.h"
 
 namespace beamid::cli {
 namespace {
@@ -71,6 +73,13 @@ void RunDiagnose(const DiagnoseCommandOptions& options, const GlobalOptions& glo
                                   "support_asymmetry, harmonic_truncation)");
   }
   const signal::Campaign campaign = signal::ReadCampaign(options.campaign_folder);
+  if (!options.result_file.empty()) {
+    const std::string mismatch =
+        solver::CampaignMismatch(solver::ReadResultFile(options.result_file), campaign.name, options.campaign_folder);
+    if (!mismatch.empty())
+      throw InputError("--result " + options.result_file + ": " + mismatch +
+                       ". Fix: give the result.json that 'beamid identify' wrote for this campaign");
+  }
   const signal::PhasorSet phasors =
       ReadOrExtractPhasors(campaign, options.phasors_file, std::max(5, options.fit_harmonics), global);
   const solver::FitData fit = solver::MakeFitData(
@@ -94,14 +103,16 @@ void RunDiagnose(const DiagnoseCommandOptions& options, const GlobalOptions& glo
   const solver::DiagnosisResult result = solver::Diagnose(
       fit, validation, located, diagnosis, [&](double fraction, const std::string&) { progress.Update(fraction); });
   progress.Done();
-  nlohmann::json report = solver::ToJson(result);
-  report["campaign"] = {{"folder", options.campaign_folder}, {"name", campaign.name}};
+  // The folder absolute, so that `beamid report` can tell it from another
+  // campaign's wherever it runs.
+  solver::DiagnosisFile file{
+      .diagnosis = result,
+      .campaign_folder = std::filesystem::absolute(options.campaign_folder).lexically_normal().string(),
+      .campaign_name = campaign.name};
   if (!options.result_file.empty()) {
-    if (!std::filesystem::exists(options.result_file))
-      throw std::invalid_argument(options.result_file + ": no such result file (--result names the result.json of 'beamid identify')");
-    report["result_file"] = std::filesystem::absolute(options.result_file).lexically_normal().string();
+    file.result_file = std::filesystem::absolute(options.result_file).lexically_normal().string();
   }
-  WriteTextFile(options.output, report.dump(1));
+  solver::WriteDiagnosisFile(options.output, file);
   if (!options.curves.empty()) {
     const std::string csv = options.curves + ".csv", png = options.curves + ".png", gp = options.curves + ".gp";
     WriteTextFile(csv, solver::ResponseCsv(result));

@@ -7,6 +7,7 @@
 #include <fmt/core.h>
 #include <fmt/format.h>
 
+#include "hb/version.h"
 #include "hb/errors.h"
 #include "hb/continuation.h"
 #include "hb/model_file.h"
@@ -120,6 +121,7 @@ void RunFrc(const FrcOptions& options, const GlobalOptions& global) {
     }
   }
   nlohmann::json out = {{"command", "frc"},
+                        {"beamid_version", kVersion},
                         {"model", model.name},
                         {"harmonics", options.harmonics},
                         {"phasor_convention", "x(t) = X0 + sum_k Re(X_k exp(i k w t)), peak amplitudes, SI"},

@@ -12,9 +12,10 @@
 #include "signal/phasor_set_io.h"
 #include "solver/cli/cli_output.h"
 #include "solver/cli/command_registry.h"
-#include "solver/estimation/identification_report.h"
 #include "solver/estimation/identify.h"
 #include "solver/estimation/multiple_scales_problem.h"
+#include "solver/estimation/result_file.h"
+#include "solver/estimation/result_io.h"
 
 namespace beamid::cli {
 namespace {
@@ -78,12 +79,14 @@ void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& glo
   problem->FeasiblePoint(result.starts[result.best_start].scaled_at);  // the winning run's scales
   solver::FitData fit_with_loss = fit;
   fit_with_loss.beam.loss_factor = options.beam_loss_factor;
-  nlohmann::json report = solver::IdentificationReport(
+  const solver::ResultFile result_file = solver::MakeResultFile(
       fit_with_loss, validation, *problem, result,
-      {.campaign_folder = options.campaign_folder, .campaign_name = campaign.name, .model_kind = options.model});
-  // `beamid report` finds the campaign from anywhere on this machine.
-  report["campaign"]["absolute_folder"] = std::filesystem::absolute(options.campaign_folder).lexically_normal().string();
-  WriteTextFile(options.output, report.dump(1));
+      {.campaign_folder = options.campaign_folder,
+       .campaign_name = campaign.name,
+       // `beamid report` finds the campaign from anywhere on this machine.
+       .campaign_absolute_folder = std::filesystem::absolute(options.campaign_folder).lexically_normal().string(),
+       .model_kind = options.model});
+  solver::WriteResultFile(options.output, result_file);
 
   if (!global.quiet) {
     fmt::print("identified ({}) from {} steps, {} channel(s), harmonics 1..{} in {:.2f} s ({} of {} starts reached the best fit)\n",
@@ -98,12 +101,11 @@ void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& glo
       fmt::print("  the starts reached {} distinct minima; the second is {:.3g} worse in chi-square ({})\n",
                  result.minima.minima.size(), result.minima.second_chi_square_gap,
                  result.minima.decisive ? "ruled out by the data" : "NOT ruled out by the data");
-    if (report.contains("validation"))
-      for (const auto& [channel, v] : report["validation"].items())
-        fmt::print("  held-out {}: worst error {:.2f} % on the 1st harmonic ({} steps), {:.2f} % on the 3rd ({} steps; "
-                   "the others lie below the noise floor)\n",
-                   channel, 100.0 * v["worst_h1_relative_error"].get<double>(), v["measurable_steps_h1"].get<int>(),
-                   100.0 * v["worst_h3_relative_error"].get<double>(), v["measurable_steps_h3"].get<int>());
+    for (const auto& v : result_file.validation)
+      fmt::print("  held-out {}: worst error {:.2f} % on the 1st harmonic ({} steps), {:.2f} % on the 3rd ({} steps; "
+                 "the others lie below the noise floor)\n",
+                 v.channel, 100.0 * v.worst_h1_relative_error, v.measurable_steps_h1, 100.0 * v.worst_h3_relative_error,
+                 v.measurable_steps_h3);
     for (const auto& w : result.warnings) fmt::print("  warning: {}\n", w);
     fmt::print("wrote {}\n", options.output);
   }

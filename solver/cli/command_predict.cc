@@ -8,6 +8,7 @@
 
 #include <fmt/core.h>
 
+#include "hb/version.h"
 #include "hb/errors.h"
 #include "signal/campaign.h"
 #include "signal/campaign_extractor.h"
@@ -99,6 +100,7 @@ void RunPredict(const PredictOptions& options, const GlobalOptions& global) {
                                               p.acceleration_std_m_s2.data() + p.acceleration_std_m_s2.size())}});
   }
   const nlohmann::json out = {{"command", "predict"},
+                              {"beamid_version", kVersion},
                               {"result", options.result_file},
                               {"model", model.kind},
                               {"position_m", options.position_m},

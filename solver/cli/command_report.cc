@@ -39,7 +39,7 @@ void RunReport(const ReportOptions& options, const GlobalOptions& global) {
     // The phasors as `beamid identify` extracted them.
     Progress progress("report: extract", global);
     signal::ExtractOptions extract;
-    extract.estimator.num_harmonics = std::max(5, input.result.at("model").value("num_fit_harmonics", 3));
+    extract.estimator.num_harmonics = std::max(5, input.result.model.num_fit_harmonics);
     extract.progress = [&](std::size_t done, std::size_t total, const signal::StepPhasors&) {
       progress.Update(static_cast<double>(done) / total);
     };

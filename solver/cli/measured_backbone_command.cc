@@ -10,6 +10,7 @@
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
+#include "hb/version.h"
 #include "signal/campaign.h"
 #include "signal/campaign_extractor.h"
 #include "signal/first_harmonic_level.h"
@@ -160,6 +161,7 @@ void RunMeasuredBackbone(const MeasuredBackboneCommandOptions& options, const Gl
   const auto& trend = measured.damping_trend;
   const nlohmann::json out = {
       {"format", "beamid-measured-backbone/1"},
+      {"beamid_version", kVersion},
       {"inputs", options.inputs},
       {"channel", levels.front().channel},
       {"response_quantity", measured.response_quantity},

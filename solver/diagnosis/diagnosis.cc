@@ -1,5 +1,7 @@
 #include "solver/diagnosis/diagnosis.h"
 
+#include "hb/option_checks.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -8,6 +10,8 @@
 
 #include <fmt/core.h>
 
+#include "hb/errors.h"
+#include "solver/diagnosis/diagnosis_io.h"
 #include "solver/estimation/chi_square.h"
 #include "solver/estimation/identification_problem.h"
 #include "solver/estimation/internal/worker_processes.h"
@@ -21,59 +25,6 @@ ModelStructure BaseStructure(const DiagnosisOptions& options) {
   ModelStructure structure = PolynomialModel({.k1_Nm_rad = 100.0});
   if (options.fit_loss_factor) structure.linear.push_back(LossFactor(options.loss_factor_start));
   return structure;
-}
-
-// A fitted model, rebuilt in this process: its problem with the internal
-// scales of the winning start, and the optimiser's variables there.
-struct FittedModel {
-  ModelStructure structure;
-  std::unique_ptr<IdentificationProblem> problem;
-  Eigen::VectorXd x;
-  int model_harmonics = 5;
-
-  FittedModel(const FitData& fit, const ModelStructure& s, int harmonics, const std::vector<double>& start,
-              Eigen::VectorXd variables)
-      : structure(s), x(std::move(variables)), model_harmonics(harmonics) {
-    problem = std::make_unique<IdentificationProblem>(fit, structure, IdentificationProblemOptions{.num_harmonics = harmonics});
-    problem->FeasiblePoint(start);
-  }
-
-  // Per step, channels × K phasors of `data`'s channels in its units
-  // (harmonics the model lacks are 0).
-  std::vector<Eigen::MatrixXcd> Phasors(const FitData& data) const {
-    std::vector<double> positions;
-    for (const auto& c : data.channels) positions.push_back(c.position_m);
-    std::vector<Eigen::MatrixXcd> out;
-    const int k_max = data.num_fit_harmonics;
-    for (int i = 0; i < static_cast<int>(data.steps.size()); ++i) {
-      const Eigen::MatrixXcd y = problem->DisplacementPhasors(x, i, positions);
-      Eigen::MatrixXcd m = Eigen::MatrixXcd::Zero(static_cast<Eigen::Index>(positions.size()), k_max);
-      for (int c = 0; c < static_cast<int>(positions.size()); ++c)
-        for (int k = 1; k <= std::min(k_max, model_harmonics); ++k)
-          m(c, k - 1) = DerivativeFactor(data.channels[c].derivative_order, k * data.steps[i].omega_rad_s) * y(c, k);
-      out.push_back(m);
-    }
-    return out;
-  }
-};
-
-void FillHeldOut(const FittedModel& model, const FitData& validation, FitSummary* summary) {
-  if (validation.channels.empty()) return;
-  const std::vector<Eigen::MatrixXcd> predicted = model.Phasors(validation);
-  double chi2 = 0.0, error2 = 0.0, norm2 = 0.0;
-  for (std::size_t i = 0; i < validation.steps.size(); ++i) {
-    const FitStep& s = validation.steps[i];
-    for (int c = 0; c < static_cast<int>(validation.channels.size()); ++c) {
-      for (int k = 1; k <= validation.num_fit_harmonics; ++k) {
-        const Complex e = predicted[i](c, k - 1) - s.measured(c, k - 1);
-        chi2 += (s.whitening[c][k - 1] * Eigen::Vector2d(e.real(), e.imag())).squaredNorm();
-      }
-      error2 += std::norm(predicted[i](c, 0) - s.measured(c, 0));
-      norm2 += std::norm(s.measured(c, 0));
-    }
-  }
-  summary->held_out_chi_square = chi2;
-  summary->held_out_h1_relative_error = std::sqrt(error2 / std::max(norm2, 1e-300));
 }
 
 FitSummary Summarize(const ModelStructure& structure, int harmonics, double chi2, int num_residuals,
@@ -94,13 +45,6 @@ FitSummary Summarize(const ModelStructure& structure, int harmonics, double chi2
   s.bic = chi2 + p * std::log(static_cast<double>(std::max(num_residuals, 1)));
   return s;
 }
-
-// One refit job: a candidate from one start.
-struct Job {
-  int candidate = 0;
-  std::vector<double> start;
-};
-
 
 std::string DescribeParameters(const FitSummary& fit, const std::vector<std::string>& names) {
   std::string text;
@@ -142,12 +86,17 @@ std::string WriteSummary(const DiagnosisResult& r) {
   return out.str();
 }
 
-// The base model in two stages: the polynomial support alone from the
-// direct estimate (robust even when the misfit is large), then with the
-// beam's loss factor from there. A large misfit can stall the second stage
-// (the loss factor runs to its bound); the base is then the first.
-IdentifyResult FitBase(const FitData& fit, const DiagnosisOptions& options, const IdentifyOptions& identify,
-                       ModelStructure* structure) {
+IdentifyOptions BaseIdentifyOptions(const DiagnosisOptions& options) {
+  IdentifyOptions identify;
+  identify.model.num_harmonics = options.model_harmonics;
+  identify.ipopt = options.ipopt;
+  identify.num_threads = 1;
+  return identify;
+}
+
+// FitBase's two fits; *structure: the one returned.
+IdentifyResult FitPolynomialThenLossFactor(const FitData& fit, const DiagnosisOptions& options,
+                                           const IdentifyOptions& identify, ModelStructure* structure) {
   DiagnosisOptions without = options;
   without.fit_loss_factor = false;
   *structure = BaseStructure(without);
@@ -170,289 +119,387 @@ IdentifyResult FitBase(const FitData& fit, const DiagnosisOptions& options, cons
   return polynomial;
 }
 
-}  // namespace
+void ApplyHeldOut(const HeldOutCheck& check, FitSummary* summary) {
+  summary->held_out_chi_square = check.chi_square;
+  summary->held_out_h1_relative_error = check.h1_relative_error;
+}
 
-DiagnosisResult Diagnose(const FitData& fit, const FitData& validation, const FitData& located_in,
-                         const DiagnosisOptions& options, const DiagnosisProgress& progress) {
-  const auto started = std::chrono::steady_clock::now();
-  auto report = [&](double fraction, const std::string& what) {
-    if (progress) progress(fraction, what);
-  };
-  DiagnosisResult result;
+// ---- RefitCandidates' steps ----
 
-  // 1. The base model.
-  report(0.0, "base fit");
-  IdentifyOptions identify;
-  identify.model.num_harmonics = options.model_harmonics;
-  identify.ipopt = options.ipopt;
-  identify.num_threads = 1;
-  ModelStructure base_structure;
-  const IdentifyResult base_fit = FitBase(fit, options, identify, &base_structure);
-  std::vector<double> base_values, base_std;
-  for (const auto& p : base_fit.parameters) {
-    base_values.push_back(p.value);
-    base_std.push_back(p.std);
-  }
-  ModelStructure fitted_base = base_structure;
-  fitted_base.SetValues(base_values);
-  const FittedModel base_model(fit, base_structure, options.model_harmonics,
-                               base_fit.starts[base_fit.best_start].scaled_at, base_fit.x);
-  result.base = Summarize(base_structure, options.model_harmonics, base_fit.chi_square, fit.NumResiduals(), base_values,
-                          base_std);
-  FillHeldOut(base_model, validation, &result.base);
+// One refit job: a candidate from one start.
+struct Job {
+  int candidate = 0;
+  std::vector<double> start;
+};
 
-  // 2. Where the base misses.
-  report(0.15, "locating the misfit");
-  const FitData& located = located_in.channels.empty() ? fit : located_in;
-  try {
-    hb::LinearBeamModel reference = fitted_base.ApplyLinear({.beam = fit.beam, .attachments = fit.sensor_masses});
-    const auto& k = dynamic_cast<const hb::PolynomialSupportLaw&>(*fitted_base.law).coefficients();
-    reference.support_stiffness_Nm_rad = k.k1_Nm_rad;
-    reference.support_damping_Nms_rad = k.c_Nms_rad;
-    result.location = LocateMisfit(located, base_model.Phasors(located), fit.num_fit_harmonics, reference,
-                                   {.num_fitted_parameters = static_cast<int>(base_values.size())});
-  } catch (const std::exception& e) {
-    result.location_error = e.what();
-  }
+struct JobOutcome {
+  bool ok = false;
+  std::string error;
+  CandidateRefit refit;
+};
 
-  // 3. Every candidate from the base optimum, all starts in parallel.
-  BaseFitContext context{.data = &fit, .model_harmonics = options.model_harmonics};
-  for (int i = 0; i < base_model.problem->num_steps(); ++i)
+// Everything the refits of one diagnosis share.
+struct RefitRun {
+  std::vector<CandidatePhysics> library;  // the selected candidates
+  std::vector<CandidateExtension> extensions;  // [c]
+  std::vector<Job> jobs;
+  std::vector<JobOutcome> outcomes;  // [job]
+  std::vector<int> best_job;         // [c]: its job of least χ², -1 when none converged
+};
+
+// What the candidates see of the base fit: the rotation amplitude of every step.
+BaseFitContext ContextOf(const FitData& fit, const BaseFit& base) {
+  BaseFitContext context{.data = &fit, .model_harmonics = base.model.model_harmonics};
+  for (int i = 0; i < base.model.problem->num_steps(); ++i)
     context.theta_amplitude_rad.push_back(
-        std::abs(hb::HarmonicBalance::ToComplex(base_model.problem->States(base_model.x, i))[1]));
-  std::vector<CandidatePhysics> library;
+        std::abs(hb::HarmonicBalance::ToComplex(base.model.problem->States(base.model.x, i))[1]));
+  return context;
+}
+
+// The selected candidates extended from the base optimum, and one job per start.
+RefitRun PlanRefits(const FitData& fit, const BaseFit& base, const DiagnosisOptions& options) {
+  const BaseFitContext context = ContextOf(fit, base);
+  RefitRun run;
   for (auto& c : CandidateLibrary())
     if (options.candidates.empty() ||
         std::find(options.candidates.begin(), options.candidates.end(), c.name) != options.candidates.end())
-      library.push_back(std::move(c));
-  std::vector<CandidateExtension> extensions;
-  std::vector<Job> jobs;
-  for (int c = 0; c < static_cast<int>(library.size()); ++c) {
-    extensions.push_back(library[c].extend(fitted_base, context));
-    for (const auto& start : extensions.back().starts) jobs.push_back({c, start});
+      run.library.push_back(std::move(c));
+  for (int c = 0; c < static_cast<int>(run.library.size()); ++c) {
+    run.extensions.push_back(run.library[c].extend(base.model.structure, context));
+    for (const auto& start : run.extensions.back().starts) run.jobs.push_back({c, start});
   }
-  struct JobOutcome {
-    bool ok = false;
-    std::string error;
-    double chi2 = 0.0;
-    double seconds = 0.0;
-    std::vector<double> values, std;
-    std::vector<double> scaled_at;  // the parameters whose FeasiblePoint set x's scales
-    Eigen::VectorXd x;
-  };
-  std::vector<JobOutcome> outcomes(jobs.size());
+  return run;
+}
+
+// One job, in a worker process: the refit as exact text.
+std::string RunRefitJob(const FitData& fit, const CandidateExtension& extension, const std::vector<double>& start,
+                        const DiagnosisOptions& options) {
+  IdentifyOptions refit = BaseIdentifyOptions(options);
+  refit.model.num_harmonics = extension.model_harmonics;
+  refit.ipopt.max_iterations = options.refit_max_iterations;
+  refit.ipopt.max_cpu_seconds = options.refit_max_cpu_seconds;
+  // A refit starts from the base fit, whose states already lie on the
+  // measured branch; seeded states converge slowly with the
+  // candidates' non-smooth laws (measured: 3x the diagnosis's time).
+  // Branch repair stays on.
+  refit.seed_states_from_measurements = false;
+  const IdentifyResult r = IdentifyWith(
+      [&] { return std::make_unique<IdentificationProblem>(fit, extension.structure, refit.model); },
+      extension.structure, start, refit);
+  CandidateRefit record{.chi_square = r.chi_square, .seconds = r.seconds};
+  for (const auto& p : r.parameters) {
+    record.values.push_back(p.value);
+    record.std.push_back(p.std);
+  }
+  record.scaled_at = r.starts[r.best_start].scaled_at;
+  record.x.assign(r.x.data(), r.x.data() + r.x.size());
+  return CandidateRefitToText(record);
+}
+
+// A job's record as the parent reads it back; a record it cannot trust is a failed job.
+JobOutcome ReadRefitRecord(const std::string& record, const std::string& error, std::size_t num_parameters) {
+  JobOutcome o;
+  if (!error.empty()) {
+    o.error = error;
+    return o;
+  }
+  try {
+    o.refit = CandidateRefitFromText(record);
+    if (o.refit.values.size() != num_parameters || o.refit.std.size() != num_parameters ||
+        o.refit.scaled_at.size() != num_parameters)
+      throw std::runtime_error("a candidate refit's record holds the wrong number of parameters");
+    o.ok = true;
+  } catch (const std::runtime_error& e) {
+    o.error = e.what();
+  }
+  return o;
+}
+
+// Every job in parallel worker processes; then each candidate's best start.
+void RunRefits(const FitData& fit, const DiagnosisOptions& options, const RefitProgress& progress, RefitRun* run) {
+  const int num_jobs = static_cast<int>(run->jobs.size());
+  run->outcomes.assign(run->jobs.size(), {});
   const int workers = options.num_workers > 0 ? options.num_workers
                                               : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-  internal::RunInWorkers(
-      static_cast<int>(jobs.size()), std::min<int>(workers, static_cast<int>(jobs.size())),
-      [&](int j) {
-        const CandidateExtension& extension = extensions[jobs[j].candidate];
-        IdentifyOptions refit = identify;
-        refit.model.num_harmonics = extension.model_harmonics;
-        refit.ipopt.max_iterations = options.refit_max_iterations;
-        refit.ipopt.max_cpu_seconds = options.refit_max_cpu_seconds;
-        // A refit starts from the base fit, whose states already lie on the
-        // measured branch; seeded states converge slowly with the
-        // candidates' non-smooth laws (measured: 3x the diagnosis's time).
-        // Branch repair stays on.
-        refit.seed_states_from_measurements = false;
-        const IdentifyResult r = IdentifyWith(
-            [&] { return std::make_unique<IdentificationProblem>(fit, extension.structure, refit.model); },
-            extension.structure, jobs[j].start, refit);
-        std::vector<double> record = {r.chi_square, r.seconds};
-        for (const auto& p : r.parameters) record.push_back(p.value);
-        for (const auto& p : r.parameters) record.push_back(p.std);
-        const std::vector<double>& scaled_at = r.starts[r.best_start].scaled_at;
-        record.insert(record.end(), scaled_at.begin(), scaled_at.end());
-        record.insert(record.end(), r.x.data(), r.x.data() + r.x.size());
-        return record;
-      },
-      [&](int j, const std::vector<double>& record, const std::string& error, int done) {
-        JobOutcome& o = outcomes[j];
-        if (!error.empty()) {
-          o.error = error;
-        } else {
-          const int p = extensions[jobs[j].candidate].structure.NumParameters();
-          o.ok = true;
-          o.chi2 = record[0];
-          o.seconds = record[1];
-          o.values.assign(record.begin() + 2, record.begin() + 2 + p);
-          o.std.assign(record.begin() + 2 + p, record.begin() + 2 + 2 * p);
-          o.scaled_at.assign(record.begin() + 2 + 2 * p, record.begin() + 2 + 3 * p);
-          o.x = Eigen::Map<const Eigen::VectorXd>(record.data() + 2 + 3 * p,
-                                                  static_cast<Eigen::Index>(record.size()) - 2 - 3 * p);
-        }
-        report(0.2 + 0.7 * done / static_cast<double>(jobs.size()),
-               "refit " + std::to_string(done) + "/" + std::to_string(jobs.size()) + " (" +
-                   library[jobs[j].candidate].name + ")");
+  internal::RunTextJobsInWorkers(
+      num_jobs, std::min<int>(workers, num_jobs),
+      [&](int j) { return RunRefitJob(fit, run->extensions[run->jobs[j].candidate], run->jobs[j].start, options); },
+      [&](int j, const std::string& record, const std::string& error, int done) {
+        const int c = run->jobs[j].candidate;
+        run->outcomes[j] = ReadRefitRecord(record, error, run->extensions[c].structure.NumParameters());
+        if (progress) progress(done, num_jobs, run->library[c].name);
       });
+  run->best_job.assign(run->library.size(), -1);
+  for (int j = 0; j < num_jobs; ++j) {
+    const int c = run->jobs[j].candidate;
+    const auto& o = run->outcomes;
+    if (o[j].ok && (run->best_job[c] < 0 || o[j].refit.chi_square < o[run->best_job[c]].refit.chi_square))
+      run->best_job[c] = j;
+  }
+}
 
-  // 4. Each candidate's best start, its test against the base, and the ranking.
-  std::vector<int> best_job(library.size(), -1);
-  for (int j = 0; j < static_cast<int>(jobs.size()); ++j) {
-    const int c = jobs[j].candidate;
-    if (outcomes[j].ok && (best_job[c] < 0 || outcomes[j].chi2 < outcomes[best_job[c]].chi2)) best_job[c] = j;
+// What candidate c is tested against: the base, or, for one balanced with
+// more harmonics, the better of the base and the converged refit with no
+// parameters of its own at those harmonics (else the harmonics' gain on a
+// truncated base would be credited to its parameters).
+double ReferenceChiSquare(const RefitRun& run, int c, double base_chi_square, int base_harmonics) {
+  double reference = base_chi_square;
+  const CandidateExtension& e = run.extensions[c];
+  if (e.model_harmonics == base_harmonics || e.extra_parameters.empty()) return reference;
+  for (int t = 0; t < static_cast<int>(run.library.size()); ++t)
+    if (run.extensions[t].extra_parameters.empty() && run.extensions[t].model_harmonics == e.model_harmonics &&
+        run.best_job[t] >= 0)
+      reference = std::min(reference, run.outcomes[run.best_job[t]].refit.chi_square);
+  return reference;
+}
+
+// Candidate c's outcome before its test: what it is, its time, and why it failed.
+CandidateOutcome DescribeCandidate(const RefitRun& run, int c, const std::optional<MisfitLocation>& location) {
+  CandidateOutcome outcome;
+  outcome.name = run.library[c].name;
+  outcome.description = run.library[c].description;
+  outcome.extra_parameters = run.extensions[c].extra_parameters;
+  outcome.test_dof = run.extensions[c].test_dof;
+  if (location) outcome.signature_score = run.library[c].signature(*location);
+  for (int k = 0; k < static_cast<int>(run.jobs.size()); ++k)
+    if (run.jobs[k].candidate == c) outcome.seconds += run.outcomes[k].refit.seconds;
+  if (run.best_job[c] < 0) {
+    outcome.status = "failed";
+    for (int k = 0; k < static_cast<int>(run.jobs.size()); ++k)
+      if (run.jobs[k].candidate == c && !run.outcomes[k].error.empty())
+        outcome.status = "failed: " + run.outcomes[k].error;
   }
-  const double per_candidate_significance = options.significance / std::max<std::size_t>(1, library.size());
-  // What a candidate is tested against: the base, or, for one balanced with
-  // more harmonics, the better of the base and the converged refit with no
-  // parameters of its own at those harmonics (else the harmonics' gain on a
-  // truncated base would be credited to its parameters).
-  auto reference_chi2 = [&](int c) {
-    double reference = result.base.chi_square;
-    if (extensions[c].model_harmonics == options.model_harmonics || extensions[c].extra_parameters.empty())
-      return reference;
-    for (int t = 0; t < static_cast<int>(library.size()); ++t)
-      if (extensions[t].extra_parameters.empty() && extensions[t].model_harmonics == extensions[c].model_harmonics &&
-          best_job[t] >= 0)
-        reference = std::min(reference, outcomes[best_job[t]].chi2);
-    return reference;
-  };
-  std::vector<std::unique_ptr<FittedModel>> fitted(library.size());
-  for (int c = 0; c < static_cast<int>(library.size()); ++c) {
-    CandidateOutcome outcome;
-    outcome.name = library[c].name;
-    outcome.description = library[c].description;
-    outcome.extra_parameters = extensions[c].extra_parameters;
-    outcome.test_dof = extensions[c].test_dof;
-    if (result.location) outcome.signature_score = library[c].signature(*result.location);
-    for (int k = 0; k < static_cast<int>(jobs.size()); ++k)
-      if (jobs[k].candidate == c) outcome.seconds += outcomes[k].seconds;
-    const int j = best_job[c];
-    if (j < 0) {
-      outcome.status = "failed";
-      for (int k = 0; k < static_cast<int>(jobs.size()); ++k)
-        if (jobs[k].candidate == c && !outcomes[k].error.empty()) outcome.status = "failed: " + outcomes[k].error;
-    } else {
-      const JobOutcome& o = outcomes[j];
-      outcome.converged = true;
-      outcome.status = "solved";
-      outcome.fit = Summarize(extensions[c].structure, extensions[c].model_harmonics, o.chi2, fit.NumResiduals(),
-                              o.values, o.std);
-      fitted[c] = std::make_unique<FittedModel>(fit, extensions[c].structure, extensions[c].model_harmonics,
-                                                o.scaled_at, o.x);
-      fitted[c]->structure.SetValues(o.values);
-      FillHeldOut(*fitted[c], validation, &outcome.fit);
-      const double scale = std::max(1.0, outcome.fit.reduced_chi_square);
-      const double reference = reference_chi2(c);
-      outcome.likelihood_ratio = (reference - o.chi2) / scale;
-      outcome.p_value = ChiSquareUpperTail(outcome.likelihood_ratio, outcome.test_dof);
-      outcome.residual_drop = result.base.chi_square / std::max(o.chi2, 1e-300);
-      // A base that already fits within the model's own errors has nothing
-      // to explain: a flexible candidate can still shave a share of its χ²
-      // (measured: a Jenkins element took 38 % off one of ten base-physics
-      // noise realisations), which is not a cause.
-      outcome.significant = outcome.p_value < per_candidate_significance &&
-                            reference - o.chi2 >= options.min_relative_improvement * reference &&
-                            result.base.reduced_chi_square > options.acceptable_reduced_chi_square;
+  return outcome;
+}
+
+// Candidate c's best refit, its model, and its likelihood-ratio test (header).
+std::unique_ptr<FittedModel> TestCandidate(const FitData& fit, const FitSummary& base, const RefitRun& run, int c,
+                                           const DiagnosisOptions& options, CandidateOutcome* outcome) {
+  const CandidateRefit& o = run.outcomes[run.best_job[c]].refit;
+  const CandidateExtension& extension = run.extensions[c];
+  outcome->converged = true;
+  outcome->status = "solved";
+  outcome->fit =
+      Summarize(extension.structure, extension.model_harmonics, o.chi_square, fit.NumResiduals(), o.values, o.std);
+  auto model = std::make_unique<FittedModel>(
+      fit, extension.structure, extension.model_harmonics, o.scaled_at,
+      Eigen::Map<const Eigen::VectorXd>(o.x.data(), static_cast<Eigen::Index>(o.x.size())), o.values);
+  const double per_candidate_significance = options.significance / std::max<std::size_t>(1, run.library.size());
+  const double scale = std::max(1.0, outcome->fit.reduced_chi_square);
+  const double reference = ReferenceChiSquare(run, c, base.chi_square, options.model_harmonics);
+  outcome->likelihood_ratio = (reference - o.chi_square) / scale;
+  outcome->p_value = ChiSquareUpperTail(outcome->likelihood_ratio, outcome->test_dof);
+  outcome->residual_drop = base.chi_square / std::max(o.chi_square, 1e-300);
+  // A base that already fits within the model's own errors has nothing
+  // to explain: a flexible candidate can still shave a share of its χ²
+  // (measured: a Jenkins element took 38 % off one of ten base-physics
+  // noise realisations), which is not a cause.
+  outcome->significant = outcome->p_value < per_candidate_significance &&
+                         reference - o.chi_square >= options.min_relative_improvement * reference &&
+                         base.reduced_chi_square > options.acceptable_reduced_chi_square;
+  return model;
+}
+
+// Measured, base and final first harmonics of the fitted and held-out channels.
+std::vector<ResponsePoint> ResponseCurves(const FitData& fit, const FitData& validation, const FittedModel& base,
+                                          const FittedModel& final_model) {
+  std::vector<ResponsePoint> response;
+  for (const FitData* data : {&fit, &validation}) {
+    if (data->channels.empty()) continue;
+    const auto base_y = base.Phasors(*data);
+    const auto final_y = final_model.Phasors(*data);
+    for (std::size_t i = 0; i < data->steps.size(); ++i)
+      for (int c = 0; c < static_cast<int>(data->channels.size()); ++c)
+        response.push_back({.level = data->steps[i].level,
+                            .frequency_hz = data->steps[i].omega_rad_s / (2.0 * 3.141592653589793),
+                            .channel = data->channels[c].channel,
+                            .held_out = data == &validation,
+                            .measured = data->steps[i].measured(c, 0),
+                            .base_model = base_y[i](c, 0),
+                            .final_model = final_y[i](c, 0)});
+  }
+  return response;
+}
+
+}  // namespace
+
+void DiagnosisOptions::Validate() const {
+  using namespace option_checks;
+  RequireInRange("DiagnosisOptions.model_harmonics", model_harmonics, 1, kMaxHarmonics);
+  RequireNonNegative("DiagnosisOptions.loss_factor_start", loss_factor_start);
+  std::string known;
+  for (const auto& c : CandidateLibrary()) known += (known.empty() ? "" : ", ") + c.name;
+  for (const auto& name : candidates) {
+    const auto library = CandidateLibrary();
+    if (std::none_of(library.begin(), library.end(), [&](const auto& c) { return c.name == name; }))
+      Refuse("DiagnosisOptions.candidates", "'" + name + "'", "one of " + known);
+  }
+  if (!(significance > 0.0 && significance < 1.0))
+    Refuse("DiagnosisOptions.significance", FormatValue(significance), "in (0, 1)");
+  if (!(min_relative_improvement >= 0.0 && min_relative_improvement < 1.0))
+    Refuse("DiagnosisOptions.min_relative_improvement", FormatValue(min_relative_improvement), "in [0, 1)");
+  RequireNonNegative("DiagnosisOptions.acceptable_reduced_chi_square", acceptable_reduced_chi_square);
+  RequireInRange("DiagnosisOptions.num_workers", num_workers, 0, 256);
+  ipopt.Validate();
+  RequireAtLeast("DiagnosisOptions.refit_max_iterations", refit_max_iterations, 1);
+  RequireNonNegative("DiagnosisOptions.refit_max_cpu_seconds", refit_max_cpu_seconds);
+}
+
+FittedModel::FittedModel(const FitData& fit, const ModelStructure& s, int harmonics, const std::vector<double>& scaled_at,
+                         Eigen::VectorXd variables, const std::vector<double>& values)
+    : structure(s), x(std::move(variables)), model_harmonics(harmonics) {
+  problem = std::make_unique<IdentificationProblem>(fit, structure, IdentificationProblemOptions{.num_harmonics = harmonics});
+  problem->FeasiblePoint(scaled_at);
+  // After the problem: its internal scales are those of the structure the
+  // optimiser started from.
+  structure.SetValues(values);
+}
+
+std::vector<Eigen::MatrixXcd> FittedModel::Phasors(const FitData& data) const {
+  std::vector<double> positions;
+  for (const auto& c : data.channels) positions.push_back(c.position_m);
+  std::vector<Eigen::MatrixXcd> out;
+  const int k_max = data.num_fit_harmonics;
+  for (int i = 0; i < static_cast<int>(data.steps.size()); ++i) {
+    const Eigen::MatrixXcd y = problem->DisplacementPhasors(x, i, positions);
+    Eigen::MatrixXcd m = Eigen::MatrixXcd::Zero(static_cast<Eigen::Index>(positions.size()), k_max);
+    for (int c = 0; c < static_cast<int>(positions.size()); ++c)
+      for (int k = 1; k <= std::min(k_max, model_harmonics); ++k)
+        m(c, k - 1) = DerivativeFactor(data.channels[c].derivative_order, k * data.steps[i].omega_rad_s) * y(c, k);
+    out.push_back(m);
+  }
+  return out;
+}
+
+BaseFit FitBase(const FitData& fit, const DiagnosisOptions& options) {
+  ModelStructure structure;
+  const IdentifyResult r = FitPolynomialThenLossFactor(fit, options, BaseIdentifyOptions(options), &structure);
+  std::vector<double> values, std;
+  for (const auto& p : r.parameters) {
+    values.push_back(p.value);
+    std.push_back(p.std);
+  }
+  return {.model = FittedModel(fit, structure, options.model_harmonics, r.starts[r.best_start].scaled_at, r.x, values),
+          .summary = Summarize(structure, options.model_harmonics, r.chi_square, fit.NumResiduals(), values, std)};
+}
+
+HeldOutCheck ValidateOnHeldOut(const FittedModel& model, const FitData& validation) {
+  HeldOutCheck check;
+  if (validation.channels.empty()) return check;
+  const std::vector<Eigen::MatrixXcd> predicted = model.Phasors(validation);
+  double chi2 = 0.0, error2 = 0.0, norm2 = 0.0;
+  for (std::size_t i = 0; i < validation.steps.size(); ++i) {
+    const FitStep& s = validation.steps[i];
+    for (int c = 0; c < static_cast<int>(validation.channels.size()); ++c) {
+      for (int k = 1; k <= validation.num_fit_harmonics; ++k) {
+        const Complex e = predicted[i](c, k - 1) - s.measured(c, k - 1);
+        chi2 += (s.whitening[c][k - 1] * Eigen::Vector2d(e.real(), e.imag())).squaredNorm();
+      }
+      error2 += std::norm(predicted[i](c, 0) - s.measured(c, 0));
+      norm2 += std::norm(s.measured(c, 0));
     }
-    result.candidates.push_back(std::move(outcome));
   }
-  std::vector<int> order(library.size());
-  for (int c = 0; c < static_cast<int>(order.size()); ++c) order[c] = c;
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
-    const CandidateOutcome &x = result.candidates[a], &y = result.candidates[b];
+  check.chi_square = chi2;
+  check.h1_relative_error = std::sqrt(error2 / std::max(norm2, 1e-300));
+  return check;
+}
+
+LocationStage Locate(const FitData& fit, const BaseFit& base, const FitData& located_in) {
+  LocationStage stage;
+  const FitData& located = located_in.channels.empty() ? fit : located_in;
+  try {
+    const ModelStructure& fitted = base.model.structure;
+    hb::LinearBeamModel reference = fitted.ApplyLinear({.beam = fit.beam, .attachments = fit.sensor_masses});
+    const auto& k = dynamic_cast<const hb::PolynomialSupportLaw&>(*fitted.law).coefficients();
+    reference.support_stiffness_Nm_rad = k.k1_Nm_rad;
+    reference.support_damping_Nms_rad = k.c_Nms_rad;
+    stage.location = LocateMisfit(located, base.model.Phasors(located), fit.num_fit_harmonics, reference,
+                                  {.num_fitted_parameters = static_cast<int>(base.summary.parameters.size())});
+  } catch (const std::exception& e) {
+    stage.error = e.what();
+  }
+  return stage;
+}
+
+CandidateRefits RefitCandidates(const FitData& fit, const BaseFit& base, const std::optional<MisfitLocation>& location,
+                                const DiagnosisOptions& options, const RefitProgress& progress) {
+  RefitRun run = PlanRefits(fit, base, options);
+  RunRefits(fit, options, progress, &run);
+  CandidateRefits refits;
+  refits.models.resize(run.library.size());
+  for (int c = 0; c < static_cast<int>(run.library.size()); ++c) {
+    CandidateOutcome outcome = DescribeCandidate(run, c, location);
+    if (run.best_job[c] >= 0) refits.models[c] = TestCandidate(fit, base.summary, run, c, options, &outcome);
+    refits.outcomes.push_back(std::move(outcome));
+  }
+  return refits;
+}
+
+Verdict DecideVerdict(const FitSummary& base, const std::optional<MisfitLocation>& location,
+                      const std::vector<CandidateOutcome>& candidates, const DiagnosisOptions& options) {
+  Verdict v;
+  v.ranking.resize(candidates.size());
+  for (int c = 0; c < static_cast<int>(v.ranking.size()); ++c) v.ranking[c] = c;
+  std::stable_sort(v.ranking.begin(), v.ranking.end(), [&](int a, int b) {
+    const CandidateOutcome &x = candidates[a], &y = candidates[b];
     if (x.significant != y.significant) return x.significant;
     if (x.converged != y.converged) return x.converged;
     if (x.converged && x.fit.bic != y.fit.bic) return x.fit.bic < y.fit.bic;
     return x.signature_score > y.signature_score;
   });
-  std::vector<CandidateOutcome> ranked;
-  for (int c : order) ranked.push_back(result.candidates[c]);
-  result.candidates = std::move(ranked);
-
-  // 5. Verdict and the final model.
-  const FittedModel* final_model = &base_model;
-  if (!result.candidates.empty() && result.candidates.front().significant) {
-    result.verdict = "cause named";
-    result.selected = {result.candidates.front().name};
-    result.final_fit = result.candidates.front().fit;
-    result.final_extra_parameters = result.candidates.front().extra_parameters;
-    final_model = fitted[order.front()].get();
+  if (!v.ranking.empty() && candidates[v.ranking.front()].significant) {
+    v.cause = v.ranking.front();
+    v.verdict = "cause named";
+    v.selected = {candidates[v.cause].name};
   } else {
-    const bool misfit = result.base.reduced_chi_square > options.acceptable_reduced_chi_square &&
-                        (!result.location || result.location->significant);
-    result.verdict = misfit ? "unexplained" : "no significant discrepancy";
-    result.selected = {"none"};
-    result.final_fit = result.base;
+    const bool misfit =
+        base.reduced_chi_square > options.acceptable_reduced_chi_square && (!location || location->significant);
+    v.verdict = misfit ? "unexplained" : "no significant discrepancy";
+    v.selected = {"none"};
   }
+  return v;
+}
 
-  // 6. Response curves of both models against the measurements.
+DiagnosisResult Diagnose(const FitData& fit, const FitData& validation, const FitData& located,
+                         const DiagnosisOptions& options, const DiagnosisProgress& progress) {
+  options.Validate();
+  const auto started = std::chrono::steady_clock::now();
+  auto report = [&](double fraction, const std::string& what) {
+    if (progress) progress(fraction, what);
+  };
+  DiagnosisResult result;
+  report(0.0, "base fit");
+  const BaseFit base = FitBase(fit, options);
+  result.base = base.summary;
+  ApplyHeldOut(ValidateOnHeldOut(base.model, validation), &result.base);
+
+  report(0.15, "locating the misfit");
+  LocationStage location = Locate(fit, base, located);
+  result.location = std::move(location.location);
+  result.location_error = std::move(location.error);
+
+  CandidateRefits refits =
+      RefitCandidates(fit, base, result.location, options, [&](int done, int num_jobs, const std::string& name) {
+        report(0.2 + 0.7 * done / static_cast<double>(num_jobs),
+               "refit " + std::to_string(done) + "/" + std::to_string(num_jobs) + " (" + name + ")");
+      });
+  for (std::size_t c = 0; c < refits.models.size(); ++c)
+    if (refits.models[c]) ApplyHeldOut(ValidateOnHeldOut(*refits.models[c], validation), &refits.outcomes[c].fit);
+
+  const Verdict verdict = DecideVerdict(result.base, result.location, refits.outcomes, options);
+  for (int c : verdict.ranking) result.candidates.push_back(refits.outcomes[c]);
+  result.verdict = verdict.verdict;
+  result.selected = verdict.selected;
+  const bool named = verdict.cause >= 0;
+  result.final_fit = named ? refits.outcomes[verdict.cause].fit : result.base;
+  if (named) result.final_extra_parameters = refits.outcomes[verdict.cause].extra_parameters;
+
   report(0.95, "response curves");
-  for (const FitData* data : {&fit, &validation}) {
-    if (data->channels.empty()) continue;
-    const auto base_y = base_model.Phasors(*data);
-    const auto final_y = final_model->Phasors(*data);
-    for (std::size_t i = 0; i < data->steps.size(); ++i)
-      for (int c = 0; c < static_cast<int>(data->channels.size()); ++c)
-        result.response.push_back({.level = data->steps[i].level,
-                                   .frequency_hz = data->steps[i].omega_rad_s / (2.0 * 3.141592653589793),
-                                   .channel = data->channels[c].channel,
-                                   .held_out = data == &validation,
-                                   .measured = data->steps[i].measured(c, 0),
-                                   .base_model = base_y[i](c, 0),
-                                   .final_model = final_y[i](c, 0)});
-  }
+  result.response = ResponseCurves(fit, validation, base.model, named ? *refits.models[verdict.cause] : base.model);
   result.summary = WriteSummary(result);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   report(1.0, "done");
   return result;
-}
-
-namespace {
-
-nlohmann::json ToJson(const FitSummary& s) {
-  nlohmann::json parameters = nlohmann::json::object();
-  for (const auto& p : s.parameters)
-    parameters[p.name] = {{"value", p.value}, {"std", p.std}, {"unit", p.unit}, {"ci95", {p.lower_95, p.upper_95}}};
-  auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
-  return {{"parameters", parameters},
-          {"model_harmonics", s.model_harmonics},
-          {"chi_square", s.chi_square},
-          {"degrees_of_freedom", s.degrees_of_freedom},
-          {"num_residuals", s.num_residuals},
-          {"reduced_chi_square", s.reduced_chi_square},
-          {"aic", s.aic},
-          {"bic", s.bic},
-          {"held_out_chi_square", number(s.held_out_chi_square)},
-          {"held_out_h1_relative_error", number(s.held_out_h1_relative_error)}};
-}
-
-}  // namespace
-
-nlohmann::json ToJson(const DiagnosisResult& r) {
-  nlohmann::json candidates = nlohmann::json::array();
-  for (const auto& c : r.candidates) {
-    nlohmann::json extra = nlohmann::json::object();
-    for (const auto& p : c.fit.parameters)
-      if (std::find(c.extra_parameters.begin(), c.extra_parameters.end(), p.name) != c.extra_parameters.end())
-        extra[p.name] = {{"value", p.value}, {"std", p.std}, {"unit", p.unit}, {"ci95", {p.lower_95, p.upper_95}}};
-    candidates.push_back({{"name", c.name},
-                          {"description", c.description},
-                          {"score", c.signature_score},
-                          {"converged", c.converged},
-                          {"status", c.status},
-                          {"significant", c.significant},
-                          {"extra_parameters", extra},
-                          {"residual_before", r.base.chi_square},
-                          {"residual_after", c.converged ? nlohmann::json(c.fit.chi_square) : nlohmann::json(nullptr)},
-                          {"residual_drop", c.residual_drop},
-                          {"likelihood_ratio", c.likelihood_ratio},
-                          {"test_dof", c.test_dof},
-                          {"p_value", c.p_value},
-                          {"seconds", c.seconds},
-                          {"fit", ToJson(c.fit)}});
-  }
-  nlohmann::json location = r.location ? ToJson(*r.location) : nlohmann::json{{"error", r.location_error}};
-  return {{"format", "beamid-diagnosis/1"},
-          {"selected", r.selected},
-          {"verdict", r.verdict},
-          {"summary", r.summary},
-          {"base", ToJson(r.base)},
-          {"final", {{"extension", r.selected}, {"fit", ToJson(r.final_fit)}}},
-          {"candidates", candidates},
-          {"location", location},
-          {"seconds", r.seconds}};
 }
 
 std::string ResponseCsv(const DiagnosisResult& r) {

@@ -17,19 +17,27 @@
 // the held-out channels. Without a significant candidate the verdict is "no
 // significant discrepancy" when the base fits within the noise, else
 // "unexplained" with the location's findings.
+//
+// Diagnose runs it as named stages, each a function returning a struct and
+// usable on its own (a robust base fit or a measurement-artefact check can
+// slot in between): FitBase → ValidateOnHeldOut → Locate → RefitCandidates
+// (refits and likelihood-ratio tests) → ValidateOnHeldOut of each refit →
+// DecideVerdict.
 #pragma once
 
+#include <complex>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
-#include <nlohmann/json.hpp>
 
 #include "solver/diagnosis/candidate_physics.h"
 #include "solver/estimation/fit_data.h"
+#include "solver/estimation/identification_problem.h"
 #include "solver/estimation/identify.h"
 #include "solver/diagnosis/misfit_location.h"
 
@@ -54,6 +62,10 @@ struct DiagnosisOptions {
   // iterations when the candidate fits; a start that wanders is cut short.
   int refit_max_iterations = 80;
   double refit_max_cpu_seconds = 10.0;
+
+  // Throws beamid::InputError naming the first field out of its range, its
+  // value and the range, so that a bad option fails before minutes of fits.
+  void Validate() const;
 };
 
 // One fitted model's quality.
@@ -118,12 +130,91 @@ using DiagnosisProgress = std::function<void(double fraction, const std::string&
 
 // fit: the fitted channels (harmonics 1..K). validation: held-out channels
 // (may have none). located: the channels to examine with harmonics 1..5
-// (beyond K); empty channels: fit's. Throws std::runtime_error when the base
-// fit fails.
+// (beyond K); empty channels: fit's. Throws beamid::InputError on invalid
+// options (before any fit) and std::runtime_error when the base fit fails.
 DiagnosisResult Diagnose(const FitData& fit, const FitData& validation, const FitData& located,
                          const DiagnosisOptions& options = {}, const DiagnosisProgress& progress = {});
 
-nlohmann::json ToJson(const DiagnosisResult& result);
+// ---- The stages of Diagnose ----
+
+// A fitted model rebuilt in this process: its problem with the internal
+// scales of the winning start and the optimiser's variables there, so that
+// its phasors at any channel are the fit's own (not a re-solve that could
+// land on another branch).
+struct FittedModel {
+  ModelStructure structure;  // values: the optimum
+  std::unique_ptr<IdentificationProblem> problem;
+  Eigen::VectorXd x;
+  int model_harmonics = 5;
+
+  // structure: the fitted one (its values are replaced by `values`);
+  // scaled_at: the parameters whose FeasiblePoint set x's scales.
+  FittedModel(const FitData& fit, const ModelStructure& structure, int model_harmonics,
+              const std::vector<double>& scaled_at, Eigen::VectorXd variables, const std::vector<double>& values);
+
+  // Per step, channels × K phasors of `data`'s channels in its units
+  // (harmonics the model lacks are 0).
+  std::vector<Eigen::MatrixXcd> Phasors(const FitData& data) const;
+};
+
+// Stage 1, the base model: the polynomial support alone from the direct
+// estimate (robust even when the misfit is large), then with the beam's loss
+// factor from there, kept only when it fits better (a large misfit can run
+// the loss factor to its bound). Every later stage is measured against it.
+struct BaseFit {
+  FittedModel model;
+  FitSummary summary;  // held-out fields NaN (ValidateOnHeldOut fills them)
+};
+BaseFit FitBase(const FitData& fit, const DiagnosisOptions& options);
+
+// Validation: a fitted model's prediction of channels it did not fit — the
+// check that a named cause generalises rather than bends the fit.
+struct HeldOutCheck {
+  // χ² of harmonics 1..K, and the relative RMS error of the first harmonic
+  // over all steps, sqrt(Σ|ΔY₁|²/Σ|Y₁|²); NaN without held-out channels.
+  double chi_square = std::numeric_limits<double>::quiet_NaN();
+  double h1_relative_error = std::numeric_limits<double>::quiet_NaN();
+};
+HeldOutCheck ValidateOnHeldOut(const FittedModel& model, const FitData& validation);
+
+// Stage 2, where the base misses: LocateMisfit of its residuals on the
+// located channels (harmonics beyond the fitted ones included) against the
+// exact linear beam of the base. A failure there is reported, not thrown:
+// the refits still decide.
+struct LocationStage {
+  std::optional<MisfitLocation> location;
+  std::string error;  // why location is empty
+};
+LocationStage Locate(const FitData& fit, const BaseFit& base, const FitData& located);
+
+// Stage 3, every candidate refitted from the base optimum (all candidates
+// and starts in parallel worker processes), its best start, and its
+// likelihood-ratio test against the base (or, for one balanced with more
+// harmonics, against the refit with those harmonics alone). Held-out fields
+// NaN (ValidateOnHeldOut of `models`).
+struct CandidateRefits {
+  std::vector<CandidateOutcome> outcomes;           // library order, not ranked
+  std::vector<std::unique_ptr<FittedModel>> models;  // [c]; null when its refit failed
+};
+// done of num_jobs refits have returned, the latest of candidate `name`.
+using RefitProgress = std::function<void(int done, int num_jobs, const std::string& name)>;
+CandidateRefits RefitCandidates(const FitData& fit, const BaseFit& base, const std::optional<MisfitLocation>& location,
+                                const DiagnosisOptions& options, const RefitProgress& progress = {});
+
+// Stage 4, the verdict: candidates ranked (significant first, converged by
+// BIC, then by signature score); the best named as the cause when
+// significant, else "unexplained" when the base misfit exceeds
+// acceptable_reduced_chi_square and the location (when there is one) finds
+// it significant, else "no significant discrepancy".
+struct Verdict {
+  std::vector<int> ranking;  // indices into the candidates, best first
+  int cause = -1;            // index of the named cause; -1 when none
+  std::string verdict;       // as DiagnosisResult::verdict
+  std::vector<std::string> selected;
+};
+Verdict DecideVerdict(const FitSummary& base, const std::optional<MisfitLocation>& location,
+                      const std::vector<CandidateOutcome>& candidates, const DiagnosisOptions& options);
+
 // CSV of the response curves: level, frequency, channel, held_out, then
 // amplitude and phase of measured, base and final first harmonics.
 std::string ResponseCsv(const DiagnosisResult& result);

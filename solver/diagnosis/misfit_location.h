@@ -34,7 +34,6 @@
 #include <vector>
 
 #include <Eigen/Core>
-#include <nlohmann/json.hpp>
 
 #include "hb/linear_beam.h"
 #include "solver/estimation/fit_data.h"
@@ -65,6 +64,10 @@ struct MisfitLocationOptions {
   // the real one (its damping law, the sensors' attachment), which biases W
   // by ~1 % on simulated campaigns; real rigs are worse.
   double loop_relative_model_error = 0.03;
+
+  // Throws beamid::InputError naming the first field out of its range, its
+  // value and the range.
+  void Validate() const;
 };
 
 // One tested group of standardised residuals.
@@ -128,10 +131,9 @@ struct MisfitLocation {
 // 1..fitted_harmonics the model fitted. reference_beam: the exact linear beam
 // of the fitted model (its c is the loop's viscous reference; k1 and c are
 // not used in the reconstruction itself).
-// Throws std::invalid_argument when model and data disagree in size.
+// Throws beamid::InputError on invalid options and std::invalid_argument
+// when model and data disagree in size.
 MisfitLocation LocateMisfit(const FitData& data, const std::vector<Eigen::MatrixXcd>& model, int fitted_harmonics,
                             const hb::LinearBeamModel& reference_beam, const MisfitLocationOptions& options = {});
-
-nlohmann::json ToJson(const MisfitLocation& location);
 
 }  // namespace beamid::solver

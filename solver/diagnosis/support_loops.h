@@ -12,7 +12,6 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
 
 #include "hb/linear_beam.h"
 #include "solver/estimation/fit_data.h"
@@ -89,7 +88,5 @@ struct LoopEvidence {
 // significance, Bonferroni over the four tests.
 LoopEvidence AnalyseSupportLoops(const FitData& data, const hb::LinearBeamModel& reference_beam,
                                  double family_significance = 0.01, double relative_model_error = 0.03);
-
-nlohmann::json ToJson(const LoopEvidence& loops);
 
 }  // namespace beamid::solver

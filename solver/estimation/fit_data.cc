@@ -1,6 +1,7 @@
 #include "solver/estimation/fit_data.h"
 
 #include "hb/errors.h"
+#include "hb/option_checks.h"
 
 #include <algorithm>
 #include <cmath>
@@ -23,19 +24,25 @@ bool IsSignificant(const signal::HarmonicPhasor& h, double chi2_threshold) {
 }  // namespace
 
 
+void FitDataOptions::Validate() const {
+  using namespace option_checks;
+  RequireInRange("FitDataOptions.num_fit_harmonics", num_fit_harmonics, 1, kMaxHarmonics);
+  // Zero would give noise-free data infinite weight; at 1 or above the floor
+  // would exceed the largest fundamental itself.
+  if (!(relative_uncertainty_floor > 0.0 && relative_uncertainty_floor < 1.0))
+    Refuse("FitDataOptions.relative_uncertainty_floor", FormatValue(relative_uncertainty_floor), "above 0 and below 1");
+  RequireNonNegative("FitDataOptions.force_harmonic_chi2_threshold", force_harmonic_chi2_threshold);
+}
+
 FitData MakeFitData(const signal::Campaign& campaign, const signal::PhasorSet& phasors,
                     const FitDataOptions& options) {
-  if (options.num_fit_harmonics < 1) throw std::invalid_argument("at least one harmonic must be fitted");
+  options.Validate();
   if (phasors.num_harmonics < options.num_fit_harmonics)
     throw std::invalid_argument("the phasors hold " + std::to_string(phasors.num_harmonics) +
                                 " harmonics, the fit needs " + std::to_string(options.num_fit_harmonics) +
                                 " (re-extract with -H " + std::to_string(options.num_fit_harmonics) + ")");
   FitData data;
-  data.beam = {.length_m = campaign.beam.length_m,
-               .width_m = campaign.beam.width_m,
-               .thickness_m = campaign.beam.thickness_m,
-               .youngs_modulus_Pa = campaign.beam.youngs_modulus_Pa,
-               .density_kg_m3 = campaign.beam.density_kg_m3};
+  data.beam = campaign.beam;
   data.force_position_m = campaign.excitation.position_m;
   data.num_fit_harmonics = options.num_fit_harmonics;
   for (const auto& sensor : campaign.sensors)

@@ -69,6 +69,9 @@ struct FitDataOptions {
   // force on the beam: the model is driven with 0 there. Driving it with the
   // noise would put spurious harmonics into every predicted response.
   double force_harmonic_chi2_threshold = 13.8;
+
+  // Throws InputError naming the field, its value and the allowed range.
+  void Validate() const;
 };
 
 // Throws std::invalid_argument naming an unknown channel or a missing harmonic.

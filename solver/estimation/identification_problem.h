@@ -39,6 +39,9 @@ struct IdentificationProblemOptions {
   // The beam's structural loss factor η when it is known (a separate test of
   // the beam); campaign.json has none. Steel: ~1e-4.
   double beam_loss_factor = 0.0;
+
+  // Throws InputError naming the field, its value and the allowed range.
+  void Validate() const;
 };
 
 class IdentificationProblem : public FitProblem {

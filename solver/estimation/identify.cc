@@ -1,6 +1,7 @@
 #include "solver/estimation/identify.h"
 
 #include "hb/errors.h"
+#include "hb/option_checks.h"
 
 #include "solver/estimation/internal/ipopt_program.h"
 #include "solver/estimation/internal/worker_processes.h"
@@ -227,8 +228,21 @@ IdentifyResult IdentifyFromDirectEstimate(const BoundedProblemFactory& make_prob
 
 }  // namespace
 
+void IdentifyOptions::Validate() const {
+  using namespace option_checks;
+  model.Validate();
+  ipopt.Validate();
+  // The command line's limits (--starts, --threads).
+  RequireInRange("IdentifyOptions.num_starts", num_starts, 0, 1000);
+  // [value/spread, value·spread] is empty or inverted at a spread of 1 or below.
+  RequireAbove("IdentifyOptions.start_spread", start_spread, 1.0);
+  RequireInRange("IdentifyOptions.num_threads (worker processes, 0: one per core)", num_threads, 0, 256);
+  RequirePositive("IdentifyOptions.decisive_chi_square_gap", decisive_chi_square_gap);
+}
+
 IdentifyResult Identify(const FitData& data, const ModelStructure& structure, const IdentifyOptions& options,
                         const ProgressCallback& progress) {
+  options.Validate();
   return IdentifyFromDirectEstimate(
       [&](const ModelStructure& bounded) {
         return std::make_unique<IdentificationProblem>(data, bounded, options.model);
@@ -238,6 +252,7 @@ IdentifyResult Identify(const FitData& data, const ModelStructure& structure, co
 
 IdentifyResult IdentifyMultipleScales(const FitData& data, const ModelStructure& structure,
                                       const IdentifyOptions& options, const ProgressCallback& progress) {
+  options.Validate();
   const MultipleScalesProblemOptions model{.beam_loss_factor = options.model.beam_loss_factor};
   // What the model cannot hold (sensor masses, harmonics above 3) is bad
   // input: refuse it here, not as a failure of every start.
@@ -250,6 +265,7 @@ IdentifyResult IdentifyMultipleScales(const FitData& data, const ModelStructure&
 IdentifyResult IdentifyWith(const ProblemFactory& make_problem, const ModelStructure& structure,
                             const std::vector<double>& first, const IdentifyOptions& options,
                             const ProgressCallback& progress) {
+  options.Validate();
   const auto started = std::chrono::steady_clock::now();
   IdentifyResult result;
   const ModelStructure& initial = structure;

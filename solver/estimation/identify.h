@@ -33,7 +33,9 @@ struct IdentifyOptions {
   // Space-filling starts cover [value/spread, value·spread] around the direct
   // estimate for positive parameters and ±spread·|value| for signed ones.
   double start_spread = 3.0;
-  int num_threads = 0;  // 0: one per hardware core
+  // Worker processes that run the starts in parallel (the pool that
+  // DiagnosisOptions calls num_workers); 0: one per hardware core.
+  int num_threads = 0;
   unsigned seed = 1;
   // Start from the structure's own values instead of the direct estimate
   // (the direct estimate needs a polynomial law).
@@ -47,6 +49,10 @@ struct IdentifyOptions {
   // the fit if that lowers the misfit (a step converged on the other branch
   // of a fold).
   bool branch_repair = true;
+
+  // Throws InputError naming the field, its value and the allowed range
+  // (model and ipopt included).
+  void Validate() const;
 };
 
 struct ParameterEstimate {

@@ -8,6 +8,8 @@
 
 #include <Eigen/LU>
 
+#include "hb/option_checks.h"
+
 namespace beamid::solver {
 
 using hb::Complex;
@@ -78,9 +80,18 @@ MultipleScalesModel MakeMultipleScalesModel(const hb::BeamProperties& beam, doub
   return MultipleScalesModel(linear.beam, law, force_position_m, options);
 }
 
+void MultipleScalesProblemOptions::Validate() const {
+  // The readers' range of η (docs/architecture.md).
+  if (!(beam_loss_factor >= 0.0 && beam_loss_factor < 1.0))
+    option_checks::Refuse("MultipleScalesProblemOptions.beam_loss_factor",
+                          option_checks::FormatValue(beam_loss_factor), "in [0, 1)");
+  model.Validate();
+}
+
 MultipleScalesProblem::MultipleScalesProblem(const FitData& data, const ModelStructure& structure,
                                              const MultipleScalesProblemOptions& options)
     : data_(data), structure_(structure), options_(options) {
+  options_.Validate();
   if (!dynamic_cast<const hb::PolynomialSupportLaw*>(structure_.law.get()))
     throw std::invalid_argument("the multiple-scales model (--model ms) needs the polynomial support law");
   if (data_.num_fit_harmonics < 1 || data_.num_fit_harmonics > 3)

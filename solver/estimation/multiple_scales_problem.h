@@ -54,6 +54,9 @@ struct MultipleScalesProblemOptions {
   // kExcitation (default): the generalised model, exact in the linear limit;
   // kNatural: the seed's strict first-order form.
   hb::MultipleScalesOptions model;
+
+  // Throws InputError naming the field, its value and the allowed range.
+  void Validate() const;
 };
 
 // The multiple-scales model of the plain `beam` with the polynomial law and

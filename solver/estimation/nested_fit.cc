@@ -5,10 +5,20 @@
 
 #include <Eigen/Cholesky>
 
+#include "hb/option_checks.h"
+
 namespace beamid::solver {
+
+void NestedFitOptions::Validate() const {
+  using namespace option_checks;
+  model.Validate();
+  RequireAtLeast("NestedFitOptions.max_iterations", max_iterations, 1);
+  RequirePositive("NestedFitOptions.relative_tolerance", relative_tolerance);
+}
 
 NestedFitResult NestedFit(const FitData& data, const ModelStructure& structure, const std::vector<double>& start,
                           const NestedFitOptions& options) {
+  options.Validate();
   IdentificationProblem problem(data, structure, options.model);
   const auto bounds = structure.Bounds();
   const int p = structure.NumParameters();

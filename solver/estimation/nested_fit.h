@@ -17,6 +17,9 @@ struct NestedFitOptions {
   IdentificationProblemOptions model;
   int max_iterations = 100;
   double relative_tolerance = 1e-8;  // on the change of χ² and of the parameters
+
+  // Throws InputError naming the field, its value and the allowed range.
+  void Validate() const;
 };
 
 struct NestedFitResult {

@@ -1,24 +1,19 @@
 #include "solver/estimation/prediction.h"
 
 #include "solver/estimation/multiple_scales_problem.h"
+#include "solver/estimation/result_io.h"
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <numbers>
 #include <stdexcept>
+
+#include "hb/errors.h"
 
 namespace beamid::solver {
 namespace {
 
 using Complex = std::complex<double>;
-using Json = nlohmann::json;
-
-Eigen::VectorXcd Phasors(const Json& array) {
-  Eigen::VectorXcd out(array.size());
-  for (std::size_t i = 0; i < array.size(); ++i) out[i] = Complex(array[i][0].get<double>(), array[i][1].get<double>());
-  return out;
-}
 
 // Displacement phasors at x for every step with parameters p (warm-started).
 std::vector<Eigen::VectorXcd> SolveHarmonicBalance(const IdentifiedModel& model, const std::vector<double>& p, double x,
@@ -78,66 +73,54 @@ hb::HarmonicBalance IdentifiedHarmonicBalance(const IdentifiedModel& model, cons
 }
 
 IdentifiedModel ReadIdentifiedModel(const std::filesystem::path& result_file) {
-  std::ifstream in(result_file);
-  if (!in) throw std::invalid_argument(result_file.string() + ": cannot open the result file");
-  Json j;
+  const ResultFile result = ReadResultFile(result_file);
   try {
-    j = Json::parse(in);
-  } catch (const Json::exception& e) {
-    throw std::invalid_argument(result_file.string() + ": " + e.what());
+    return ToIdentifiedModel(result);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(result_file.string() + ": " + e.what());
   }
-  return IdentifiedModelFromJson(j, result_file.string());
 }
 
-IdentifiedModel IdentifiedModelFromJson(const nlohmann::json& j, const std::string& source) {
-  try {
-    if (j.value("format", "") != "beamid-result/1")
-      throw std::invalid_argument("not a beamid result (format must be beamid-result/1)");
-    IdentifiedModel model;
-    const Json& m = j.at("model");
-    model.kind = m.value("kind", "hb");
-    if (model.kind != "hb" && model.kind != "ms")
-      throw std::invalid_argument("model.kind '" + model.kind + "' is unknown (hb or ms)");
-    const Json& b = m.at("beam");
-    model.beam.beam = {.length_m = b.at("length_m"), .width_m = b.at("width_m"), .thickness_m = b.at("thickness_m"),
-                       .youngs_modulus_Pa = b.at("youngs_modulus_Pa"), .density_kg_m3 = b.at("density_kg_m3"),
-                       .loss_factor = b.value("loss_factor", 0.0)};
-    for (const Json& mass : m.at("sensor_masses"))
-      model.beam.attachments.point_masses.push_back({mass.at("position_m"), mass.at("mass_kg")});
-    model.force_position_m = m.at("force_position_m");
-    model.num_harmonics = m.at("num_harmonics");
-    std::vector<double> values;
-    for (const Json& name : j.at("parameter_order")) values.push_back(j.at("parameters").at(name.get<std::string>()).at("value"));
-    if (m.at("law") != "polynomial") throw std::invalid_argument("only the polynomial law can be predicted so far");
-    model.structure = PolynomialModel({});
-    for (const Json& name : j.at("linear_parameters"))
-      model.structure.linear.push_back(LinearParameterByName(name.get<std::string>(), 0.0));
-    model.structure.SetValues(values);
-    const Json& covariance = j.at("covariance");
-    model.covariance.resize(covariance.size(), covariance.size());
-    for (std::size_t r = 0; r < covariance.size(); ++r)
-      for (std::size_t c = 0; c < covariance.size(); ++c) model.covariance(r, c) = covariance[r][c];
-    for (const Json& s : j.at("steps")) {
-      IdentifiedStep step{.level = s.at("level"),
-                          .file = s.at("file"),
-                          .omega_rad_s = 2 * std::numbers::pi * s.at("frequency_Hz").get<double>(),
-                          .force_N = Phasors(s.at("force_N"))};
-      if (model.kind == "ms") {
-        const Eigen::VectorXcd u = Phasors(s.at("modal_phasor_m"));
-        if (u.size() != 1 || step.force_N.size() < 2)
-          throw std::invalid_argument("step " + step.file + ": modal_phasor_m must hold one phasor and force_N the fundamental");
-        step.modal_phasor_m = u[0];
-      } else {
-        step.theta_rad = Phasors(s.at("theta_rad"));
-      }
-      model.steps.push_back(std::move(step));
+IdentifiedModel ToIdentifiedModel(const ResultFile& result) {
+  IdentifiedModel model;
+  model.kind = result.model.kind;
+  model.beam.beam = result.model.beam;
+  model.beam.attachments.point_masses = result.model.sensor_masses;
+  model.force_position_m = result.model.force_position_m;
+  model.num_harmonics = result.model.num_harmonics;
+  if (result.model.law != "polynomial")
+    throw InputError("model.law '" + result.model.law + "': only the polynomial law can be predicted so far");
+  model.structure = PolynomialModel({});
+  for (const auto& name : result.linear_parameters) {
+    try {
+      model.structure.linear.push_back(LinearParameterByName(name, 0.0));
+    } catch (const std::invalid_argument& e) {
+      throw InputError("linear_parameters: " + std::string(e.what()));
     }
-    return model;
-  } catch (const Json::exception& e) {
-    throw std::invalid_argument(source + ": " + e.what());
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(source + ": " + e.what());
   }
+  // The values go to the structure by position: the names must line up.
+  std::vector<std::string> names;
+  std::vector<double> values;
+  for (const auto& p : result.parameters) {
+    names.push_back(p.name);
+    values.push_back(p.value);
+  }
+  if (names != model.structure.Names()) {
+    std::string expected;
+    for (const auto& name : model.structure.Names()) expected += (expected.empty() ? "" : ", ") + name;
+    throw InputError("parameter_order: the " + result.model.law + " law with linear_parameters takes the parameters " +
+                     expected);
+  }
+  model.structure.SetValues(values);
+  model.covariance = result.covariance;
+  for (const auto& s : result.steps)
+    model.steps.push_back({.level = s.level,
+                           .file = s.file,
+                           .omega_rad_s = 2 * std::numbers::pi * s.frequency_hz,
+                           .force_N = s.force_N,
+                           .theta_rad = s.theta_rad,
+                           .modal_phasor_m = s.modal_phasor_m});
+  return model;
 }
 
 std::vector<PredictedStep> PredictAt(const IdentifiedModel& model, double position_m, int samples_per_period) {

@@ -17,10 +17,10 @@
 #include <vector>
 
 #include <Eigen/Core>
-#include <nlohmann/json.hpp>
 
 #include "hb/harmonic_balance.h"
 #include "solver/estimation/model_structure.h"
+#include "solver/estimation/result_file.h"
 
 namespace beamid::solver {
 
@@ -43,10 +43,12 @@ struct IdentifiedModel {
   std::vector<IdentifiedStep> steps;
 };
 
-// Throws std::invalid_argument naming the file and the missing field.
+// Reads result.json (solver/estimation/result_io.h); throws InputError
+// naming the file, the field and what to fix.
 IdentifiedModel ReadIdentifiedModel(const std::filesystem::path& result_file);
-// The same from result.json's content (source names it in messages).
-IdentifiedModel IdentifiedModelFromJson(const nlohmann::json& result, const std::string& source);
+// The model of a result; throws InputError naming the field of a model it
+// cannot rebuild (another law, an unknown linear parameter).
+IdentifiedModel ToIdentifiedModel(const ResultFile& result);
 
 // The harmonic balance of the identified model with parameters p (structure
 // order; empty: the identified values), as PredictAt solves it.

@@ -2,6 +2,7 @@
 
 #include "solver/report/html_escape.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -12,7 +13,6 @@
 namespace beamid::solver {
 namespace {
 
-using Json = nlohmann::json;
 using Rows = std::vector<std::vector<double>>;
 
 constexpr const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"};
@@ -217,100 +217,74 @@ std::string ResidualPlot(const ResidualMap& map) {
          Datablock("r", data) + "plot $r using 1:2:3 with image pixels notitle\n";
 }
 
-std::string ParameterTable(const Json& result) {
+std::string ParameterTable(const ResultFile& result) {
   std::string html =
       "<table class=\"parameters\"><tr><th>parameter</th><th>value</th><th>standard uncertainty</th>"
       "<th>95 % interval</th><th>unit</th></tr>\n";
-  for (const auto& name : result.at("parameter_order")) {
-    const Json& p = result.at("parameters").at(name.get<std::string>());
-    html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{} … {}</td><td>{}</td></tr>\n",
-                        HtmlEscape(name.get<std::string>()), Number(p.at("value")), Number(p.at("std")),
-                        Number(p.at("ci95")[0]), Number(p.at("ci95")[1]), HtmlEscape(p.value("unit", "")));
-  }
+  for (const auto& p : result.parameters)
+    html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{} … {}</td><td>{}</td></tr>\n", HtmlEscape(p.name),
+                        Number(p.value), Number(p.std), Number(p.lower_95), Number(p.upper_95), HtmlEscape(p.unit));
   return html + "</table>\n";
-}
-
-// Any JSON value as HTML: objects as definition lists, arrays of objects as
-// tables, the rest as text.
-std::string JsonHtml(const Json& value) {
-  if (value.is_string()) return HtmlEscape(value.get<std::string>());
-  if (value.is_number_float()) return Number(value.get<double>());
-  if (value.is_object()) {
-    std::string html = "<dl>";
-    for (const auto& [key, item] : value.items()) html += "<dt>" + HtmlEscape(key) + "</dt><dd>" + JsonHtml(item) + "</dd>";
-    return html + "</dl>";
-  }
-  if (value.is_array() && !value.empty() && value.front().is_object()) {
-    std::vector<std::string> keys;
-    for (const auto& item : value)
-      for (const auto& [key, unused] : item.items())
-        if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
-    std::string html = "<table><tr>";
-    for (const auto& key : keys) html += "<th>" + HtmlEscape(key) + "</th>";
-    html += "</tr>";
-    for (const auto& item : value) {
-      html += "<tr>";
-      for (const auto& key : keys) html += "<td>" + (item.contains(key) ? JsonHtml(item[key]) : "") + "</td>";
-      html += "</tr>";
-    }
-    return html + "</table>";
-  }
-  if (value.is_array()) {
-    std::string html;
-    for (const auto& item : value) html += (html.empty() ? "" : ", ") + JsonHtml(item);
-    return html;
-  }
-  return HtmlEscape(value.dump());
 }
 
 // What a test engineer reads of a diagnosis (diagnosis.json of `beamid
 // diagnose`): the verdict, the findings, only the residual groups that stand
 // out of the noise, and one row per candidate; the full statistics stay in
 // the JSON file.
-std::string DiagnosisSection(const Json& diagnosis) {
+std::string DiagnosisSection(const DiagnosisResult& diagnosis) {
   std::string html = "<section id=\"diagnosis\"><h2>Diagnosis</h2>\n";
-  if (diagnosis.contains("verdict")) html += "<p><b>Verdict:</b> " + JsonHtml(diagnosis["verdict"]) + "</p>\n";
-  if (diagnosis.contains("selected")) html += "<p><b>Selected:</b> " + JsonHtml(diagnosis["selected"]) + "</p>\n";
-  if (diagnosis.contains("summary")) html += "<p class=\"diagnosis-summary\">" + JsonHtml(diagnosis["summary"]) + "</p>\n";
-  const Json location = diagnosis.value("location", Json::object());
-  if (location.contains("findings") && location["findings"].is_array()) {
-    html += "<h3>Where the misfit sits</h3>\n<ul>";
-    for (const auto& finding : location["findings"]) html += "<li>" + JsonHtml(finding) + "</li>";
-    html += "</ul>\n";
-  }
-  if (location.contains("groups") && location["groups"].is_array()) {
-    Json significant = Json::array();
-    for (const auto& g : location["groups"])
-      if (g.value("significant", false)) significant.push_back(g);
-    html += fmt::format("<h3>Residual groups beyond the noise ({} of {})</h3>\n", significant.size(),
-                        location["groups"].size());
-    if (!significant.empty()) html += JsonHtml(significant) + "\n";
-  }
-  if (diagnosis.contains("candidates") && diagnosis["candidates"].is_array()) {
-    html += "<h3>Candidate physics, each refitted</h3>\n<table><tr><th>candidate</th><th>signature score</th>"
-            "<th>χ² before</th><th>χ² after</th><th>drop</th><th>p</th><th>significant</th>"
-            "<th>extra parameters ± standard uncertainty</th></tr>\n";
-    for (const auto& c : diagnosis["candidates"]) {
-      std::string extra;
-      const Json extra_parameters = c.value("extra_parameters", Json::object());
-      for (const auto& [name, p] : extra_parameters.items()) {
-        const auto number = [&](const char* key) { return p.contains(key) && p[key].is_number() ? p[key].get<double>() : NAN; };
-        const double value = number("value"), std = number("std");
-        // A refit that did not move a parameter off its base value leaves it
-        // undetermined (its std is that of a flat direction): say so.
-        const bool determined = std::isfinite(std) && std < 100 * std::abs(value);
-        const std::string unit = p.value("unit", "") == "1" ? "" : " " + HtmlEscape(p.value("unit", ""));
-        extra += fmt::format("{}{} = {}", extra.empty() ? "" : "<br>", HtmlEscape(name),
-                             determined ? Number(value) + " ± " + Number(std) + unit
-                                        : Number(value) + unit + " (not determined by these data)");
-      }
-      const auto field = [&](const char* key) { return c.contains(key) ? JsonHtml(c[key]) : std::string(); };
-      html += "<tr><td>" + field("name") + "</td><td>" + field("score") + "</td><td>" + field("residual_before") +
-              "</td><td>" + field("residual_after") + "</td><td>" + field("residual_drop") + "</td><td>" +
-              field("p_value") + "</td><td>" + field("significant") + "</td><td>" + extra + "</td></tr>\n";
+  std::string selected;
+  for (const auto& name : diagnosis.selected) selected += (selected.empty() ? "" : ", ") + HtmlEscape(name);
+  html += "<p><b>Verdict:</b> " + HtmlEscape(diagnosis.verdict) + "</p>\n";
+  html += "<p><b>Selected:</b> " + selected + "</p>\n";
+  html += "<p class=\"diagnosis-summary\">" + HtmlEscape(diagnosis.summary) + "</p>\n";
+  if (!diagnosis.location) {
+    html += "<p class=\"warning\">The misfit could not be located: " + HtmlEscape(diagnosis.location_error) + "</p>\n";
+  } else {
+    const MisfitLocation& location = *diagnosis.location;
+    if (!location.findings.empty()) {
+      html += "<h3>Where the misfit sits</h3>\n<ul>";
+      for (const auto& finding : location.findings) html += "<li>" + HtmlEscape(finding) + "</li>";
+      html += "</ul>\n";
     }
-    html += "</table>\n";
+    std::string rows;
+    int significant = 0;
+    for (const auto& g : location.groups) {
+      if (!g.significant) continue;
+      ++significant;
+      rows += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+                          g.channel.empty() ? "all" : HtmlEscape(g.channel),
+                          g.harmonic == 0 ? std::string("all") : std::to_string(g.harmonic),
+                          g.level.empty() ? "all" : HtmlEscape(g.level), HtmlEscape(g.part), HtmlEscape(g.band),
+                          Number(g.chi2), g.dof, Number(g.adjusted_p_value));
+    }
+    html += fmt::format("<h3>Residual groups beyond the noise ({} of {})</h3>\n", significant, location.groups.size());
+    if (significant > 0)
+      html += "<table><tr><th>channel</th><th>harmonic</th><th>level</th><th>part</th><th>band</th><th>χ²</th>"
+              "<th>dof</th><th>adjusted p</th></tr>\n" + rows + "</table>\n";
   }
+  html += "<h3>Candidate physics, each refitted</h3>\n<table><tr><th>candidate</th><th>signature score</th>"
+          "<th>χ² before</th><th>χ² after</th><th>drop</th><th>p</th><th>significant</th>"
+          "<th>extra parameters ± standard uncertainty</th></tr>\n";
+  for (const auto& c : diagnosis.candidates) {
+    std::string extra;
+    for (const auto& p : c.fit.parameters) {
+      if (std::find(c.extra_parameters.begin(), c.extra_parameters.end(), p.name) == c.extra_parameters.end()) continue;
+      // A refit that did not move a parameter off its base value leaves it
+      // undetermined (its std is that of a flat direction): say so.
+      const bool determined = std::isfinite(p.std) && p.std < 100 * std::abs(p.value);
+      const std::string unit = p.unit == "1" ? "" : " " + HtmlEscape(p.unit);
+      extra += fmt::format("{}{} = {}", extra.empty() ? "" : "<br>", HtmlEscape(p.name),
+                           determined ? Number(p.value) + " ± " + Number(p.std) + unit
+                                      : Number(p.value) + unit + " (not determined by these data)");
+    }
+    html += "<tr><td>" + HtmlEscape(c.name) + "</td><td>" + Number(c.signature_score) + "</td><td>" +
+            Number(diagnosis.base.chi_square) + "</td><td>" +
+            (c.converged ? Number(c.fit.chi_square) : "refit failed: " + HtmlEscape(c.status)) + "</td><td>" +
+            Number(c.residual_drop) + "</td><td>" + Number(c.p_value) + "</td><td>" +
+            (c.significant ? "yes" : "no") + "</td><td>" + extra + "</td></tr>\n";
+  }
+  html += "</table>\n";
   return html + "</section>\n";
 }
 
@@ -329,28 +303,27 @@ dl { display: grid; grid-template-columns: max-content auto; gap: 0.2em 1em; } d
 }  // namespace
 
 std::string HtmlReport(const ReportInput& input, const ReportCurves& curves) {
-  const Json& result = input.result;
-  const Json& fit = result.at("fit");
+  const ResultFile& result = input.result;
   std::string title = "beamid report";
-  if (result.contains("campaign")) title += ": " + result["campaign"].value("name", std::string());
+  if (!result.campaign.name.empty()) title += ": " + result.campaign.name;
+  std::string fit_channels;
+  for (const auto& channel : result.model.fit_channels)
+    fit_channels += (fit_channels.empty() ? "" : ", ") + HtmlEscape(channel);
   std::string html = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" + HtmlEscape(title) +
                      "</title>\n<style>" + kStyle + "</style>\n</head>\n<body>\n<h1>" + HtmlEscape(title) + "</h1>\n";
   html += fmt::format("<p>Result <code>{}</code>, campaign <code>{}</code>; support law {}; fitted channels {}, "
                       "harmonics 1..{}; reduced χ² = {} ({} residuals).</p>\n",
                       HtmlEscape(input.result_file.string()), HtmlEscape(input.campaign_folder.string()),
-                      HtmlEscape(result.at("model").value("law", "")), JsonHtml(result.at("model").at("fit_channels")),
-                      result.at("model").value("num_fit_harmonics", 0), Number(fit.value("reduced_chi_square", 0.0)),
-                      fit.value("degrees_of_freedom", 0));
-  if (!input.diagnosis.is_null()) html += DiagnosisSection(input.diagnosis);
+                      HtmlEscape(result.model.law), fit_channels, result.model.num_fit_harmonics,
+                      Number(result.fit.reduced_chi_square), result.fit.degrees_of_freedom);
+  if (input.diagnosis) html += DiagnosisSection(input.diagnosis->diagnosis);
 
   html += "<section id=\"parameters\"><h2>Identified parameters</h2>\n" + ParameterTable(result);
-  if (result.contains("validation"))
-    for (const auto& [channel, v] : result["validation"].items())
-      html += fmt::format("<p>Held-out {}: worst relative error {:.2f} % on the first harmonic, {:.2f} % on the "
-                          "third.</p>\n",
-                          HtmlEscape(channel), 100 * v.value("worst_h1_relative_error", 0.0),
-                          100 * v.value("worst_h3_relative_error", 0.0));
-  html += Warnings(result.value("warnings", Json::array()).get<std::vector<std::string>>()) + "</section>\n";
+  for (const auto& v : result.validation)
+    html += fmt::format("<p>Held-out {}: worst relative error {:.2f} % on the first harmonic, {:.2f} % on the "
+                        "third.</p>\n",
+                        HtmlEscape(v.channel), 100 * v.worst_h1_relative_error, 100 * v.worst_h3_relative_error);
+  html += Warnings(result.warnings) + "</section>\n";
 
   html += "<section id=\"frc\"><h2>Frequency response curves</h2>\n";
   for (std::size_t c = 0; c < curves.channels.size(); ++c)

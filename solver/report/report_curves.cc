@@ -39,9 +39,8 @@ const IdentifiedStep* FindStep(const IdentifiedModel& model, const std::string& 
   return nullptr;
 }
 
-std::vector<ReportChannel> Channels(const nlohmann::json& result, const signal::Campaign& campaign) {
-  std::vector<std::string> fitted;
-  for (const auto& name : result.at("model").at("fit_channels")) fitted.push_back(name.get<std::string>());
+std::vector<ReportChannel> Channels(const ResultFile& result, const signal::Campaign& campaign) {
+  const std::vector<std::string>& fitted = result.model.fit_channels;
   std::vector<ReportChannel> out;
   for (const auto& s : campaign.sensors)
     out.push_back({.channel = s.channel, .position_m = s.position_m,
@@ -123,13 +122,13 @@ void MeasuredPhaseResonance(const signal::PhasorSet& phasors, const ReportChanne
 
 }  // namespace
 
-ReportCurves ComputeReportCurves(const nlohmann::json& result, const signal::Campaign& campaign,
+ReportCurves ComputeReportCurves(const ResultFile& result, const signal::Campaign& campaign,
                                  const signal::PhasorSet& phasors, const ReportCurveOptions& options,
                                  const std::function<void(double, const std::string&)>& progress) {
   auto report = [&](double fraction, const std::string& what) {
     if (progress) progress(fraction, what);
   };
-  const IdentifiedModel model = IdentifiedModelFromJson(result, "result");
+  const IdentifiedModel model = ToIdentifiedModel(result);
   const hb::HarmonicBalance balance = IdentifiedHarmonicBalance(model);
   const int h = model.num_harmonics;
   ReportCurves curves;
@@ -213,8 +212,8 @@ ReportCurves ComputeReportCurves(const nlohmann::json& result, const signal::Cam
 
   // Predicted and measured histories at the first held-out channel.
   report(0.6, "prediction at the held-out channel");
-  if (result.contains("validation") && result["validation"].is_object() && !result["validation"].empty()) {
-    curves.held_out_channel = result["validation"].begin().key();
+  if (!result.validation.empty()) {
+    curves.held_out_channel = result.validation.front().channel;
     const auto it = std::find_if(curves.channels.begin(), curves.channels.end(),
                                  [&](const ReportChannel& c) { return c.channel == curves.held_out_channel; });
     if (it == curves.channels.end())
@@ -258,7 +257,7 @@ ReportCurves ComputeReportCurves(const nlohmann::json& result, const signal::Cam
   std::vector<std::string> fitted;
   for (const auto& c : curves.channels)
     if (c.fitted) fitted.push_back(c.channel);
-  const int k_fit = result.at("model").at("num_fit_harmonics").get<int>();
+  const int k_fit = result.model.num_fit_harmonics;
   const FitData fit = MakeFitData(campaign, phasors, {.channels = fitted, .num_fit_harmonics = k_fit});
   std::vector<double> fit_positions;
   for (const auto& c : fit.channels) fit_positions.push_back(c.position_m);

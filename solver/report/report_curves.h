@@ -26,11 +26,11 @@
 #include <vector>
 
 #include <Eigen/Core>
-#include <nlohmann/json.hpp>
 
 #include "signal/campaign.h"
 #include "signal/phasor_set.h"
 #include "solver/estimation/prediction.h"
+#include "solver/estimation/result_file.h"
 
 namespace beamid::solver {
 
@@ -139,7 +139,7 @@ struct ReportCurveOptions {
 };
 
 // `progress(fraction, what)` is called as the work advances.
-ReportCurves ComputeReportCurves(const nlohmann::json& result, const signal::Campaign& campaign,
+ReportCurves ComputeReportCurves(const ResultFile& result, const signal::Campaign& campaign,
                                  const signal::PhasorSet& phasors, const ReportCurveOptions& options = {},
                                  const std::function<void(double, const std::string&)>& progress = {});
 

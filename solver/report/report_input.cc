@@ -1,7 +1,12 @@
 #include "solver/report/report_input.h"
 
-#include <fstream>
 #include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "hb/errors.h"
+#include "hb/text_file.h"
+#include "solver/estimation/result_io.h"
 
 namespace beamid::solver {
 namespace {
@@ -9,19 +14,9 @@ namespace {
 namespace fs = std::filesystem;
 using Json = nlohmann::json;
 
-Json ReadJson(const fs::path& file, const std::string& what) {
-  std::ifstream in(file);
-  if (!in) throw std::invalid_argument(file.string() + ": cannot open the " + what + " (check the path)");
-  try {
-    return Json::parse(in);
-  } catch (const Json::exception& e) {  // syntax, and numbers beyond double (1e400)
-    throw std::invalid_argument(file.string() + ": not valid JSON (" + e.what() + ")");
-  }
-}
-
 bool IsDiagnosis(const Json& j) {
   return j.is_object() && (j.contains("selected") || j.contains("candidates") || j.contains("location") ||
-                           j.contains("summary")) && j.value("format", "") != "beamid-result/1";
+                           j.contains("summary")) && j.value("format", "") != kResultFormat;
 }
 
 fs::path Relative(const fs::path& path, const fs::path& base_file) {
@@ -35,33 +30,45 @@ ReportInput LoadReportInput(const fs::path& input_file, const std::optional<fs::
   ReportInput input;
   input.input_file = input_file;
   input.result_file = input_file;
-  Json j = ReadJson(input_file, "result or diagnosis file");
-  if (IsDiagnosis(j)) {
-    input.diagnosis = j;
-    const Json* result = j.contains("result") ? &j["result"] : j.contains("result_file") ? &j["result_file"] : nullptr;
-    if (!result)
-      throw std::invalid_argument(input_file.string() +
-                                  ": the diagnosis holds no result (neither \"result\" nor \"result_file\"). Fix: "
-                                  "give the result.json of 'beamid identify' instead, or a diagnosis that embeds it");
-    if (result->is_string()) {
-      input.result_file = Relative(result->get<std::string>(), input_file);
-      input.result = ReadJson(input.result_file, "result file named by the diagnosis");
-    } else {
-      input.result = *result;
-    }
-  } else {
-    input.result = std::move(j);
+  const std::string text = ReadTextFile(input_file, "result or diagnosis file", "check the path");
+  Json j;
+  try {
+    j = Json::parse(text);
+  } catch (const Json::exception& e) {  // syntax, and numbers beyond double (1e400)
+    throw std::invalid_argument(input_file.string() + ": not valid JSON (" + e.what() + ")");
   }
-  if (!input.result.is_object() || input.result.value("format", "") != "beamid-result/1")
-    throw std::invalid_argument(input.result_file.string() +
-                                ": not a beamid result (format must be \"beamid-result/1\"). Fix: give the "
-                                "result.json of 'beamid identify' or a diagnosis.json of 'beamid diagnose'");
+  if (IsDiagnosis(j)) {
+    DiagnosisFile diagnosis = DiagnosisFileFromJson(text, input_file.string());
+    if (!diagnosis.embedded_result_json.empty()) {
+      input.result =
+          ResultFileFromJson(diagnosis.embedded_result_json, input_file.string() + " (its embedded result)");
+    } else if (!diagnosis.result_file.empty()) {
+      input.result_file = Relative(diagnosis.result_file, input_file);
+      input.result = ReadResultFile(input.result_file);
+    } else {
+      throw InputError(input_file.string() +
+                       ": the diagnosis holds no result (neither \"result\" nor \"result_file\"). Fix: give the "
+                       "result.json of 'beamid identify' instead, or run 'beamid diagnose' with --result");
+    }
+    // A diagnosis and a result of two campaigns would be mixed into one page.
+    if (const std::string mismatch = CampaignMismatch(input.result, diagnosis.campaign_name,
+                                                      Relative(diagnosis.campaign_folder, input_file));
+        !mismatch.empty())
+      throw InputError(input_file.string() + ": " + mismatch +
+                       ". Fix: run 'beamid diagnose' with --result naming the result.json of the campaign diagnosed");
+    input.diagnosis = std::move(diagnosis);
+  } else {
+    if (!j.is_object() || j.value("format", "") != kResultFormat)
+      throw InputError(input_file.string() +
+                       ": not a beamid result (format must be \"beamid-result/1\"). Fix: give the "
+                       "result.json of 'beamid identify' or a diagnosis.json of 'beamid diagnose'");
+    input.result = ResultFileFromJson(text, input_file.string());
+  }
   if (campaign_folder) {
     input.campaign_folder = *campaign_folder;
   } else {
-    const Json campaign = input.result.value("campaign", Json::object());
-    const std::string folder = campaign.is_object() ? campaign.value("folder", "") : "";
-    const std::string absolute = campaign.is_object() ? campaign.value("absolute_folder", "") : "";
+    const std::string& folder = input.result.campaign.folder;
+    const std::string& absolute = input.result.campaign.absolute_folder;
     if (folder.empty() && absolute.empty())
       throw std::invalid_argument(input.result_file.string() +
                                   ": the result names no campaign folder. Fix: give it with --campaign DIR");

@@ -13,15 +13,16 @@
 #include <optional>
 #include <string>
 
-#include <nlohmann/json.hpp>
+#include "solver/diagnosis/diagnosis_io.h"
+#include "solver/estimation/result_file.h"
 
 namespace beamid::solver {
 
 struct ReportInput {
   std::filesystem::path input_file;   // as given
   std::filesystem::path result_file;  // the result.json (the input file when it holds the result embedded)
-  nlohmann::json result;              // beamid-result/1
-  nlohmann::json diagnosis;           // null unless the input is a diagnosis
+  ResultFile result;                  // read by solver/estimation/result_io.h
+  std::optional<DiagnosisFile> diagnosis;  // when the input is a diagnosis
   std::filesystem::path campaign_folder;
 };
 

@@ -9,7 +9,8 @@ cd "${1:?usage: check_self_contained.sh SOURCE_DIR}"
 parent='\.\./sh''ared'
 workplace='/wo''rk/'
 pattern="$parent|$workplace|sh""ared/(spec|seed)/"
-hits=$(grep -rnIE "$pattern" --exclude-dir=build --exclude-dir=.git . || true)
+# (.git is a file in a git worktree, pointing to the main clone.)
+hits=$(grep -rnIE "$pattern" --exclude-dir=build --exclude-dir=.git --exclude=.git . || true)
 if [ -n "$hits" ]; then
   echo "paths outside the repository:"
   echo "$hits"

@@ -156,7 +156,7 @@ TEST_F(CampaignReaderTest, ReadsCampaignAndConvertsUnitsToSi) {
 
 TEST_F(CampaignReaderTest, MissingCampaignJson) {
   fs::remove(folder_ / "campaign.json");
-  ExpectNames(ExpectError(), CampaignFile(), "", "cannot open");
+  ExpectNames(ExpectError(), CampaignFile(), "", "cannot read the campaign description (no such file)");
 }
 
 TEST_F(CampaignReaderTest, InvalidJson) {
@@ -195,6 +195,29 @@ TEST_F(CampaignReaderTest, NonPhysicalBeamValue) {
   json.replace(json.find("\"density_kg_m3\": 7850"), 21, "\"density_kg_m3\": -1");
   Write("campaign.json", json);
   ExpectNames(ExpectError(), CampaignFile(), "", "beam: 'density_kg_m3' = -1 is not physical");
+}
+
+// A typing error such as 1e300 m is refused with the stated range, before
+// it can reach a solver as a number (it used to end as "no start converged").
+TEST_F(CampaignReaderTest, BeamOutsideTheRangeOfABeamTest) {
+  std::string json = CampaignJson();
+  json.replace(json.find("\"length_m\": 0.6"), 15, "\"length_m\": 1e300");
+  Write("campaign.json", json);
+  ExpectNames(ExpectError(), CampaignFile(), "", "beam: length_m = ");
+  EXPECT_NE(std::string(ExpectError().what()).find("1 mm to 100 m"), std::string::npos) << ExpectError().what();
+}
+
+TEST_F(CampaignReaderTest, AFolderInPlaceOfCampaignJsonIsNamed) {
+  fs::remove(folder_ / "campaign.json");
+  fs::create_directories(folder_ / "campaign.json");
+  ExpectNames(ExpectError(), CampaignFile(), "", "it is a folder, not a file");
+}
+
+// One corrupted sample of 1000× the force level would shift every harmonic
+// of the step; it is named with its time instead of being averaged in.
+TEST_F(CampaignReaderTest, ASpikeIsNamedWithItsTime) {
+  EditRecording(500, 501, 3, "900");
+  ExpectNames(ExpectError(), StepFile(), "force", "spike: the sample at t = 0.5 s (900)");
 }
 
 TEST_F(CampaignReaderTest, MissingRecordingFile) {

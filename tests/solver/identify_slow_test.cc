@@ -6,15 +6,15 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <numbers>
 #include <random>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "solver/estimation/identification_report.h"
 #include "solver/estimation/prediction.h"
+#include "solver/estimation/result_file.h"
+#include "solver/estimation/result_io.h"
 #include "tests/support/paper_scenario.h"
 #include "tests/support/simulated_campaign.h"
 
@@ -257,7 +257,7 @@ TEST_F(IdentifyOnSimulatedCampaign, PredictFromTheResultFileMatchesTheTruthWithI
   IdentificationProblem problem(fit, structure, {});
   problem.FeasiblePoint(result.starts[result.best_start].scaled_at);
   const auto file = simulated_->folder / "result.json";
-  std::ofstream(file) << IdentificationReport(fit, FitData{}, problem, result, {}).dump();
+  WriteResultFile(file, MakeResultFile(fit, FitData{}, problem, result, {}));
   const IdentifiedModel model = ReadIdentifiedModel(file);
   const std::vector<PredictedStep> predicted = PredictAt(model, 0.45);
   ASSERT_EQ(predicted.size(), fit.steps.size());

@@ -12,6 +12,8 @@
 #include <Eigen/LU>
 #include <gtest/gtest.h>
 
+#include "hb/errors.h"
+#include "solver/diagnosis/diagnosis_io.h"
 #include "solver/estimation/chi_square.h"
 
 namespace beamid::solver {
@@ -242,15 +244,58 @@ TEST(LocateMisfit, RejectsAModelOfTheWrongSize) {
   EXPECT_THROW(LocateMisfit(s.data, s.model, kFitted, kUnusedBeam, kNoLoops), std::invalid_argument);
 }
 
-TEST(LocateMisfit, JsonHoldsTheFindingsFeaturesAndGroups) {
+// Options out of range are refused by name, on data that would otherwise be
+// located without complaint.
+TEST(LocateMisfit, RefusesAnOptionOutOfRangeNamingIt) {
+  std::mt19937 rng(1);
+  const Synthetic s = MakeSynthetic(rng);
+  ASSERT_NO_THROW(LocateMisfit(s.data, s.model, kFitted, kUnusedBeam, kNoLoops));
+  const auto refused = [&](MisfitLocationOptions options, const std::string& expected) {
+    try {
+      LocateMisfit(s.data, s.model, kFitted, kUnusedBeam, options);
+      ADD_FAILURE() << expected << " was accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+  };
+  MisfitLocationOptions o = kNoLoops;
+  o.family_significance = 1.5;
+  refused(o, "MisfitLocationOptions.family_significance = 1.5: must be in (0, 1)");
+  o = kNoLoops;
+  o.num_fitted_parameters = -2;
+  refused(o, "MisfitLocationOptions.num_fitted_parameters = -2: must be at least 0");
+  o = kNoLoops;
+  o.model_relative_error = -1e-3;
+  refused(o, "MisfitLocationOptions.model_relative_error = -0.001");
+  o = kNoLoops;
+  o.finding_min_share = 2.0;
+  refused(o, "MisfitLocationOptions.finding_min_share = 2");
+}
+
+// The location goes to diagnosis.json (solver/diagnosis/diagnosis_io.h) and
+// comes back whole.
+TEST(LocateMisfit, DiagnosisFileHoldsTheFindingsFeaturesAndGroups) {
   std::mt19937 rng(5);
   const Synthetic s = WithAcc2Truth({.stiffness_change_at_top = 2e-3}, rng);
-  const MisfitLocation location = LocateMisfit(s.data, s.model, kFitted, kUnusedBeam, kNoLoops);
-  const nlohmann::json json = ToJson(location);
-  EXPECT_EQ(json["findings"].size(), location.findings.size());
-  EXPECT_EQ(json["groups"].size(), location.groups.size());
-  EXPECT_DOUBLE_EQ(json["in_phase_fraction"].get<double>(), location.in_phase_fraction);
-  EXPECT_TRUE(json["significant"].get<bool>());
+  DiagnosisFile file;
+  file.diagnosis.location = LocateMisfit(s.data, s.model, kFitted, kUnusedBeam, kNoLoops);
+  const MisfitLocation& location = *file.diagnosis.location;
+  ASSERT_TRUE(location.significant);
+  const DiagnosisFile read = DiagnosisFileFromJson(DiagnosisFileToJson(file), "diagnosis.json");
+  ASSERT_TRUE(read.diagnosis.location.has_value());
+  const MisfitLocation& back = *read.diagnosis.location;
+  EXPECT_EQ(back.findings, location.findings);
+  ASSERT_EQ(back.groups.size(), location.groups.size());
+  for (std::size_t i = 0; i < back.groups.size(); ++i) {
+    EXPECT_EQ(back.groups[i].channel, location.groups[i].channel);
+    EXPECT_EQ(back.groups[i].harmonic, location.groups[i].harmonic);
+    EXPECT_EQ(back.groups[i].part, location.groups[i].part);
+    EXPECT_EQ(back.groups[i].chi2, location.groups[i].chi2);
+    EXPECT_EQ(back.groups[i].significant, location.groups[i].significant);
+  }
+  EXPECT_EQ(back.in_phase_fraction, location.in_phase_fraction);
+  EXPECT_EQ(back.channel_excess_chi2, location.channel_excess_chi2);
+  EXPECT_TRUE(back.significant);
 }
 
 }  // namespace

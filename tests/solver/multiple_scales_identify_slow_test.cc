@@ -8,10 +8,11 @@
 
 #include <gtest/gtest.h>
 
-#include "solver/estimation/identification_report.h"
 #include "solver/estimation/identify.h"
 #include "solver/estimation/multiple_scales_problem.h"
 #include "solver/estimation/prediction.h"
+#include "solver/estimation/result_file.h"
+#include "solver/estimation/result_io.h"
 #include "tests/support/paper_scenario.h"
 #include "tests/support/simulated_campaign.h"
 
@@ -110,14 +111,16 @@ TEST_F(MultipleScalesIdentification, PredictsTheHeldOutChannelAndAHiddenPosition
   problem.FeasiblePoint(ms_->starts[ms_->best_start].scaled_at);
   FitData fit_with_loss = *fit_;
   fit_with_loss.beam.loss_factor = kLossFactor;
-  const nlohmann::json report = IdentificationReport(fit_with_loss, Fit({"acc3"}), problem, *ms_, {.model_kind = "ms"});
-  EXPECT_EQ(report["model"]["kind"], "ms");
-  EXPECT_EQ(report["model"]["num_harmonics"], 3);
-  const double worst_acc3 = report["validation"]["acc3"]["worst_h1_relative_error"];
+  const ResultFile report = MakeResultFile(fit_with_loss, Fit({"acc3"}), problem, *ms_, {.model_kind = "ms"});
+  EXPECT_EQ(report.model.kind, "ms");
+  EXPECT_EQ(report.model.num_harmonics, 3);
+  ASSERT_EQ(report.validation.size(), 1u);
+  ASSERT_EQ(report.validation[0].channel, "acc3");
+  const double worst_acc3 = report.validation[0].worst_h1_relative_error;
   EXPECT_LT(worst_acc3, kPredictionTolerance);
 
   const auto file = simulated_->folder / "ms_result.json";
-  std::ofstream(file) << report.dump();
+  WriteResultFile(file, report);
   const IdentifiedModel model = ReadIdentifiedModel(file);
   EXPECT_EQ(model.kind, "ms");
   const std::vector<PredictedStep> predicted = PredictAt(model, 0.45);

@@ -21,6 +21,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "solver/diagnosis/diagnosis_io.h"
+#include "solver/estimation/result_io.h"
 #include "solver/report/html_screenshot.h"
 #include "tests/support/paper_scenario.h"
 #include "tests/support/png_image.h"
@@ -150,15 +152,35 @@ TEST_F(ReportCommand, SetsEachLevelsMeasuredPhaseResonanceBesideTheModelsBackbon
 
 TEST_F(ReportCommand, RendersADiagnosisSummary) {
   ASSERT_EQ(identify_->exit_code, 0) << identify_->output;
-  std::ofstream(*folder_ / "diagnosis.json") << R"({"selected": ["support_friction"], "verdict": "cause named",
-    "summary": "SUMMARY-TEXT", "location": {"findings": ["FINDING-TEXT"], "groups": [
-      {"channel": "acc2", "harmonic": 1, "level": "high", "part": "quadrature", "chi2": 812.0, "significant": true},
-      {"channel": "acc1", "harmonic": 3, "level": "low", "part": "both", "chi2": 3.1, "significant": false}]},
-    "candidates": [{"name": "support_friction", "score": 0.9, "residual_before": 5000, "residual_after": 120,
-      "residual_drop": 41.7, "p_value": 0, "significant": true,
-      "extra_parameters": {"jenkins_stiffness": {"value": 49.9, "std": 0.1, "unit": "N*m/rad"}}},
-     {"name": "clamp_compliance", "score": 0.1, "residual_before": 5000, "residual_after": 4900}],
-    "result": "result.json"})";
+  // A diagnosis written through the one writer of its format, with texts
+  // that can be found in the page.
+  using namespace beamid::solver;
+  const ResultFile result = ReadResultFile(*folder_ / "result.json");
+  DiagnosisFile file;
+  file.campaign_name = result.campaign.name;
+  file.campaign_folder = result.campaign.absolute_folder;
+  file.result_file = "result.json";
+  DiagnosisResult& d = file.diagnosis;
+  d.selected = {"support_friction"};
+  d.verdict = "cause named";
+  d.summary = "SUMMARY-TEXT";
+  d.base.chi_square = 5000;
+  MisfitLocation location;
+  location.findings = {"FINDING-TEXT"};
+  MisfitGroupTest beyond, within;
+  beyond.channel = "acc2", beyond.harmonic = 1, beyond.level = "high", beyond.part = "quadrature";
+  beyond.chi2 = 812.0, beyond.significant = true;
+  within.channel = "acc1", within.harmonic = 3, within.level = "low", within.chi2 = 3.1;
+  location.groups = {beyond, within};
+  d.location = location;
+  CandidateOutcome friction, clamp;
+  friction.name = "support_friction", friction.signature_score = 0.9, friction.converged = true;
+  friction.extra_parameters = {"jenkins_stiffness"};
+  friction.fit.parameters = {{.name = "jenkins_stiffness", .unit = "N*m/rad", .value = 49.9, .std = 0.1}};
+  friction.fit.chi_square = 120, friction.residual_drop = 41.7, friction.p_value = 0, friction.significant = true;
+  clamp.name = "clamp_compliance", clamp.signature_score = 0.1, clamp.converged = true, clamp.fit.chi_square = 4900;
+  d.candidates = {friction, clamp};
+  WriteDiagnosisFile(*folder_ / "diagnosis.json", file);
   const ProgramRun run = RunShell(std::string(BEAMID_EXECUTABLE) + " -q report " +
                                       (*folder_ / "diagnosis.json").string() + " -o " +
                                       (*folder_ / "diagnosis.html").string(),
@@ -174,6 +196,18 @@ TEST_F(ReportCommand, RendersADiagnosisSummary) {
   EXPECT_THAT(html, HasSubstr("jenkins_stiffness = 49.9"));
   EXPECT_LT(html.find("id=\"diagnosis\""), html.find("id=\"parameters\""));
   EXPECT_EQ(Count(html, "<svg"), static_cast<std::size_t>(kPlots));
+
+  // A diagnosis of another campaign beside this result is refused, not mixed
+  // into one page.
+  file.campaign_name = "another campaign";
+  WriteDiagnosisFile(*folder_ / "other_diagnosis.json", file);
+  const ProgramRun mixed = RunShell(std::string(BEAMID_EXECUTABLE) + " -q report " +
+                                        (*folder_ / "other_diagnosis.json").string() + " -o " +
+                                        (*folder_ / "mixed.html").string(),
+                                    *folder_ / "mixed.log");
+  EXPECT_EQ(mixed.exit_code, 2) << mixed.output;
+  EXPECT_THAT(mixed.output, HasSubstr("not of campaign 'another campaign'"));
+  EXPECT_FALSE(fs::exists(*folder_ / "mixed.html"));
 }
 
 TEST_F(ReportCommand, ChromiumShowsThePlots) {

@@ -1,6 +1,7 @@
 #include "solver/estimation/internal/ipopt_program.h"
 
 #include "hb/errors.h"
+#include "hb/option_checks.h"
 
 #include <exception>
 #include <stdexcept>
@@ -131,7 +132,18 @@ std::string StatusTextOf(Ipopt::ApplicationReturnStatus status) {
 
 std::string IpoptStatusText(int status) { return StatusTextOf(static_cast<Ipopt::ApplicationReturnStatus>(status)); }
 
+void IpoptOptions::Validate() const {
+  using namespace option_checks;
+  RequireAtLeast("IpoptOptions.max_iterations", max_iterations, 1);
+  RequirePositive("IpoptOptions.tolerance", tolerance);
+  RequirePositive("IpoptOptions.constraint_tolerance", constraint_tolerance);
+  RequireNonNegative("IpoptOptions.max_cpu_seconds (0: no limit)", max_cpu_seconds);
+  // Ipopt's own range of print_level.
+  RequireInRange("IpoptOptions.print_level", print_level, 0, 12);
+}
+
 IpoptOutcome RunIpopt(FitProblem& problem, const Eigen::VectorXd& start, const IpoptOptions& options) {
+  options.Validate();
   Ipopt::SmartPtr<IdentificationTnlp> program = new IdentificationTnlp(problem, start);
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
   app->RethrowNonIpoptException(false);

@@ -19,6 +19,9 @@ struct IpoptOptions {
   double max_cpu_seconds = 0.0;
   int print_level = 0;              // 0 silent … 5 Ipopt's default output
   bool derivative_test = false;     // Ipopt's second-order derivative checker (development)
+
+  // Throws InputError naming the field, its value and the allowed range.
+  void Validate() const;
 };
 
 struct IpoptOutcome {

@@ -41,21 +41,37 @@ bool ReadAll(int fd, void* data, std::size_t size) {
 }
 
 // Message: job index, status (0 ok, 1 error), payload length, payload
-// (doubles, or the error text's bytes).
-void SendResult(int fd, std::int64_t index, const std::vector<double>& values, const std::string& error) {
+// (the result's bytes, or the error text's).
+void SendResult(int fd, std::int64_t index, const std::string& result, const std::string& error) {
   const std::int64_t status = error.empty() ? 0 : 1;
-  const std::int64_t length = error.empty() ? static_cast<std::int64_t>(values.size() * sizeof(double))
-                                            : static_cast<std::int64_t>(error.size());
+  const std::string& payload = error.empty() ? result : error;
+  const std::int64_t length = static_cast<std::int64_t>(payload.size());
   WriteAll(fd, &index, sizeof index);
   WriteAll(fd, &status, sizeof status);
   WriteAll(fd, &length, sizeof length);
-  WriteAll(fd, error.empty() ? static_cast<const void*>(values.data()) : error.data(), static_cast<std::size_t>(length));
+  WriteAll(fd, payload.data(), payload.size());
 }
 
 }  // namespace
 
 void RunInWorkers(int num_jobs, int num_workers, const std::function<std::vector<double>(int)>& job,
                   const std::function<void(int, const std::vector<double>&, const std::string&, int)>& collect) {
+  // The doubles' bytes as they are in memory: the same process image reads them.
+  RunTextJobsInWorkers(
+      num_jobs, num_workers,
+      [&](int i) {
+        const std::vector<double> values = job(i);
+        return std::string(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(double));
+      },
+      [&](int i, const std::string& bytes, const std::string& error, int done) {
+        std::vector<double> values(bytes.size() / sizeof(double));
+        std::memcpy(values.data(), bytes.data(), values.size() * sizeof(double));
+        collect(i, values, error, done);
+      });
+}
+
+void RunTextJobsInWorkers(int num_jobs, int num_workers, const std::function<std::string(int)>& job,
+                          const std::function<void(int, const std::string&, const std::string&, int)>& collect) {
   if (num_workers <= 1 || num_jobs <= 1) {
     for (int i = 0; i < num_jobs; ++i) {
       try {
@@ -129,13 +145,8 @@ void RunInWorkers(int num_jobs, int num_workers, const std::function<std::vector
       }
       received[index] = true;
       ++done;
-      if (status == 0) {
-        std::vector<double> values(payload.size() / sizeof(double));
-        std::memcpy(values.data(), payload.data(), values.size() * sizeof(double));
-        collect(static_cast<int>(index), values, "", done);
-      } else {
-        collect(static_cast<int>(index), {}, std::string(payload.begin(), payload.end()), done);
-      }
+      if (status == 0) collect(static_cast<int>(index), std::string(payload.begin(), payload.end()), "", done);
+      else collect(static_cast<int>(index), {}, std::string(payload.begin(), payload.end()), done);
     }
   }
   for (const Worker& w : workers) {

@@ -1,7 +1,8 @@
 // Internal: runs independent jobs in worker processes (fork), each job
-// returning a vector of doubles through a pipe. Used where a library keeps
-// global state that forbids threads (Ipopt's MUMPS). With one worker the jobs
-// run in this process, in order.
+// returning its result through a pipe: a vector of doubles, or a text (a
+// serialised struct) for results with more shape than that. Used where a
+// library keeps global state that forbids threads (Ipopt's MUMPS). With one
+// worker the jobs run in this process, in order.
 #pragma once
 
 #include <functional>
@@ -15,5 +16,9 @@ namespace beamid::solver::internal {
 // died; done = results received so far).
 void RunInWorkers(int num_jobs, int num_workers, const std::function<std::vector<double>(int)>& job,
                   const std::function<void(int, const std::vector<double>&, const std::string&, int)>& collect);
+
+// The same with a text result, passed on byte for byte.
+void RunTextJobsInWorkers(int num_jobs, int num_workers, const std::function<std::string(int)>& job,
+                          const std::function<void(int, const std::string&, const std::string&, int)>& collect);
 
 }  // namespace beamid::solver::internal

@@ -1,8 +1,8 @@
-#include "signal/input_error.h"
+#include "hb/errors.h"
 
 #include <utility>
 
-namespace beamid::signal {
+namespace beamid {
 namespace {
 
 std::string ComposeMessage(const std::string& file, const std::string& channel, const std::string& problem,
@@ -17,8 +17,8 @@ std::string ComposeMessage(const std::string& file, const std::string& channel, 
 }  // namespace
 
 InputError::InputError(std::string file, std::string channel, const std::string& problem, const std::string& fix)
-    : beamid::InputError(ComposeMessage(file, channel, problem, fix)),
+    : std::invalid_argument(ComposeMessage(file, channel, problem, fix)),
       file_(std::move(file)),
       channel_(std::move(channel)) {}
 
-}  // namespace beamid::signal
+}  // namespace beamid

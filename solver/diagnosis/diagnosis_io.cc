@@ -1,0 +1,627 @@
+#include "solver/diagnosis/diagnosis_io.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <initializer_list>
+#include <limits>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+#include <string_view>
+
+#include <nlohmann/json.hpp>
+
+#include "hb/errors.h"
+#include "hb/text_file.h"
+
+namespace beamid::solver {
+namespace {
+
+// Insertion order is kept so that the parameters stay in the model's order
+// (and a file read and written again is the same text).
+using Json = nlohmann::ordered_json;
+
+constexpr const char* kFix = "give a diagnosis.json written by 'beamid diagnose', or repair that field";
+
+// ---------------------------------------------------------------- writing
+
+Json Number(double v) { return std::isnan(v) ? Json(nullptr) : Json(v); }
+
+Json Numbers(const std::vector<double>& values) {
+  Json out = Json::array();
+  for (double v : values) out.push_back(Number(v));
+  return out;
+}
+
+Json ParameterToJson(const ParameterEstimate& p) {
+  return {{"value", Number(p.value)},
+          {"std", Number(p.std)},
+          {"unit", p.unit},
+          {"ci95", Json::array({Number(p.lower_95), Number(p.upper_95)})}};
+}
+
+Json FitToJson(const FitSummary& s) {
+  Json parameters = Json::object();
+  for (const auto& p : s.parameters) parameters[p.name] = ParameterToJson(p);
+  return {{"parameters", parameters},
+          {"model_harmonics", s.model_harmonics},
+          {"chi_square", Number(s.chi_square)},
+          {"degrees_of_freedom", s.degrees_of_freedom},
+          {"num_residuals", s.num_residuals},
+          {"reduced_chi_square", Number(s.reduced_chi_square)},
+          {"aic", Number(s.aic)},
+          {"bic", Number(s.bic)},
+          {"held_out_chi_square", Number(s.held_out_chi_square)},
+          {"held_out_h1_relative_error", Number(s.held_out_h1_relative_error)}};
+}
+
+Json LoopsToJson(const LoopEvidence& loops) {
+  Json steps = Json::array();
+  for (const LoopStep& s : loops.steps) {
+    steps.push_back({{"level", s.level},
+                     {"frequency_hz", Number(s.omega_rad_s / (2.0 * std::numbers::pi))},
+                     // exact ω: frequency_hz·2π need not give it back
+                     {"omega_rad_s", Number(s.omega_rad_s)},
+                     {"theta_amplitude_rad", Number(s.theta_amplitude_rad)},
+                     {"theta_std_rad", Number(s.theta_std_rad)},
+                     {"moment_amplitude_Nm", Number(s.moment_amplitude_Nm)},
+                     {"dissipated_energy_J", Number(s.dissipated_energy_J)},
+                     {"dissipated_energy_std_J", Number(s.dissipated_energy_std_J)},
+                     {"viscous_energy_J", Number(s.viscous_energy_J)},
+                     {"equivalent_damping_Nms_rad", Number(s.equivalent_damping_Nms_rad)},
+                     {"equivalent_damping_std_Nms_rad", Number(s.equivalent_damping_std_Nms_rad)},
+                     {"moment_harmonic_ratio", Number(s.moment_harmonic_ratio)},
+                     {"elastic_harmonic_chi2", Number(s.elastic_harmonic_chi2)},
+                     {"hysteretic_harmonic_chi2", Number(s.hysteretic_harmonic_chi2)},
+                     {"harmonic_dof", s.harmonic_dof},
+                     {"theta_even_fraction", Number(s.theta_even_fraction)},
+                     {"moment_even_fraction", Number(s.moment_even_fraction)}});
+  }
+  return {{"steps", steps},
+          {"num_steps_used", loops.num_steps_used},
+          {"area_exponent", Number(loops.area_exponent)},
+          {"area_exponent_std", Number(loops.area_exponent_std)},
+          {"viscous_chi2", Number(loops.viscous_chi2)},
+          {"viscous_dof", loops.viscous_dof},
+          {"viscous_p_value", Number(loops.viscous_p_value)},
+          {"mean_equivalent_damping_Nms_rad", Number(loops.mean_equivalent_damping_Nms_rad)},
+          {"damping_ratio_high_to_low", Number(loops.damping_ratio_high_to_low)},
+          {"elastic_harmonic_chi2", Number(loops.elastic_harmonic_chi2)},
+          {"hysteretic_harmonic_chi2", Number(loops.hysteretic_harmonic_chi2)},
+          {"harmonic_dof", loops.harmonic_dof},
+          {"elastic_harmonic_p_value", Number(loops.elastic_harmonic_p_value)},
+          {"hysteretic_harmonic_p_value", Number(loops.hysteretic_harmonic_p_value)},
+          {"max_moment_harmonic_ratio", Number(loops.max_moment_harmonic_ratio)},
+          {"theta_even_chi2", Number(loops.theta_even_chi2)},
+          {"theta_even_dof", loops.theta_even_dof},
+          {"theta_even_p_value", Number(loops.theta_even_p_value)},
+          {"dissipation_not_viscous", loops.dissipation_not_viscous},
+          {"non_elliptic", loops.non_elliptic},
+          {"hysteretic_shape", loops.hysteretic_shape},
+          {"asymmetric", loops.asymmetric}};
+}
+
+Json LocationToJson(const MisfitLocation& location) {
+  Json groups = Json::array();
+  for (const MisfitGroupTest& g : location.groups) {
+    groups.push_back({{"channel", g.channel},
+                      {"harmonic", g.harmonic},
+                      {"level", g.level},
+                      {"part", g.part},
+                      {"band", g.band},
+                      {"chi2", Number(g.chi2)},
+                      {"dof", g.dof},
+                      {"p_value", Number(g.p_value)},
+                      {"adjusted_p_value", Number(g.adjusted_p_value)},
+                      {"significant", g.significant},
+                      {"excess_chi2", Number(g.excess_chi2)},
+                      {"growth_exponent", Number(g.growth_exponent)}});
+  }
+  return {{"chi2", Number(location.chi2)},
+          {"dof", location.dof},
+          {"p_value", Number(location.p_value)},
+          {"significant", location.significant},
+          {"num_groups_tested", location.num_groups_tested},
+          {"in_phase_fraction", Number(location.in_phase_fraction)},
+          {"near_resonance_fraction", Number(location.near_resonance_fraction)},
+          {"fundamental_fraction", Number(location.fundamental_fraction)},
+          {"even_harmonic_fraction", Number(location.even_harmonic_fraction)},
+          {"beyond_fitted_fraction", Number(location.beyond_fitted_fraction)},
+          {"harmonic_excess_chi2", Numbers(location.harmonic_excess_chi2)},
+          {"channel_excess_chi2", Numbers(location.channel_excess_chi2)},
+          {"level_growth_exponent", Number(location.level_growth_exponent)},
+          {"level_misfit_amplitude", Numbers(location.level_misfit_amplitude)},
+          {"level_response_amplitude", Numbers(location.level_response_amplitude)},
+          {"loops", LoopsToJson(location.loops)},
+          {"findings", location.findings},
+          {"groups", groups}};
+}
+
+Json CandidateToJson(const CandidateOutcome& c, double residual_before) {
+  // The extra parameters' values once more by name, for a reader of the
+  // file; the names alone survive a refit that failed (no fitted values).
+  Json extra = Json::object();
+  for (const auto& p : c.fit.parameters)
+    if (std::find(c.extra_parameters.begin(), c.extra_parameters.end(), p.name) != c.extra_parameters.end())
+      extra[p.name] = ParameterToJson(p);
+  return {{"name", c.name},
+          {"description", c.description},
+          {"score", Number(c.signature_score)},
+          {"converged", c.converged},
+          {"status", c.status},
+          {"significant", c.significant},
+          {"extra_parameters", extra},
+          {"extra_parameter_names", c.extra_parameters},
+          {"residual_before", Number(residual_before)},
+          {"residual_after", c.converged ? Number(c.fit.chi_square) : Json(nullptr)},
+          {"residual_drop", Number(c.residual_drop)},
+          {"likelihood_ratio", Number(c.likelihood_ratio)},
+          {"test_dof", c.test_dof},
+          {"p_value", Number(c.p_value)},
+          {"seconds", Number(c.seconds)},
+          {"fit", FitToJson(c.fit)}};
+}
+
+Json Phasor(std::complex<double> z) { return Json::array({Number(z.real()), Number(z.imag())}); }
+
+Json ResponseToJson(const ResponsePoint& p) {
+  return {{"level", p.level},
+          {"frequency_hz", Number(p.frequency_hz)},
+          {"channel", p.channel},
+          {"held_out", p.held_out},
+          {"measured", Phasor(p.measured)},
+          {"base_model", Phasor(p.base_model)},
+          {"final_model", Phasor(p.final_model)}};
+}
+
+// ---------------------------------------------------------------- reading
+
+// A value of the file and where it is ("candidates[2].fit.chi_square"), so
+// that every complaint names the field.
+class Field {
+ public:
+  Field(const Json& value, std::string path, const std::string& source)
+      : value_(value), path_(std::move(path)), source_(source) {}
+
+  const Json& json() const { return value_; }
+
+  [[noreturn]] void Fail(const std::string& problem, const std::string& fix = kFix) const {
+    throw InputError(source_ + ": field \"" + path_ + "\" " + problem + ". Fix: " + fix);
+  }
+
+  // A key the format does not have is a misspelling or another file, not
+  // something to skip.
+  void OnlyKeys(std::initializer_list<std::string_view> known) const {
+    for (const auto& item : Object().value_.items()) {
+      if (std::find(known.begin(), known.end(), item.key()) != known.end()) continue;
+      std::string list;
+      for (std::string_view k : known) list += (list.empty() ? "" : ", ") + std::string(k);
+      Field(item.value(), Child(item.key()), source_)
+          .Fail("is not a field of " + std::string(kDiagnosisFormat) + " here",
+                "correct its name or remove it (the fields here: " + list + ")");
+    }
+  }
+
+  bool Has(const std::string& key) const { return Object().value_.contains(key); }
+  Field At(const std::string& key) const {
+    const Json& object = Object().value_;
+    const std::string path = Child(key);
+    const auto it = object.find(key);
+    if (it == object.end()) Field(object, path, source_).Fail("is missing");
+    return Field(*it, path, source_);
+  }
+  Field At(std::size_t i) const { return Field(value_[i], path_ + "[" + std::to_string(i) + "]", source_); }
+  std::size_t Size() const { return Array().value_.size(); }
+
+  const Field& Object() const {
+    if (!value_.is_object()) Expected("an object");
+    return *this;
+  }
+  const Field& Array() const {
+    if (!value_.is_array()) Expected("an array");
+    return *this;
+  }
+  // null is a NaN (JSON has none).
+  double Number() const {
+    if (value_.is_null()) return std::numeric_limits<double>::quiet_NaN();
+    if (!value_.is_number()) Expected("a number (or null)");
+    return value_.get<double>();
+  }
+  int Integer() const {
+    if (value_.is_number_unsigned()) {
+      if (value_.get<std::uint64_t>() <= static_cast<std::uint64_t>(std::numeric_limits<int>::max()))
+        return value_.get<int>();
+    } else if (value_.is_number_integer()) {
+      const std::int64_t v = value_.get<std::int64_t>();
+      if (v >= std::numeric_limits<int>::min() && v <= std::numeric_limits<int>::max()) return static_cast<int>(v);
+    }
+    Expected("an integer");
+  }
+  bool Boolean() const {
+    if (!value_.is_boolean()) Expected("true or false");
+    return value_.get<bool>();
+  }
+  std::string String() const {
+    if (!value_.is_string()) Expected("a string");
+    return value_.get<std::string>();
+  }
+  std::vector<double> Numbers() const {
+    std::vector<double> out;
+    for (std::size_t i = 0; i < Size(); ++i) out.push_back(At(i).Number());
+    return out;
+  }
+  std::vector<std::string> Strings() const {
+    std::vector<std::string> out;
+    for (std::size_t i = 0; i < Size(); ++i) out.push_back(At(i).String());
+    return out;
+  }
+  std::complex<double> Phasor() const {
+    if (Size() != 2) Fail("must be [re, im], not " + std::to_string(Size()) + " numbers");
+    return {At(0).Number(), At(1).Number()};
+  }
+
+  // Shorthands for a member of this object.
+  double Number(const std::string& key) const { return At(key).Number(); }
+  int Integer(const std::string& key) const { return At(key).Integer(); }
+  bool Boolean(const std::string& key) const { return At(key).Boolean(); }
+  std::string String(const std::string& key) const { return At(key).String(); }
+
+ private:
+  std::string Child(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+
+  [[noreturn]] void Expected(const std::string& what) const {
+    Fail("must be " + what + ", not " + (value_.is_null() ? "null" : "a " + std::string(value_.type_name())));
+  }
+
+  const Json& value_;
+  std::string path_;
+  const std::string& source_;
+};
+
+ParameterEstimate ParameterFromJson(const Field& f, const std::string& name) {
+  f.OnlyKeys({"value", "std", "unit", "ci95"});
+  const Field ci = f.At("ci95");
+  if (ci.Size() != 2) ci.Fail("must be [low, high]");
+  return {.name = name,
+          .unit = f.String("unit"),
+          .value = f.Number("value"),
+          .std = f.Number("std"),
+          .lower_95 = ci.At(0).Number(),
+          .upper_95 = ci.At(1).Number()};
+}
+
+FitSummary FitFromJson(const Field& f) {
+  f.OnlyKeys({"parameters", "model_harmonics", "chi_square", "degrees_of_freedom", "num_residuals",
+              "reduced_chi_square", "aic", "bic", "held_out_chi_square", "held_out_h1_relative_error"});
+  FitSummary s;
+  const Field parameters = f.At("parameters").Object();
+  for (const auto& [name, value] : parameters.json().items())
+    s.parameters.push_back(ParameterFromJson(parameters.At(name), name));
+  s.model_harmonics = f.Integer("model_harmonics");
+  s.chi_square = f.Number("chi_square");
+  s.degrees_of_freedom = f.Integer("degrees_of_freedom");
+  s.num_residuals = f.Integer("num_residuals");
+  s.reduced_chi_square = f.Number("reduced_chi_square");
+  s.aic = f.Number("aic");
+  s.bic = f.Number("bic");
+  s.held_out_chi_square = f.Number("held_out_chi_square");
+  s.held_out_h1_relative_error = f.Number("held_out_h1_relative_error");
+  return s;
+}
+
+LoopEvidence LoopsFromJson(const Field& f) {
+  f.OnlyKeys({"steps", "num_steps_used", "area_exponent", "area_exponent_std", "viscous_chi2", "viscous_dof",
+              "viscous_p_value", "mean_equivalent_damping_Nms_rad", "damping_ratio_high_to_low",
+              "elastic_harmonic_chi2", "hysteretic_harmonic_chi2", "harmonic_dof", "elastic_harmonic_p_value",
+              "hysteretic_harmonic_p_value", "max_moment_harmonic_ratio", "theta_even_chi2", "theta_even_dof",
+              "theta_even_p_value", "dissipation_not_viscous", "non_elliptic", "hysteretic_shape", "asymmetric"});
+  LoopEvidence loops;
+  const Field steps = f.At("steps");
+  for (std::size_t i = 0; i < steps.Size(); ++i) {
+    const Field s = steps.At(i);
+    s.OnlyKeys({"level", "frequency_hz", "omega_rad_s", "theta_amplitude_rad", "theta_std_rad", "moment_amplitude_Nm",
+                "dissipated_energy_J", "dissipated_energy_std_J", "viscous_energy_J", "equivalent_damping_Nms_rad",
+                "equivalent_damping_std_Nms_rad", "moment_harmonic_ratio", "elastic_harmonic_chi2",
+                "hysteretic_harmonic_chi2", "harmonic_dof", "theta_even_fraction", "moment_even_fraction"});
+    LoopStep step;
+    step.level = s.String("level");
+    step.omega_rad_s =
+        s.Has("omega_rad_s") ? s.Number("omega_rad_s") : 2.0 * std::numbers::pi * s.Number("frequency_hz");
+    step.theta_amplitude_rad = s.Number("theta_amplitude_rad");
+    step.theta_std_rad = s.Number("theta_std_rad");
+    step.moment_amplitude_Nm = s.Number("moment_amplitude_Nm");
+    step.dissipated_energy_J = s.Number("dissipated_energy_J");
+    step.dissipated_energy_std_J = s.Number("dissipated_energy_std_J");
+    step.viscous_energy_J = s.Number("viscous_energy_J");
+    step.equivalent_damping_Nms_rad = s.Number("equivalent_damping_Nms_rad");
+    step.equivalent_damping_std_Nms_rad = s.Number("equivalent_damping_std_Nms_rad");
+    step.moment_harmonic_ratio = s.Number("moment_harmonic_ratio");
+    step.elastic_harmonic_chi2 = s.Number("elastic_harmonic_chi2");
+    step.hysteretic_harmonic_chi2 = s.Number("hysteretic_harmonic_chi2");
+    step.harmonic_dof = s.Integer("harmonic_dof");
+    step.theta_even_fraction = s.Number("theta_even_fraction");
+    step.moment_even_fraction = s.Number("moment_even_fraction");
+    loops.steps.push_back(std::move(step));
+  }
+  loops.num_steps_used = f.Integer("num_steps_used");
+  loops.area_exponent = f.Number("area_exponent");
+  loops.area_exponent_std = f.Number("area_exponent_std");
+  loops.viscous_chi2 = f.Number("viscous_chi2");
+  loops.viscous_dof = f.Integer("viscous_dof");
+  loops.viscous_p_value = f.Number("viscous_p_value");
+  loops.mean_equivalent_damping_Nms_rad = f.Number("mean_equivalent_damping_Nms_rad");
+  loops.damping_ratio_high_to_low = f.Number("damping_ratio_high_to_low");
+  loops.elastic_harmonic_chi2 = f.Number("elastic_harmonic_chi2");
+  loops.hysteretic_harmonic_chi2 = f.Number("hysteretic_harmonic_chi2");
+  loops.harmonic_dof = f.Integer("harmonic_dof");
+  loops.elastic_harmonic_p_value = f.Number("elastic_harmonic_p_value");
+  loops.hysteretic_harmonic_p_value = f.Number("hysteretic_harmonic_p_value");
+  loops.max_moment_harmonic_ratio = f.Number("max_moment_harmonic_ratio");
+  loops.theta_even_chi2 = f.Number("theta_even_chi2");
+  loops.theta_even_dof = f.Integer("theta_even_dof");
+  loops.theta_even_p_value = f.Number("theta_even_p_value");
+  loops.dissipation_not_viscous = f.Boolean("dissipation_not_viscous");
+  loops.non_elliptic = f.Boolean("non_elliptic");
+  loops.hysteretic_shape = f.Boolean("hysteretic_shape");
+  loops.asymmetric = f.Boolean("asymmetric");
+  return loops;
+}
+
+MisfitLocation LocationFromJson(const Field& f) {
+  f.OnlyKeys({"error", "chi2", "dof", "p_value", "significant", "num_groups_tested", "in_phase_fraction",
+              "near_resonance_fraction", "fundamental_fraction", "even_harmonic_fraction", "beyond_fitted_fraction",
+              "harmonic_excess_chi2", "channel_excess_chi2", "level_growth_exponent", "level_misfit_amplitude",
+              "level_response_amplitude", "loops", "findings", "groups"});
+  MisfitLocation location;
+  location.chi2 = f.Number("chi2");
+  location.dof = f.Integer("dof");
+  location.p_value = f.Number("p_value");
+  location.significant = f.Boolean("significant");
+  location.num_groups_tested = f.Integer("num_groups_tested");
+  const Field groups = f.At("groups");
+  for (std::size_t i = 0; i < groups.Size(); ++i) {
+    const Field g = groups.At(i);
+    g.OnlyKeys({"channel", "harmonic", "level", "part", "band", "chi2", "dof", "p_value", "adjusted_p_value",
+                "significant", "excess_chi2", "growth_exponent"});
+    location.groups.push_back({.channel = g.String("channel"),
+                               .harmonic = g.Integer("harmonic"),
+                               .level = g.String("level"),
+                               .part = g.String("part"),
+                               .band = g.String("band"),
+                               .chi2 = g.Number("chi2"),
+                               .dof = g.Integer("dof"),
+                               .p_value = g.Number("p_value"),
+                               .adjusted_p_value = g.Number("adjusted_p_value"),
+                               .significant = g.Boolean("significant"),
+                               .excess_chi2 = g.Number("excess_chi2"),
+                               .growth_exponent = g.Number("growth_exponent")});
+  }
+  location.in_phase_fraction = f.Number("in_phase_fraction");
+  location.near_resonance_fraction = f.Number("near_resonance_fraction");
+  location.fundamental_fraction = f.Number("fundamental_fraction");
+  location.even_harmonic_fraction = f.Number("even_harmonic_fraction");
+  location.beyond_fitted_fraction = f.Number("beyond_fitted_fraction");
+  location.harmonic_excess_chi2 = f.At("harmonic_excess_chi2").Numbers();
+  location.channel_excess_chi2 = f.At("channel_excess_chi2").Numbers();
+  location.level_growth_exponent = f.Number("level_growth_exponent");
+  location.level_misfit_amplitude = f.At("level_misfit_amplitude").Numbers();
+  location.level_response_amplitude = f.At("level_response_amplitude").Numbers();
+  location.loops = LoopsFromJson(f.At("loops"));
+  location.findings = f.At("findings").Strings();
+  return location;
+}
+
+CandidateOutcome CandidateFromJson(const Field& f) {
+  f.OnlyKeys({"name", "description", "score", "converged", "status", "significant", "extra_parameters",
+              "extra_parameter_names", "residual_before", "residual_after", "residual_drop", "likelihood_ratio",
+              "test_dof", "p_value", "seconds", "fit"});
+  CandidateOutcome c;
+  c.name = f.String("name");
+  c.description = f.String("description");
+  c.signature_score = f.Number("score");
+  c.converged = f.Boolean("converged");
+  c.status = f.String("status");
+  c.significant = f.Boolean("significant");
+  const Field extra = f.At("extra_parameters").Object();
+  if (f.Has("extra_parameter_names")) {
+    c.extra_parameters = f.At("extra_parameter_names").Strings();
+  } else {
+    for (const auto& [name, value] : extra.json().items()) c.extra_parameters.push_back(name);
+  }
+  c.residual_drop = f.Number("residual_drop");
+  c.likelihood_ratio = f.Number("likelihood_ratio");
+  c.test_dof = f.Integer("test_dof");
+  c.p_value = f.Number("p_value");
+  c.seconds = f.Number("seconds");
+  c.fit = FitFromJson(f.At("fit"));
+  return c;
+}
+
+ResponsePoint ResponseFromJson(const Field& f) {
+  f.OnlyKeys({"level", "frequency_hz", "channel", "held_out", "measured", "base_model", "final_model"});
+  return {.level = f.String("level"),
+          .frequency_hz = f.Number("frequency_hz"),
+          .channel = f.String("channel"),
+          .held_out = f.Boolean("held_out"),
+          .measured = f.At("measured").Phasor(),
+          .base_model = f.At("base_model").Phasor(),
+          .final_model = f.At("final_model").Phasor()};
+}
+
+DiagnosisResult ResultFromJson(const Field& root) {
+  root.OnlyKeys({"format", "beamid_version", "campaign", "result", "result_file", "selected", "verdict", "summary",
+                 "base", "final", "candidates", "location", "response", "seconds"});
+  DiagnosisResult r;
+  r.selected = root.At("selected").Strings();
+  r.verdict = root.String("verdict");
+  r.summary = root.String("summary");
+  r.base = FitFromJson(root.At("base"));
+  const Field candidates = root.At("candidates");
+  for (std::size_t i = 0; i < candidates.Size(); ++i) r.candidates.push_back(CandidateFromJson(candidates.At(i)));
+  const Field final_model = root.At("final");
+  final_model.OnlyKeys({"extension", "fit", "extra_parameter_names"});
+  r.final_fit = FitFromJson(final_model.At("fit"));
+  if (final_model.Has("extra_parameter_names")) {
+    r.final_extra_parameters = final_model.At("extra_parameter_names").Strings();
+  } else if (!r.selected.empty()) {
+    // Older files: the selected candidate's.
+    for (const auto& c : r.candidates)
+      if (c.name == r.selected.front()) r.final_extra_parameters = c.extra_parameters;
+  }
+  const Field location = root.At("location").Object();
+  if (location.Has("error")) r.location_error = location.String("error");
+  // {"error": ...} alone: locating failed.
+  bool located = false;
+  for (const auto& item : location.json().items()) located = located || item.key() != "error";
+  if (located) r.location = LocationFromJson(location);
+  if (root.Has("response")) {
+    const Field response = root.At("response");
+    for (std::size_t i = 0; i < response.Size(); ++i) r.response.push_back(ResponseFromJson(response.At(i)));
+  }
+  r.seconds = root.Number("seconds");
+  return r;
+}
+
+// ---------------------------------------------------------------- worker records
+
+// Finite doubles as JSON numbers (nlohmann writes the digits that read back
+// to the same double); the others, which JSON lacks, by name.
+nlohmann::json ExactNumber(double v) {
+  if (std::isfinite(v)) return v;
+  return std::isnan(v) ? "nan" : v > 0 ? "inf" : "-inf";
+}
+
+double ExactNumberFrom(const nlohmann::json& v) {
+  if (v.is_number()) return v.get<double>();
+  const std::string& name = v.get_ref<const std::string&>();
+  if (name == "nan") return std::numeric_limits<double>::quiet_NaN();
+  if (name == "inf") return std::numeric_limits<double>::infinity();
+  if (name == "-inf") return -std::numeric_limits<double>::infinity();
+  throw std::runtime_error("not a number: " + name);
+}
+
+nlohmann::json ExactNumbers(const std::vector<double>& values) {
+  nlohmann::json out = nlohmann::json::array();
+  for (double v : values) out.push_back(ExactNumber(v));
+  return out;
+}
+
+std::vector<double> ExactNumbersFrom(const nlohmann::json& array) {
+  std::vector<double> out;
+  for (const auto& v : array.get_ref<const nlohmann::json::array_t&>()) out.push_back(ExactNumberFrom(v));
+  return out;
+}
+
+}  // namespace
+
+std::string DiagnosisFileToJson(const DiagnosisFile& file) {
+  const DiagnosisResult& r = file.diagnosis;
+  Json root = Json::object();
+  root["format"] = std::string(kDiagnosisFormat);
+  root["beamid_version"] = file.beamid_version;
+  root["campaign"] = {{"folder", file.campaign_folder}, {"name", file.campaign_name}};
+  if (!file.result_file.empty()) root["result_file"] = file.result_file;
+  if (!file.embedded_result_json.empty()) {
+    try {
+      root["result"] = Json::parse(file.embedded_result_json);
+    } catch (const Json::parse_error& e) {
+      throw std::invalid_argument(std::string("DiagnosisFile::embedded_result_json is not JSON: ") + e.what());
+    }
+  }
+  root["selected"] = r.selected;
+  root["verdict"] = r.verdict;
+  root["summary"] = r.summary;
+  root["base"] = FitToJson(r.base);
+  root["final"] = {{"extension", r.selected},
+                   {"fit", FitToJson(r.final_fit)},
+                   {"extra_parameter_names", r.final_extra_parameters}};
+  Json candidates = Json::array();
+  for (const auto& c : r.candidates) candidates.push_back(CandidateToJson(c, r.base.chi_square));
+  root["candidates"] = candidates;
+  Json location = r.location ? LocationToJson(*r.location) : Json::object();
+  if (!r.location || !r.location_error.empty()) location["error"] = r.location_error;
+  root["location"] = location;
+  Json response = Json::array();
+  for (const auto& p : r.response) response.push_back(ResponseToJson(p));
+  root["response"] = response;
+  root["seconds"] = Number(r.seconds);
+  return root.dump(1) + "\n";
+}
+
+DiagnosisFile DiagnosisFileFromJson(const std::string& text, const std::string& source) {
+  Json json;
+  try {
+    json = Json::parse(text);
+  } catch (const Json::exception& e) {
+    // Also a number beyond double range (out_of_range), not only bad syntax.
+    throw InputError(source + ": not JSON (" + e.what() + "). Fix: give a diagnosis.json written by 'beamid diagnose'");
+  }
+  if (!json.is_object())
+    throw InputError(source + ": not a diagnosis (a JSON " + json.type_name() +
+                     ", not an object). Fix: give a diagnosis.json written by 'beamid diagnose'");
+  const Field root(json, "", source);
+  const std::string format = root.String("format");
+  if (format != kDiagnosisFormat)
+    throw InputError(source + ": field \"format\" is \"" + format + "\", not \"" + std::string(kDiagnosisFormat) +
+                     "\". Fix: give a diagnosis.json written by 'beamid diagnose' (a result.json of 'beamid "
+                     "identify' is format beamid-result/1)");
+  DiagnosisFile file;
+  file.beamid_version = root.Has("beamid_version") ? root.String("beamid_version") : "";
+  if (root.Has("campaign")) {
+    const Field campaign = root.At("campaign");
+    campaign.OnlyKeys({"folder", "name"});
+    file.campaign_folder = campaign.String("folder");
+    file.campaign_name = campaign.String("name");
+  }
+  if (root.Has("result")) {
+    const Field result = root.At("result");
+    if (result.json().is_string()) file.result_file = result.String();
+    else if (result.json().is_object()) file.embedded_result_json = result.json().dump();
+    else result.Fail("must be the result.json's path or its object, not a " + std::string(result.json().type_name()));
+  }
+  if (file.result_file.empty() && root.Has("result_file")) file.result_file = root.String("result_file");
+  file.diagnosis = ResultFromJson(root);
+  return file;
+}
+
+void WriteDiagnosisFile(const std::filesystem::path& path, const DiagnosisFile& file) {
+  WriteTextFileAtomically(path, DiagnosisFileToJson(file));
+}
+
+DiagnosisFile ReadDiagnosisFile(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    throw InputError(path.string() + ": cannot be read (" +
+                     (std::filesystem::exists(path) ? "no permission or not a file" : "no such file") +
+                     "). Fix: give the diagnosis.json written by 'beamid diagnose'");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return DiagnosisFileFromJson(text.str(), path.string());
+}
+
+std::string CandidateRefitToText(const CandidateRefit& refit) {
+  const nlohmann::json j = {{"chi_square", ExactNumber(refit.chi_square)},
+                            {"seconds", ExactNumber(refit.seconds)},
+                            {"values", ExactNumbers(refit.values)},
+                            {"std", ExactNumbers(refit.std)},
+                            {"scaled_at", ExactNumbers(refit.scaled_at)},
+                            {"x", ExactNumbers(refit.x)}};
+  return j.dump();
+}
+
+CandidateRefit CandidateRefitFromText(const std::string& text) {
+  try {
+    const nlohmann::json j = nlohmann::json::parse(text);
+    return {.chi_square = ExactNumberFrom(j.at("chi_square")),
+            .seconds = ExactNumberFrom(j.at("seconds")),
+            .values = ExactNumbersFrom(j.at("values")),
+            .std = ExactNumbersFrom(j.at("std")),
+            .scaled_at = ExactNumbersFrom(j.at("scaled_at")),
+            .x = ExactNumbersFrom(j.at("x"))};
+  } catch (const std::exception& e) {
+    throw std::runtime_error(std::string("a candidate refit's record is damaged: ") + e.what());
+  }
+}
+
+}  // namespace beamid::solver

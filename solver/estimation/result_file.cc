@@ -1,0 +1,189 @@
+#include "solver/estimation/result_file.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "hb/version.h"
+#include "solver/estimation/fit_data.h"
+#include "solver/estimation/fit_problem.h"
+#include "solver/estimation/identify.h"
+#include "solver/estimation/model_phasors.h"
+
+namespace beamid::solver {
+namespace {
+
+using Complex = std::complex<double>;
+
+double FrequencyHz(double omega_rad_s) { return omega_rad_s / (2 * std::numbers::pi); }
+
+// Relative RMS error and χ² per fitted channel, harmonic and level.
+std::vector<ChannelQuality> Quality(const FitData& fit, FitProblem& problem, const Eigen::VectorXd& x) {
+  const std::vector<Eigen::MatrixXcd> model = ModelPhasors(fit, problem, x);
+  std::vector<ChannelQuality> out;
+  for (std::size_t c = 0; c < fit.channels.size(); ++c) {
+    ChannelQuality channel{.channel = fit.channels[c].channel};
+    for (int k = 1; k <= fit.num_fit_harmonics; ++k) {
+      std::vector<LevelQuality> per_level;
+      for (const auto& level : fit.levels) {
+        double error2 = 0.0, measured2 = 0.0, chi2 = 0.0;
+        int count = 0;
+        for (std::size_t i = 0; i < fit.steps.size(); ++i) {
+          const FitStep& s = fit.steps[i];
+          if (s.level != level) continue;
+          const Complex misfit = model[i](c, k - 1) - s.measured(c, k - 1);
+          error2 += std::norm(misfit);
+          measured2 += std::norm(s.measured(c, k - 1));
+          chi2 += (s.whitening[c][k - 1] * Eigen::Vector2d(misfit.real(), misfit.imag())).squaredNorm();
+          ++count;
+        }
+        per_level.push_back({.level = level,
+                             .relative_rms_error = std::sqrt(error2 / std::max(measured2, 1e-300)),
+                             .chi_square = chi2,
+                             .num_steps = count});
+      }
+      channel.harmonics.push_back(std::move(per_level));
+    }
+    out.push_back(std::move(channel));
+  }
+  return out;
+}
+
+// Relative error of the predicted harmonics at every step of each held-out channel.
+std::vector<HeldOutChannel> Validation(const FitData& validation, FitProblem& problem, const Eigen::VectorXd& x) {
+  std::vector<HeldOutChannel> out;
+  if (validation.channels.empty()) return out;
+  const std::vector<Eigen::MatrixXcd> predicted = ModelPhasors(validation, problem, x);
+  for (std::size_t c = 0; c < validation.channels.size(); ++c) {
+    // A harmonic at the noise floor has a relative error of order one
+    // whatever the model: the worst errors are taken where the measurement
+    // resolves a kMeasurable error (its own relative uncertainty below
+    // that), and the count of such steps is given.
+    constexpr double kMeasurable = 0.01;
+    HeldOutChannel channel{.channel = validation.channels[c].channel,
+                           .position_m = validation.channels[c].position_m,
+                           .measurable_relative_std = kMeasurable};
+    for (std::size_t i = 0; i < validation.steps.size(); ++i) {
+      const FitStep& s = validation.steps[i];
+      HeldOutStep step{.level = s.level, .file = s.file, .frequency_hz = FrequencyHz(s.omega_rad_s)};
+      for (int k = 1; k <= validation.num_fit_harmonics; ++k) {
+        const Complex measured = s.measured(c, k - 1), model = predicted[i](c, k - 1);
+        const double error = std::abs(model - measured) / std::max(std::abs(measured), 1e-300);
+        const double relative_std = s.std_amplitude(c, k - 1) / std::max(std::abs(measured), 1e-300);
+        step.harmonics.push_back(
+            {.relative_error = error, .measured_relative_std = relative_std, .predicted = model, .measured = measured});
+        if (relative_std > kMeasurable) continue;
+        if (k == 1) {
+          channel.worst_h1_relative_error = std::max(channel.worst_h1_relative_error, error);
+          ++channel.measurable_steps_h1;
+        }
+        if (k == 3) {
+          channel.worst_h3_relative_error = std::max(channel.worst_h3_relative_error, error);
+          ++channel.measurable_steps_h3;
+        }
+      }
+      channel.steps.push_back(std::move(step));
+    }
+    out.push_back(std::move(channel));
+  }
+  return out;
+}
+
+}  // namespace
+
+ResultFile MakeResultFile(const FitData& fit, const FitData& validation, FitProblem& problem,
+                          const IdentifyResult& result, const ResultContext& context) {
+  // The file says which state each step holds by the model's kind alone.
+  const std::string expected_state = context.model_kind == "ms"   ? "modal_phasor_m"
+                                    : context.model_kind == "hb" ? "theta_rad"
+                                                                 : "";
+  if (problem.StepStateName() != expected_state)
+    throw std::logic_error("MakeResultFile: model kind '" + context.model_kind + "' but the problem's state is " +
+                           problem.StepStateName());
+  ResultFile out;
+  out.beamid_version = kVersion;
+  out.campaign = {.folder = context.campaign_folder,
+                  .name = context.campaign_name,
+                  .absolute_folder = context.campaign_absolute_folder};
+  const ModelStructure& structure = problem.structure();
+  out.model = {.kind = context.model_kind,
+               .law = structure.law->Name(),
+               .beam = fit.beam,
+               .force_position_m = fit.force_position_m,
+               .sensor_masses = fit.sensor_masses.point_masses,
+               .fit_channels = {},
+               .num_fit_harmonics = fit.num_fit_harmonics,
+               .num_harmonics = problem.num_model_harmonics()};
+  for (const auto& c : fit.channels) out.model.fit_channels.push_back(c.channel);
+  for (const auto& p : result.parameters)
+    out.parameters.push_back(
+        {.name = p.name, .unit = p.unit, .value = p.value, .std = p.std, .lower_95 = p.lower_95, .upper_95 = p.upper_95});
+  for (const auto& l : structure.linear) out.linear_parameters.push_back(l.name);
+  out.covariance = result.covariance;
+  out.correlation = result.correlation;
+
+  ResultFit& f = out.fit;
+  f.chi_square = result.chi_square;
+  f.degrees_of_freedom = result.degrees_of_freedom;
+  f.reduced_chi_square = result.reduced_chi_square;
+  f.seconds = result.seconds;
+  for (const auto& s : result.starts)
+    f.starts.push_back({.start = s.start,
+                        .parameters = s.parameters,
+                        .objective = s.objective,
+                        .converged = s.success,
+                        .iterations = s.iterations,
+                        .status = s.status,
+                        .states_seeded = s.route,
+                        .branch_repairs = s.branch_repairs});
+  f.best_start = result.best_start;
+  f.starts_at_best = result.starts_at_best;
+  for (const auto& m : result.minima.minima)
+    f.minima.push_back({.parameters = m.parameters, .chi_square = m.chi_square, .num_starts = m.num_starts});
+  f.second_minimum_chi_square_gap = result.minima.second_chi_square_gap;
+  f.minimum_decisive = result.minima.decisive;
+  f.direct_estimate = {.k1_Nm_rad = result.direct.k1_Nm_rad,
+                       .k2_Nm_rad2 = result.direct.k2_Nm_rad2,
+                       .k3_Nm_rad3 = result.direct.k3_Nm_rad3,
+                       .c_Nms_rad = result.direct.c_Nms_rad,
+                       .relative_residual = result.direct.relative_residual};
+  out.warnings = result.warnings;
+
+  out.quality = Quality(fit, problem, result.x);
+  out.validation = Validation(validation, problem, result.x);
+
+  for (int i = 0; i < static_cast<int>(fit.steps.size()); ++i) {
+    const FitStep& s = fit.steps[i];
+    ResultStep step{.level = s.level, .file = s.file, .frequency_hz = FrequencyHz(s.omega_rad_s), .force_N = s.force_N};
+    const Eigen::VectorXcd state_phasors = problem.StepState(result.x, i);
+    if (context.model_kind == "ms") {
+      if (state_phasors.size() != 1) throw std::logic_error("MakeResultFile: a multiple-scales state is one phasor");
+      step.modal_phasor_m = state_phasors[0];
+    } else {
+      step.theta_rad = state_phasors;
+    }
+    out.steps.push_back(std::move(step));
+  }
+  return out;
+}
+
+std::string CampaignMismatch(const ResultFile& result, const std::string& campaign_name,
+                             const std::filesystem::path& campaign_folder) {
+  const auto canonical = [](const std::filesystem::path& folder) {
+    std::error_code error;
+    const std::filesystem::path path = std::filesystem::weakly_canonical(std::filesystem::absolute(folder), error);
+    return error ? folder : path;
+  };
+  const std::string described = "campaign '" + result.campaign.name + "' (" +
+                                (result.campaign.absolute_folder.empty() ? result.campaign.folder
+                                                                          : result.campaign.absolute_folder) + ")";
+  if (result.campaign.name != campaign_name)
+    return "the result is of " + described + ", not of campaign '" + campaign_name + "'";
+  if (!result.campaign.absolute_folder.empty() && !campaign_folder.empty() &&
+      canonical(result.campaign.absolute_folder) != canonical(campaign_folder))
+    return "the result is of " + described + ", not of the campaign in " + campaign_folder.string();
+  return "";
+}
+
+}  // namespace beamid::solver

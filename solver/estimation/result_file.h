@@ -1,0 +1,180 @@
+// result.json of `beamid identify` (format "beamid-result/1") as one plain
+// value: the identified parameters with their uncertainty, the fit and its
+// starts, the quality per channel, harmonic and level, the prediction error
+// at held-out channels, and the model with its fitted steady states — all
+// that `beamid predict` and `beamid report` need to rebuild the model.
+// MakeResultFile computes it from a fit; solver/estimation/result_io.h is the
+// file's one reader and writer. SI units; a number the fit could not give
+// (a variance that is not finite, a failed start's objective) is NaN.
+#pragma once
+
+#include <complex>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "hb/beam_properties.h"
+#include "hb/linear_attachments.h"
+#include "solver/estimation/multistart.h"
+
+namespace beamid::solver {
+
+inline constexpr std::string_view kResultFormat = "beamid-result/1";
+
+struct ResultCampaign {
+  std::string folder;           // as given to identify
+  std::string name;
+  std::string absolute_folder;  // empty: not recorded
+};
+
+struct ResultModel {
+  std::string kind = "hb";          // "hb" harmonic balance, "ms" multiple scales
+  std::string law = "polynomial";   // hb::SupportLaw::Name()
+  hb::BeamProperties beam;          // nominal, with the loss factor identify started from
+  double force_position_m = 0.0;
+  std::vector<hb::PointMass> sensor_masses;
+  std::vector<std::string> fit_channels;
+  int num_fit_harmonics = 3;  // K
+  int num_harmonics = 5;      // H of the model (3 for ms)
+};
+
+struct ResultParameter {
+  std::string name;
+  std::string unit;
+  double value = 0.0;
+  double std = 0.0;
+  double lower_95 = 0.0, upper_95 = 0.0;  // "ci95"
+};
+
+struct ResultStart {
+  std::vector<double> start;       // physical parameters, parameter order
+  std::vector<double> parameters;  // where it ended (empty when it failed before Ipopt)
+  double objective = 0.0;          // ½χ²
+  bool converged = false;
+  int iterations = 0;
+  std::string status;
+  StartRoute states_seeded = StartRoute::kMeasuredStates;
+  int branch_repairs = 0;
+};
+
+struct ResultMinimum {
+  std::vector<double> parameters;
+  double chi_square = 0.0;
+  int num_starts = 0;  // "starts"
+};
+
+// The linear least-squares estimate from the reconstructed support rotation.
+struct ResultDirectEstimate {
+  double k1_Nm_rad = 0.0, k2_Nm_rad2 = 0.0, k3_Nm_rad3 = 0.0, c_Nms_rad = 0.0;
+  double relative_residual = 0.0;
+};
+
+struct ResultFit {
+  double chi_square = 0.0;
+  int degrees_of_freedom = 0;
+  double reduced_chi_square = 0.0;
+  double seconds = 0.0;
+  std::vector<ResultStart> starts;  // [0]: from the direct estimate
+  int best_start = 0;
+  int starts_at_best = 0;
+  std::vector<ResultMinimum> minima;  // best first
+  double second_minimum_chi_square_gap = 0.0;
+  bool minimum_decisive = true;
+  ResultDirectEstimate direct_estimate;
+};
+
+// Fit quality of one fitted channel: per harmonic ([k-1]: harmonic k,
+// "h1".."hK" in the file) and level.
+struct LevelQuality {
+  std::string level;
+  double relative_rms_error = 0.0;
+  double chi_square = 0.0;
+  int num_steps = 0;  // "steps"
+};
+struct ChannelQuality {
+  std::string channel;
+  std::vector<std::vector<LevelQuality>> harmonics;
+};
+
+// Prediction at one held-out channel. Per step and harmonic ([k-1]: harmonic
+// k, keys "hk_..." in the file) the predicted and measured phasors in the
+// channel's quantity, the relative error and the measurement's own relative
+// uncertainty; the worst errors count only the steps where the measurement
+// resolves an error of measurable_relative_std.
+struct HeldOutHarmonic {
+  double relative_error = 0.0;
+  double measured_relative_std = 0.0;
+  std::complex<double> predicted;
+  std::complex<double> measured;
+};
+struct HeldOutStep {
+  std::string level;
+  std::string file;
+  double frequency_hz = 0.0;
+  std::vector<HeldOutHarmonic> harmonics;
+};
+struct HeldOutChannel {
+  std::string channel;
+  double position_m = 0.0;
+  double worst_h1_relative_error = 0.0;
+  double worst_h3_relative_error = 0.0;
+  double measurable_relative_std = 0.0;
+  int measurable_steps_h1 = 0;
+  int measurable_steps_h3 = 0;
+  std::vector<HeldOutStep> steps;
+};
+
+// A fitted step: the force that drove it and the model's state there.
+struct ResultStep {
+  std::string level;
+  std::string file;
+  double frequency_hz = 0.0;
+  Eigen::VectorXcd force_N;             // F_0..F_H
+  Eigen::VectorXcd theta_rad;           // kind "hb": Θ_0..Θ_H
+  std::complex<double> modal_phasor_m;  // kind "ms": U
+};
+
+struct ResultFile {
+  std::string beamid_version;  // of the writer; empty in files written before it was recorded
+  ResultCampaign campaign;
+  ResultModel model;
+  std::vector<ResultParameter> parameters;  // in parameter order (the structure's: law, then linear)
+  std::vector<std::string> linear_parameters;
+  Eigen::MatrixXd covariance;   // parameter order
+  Eigen::MatrixXd correlation;
+  ResultFit fit;
+  std::vector<std::string> warnings;
+  std::vector<ChannelQuality> quality;     // fitted channels, in fit order
+  std::vector<HeldOutChannel> validation;  // empty: no held-out channel
+  std::vector<ResultStep> steps;           // the fit's steps
+};
+
+struct FitData;
+class FitProblem;
+struct IdentifyResult;
+
+struct ResultContext {
+  std::string campaign_folder;
+  std::string campaign_name;
+  std::string campaign_absolute_folder;  // lets `beamid report` find the campaign from elsewhere; "" = none
+  std::string model_kind = "hb";         // "hb" or "ms": which model `problem` is
+};
+
+// `problem` must be the problem whose variables result.x are (its internal
+// scales set by FeasiblePoint at the best start); `validation` holds the
+// held-out channels' data (no channels: no validation). beamid_version is
+// this program's.
+ResultFile MakeResultFile(const FitData& fit, const FitData& validation, FitProblem& problem,
+                          const IdentifyResult& result, const ResultContext& context);
+
+// Whether a result was identified on this campaign: the same name and, when
+// the result knows its absolute folder, the same folder (links resolved).
+// Returns "" when it was, else what differs, for a message: a diagnosis or a
+// report that mixed two campaigns would show numbers of one beside the other.
+std::string CampaignMismatch(const ResultFile& result, const std::string& campaign_name,
+                             const std::filesystem::path& campaign_folder);
+
+}  // namespace beamid::solver

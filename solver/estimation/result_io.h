@@ -1,0 +1,28 @@
+// The one reader and writer of result.json (format "beamid-result/1", the
+// README's "result.json"): a ResultFile (solver/estimation/result_file.h) to
+// JSON text and back. The writer keeps the keys every earlier beamid wrote,
+// adds "beamid_version", and writes the held-out channels, quality entries
+// and parameters in the struct's order. JSON has no NaN: a number that is not
+// finite is written as null and read back as NaN.
+// Reading checks every field and throws InputError naming the file, the field
+// (e.g. "fit.starts[2].objective") and the fix; fields later versions added
+// ("beamid_version", "campaign.absolute_folder", "model.kind",
+// "model.beam.loss_factor", "validation") may be absent.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "solver/estimation/result_file.h"
+
+namespace beamid::solver {
+
+std::string ResultFileToJson(const ResultFile& result);
+// `source` names the text in messages (the file it came from).
+ResultFile ResultFileFromJson(const std::string& text, const std::string& source);
+
+// Atomically (hb/text_file.h): the old file or the new one, never half.
+void WriteResultFile(const std::filesystem::path& file, const ResultFile& result);
+ResultFile ReadResultFile(const std::filesystem::path& file);
+
+}  // namespace beamid::solver

@@ -1,0 +1,212 @@
+// Every bad input a hostile or careless user has tried, in one table, run
+// through the real program: each must end with exit code 2 (bad input) and a
+// message holding the key words that name the file, channel or option at
+// fault and the fix, never a crash (exit 1 "internal error"), never exit 3
+// ("did not converge") for something the user can fix, and never a silent
+// answer. The campaign is a 3-step simulation made once for the table; each
+// row spoils its own copy.
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "tests/support/paper_scenario.h"
+#include "tests/support/temp_path.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+struct ProgramRun {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr
+};
+
+std::string ReadFile(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void WriteFile(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
+
+// Replaces the first match of `pattern` in the file.
+void Replace(const fs::path& path, const std::string& pattern, const std::string& replacement) {
+  const std::string text = ReadFile(path);
+  const std::string changed =
+      std::regex_replace(text, std::regex(pattern), replacement, std::regex_constants::format_first_only);
+  ASSERT_NE(changed, text) << "pattern " << pattern << " not found in " << path;
+  WriteFile(path, changed);
+}
+
+// Replaces the value of `column` (0-based) on CSV line `line` (1-based, the
+// header is line 1).
+void ReplaceSample(const fs::path& path, int line, int column, const std::string& value) {
+  std::istringstream in(ReadFile(path));
+  std::string out, row;
+  for (int n = 1; std::getline(in, row); ++n) {
+    if (n == line) {
+      std::vector<std::string> fields;
+      std::stringstream cells(row);
+      for (std::string cell; std::getline(cells, cell, ',');) fields.push_back(cell);
+      fields.at(static_cast<std::size_t>(column)) = value;
+      row.clear();
+      for (std::size_t i = 0; i < fields.size(); ++i) row += (i ? "," : "") + fields[i];
+    }
+    out += row + "\n";
+  }
+  WriteFile(path, out);
+}
+
+class BadInput : public ::testing::Test {
+ protected:
+  static ProgramRun Beamid(const std::string& arguments) {
+    const fs::path log = root_ / "run.log";
+    const std::string command = std::string(BEAMID_EXECUTABLE) + " " + arguments + " > " + log.string() + " 2>&1";
+    const int status = std::system(command.c_str());
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ReadFile(log)};
+  }
+
+  static void SetUpTestSuite() {
+    root_ = beamid::testing::UniqueTempPath("beamid_bad_input");
+    fs::remove_all(root_);
+    fs::create_directories(root_);
+    scenario_ = beamid::testing::PaperScenarioJson("bad input table", R"([
+      {"label": "low", "force_amplitude_N": 0.5, "frequencies_Hz": {"start": 53.6, "stop": 54.6, "step": 0.5}}])", 3);
+    WriteFile(root_ / "scenario.json", scenario_);
+    setup_ = Beamid("-q simulate " + (root_ / "scenario.json").string() + " -o " + (root_ / "clean").string());
+    if (setup_.exit_code == 0)
+      setup_ = Beamid("-q identify " + (root_ / "clean").string() + " --fit acc1,acc2 -o " +
+                      (root_ / "result.json").string());
+  }
+  static void TearDownTestSuite() { fs::remove_all(root_); }
+
+  void SetUp() override { ASSERT_EQ(setup_.exit_code, 0) << setup_.output; }
+
+  static inline fs::path root_;
+  static inline std::string scenario_;
+  static inline ProgramRun setup_;
+};
+
+struct Row {
+  std::string what;
+  // Spoils the copy of the campaign (folder m) or writes other inputs into
+  // the row's folder.
+  std::function<void(const fs::path& m, const fs::path& row)> spoil;
+  // {m}: the spoiled campaign, {c}: the clean one, {r}: its result.json,
+  // {d}: the row's folder.
+  std::string arguments;
+  std::vector<std::string> key_words;
+};
+
+std::string Expand(std::string text, const fs::path& m, const fs::path& c, const fs::path& r, const fs::path& d) {
+  for (const auto& [key, value] : {std::pair{"{m}", m}, {"{c}", c}, {"{r}", r}, {"{d}", d}})
+    for (std::size_t at; (at = text.find(key)) != std::string::npos;) text.replace(at, 3, value.string());
+  return text;
+}
+
+TEST_F(BadInput, EveryBadInputEndsWithExitTwoAndAMessageThatNamesItAndTheFix) {
+  const auto step = [](const fs::path& m, int i) { return m / "low" / ("step_00" + std::to_string(i) + ".csv"); };
+  const auto scenario_with = [](const std::string& pattern, const std::string& replacement) {
+    return [=](const fs::path&, const fs::path& d) {
+      WriteFile(d / "s.json", std::regex_replace(scenario_, std::regex(pattern), replacement));
+    };
+  };
+  const std::vector<Row> rows = {
+      // campaign.json
+      {"a number beyond double range",
+       [](auto m, auto) { Replace(m / "campaign.json", "\"length_m\": 0.6", "\"length_m\": 1e400"); },
+       "extract {m} -o {d}/p.json", {"campaign.json", "1e400", "Fix:"}},
+      {"a beam of 1e300 m", [](auto m, auto) { Replace(m / "campaign.json", "\"length_m\": 0.6", "\"length_m\": 1e300"); },
+       "identify {m} -o {d}/r.json", {"campaign.json", "length_m", "1 mm to 100 m", "Fix:"}},
+      {"a step file outside the campaign folder",
+       [](auto m, auto) { Replace(m / "campaign.json", "low/step_000.csv", "../../../../etc/passwd"); },
+       "extract {m} -o {d}/p.json", {"campaign.json", "lies outside the campaign folder", "Fix:"}},
+      {"a key written twice",
+       [](auto m, auto) { Replace(m / "campaign.json", "\"name\": \"bad input table\"", "\"name\": \"a\", \"name\": \"b\""); },
+       "extract {m} -o {d}/p.json", {"campaign.json", "\"name\" is written twice", "Fix:"}},
+      {"one recording named by two steps",
+       [](auto m, auto) { Replace(m / "campaign.json", "low/step_001.csv", "low/step_000.csv"); },
+       "extract {m} -o {d}/p.json", {"campaign.json", "named by another step", "Fix:"}},
+      {"an unknown unit", [](auto m, auto) { Replace(m / "campaign.json", "\"m/s\\^2\"", "\"furlong\""); },
+       "extract {m} -o {d}/p.json", {"campaign.json", "acc1", "furlong", "Fix:"}},
+      {"no campaign.json (a half-written campaign)", [](auto m, auto) { fs::remove(m / "campaign.json"); },
+       "extract {m} -o {d}/p.json", {"campaign.json", "no such file", "Fix:"}},
+      {"a folder in place of campaign.json",
+       [](auto m, auto) { fs::remove(m / "campaign.json"); fs::create_directory(m / "campaign.json"); },
+       "identify {m} -o {d}/r.json", {"campaign.json", "it is a folder", "Fix:"}},
+      // recordings
+      {"a sample of 1e308", [&](auto m, auto) { ReplaceSample(step(m, 1), 5, 1, "1e308"); },
+       "extract {m} -o {d}/p.json", {"step_001.csv", "force", "beyond any measurement", "Fix:"}},
+      {"one wild force sample", [&](auto m, auto) { ReplaceSample(step(m, 1), 5, 1, "900"); },
+       "identify {m} -o {d}/r.json", {"step_001.csv", "force", "spike", "Fix:"}},
+      {"NaN in a recording", [&](auto m, auto) { ReplaceSample(step(m, 2), 9, 3, "nan"); },
+       "extract {m} -o {d}/p.json", {"step_002.csv", "acc2", "NaN", "line 9", "Fix:"}},
+      {"an unknown column", [&](auto m, auto) { Replace(step(m, 1), "acc2", "acc9"); },
+       "extract {m} -o {d}/p.json", {"step_001.csv", "acc9", "unknown column", "Fix:"}},
+      {"time going backwards", [&](auto m, auto) { ReplaceSample(step(m, 1), 5, 0, "0.0009"); },
+       "extract {m} -o {d}/p.json", {"step_001.csv", "time does not increase", "Fix:"}},
+      {"a record of one period", [&](auto m, auto) {
+         std::istringstream in(ReadFile(step(m, 1)));
+         std::string out, line;
+         for (int n = 0; n < 100 && std::getline(in, line); ++n) out += line + "\n";
+         WriteFile(step(m, 1), out);
+       },
+       "extract {m} -o {d}/p.json", {"step_001.csv", "too short", "Fix:"}},
+      {"a sample rate that the time column contradicts",
+       [](auto m, auto) { Replace(m / "campaign.json", "\"sample_rate_Hz\": 5120(\\.0)?", "\"sample_rate_Hz\": 5000"); },
+       "extract {m} -o {d}/p.json", {"sample_rate_Hz", "5000", "Fix:"}},
+      {"a missing recording", [&](auto m, auto) { fs::remove(step(m, 2)); },
+       "extract {m} -o {d}/p.json", {"step_002.csv", "is missing", "Fix:"}},
+      // results, phasors, models and scenarios
+      {"a folder given as result.json", [](auto, auto d) { fs::create_directories(d / "result.json"); },
+       "predict {d}/result.json --x 0.3 -o {d}/pred.json", {"result.json", "folder"}},
+      {"a folder given to report", [](auto, auto d) { fs::create_directories(d / "result.json"); },
+       "report {d}/result.json -o {d}/report.html", {"result.json", "folder"}},
+      {"phasors of a 2-step subset", [](auto m, auto d) {
+         fs::remove(m / "low" / "step_002.csv");
+         Replace(m / "campaign.json", ",\\s*\\{[^{}]*step_002.csv[^{}]*\\}", "");
+         ASSERT_EQ(Beamid("-q extract " + m.string() + " -o " + (d / "p.json").string()).exit_code, 0);
+       },
+       "identify {c} --phasors {d}/p.json -o {d}/r.json", {"p.json", "not the campaign's", "Fix:"}},
+      {"a result of another campaign given to diagnose",
+       [](auto m, auto) { Replace(m / "campaign.json", "\"name\": \"bad input table\"", "\"name\": \"another\""); },
+       "diagnose {m} --result {r} -o {d}/d.json", {"--result", "not of campaign 'another'", "Fix:"}},
+      {"a channel fitted twice", nullptr, "identify {c} --fit acc1,acc1 -o {d}/r.json", {"acc1", "listed twice"}},
+      {"a model with 100000 harmonics", nullptr, "frc examples/paper_setup/model.json -H 100000 -o {d}/f",
+       {"--harmonics"}},
+      {"a record of 1e6 s", scenario_with("\"record_s\": 0.4", "\"record_s\": 1e6"), "simulate {d}/s.json -o {d}/sim",
+       {"s.json", "record_s"}},
+      {"a time step of 1e-12 s", scenario_with("\"timing\": \\{", "\"timing\": {\"max_time_step_s\": 1e-12, "),
+       "simulate {d}/s.json -o {d}/sim", {"s.json", "max_time_step_s"}},
+      {"a scenario beam of 1e300 m", scenario_with("\"length_m\": 0.6", "\"length_m\": 1e300"),
+       "simulate {d}/s.json -o {d}/sim", {"s.json", "length_m", "1 mm to 100 m", "Fix:"}},
+  };
+  const fs::path clean = root_ / "clean", result = root_ / "result.json";
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const Row& row = rows[i];
+    SCOPED_TRACE(row.what);
+    const fs::path d = root_ / ("row" + std::to_string(i)), m = d / "campaign";
+    fs::create_directories(d);
+    fs::copy(clean, m, fs::copy_options::recursive);
+    if (row.spoil) row.spoil(m, d);
+    const std::string arguments = Expand(row.arguments, m, clean, result, d);
+    const ProgramRun run = Beamid(arguments);
+    EXPECT_EQ(run.exit_code, 2) << arguments << "\n" << run.output;
+    for (const auto& word : row.key_words) EXPECT_THAT(run.output, HasSubstr(word)) << arguments;
+    EXPECT_THAT(run.output, ::testing::Not(HasSubstr("internal error"))) << arguments;
+  }
+}
+
+}  // namespace
