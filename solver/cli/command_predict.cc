@@ -3,19 +3,22 @@
 // campaign's sensor there when one is given. The model is the one identify
 // used (result.json's model.kind): parameters fitted with multiple scales are
 // predicted with multiple scales, not mixed with harmonic balance.
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
 #include <fmt/core.h>
 
-#include "hb/version.h"
 #include "hb/errors.h"
+#include "hb/version.h"
 #include "signal/campaign.h"
 #include "signal/campaign_extractor.h"
 #include "solver/cli/cli_output.h"
 #include "solver/cli/command_registry.h"
 #include "solver/estimation/fit_data.h"
 #include "solver/estimation/prediction.h"
+#include "solver/estimation/prediction_io.h"
+#include "solver/estimation/result_io.h"
 
 namespace beamid::cli {
 namespace {
@@ -29,7 +32,8 @@ struct PredictOptions {
 
 void RunPredict(const PredictOptions& options, const GlobalOptions& global) {
   RequireWritableOutput(options.output, {options.result_file});
-  const solver::IdentifiedModel model = solver::ReadIdentifiedModel(options.result_file);
+  const solver::ResultFile result = solver::ReadResultFile(options.result_file);
+  const solver::IdentifiedModel model = solver::ToIdentifiedModel(result);
   Progress progress("predict", global);
   const std::vector<solver::PredictedStep> steps = solver::PredictAt(model, options.position_m);
   progress.Done();
@@ -39,6 +43,12 @@ void RunPredict(const PredictOptions& options, const GlobalOptions& global) {
   std::vector<Eigen::VectorXcd> measured;
   if (!options.campaign_folder.empty()) {
     const signal::Campaign campaign = signal::ReadCampaign(options.campaign_folder);
+    // Another campaign of the same layout has steps of the same file names:
+    // the comparison would be with the wrong recordings.
+    if (const std::string mismatch = solver::CampaignMismatch(result, campaign.name, options.campaign_folder);
+        !mismatch.empty())
+      throw InputError(options.result_file + ": " + mismatch +
+                       ". Fix: compare a result with the campaign it was identified from");
     for (const auto& s : campaign.sensors)
       if (std::abs(s.position_m - options.position_m) < 1e-3) compared = s.channel;
     if (!compared.empty()) {
@@ -62,51 +72,47 @@ void RunPredict(const PredictOptions& options, const GlobalOptions& global) {
     }
   }
   const char* const quantity = compared_order == 0 ? "displacement_m" : compared_order == 1 ? "velocity_m_s" : "acceleration_m_s2";
-  nlohmann::json out_steps = nlohmann::json::array();
+  solver::PredictionFile file{.beamid_version = kVersion,
+                              .result_file = options.result_file,
+                              .model_kind = model.kind,
+                              .position_m = options.position_m,
+                              .compared_channel = compared,
+                              .compared_quantity = compared.empty() ? "" : quantity,
+                              .steps = {}};
   double worst = 0.0;
   for (std::size_t i = 0; i < steps.size(); ++i) {
     const solver::PredictedStep& p = steps[i];
     const double omega = 2 * std::numbers::pi * p.frequency_hz;
-    nlohmann::json harmonics = nlohmann::json::array();
+    solver::PredictionStep& out = file.steps.emplace_back();
+    out.level = p.level;
+    out.file = p.file;
+    out.frequency_hz = p.frequency_hz;
+    out.converged = p.converged;
     for (Eigen::Index k = 1; k < p.displacement_m.size(); ++k) {
       const std::complex<double> acc = -std::pow(k * omega, 2) * p.displacement_m[k];
-      nlohmann::json h = {{"k", k},
-                          {"displacement_m", {p.displacement_m[k].real(), p.displacement_m[k].imag()}},
-                          {"displacement_std_m", {p.std_real_m[k], p.std_imag_m[k]}},
-                          {"acceleration_m_s2", {acc.real(), acc.imag()}},
-                          {"acceleration_amplitude_m_s2", std::abs(acc)}};
+      solver::PredictionHarmonic& h = out.harmonics.emplace_back();
+      h.k = static_cast<int>(k);
+      h.displacement_m = p.displacement_m[k];
+      h.displacement_std_real_m = p.std_real_m[k];
+      h.displacement_std_imag_m = p.std_imag_m[k];
+      h.acceleration_m_s2 = acc;
+      h.acceleration_amplitude_m_s2 = std::abs(acc);
       if (!measured.empty() && measured[i].size() >= k) {
         // In the compared channel's own quantity (a velocity channel is
         // compared with the predicted velocity, not the acceleration).
-        const auto m = measured[i][k - 1];
-        const std::complex<double> predicted = solver::DerivativeFactor(compared_order, k * omega) * p.displacement_m[k];
-        h[std::string("measured_") + quantity] = {m.real(), m.imag()};
-        h[std::string("predicted_") + quantity] = {predicted.real(), predicted.imag()};
-        h["relative_error"] = std::abs(predicted - m) / std::max(std::abs(m), 1e-300);
-        if (k == 1) worst = std::max(worst, h["relative_error"].get<double>());
+        h.compared = true;
+        h.measured = measured[i][k - 1];
+        h.predicted = solver::DerivativeFactor(compared_order, k * omega) * p.displacement_m[k];
+        h.relative_error = std::abs(h.predicted - h.measured) / std::max(std::abs(h.measured), 1e-300);
+        if (k == 1) worst = std::max(worst, h.relative_error);
       }
-      harmonics.push_back(h);
     }
-    out_steps.push_back({{"level", p.level},
-                         {"file", p.file},
-                         {"frequency_Hz", p.frequency_hz},
-                         {"converged", p.converged},
-                         {"harmonics", harmonics},
-                         {"time_s", std::vector<double>(p.time_s.data(), p.time_s.data() + p.time_s.size())},
-                         {"acceleration_m_s2", std::vector<double>(p.acceleration_m_s2.data(),
-                                                                   p.acceleration_m_s2.data() + p.acceleration_m_s2.size())},
-                         {"acceleration_std_m_s2",
-                          std::vector<double>(p.acceleration_std_m_s2.data(),
-                                              p.acceleration_std_m_s2.data() + p.acceleration_std_m_s2.size())}});
+    out.time_s.assign(p.time_s.data(), p.time_s.data() + p.time_s.size());
+    out.acceleration_m_s2.assign(p.acceleration_m_s2.data(), p.acceleration_m_s2.data() + p.acceleration_m_s2.size());
+    out.acceleration_std_m_s2.assign(p.acceleration_std_m_s2.data(),
+                                     p.acceleration_std_m_s2.data() + p.acceleration_std_m_s2.size());
   }
-  const nlohmann::json out = {{"command", "predict"},
-                              {"beamid_version", kVersion},
-                              {"result", options.result_file},
-                              {"model", model.kind},
-                              {"position_m", options.position_m},
-                              {"compared_channel", compared},
-                              {"steps", out_steps}};
-  WriteTextFile(options.output, out.dump(1));
+  solver::WritePredictionFile(options.output, file);
   if (!global.quiet) {
     fmt::print("predicted {} steps at x = {:.3f} m with the {} model\n", steps.size(), options.position_m,
                model.kind == "ms" ? "multiple-scales" : "harmonic-balance");

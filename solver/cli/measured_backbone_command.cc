@@ -8,8 +8,6 @@
 #include <stdexcept>
 
 #include <fmt/core.h>
-#include <nlohmann/json.hpp>
-
 #include "hb/version.h"
 #include "signal/campaign.h"
 #include "signal/campaign_extractor.h"
@@ -18,6 +16,7 @@
 #include "signal/phasor_table.h"
 #include "solver/cli/cli_output.h"
 #include "solver/backbone/measured_backbone.h"
+#include "solver/backbone/measured_backbone_io.h"
 #include "solver/estimation/prediction.h"
 #include "solver/backbone/sensor_backbone.h"
 
@@ -51,11 +50,6 @@ std::vector<signal::FirstHarmonicLevel> ReadLevels(const MeasuredBackboneCommand
   const std::string channel = options.channel.empty() ? set.steps.front().responses.front().channel : options.channel;
   if (!quiet && options.channel.empty()) fmt::print(stderr, "backbone: response channel {} (--channel to choose)\n", channel);
   return signal::FirstHarmonicLevels(set, channel, first.string());
-}
-
-nlohmann::json EstimateJson(const solver::Estimate& e) {
-  if (!e.valid) return nullptr;
-  return {{"value", e.value}, {"std", e.std}};
 }
 
 std::string Cell(const solver::Estimate& e) {
@@ -92,46 +86,19 @@ void RunMeasuredBackbone(const MeasuredBackboneCommandOptions& options, const Gl
          "response_amplitude,response_amplitude_std,force_N,force_std_N,zeta_quadrature,zeta_quadrature_std,"
          "zeta_local,zeta_local_std,zeta_half_power,zeta_half_power_std,peak_frequency_Hz,peak_frequency_std_Hz,"
          "local_natural_frequency_Hz,local_natural_frequency_std_Hz,regeneration_relative_rms\n";
-  nlohmann::json level_json = nlohmann::json::array();
   for (const auto& l : measured.levels) {
     csv << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{:.4g}\n", l.label, solver::LevelControlName(l.control),
                        Cell(l.quadrature_frequency_hz), Cell(l.quadrature_amplitude_m),
                        Cell(l.quadrature_response_amplitude), Cell(l.quadrature_force_N),
                        Cell(l.quadrature_damping_ratio), Cell(l.local_damping_ratio), Cell(l.half_power_damping_ratio),
                        Cell(l.peak_frequency_hz), Cell(l.local_natural_frequency_hz), l.regeneration_relative_rms);
-    level_json.push_back(
-        {{"label", l.label},
-         {"control", solver::LevelControlName(l.control)},
-         {"num_points", l.num_points},
-         {"num_fit_points", l.num_fit_points},
-         {"phase_resonance",
-          {{"frequency_Hz", EstimateJson(l.quadrature_frequency_hz)},
-           {"displacement_amplitude_m", EstimateJson(l.quadrature_amplitude_m)},
-           {"response_amplitude", EstimateJson(l.quadrature_response_amplitude)},
-           {"force_N", EstimateJson(l.quadrature_force_N)},
-           {"damping_ratio", EstimateJson(l.quadrature_damping_ratio)},
-           {"after_jump", l.quadrature_after_jump},
-           {"note", l.quadrature_note}}},
-         {"peak",
-          {{"frequency_Hz", EstimateJson(l.peak_frequency_hz)},
-           {"receptance_m_N", EstimateJson(l.peak_receptance_m_N)},
-           {"displacement_amplitude_m", EstimateJson(l.peak_amplitude_m)}}},
-         {"half_power", {{"damping_ratio", EstimateJson(l.half_power_damping_ratio)}, {"note", l.half_power_note}}},
-         {"local_fit",
-          {{"natural_frequency_Hz", EstimateJson(l.local_natural_frequency_hz)},
-           {"damping_ratio", EstimateJson(l.local_damping_ratio)},
-           {"reduced_chi_square", l.local_reduced_chi_square}}},
-         {"regeneration",
-          {{"relative_rms", l.regeneration_relative_rms},
-           {"max_relative", l.regeneration_max_relative},
-           {"reduced_chi_square", l.regeneration_reduced_chi_square}}}});
   }
 
   // The single-mode fit against amplitude, and the model beside it.
   std::ostringstream curves;
   curves << "amplitude_m,fit_frequency_Hz,fit_frequency_std_Hz,fit_damping_ratio,fit_damping_ratio_std,model_frequency_Hz\n";
-  nlohmann::json curve_json = nlohmann::json::array();
   const auto& fit = measured.fit;
+  solver::MeasuredBackboneFit fit_file;
   constexpr int kCurvePoints = 60;
   for (int k = 0; fit.ok && k <= kCurvePoints; ++k) {
     const double a = measured.min_amplitude_m + (measured.max_amplitude_m - measured.min_amplitude_m) * k / kCurvePoints;
@@ -140,61 +107,38 @@ void RunMeasuredBackbone(const MeasuredBackboneCommandOptions& options, const Gl
     const double model_f = model.empty() ? NAN : solver::BackboneFrequencyAt_hz(model, a);
     curves << fmt::format("{:.9g},{:.9g},{:.3g},{:.6g},{:.3g},{}\n", a, f, f_std, fit.DampingRatio(a),
                           fit.DampingRatioStd(a), std::isfinite(model_f) ? fmt::format("{:.9g}", model_f) : "");
-    curve_json.push_back({{"amplitude_m", a},
-                          {"frequency_Hz", f},
-                          {"frequency_std_Hz", f_std},
-                          {"damping_ratio", fit.DampingRatio(a)},
-                          {"damping_ratio_std", fit.DampingRatioStd(a)}});
+    fit_file.curve.push_back({.amplitude_m = a,
+                              .frequency_hz = f,
+                              .frequency_std_hz = f_std,
+                              .damping_ratio = fit.DampingRatio(a),
+                              .damping_ratio_std = fit.DampingRatioStd(a)});
   }
-  nlohmann::json candidates = nlohmann::json::array();
-  for (const auto& c : measured.candidates)
-    candidates.push_back({{"form", c.form},
-                          {"frequency_degree", c.frequency_degree},
-                          {"damping_degree", c.damping_degree},
-                          {"frequency_exponent", c.frequency_exponent},
-                          {"damping_exponent", c.damping_exponent},
-                          {"amplitude_dependent_modal_constant", c.amplitude_dependent_modal_constant},
-                          {"aicc", c.aicc},
-                          {"reduced_chi_square", c.reduced_chi_square}});
-  nlohmann::json model_json = nlohmann::json::array();
-  for (const auto& p : model) model_json.push_back({{"amplitude_m", p.amplitude_m}, {"frequency_Hz", p.frequency_hz}});
+  fit_file.form = fit.FormName();
+  fit_file.frequency_degree = fit.frequency_degree;
+  fit_file.damping_degree = fit.damping_degree;
+  fit_file.frequency_exponent = fit.frequency_exponent;
+  fit_file.damping_exponent = fit.damping_exponent;
+  fit_file.amplitude_dependent_modal_constant = fit.amplitude_dependent_modal_constant;
+  fit_file.residual_receptance_m_N = fit.residual_receptance_m_N;
+  fit_file.reference_amplitude_m = fit.reference_amplitude_m;
+  fit_file.parameters.assign(fit.parameters.data(), fit.parameters.data() + fit.parameters.size());
+  fit_file.reduced_chi_square = fit.ReducedChiSquare();
+  fit_file.candidates = measured.candidates;
   const auto& trend = measured.damping_trend;
-  const nlohmann::json out = {
-      {"format", "beamid-measured-backbone/1"},
-      {"beamid_version", kVersion},
-      {"inputs", options.inputs},
-      {"channel", levels.front().channel},
-      {"response_quantity", measured.response_quantity},
-      {"amplitude", "first-harmonic displacement amplitude at the sensor [m]"},
-      {"levels", level_json},
-      {"single_mode_fit",
-       {{"model",
-         "A(a)*F/X_d = wn^2(a) - w^2 + 2i*w*(zeta*wn)(a), s = a/a_ref; wn^2, zeta*wn: polynomials in s or power laws "
-         "c0 + c1*s^exponent (Iwan-like); A = A0r + i*A0i (+ A2*s^2); chosen by AICc; X_d/F = A/D + R, a = |X_d - R*F|"},
-        {"form", fit.FormName()},
-        {"frequency_degree", fit.frequency_degree},
-        {"damping_degree", fit.damping_degree},
-        {"frequency_exponent", fit.frequency_exponent},
-        {"damping_exponent", fit.damping_exponent},
-        {"amplitude_dependent_modal_constant", fit.amplitude_dependent_modal_constant},
-        {"residual_receptance_m_N", fit.residual_receptance_m_N},
-        {"parameter_order", "Re A0, Im A0, [A2], wn^2 terms, zeta*wn terms"},
-        {"reference_amplitude_m", fit.reference_amplitude_m},
-        {"parameters", std::vector<double>(fit.parameters.data(), fit.parameters.data() + fit.parameters.size())},
-        {"reduced_chi_square", fit.ReducedChiSquare()},
-        {"candidates", candidates},
-        {"curve", curve_json}}},
-      {"damping_trend",
-       {{"amplitude_m", trend.amplitude_m},
-        {"slope_per_m", trend.slope_per_m},
-        {"slope_std_per_m", trend.slope_std_per_m},
-        {"z", trend.z},
-        {"verdict", trend.verdict}}},
-      {"model_backbone", model_json},
-      {"warnings", measured.warnings}};
+  solver::MeasuredBackboneFile file{.beamid_version = kVersion,
+                                    .inputs = options.inputs,
+                                    .channel = levels.front().channel,
+                                    .response_quantity = measured.response_quantity,
+                                    .levels = measured.levels,
+                                    .single_mode_fit = std::move(fit_file),
+                                    .damping_trend = trend,
+                                    .model_backbone = {},
+                                    .warnings = measured.warnings};
+  for (const auto& p : model)
+    file.model_backbone.push_back({.amplitude_m = p.amplitude_m, .frequency_hz = p.frequency_hz});
   WriteTextFile(options.output + ".csv", csv.str());
   WriteTextFile(options.output + "_curves.csv", curves.str());
-  WriteTextFile(options.output + ".json", out.dump(1));
+  solver::WriteMeasuredBackboneFile(options.output + ".json", file);
   if (global.quiet) return;
   for (const auto& w : measured.warnings) fmt::print(stderr, "beamid backbone: warning: {}\n", w);
   for (const auto& l : measured.levels)

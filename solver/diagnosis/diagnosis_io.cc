@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "hb/json_field.h"
 #include "hb/errors.h"
 #include "hb/text_file.h"
 
@@ -177,107 +178,7 @@ Json ResponseToJson(const ResponsePoint& p) {
 
 // ---------------------------------------------------------------- reading
 
-// A value of the file and where it is ("candidates[2].fit.chi_square"), so
-// that every complaint names the field.
-class Field {
- public:
-  Field(const Json& value, std::string path, const std::string& source)
-      : value_(value), path_(std::move(path)), source_(source) {}
-
-  const Json& json() const { return value_; }
-
-  [[noreturn]] void Fail(const std::string& problem, const std::string& fix = kFix) const {
-    throw InputError(source_ + ": field \"" + path_ + "\" " + problem + ". Fix: " + fix);
-  }
-
-  // A key the format does not have is a misspelling or another file, not
-  // something to skip.
-  void OnlyKeys(std::initializer_list<std::string_view> known) const {
-    for (const auto& item : Object().value_.items()) {
-      if (std::find(known.begin(), known.end(), item.key()) != known.end()) continue;
-      std::string list;
-      for (std::string_view k : known) list += (list.empty() ? "" : ", ") + std::string(k);
-      Field(item.value(), Child(item.key()), source_)
-          .Fail("is not a field of " + std::string(kDiagnosisFormat) + " here",
-                "correct its name or remove it (the fields here: " + list + ")");
-    }
-  }
-
-  bool Has(const std::string& key) const { return Object().value_.contains(key); }
-  Field At(const std::string& key) const {
-    const Json& object = Object().value_;
-    const std::string path = Child(key);
-    const auto it = object.find(key);
-    if (it == object.end()) Field(object, path, source_).Fail("is missing");
-    return Field(*it, path, source_);
-  }
-  Field At(std::size_t i) const { return Field(value_[i], path_ + "[" + std::to_string(i) + "]", source_); }
-  std::size_t Size() const { return Array().value_.size(); }
-
-  const Field& Object() const {
-    if (!value_.is_object()) Expected("an object");
-    return *this;
-  }
-  const Field& Array() const {
-    if (!value_.is_array()) Expected("an array");
-    return *this;
-  }
-  // null is a NaN (JSON has none).
-  double Number() const {
-    if (value_.is_null()) return std::numeric_limits<double>::quiet_NaN();
-    if (!value_.is_number()) Expected("a number (or null)");
-    return value_.get<double>();
-  }
-  int Integer() const {
-    if (value_.is_number_unsigned()) {
-      if (value_.get<std::uint64_t>() <= static_cast<std::uint64_t>(std::numeric_limits<int>::max()))
-        return value_.get<int>();
-    } else if (value_.is_number_integer()) {
-      const std::int64_t v = value_.get<std::int64_t>();
-      if (v >= std::numeric_limits<int>::min() && v <= std::numeric_limits<int>::max()) return static_cast<int>(v);
-    }
-    Expected("an integer");
-  }
-  bool Boolean() const {
-    if (!value_.is_boolean()) Expected("true or false");
-    return value_.get<bool>();
-  }
-  std::string String() const {
-    if (!value_.is_string()) Expected("a string");
-    return value_.get<std::string>();
-  }
-  std::vector<double> Numbers() const {
-    std::vector<double> out;
-    for (std::size_t i = 0; i < Size(); ++i) out.push_back(At(i).Number());
-    return out;
-  }
-  std::vector<std::string> Strings() const {
-    std::vector<std::string> out;
-    for (std::size_t i = 0; i < Size(); ++i) out.push_back(At(i).String());
-    return out;
-  }
-  std::complex<double> Phasor() const {
-    if (Size() != 2) Fail("must be [re, im], not " + std::to_string(Size()) + " numbers");
-    return {At(0).Number(), At(1).Number()};
-  }
-
-  // Shorthands for a member of this object.
-  double Number(const std::string& key) const { return At(key).Number(); }
-  int Integer(const std::string& key) const { return At(key).Integer(); }
-  bool Boolean(const std::string& key) const { return At(key).Boolean(); }
-  std::string String(const std::string& key) const { return At(key).String(); }
-
- private:
-  std::string Child(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
-
-  [[noreturn]] void Expected(const std::string& what) const {
-    Fail("must be " + what + ", not " + (value_.is_null() ? "null" : "a " + std::string(value_.type_name())));
-  }
-
-  const Json& value_;
-  std::string path_;
-  const std::string& source_;
-};
+using Field = JsonField;
 
 ParameterEstimate ParameterFromJson(const Field& f, const std::string& name) {
   f.OnlyKeys({"value", "std", "unit", "ci95"});
@@ -560,7 +461,7 @@ DiagnosisFile DiagnosisFileFromJson(const std::string& text, const std::string& 
   if (!json.is_object())
     throw InputError(source + ": not a diagnosis (a JSON " + json.type_name() +
                      ", not an object). Fix: give a diagnosis.json written by 'beamid diagnose'");
-  const Field root(json, "", source);
+  const Field root(json, "", source, kDiagnosisFormat, kFix);
   const std::string format = root.String("format");
   if (format != kDiagnosisFormat)
     throw InputError(source + ": field \"format\" is \"" + format + "\", not \"" + std::string(kDiagnosisFormat) +

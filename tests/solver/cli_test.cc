@@ -36,9 +36,9 @@ ProgramRun BeamidAfter(const std::string& prefix, const std::string& arguments, 
   const std::string command = prefix + std::string(BEAMID_EXECUTABLE) + " " + arguments +
                               (stderr_only ? " 2> " + log.string() + " > /dev/null" : " > " + log.string() + " 2>&1");
   const int status = std::system(command.c_str());
-  std::ifstream in(log);
   std::stringstream text;
-  text << in.rdbuf();
+  text << std::ifstream(log).rdbuf();
+  std::filesystem::remove(log);
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
 }
 

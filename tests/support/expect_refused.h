@@ -1,5 +1,7 @@
-// The check the options tests share: the call must throw beamid::InputError
-// whose message names `field` and says what the field must be.
+// The checks the tests of bad input share: ExpectRefused — the call must
+// throw beamid::InputError whose message names `field` and says what the
+// field must be; InputErrorOf — the message of the InputError the call
+// throws (a test failure when it throws none).
 #pragma once
 
 #include <functional>
@@ -19,6 +21,16 @@ inline void ExpectRefused(const std::function<void()>& call, const std::string& 
     EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("must be"), std::string::npos) << e.what();
   }
+}
+
+inline std::string InputErrorOf(const std::function<void()>& call) {
+  try {
+    call();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no InputError";
+  return "";
 }
 
 }  // namespace beamid::testing

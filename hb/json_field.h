@@ -1,0 +1,138 @@
+// Reading a JSON file that beamid wrote (result, diagnosis, prediction,
+// measured backbone): every value carries the path of its field
+// ("candidates[2].fit.chi_square"), so that every complaint is an InputError
+// naming the file, the field and the fix; a key the format does not have is
+// refused (a misspelling or another file, not something to skip); null reads
+// as NaN, since JSON has none. The files are parsed as nlohmann::ordered_json.
+#pragma once
+
+#include <algorithm>
+#include <complex>
+#include <cstdint>
+#include <initializer_list>
+#include <limits>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "hb/errors.h"
+
+namespace beamid {
+
+class JsonField {
+ public:
+  // format names the file's format in "is not a field of <format> here";
+  // fix is what a complaint tells the user to do unless it says otherwise.
+  // source, format and fix must outlive the fields (they are the reader's).
+  JsonField(const nlohmann::ordered_json& value, std::string path, const std::string& source, std::string_view format,
+            std::string_view fix)
+      : value_(value), path_(std::move(path)), source_(source), format_(format), fix_(fix) {}
+  // A nlohmann::json would be converted into a temporary that the field
+  // would outlive: parse the files as ordered_json (beamid writes its keys
+  // in the order of its structs).
+  JsonField(const nlohmann::json&, std::string, const std::string&, std::string_view, std::string_view) = delete;
+
+  const nlohmann::ordered_json& json() const { return value_; }
+
+  [[noreturn]] void Fail(const std::string& problem, std::string_view fix = {}) const {
+    throw InputError(source_ + ": field \"" + path_ + "\" " + problem + ". Fix: " +
+                     std::string(fix.empty() ? fix_ : fix));
+  }
+
+  // A key the format does not have is a misspelling or another file, not
+  // something to skip.
+  void OnlyKeys(std::initializer_list<std::string_view> known) const {
+    for (const auto& item : Object().value_.items()) {
+      if (std::find(known.begin(), known.end(), item.key()) != known.end()) continue;
+      std::string list;
+      for (std::string_view k : known) list += (list.empty() ? "" : ", ") + std::string(k);
+      Child(item.value(), item.key())
+          .Fail("is not a field of " + std::string(format_) + " here",
+                "correct its name or remove it (the fields here: " + list + ")");
+    }
+  }
+
+  bool Has(const std::string& key) const { return Object().value_.contains(key); }
+  JsonField At(const std::string& key) const {
+    const nlohmann::ordered_json& object = Object().value_;
+    const std::string path = Child(key);
+    const auto it = object.find(key);
+    if (it == object.end()) JsonField(object, path, source_, format_, fix_).Fail("is missing");
+    return JsonField(*it, path, source_, format_, fix_);
+  }
+  JsonField At(std::size_t i) const { return JsonField(value_[i], path_ + "[" + std::to_string(i) + "]", source_, format_, fix_); }
+  std::size_t Size() const { return Array().value_.size(); }
+
+  const JsonField& Object() const {
+    if (!value_.is_object()) Expected("an object");
+    return *this;
+  }
+  const JsonField& Array() const {
+    if (!value_.is_array()) Expected("an array");
+    return *this;
+  }
+  // null is a NaN (JSON has none).
+  double Number() const {
+    if (value_.is_null()) return std::numeric_limits<double>::quiet_NaN();
+    if (!value_.is_number()) Expected("a number (or null)");
+    return value_.get<double>();
+  }
+  int Integer() const {
+    if (value_.is_number_unsigned()) {
+      if (value_.get<std::uint64_t>() <= static_cast<std::uint64_t>(std::numeric_limits<int>::max()))
+        return value_.get<int>();
+    } else if (value_.is_number_integer()) {
+      const std::int64_t v = value_.get<std::int64_t>();
+      if (v >= std::numeric_limits<int>::min() && v <= std::numeric_limits<int>::max()) return static_cast<int>(v);
+    }
+    Expected("an integer");
+  }
+  bool Boolean() const {
+    if (!value_.is_boolean()) Expected("true or false");
+    return value_.get<bool>();
+  }
+  std::string String() const {
+    if (!value_.is_string()) Expected("a string");
+    return value_.get<std::string>();
+  }
+  std::vector<double> Numbers() const {
+    std::vector<double> out;
+    for (std::size_t i = 0; i < Size(); ++i) out.push_back(At(i).Number());
+    return out;
+  }
+  std::vector<std::string> Strings() const {
+    std::vector<std::string> out;
+    for (std::size_t i = 0; i < Size(); ++i) out.push_back(At(i).String());
+    return out;
+  }
+  std::complex<double> Phasor() const {
+    if (Size() != 2) Fail("must be [re, im], not " + std::to_string(Size()) + " numbers");
+    return {At(0).Number(), At(1).Number()};
+  }
+
+  // Shorthands for a member of this object.
+  double Number(const std::string& key) const { return At(key).Number(); }
+  int Integer(const std::string& key) const { return At(key).Integer(); }
+  bool Boolean(const std::string& key) const { return At(key).Boolean(); }
+  std::string String(const std::string& key) const { return At(key).String(); }
+
+ private:
+  std::string Child(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+  JsonField Child(const nlohmann::ordered_json& value, const std::string& key) const {
+    return JsonField(value, Child(key), source_, format_, fix_);
+  }
+
+  [[noreturn]] void Expected(const std::string& what) const {
+    Fail("must be " + what + ", not " + (value_.is_null() ? "null" : "a " + std::string(value_.type_name())));
+  }
+
+  const nlohmann::ordered_json& value_;
+  std::string path_;
+  const std::string& source_;
+  std::string_view format_;
+  std::string_view fix_;
+};
+
+}  // namespace beamid
