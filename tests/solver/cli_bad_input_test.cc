@@ -11,7 +11,6 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
-#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -41,13 +40,23 @@ std::string ReadFile(const fs::path& path) {
 
 void WriteFile(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
 
-// Replaces the first match of `pattern` in the file.
-void Replace(const fs::path& path, const std::string& pattern, const std::string& replacement) {
-  const std::string text = ReadFile(path);
-  const std::string changed =
-      std::regex_replace(text, std::regex(pattern), replacement, std::regex_constants::format_first_only);
-  ASSERT_NE(changed, text) << "pattern " << pattern << " not found in " << path;
-  WriteFile(path, changed);
+// Replaces the first occurrence of `text` in the file.
+void Replace(const fs::path& path, const std::string& text, const std::string& replacement) {
+  std::string content = ReadFile(path);
+  const std::size_t at = content.find(text);
+  ASSERT_NE(at, std::string::npos) << text << " not found in " << path;
+  WriteFile(path, content.replace(at, text.size(), replacement));
+}
+
+// Removes the step of `file` from campaign.json's list ("{...}" and the
+// comma before it).
+void RemoveStep(const fs::path& campaign_json, const std::string& file) {
+  std::string content = ReadFile(campaign_json);
+  const std::size_t at = content.find(file);
+  ASSERT_NE(at, std::string::npos) << file << " not in " << campaign_json;
+  const std::size_t open = content.rfind('{', at), close = content.find('}', at);
+  const std::size_t comma = content.rfind(',', open);
+  WriteFile(campaign_json, content.erase(comma, close + 1 - comma));
 }
 
 // Replaces the value of `column` (0-based) on CSV line `line` (1-based, the
@@ -118,9 +127,12 @@ std::string Expand(std::string text, const fs::path& m, const fs::path& c, const
 
 TEST_F(BadInput, EveryBadInputEndsWithExitTwoAndAMessageThatNamesItAndTheFix) {
   const auto step = [](const fs::path& m, int i) { return m / "low" / ("step_00" + std::to_string(i) + ".csv"); };
-  const auto scenario_with = [](const std::string& pattern, const std::string& replacement) {
+  const auto scenario_with = [](const std::string& text, const std::string& replacement) {
     return [=](const fs::path&, const fs::path& d) {
-      WriteFile(d / "s.json", std::regex_replace(scenario_, std::regex(pattern), replacement));
+      std::string scenario = scenario_;
+      const std::size_t at = scenario.find(text);
+      ASSERT_NE(at, std::string::npos) << text;
+      WriteFile(d / "s.json", scenario.replace(at, text.size(), replacement));
     };
   };
   const std::vector<Row> rows = {
@@ -139,7 +151,7 @@ TEST_F(BadInput, EveryBadInputEndsWithExitTwoAndAMessageThatNamesItAndTheFix) {
       {"one recording named by two steps",
        [](auto m, auto) { Replace(m / "campaign.json", "low/step_001.csv", "low/step_000.csv"); },
        "extract {m} -o {d}/p.json", {"campaign.json", "named by another step", "Fix:"}},
-      {"an unknown unit", [](auto m, auto) { Replace(m / "campaign.json", "\"m/s\\^2\"", "\"furlong\""); },
+      {"an unknown unit", [](auto m, auto) { Replace(m / "campaign.json", "\"m/s^2\"", "\"furlong\""); },
        "extract {m} -o {d}/p.json", {"campaign.json", "acc1", "furlong", "Fix:"}},
       {"no campaign.json (a half-written campaign)", [](auto m, auto) { fs::remove(m / "campaign.json"); },
        "extract {m} -o {d}/p.json", {"campaign.json", "no such file", "Fix:"}},
@@ -165,7 +177,7 @@ TEST_F(BadInput, EveryBadInputEndsWithExitTwoAndAMessageThatNamesItAndTheFix) {
        },
        "extract {m} -o {d}/p.json", {"step_001.csv", "too short", "Fix:"}},
       {"a sample rate that the time column contradicts",
-       [](auto m, auto) { Replace(m / "campaign.json", "\"sample_rate_Hz\": 5120(\\.0)?", "\"sample_rate_Hz\": 5000"); },
+       [](auto m, auto) { Replace(m / "campaign.json", "\"sample_rate_Hz\": 5120.0", "\"sample_rate_Hz\": 5000"); },
        "extract {m} -o {d}/p.json", {"sample_rate_Hz", "5000", "Fix:"}},
       {"a missing recording", [&](auto m, auto) { fs::remove(step(m, 2)); },
        "extract {m} -o {d}/p.json", {"step_002.csv", "is missing", "Fix:"}},
@@ -176,7 +188,7 @@ TEST_F(BadInput, EveryBadInputEndsWithExitTwoAndAMessageThatNamesItAndTheFix) {
        "report {d}/result.json -o {d}/report.html", {"result.json", "folder"}},
       {"phasors of a 2-step subset", [](auto m, auto d) {
          fs::remove(m / "low" / "step_002.csv");
-         Replace(m / "campaign.json", ",\\s*\\{[^{}]*step_002.csv[^{}]*\\}", "");
+         RemoveStep(m / "campaign.json", "low/step_002.csv");
          ASSERT_EQ(Beamid("-q extract " + m.string() + " -o " + (d / "p.json").string()).exit_code, 0);
        },
        "identify {c} --phasors {d}/p.json -o {d}/r.json", {"p.json", "not the campaign's", "Fix:"}},
@@ -191,7 +203,7 @@ TEST_F(BadInput, EveryBadInputEndsWithExitTwoAndAMessageThatNamesItAndTheFix) {
        {"--harmonics"}},
       {"a record of 1e6 s", scenario_with("\"record_s\": 0.4", "\"record_s\": 1e6"), "simulate {d}/s.json -o {d}/sim",
        {"s.json", "record_s"}},
-      {"a time step of 1e-12 s", scenario_with("\"timing\": \\{", "\"timing\": {\"max_time_step_s\": 1e-12, "),
+      {"a time step of 1e-12 s", scenario_with("\"timing\": {", "\"timing\": {\"max_time_step_s\": 1e-12, "),
        "simulate {d}/s.json -o {d}/sim", {"s.json", "max_time_step_s"}},
       {"a scenario beam of 1e300 m", scenario_with("\"length_m\": 0.6", "\"length_m\": 1e300"),
        "simulate {d}/s.json -o {d}/sim", {"s.json", "length_m", "1 mm to 100 m", "Fix:"}},
