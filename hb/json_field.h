@@ -135,4 +135,21 @@ class JsonField {
   std::string_view fix_;
 };
 
+// The text of a file as one JSON object, or InputError "<source>: not JSON
+// (…)" (also for a number beyond double range) or "<source>: not a <what> (a
+// JSON array, not an object)", each with "Fix: <fix>".
+inline nlohmann::ordered_json ParseJsonObject(const std::string& text, const std::string& source,
+                                              std::string_view what, std::string_view fix) {
+  nlohmann::ordered_json json;
+  try {
+    json = nlohmann::ordered_json::parse(text);
+  } catch (const nlohmann::ordered_json::exception& e) {
+    throw InputError(source + ": not JSON (" + e.what() + "). Fix: " + std::string(fix));
+  }
+  if (!json.is_object())
+    throw InputError(source + ": not a " + std::string(what) + " (a JSON " + json.type_name() +
+                     ", not an object). Fix: " + std::string(fix));
+  return json;
+}
+
 }  // namespace beamid

@@ -233,16 +233,8 @@ std::string MeasuredBackboneFileToJson(const MeasuredBackboneFile& file) {
 }
 
 MeasuredBackboneFile MeasuredBackboneFileFromJson(const std::string& text, const std::string& source) {
-  Json json;
-  try {
-    json = Json::parse(text);
-  } catch (const Json::exception& e) {
-    // Also a number beyond double range (out_of_range), not only bad syntax.
-    throw InputError(source + ": not JSON (" + e.what() + "). Fix: give a .json written by 'beamid backbone --measured'");
-  }
-  if (!json.is_object())
-    throw InputError(source + ": not a measured backbone (a JSON " + json.type_name() +
-                     ", not an object). Fix: give a .json written by 'beamid backbone --measured'");
+  const Json json =
+      ParseJsonObject(text, source, "measured backbone", "give a .json written by 'beamid backbone --measured'");
   const Field root(json, "", source, kMeasuredBackboneFormat, kFix);
   const std::string format = root.String("format");
   if (format != kMeasuredBackboneFormat)

@@ -451,16 +451,7 @@ std::string DiagnosisFileToJson(const DiagnosisFile& file) {
 }
 
 DiagnosisFile DiagnosisFileFromJson(const std::string& text, const std::string& source) {
-  Json json;
-  try {
-    json = Json::parse(text);
-  } catch (const Json::exception& e) {
-    // Also a number beyond double range (out_of_range), not only bad syntax.
-    throw InputError(source + ": not JSON (" + e.what() + "). Fix: give a diagnosis.json written by 'beamid diagnose'");
-  }
-  if (!json.is_object())
-    throw InputError(source + ": not a diagnosis (a JSON " + json.type_name() +
-                     ", not an object). Fix: give a diagnosis.json written by 'beamid diagnose'");
+  const Json json = ParseJsonObject(text, source, "diagnosis", "give a diagnosis.json written by 'beamid diagnose'");
   const Field root(json, "", source, kDiagnosisFormat, kFix);
   const std::string format = root.String("format");
   if (format != kDiagnosisFormat)

@@ -131,16 +131,7 @@ std::string PredictionFileToJson(const PredictionFile& file) {
 }
 
 PredictionFile PredictionFileFromJson(const std::string& text, const std::string& source) {
-  Json json;
-  try {
-    json = Json::parse(text);
-  } catch (const Json::exception& e) {
-    // Also a number beyond double range (out_of_range), not only bad syntax.
-    throw InputError(source + ": not JSON (" + e.what() + "). Fix: give a prediction file written by 'beamid predict'");
-  }
-  if (!json.is_object())
-    throw InputError(source + ": not a prediction (a JSON " + json.type_name() +
-                     ", not an object). Fix: give a prediction file written by 'beamid predict'");
+  const Json json = ParseJsonObject(text, source, "prediction", "give a prediction file written by 'beamid predict'");
   const Field root(json, "", source, kPredictionFormat, kFix);
   // The earlier writer had no "format", only "command".
   if (root.Has("format")) {
