@@ -7,10 +7,12 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <complex>
 #include <cstdint>
 #include <initializer_list>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -150,6 +152,34 @@ inline nlohmann::ordered_json ParseJsonObject(const std::string& text, const std
     throw InputError(source + ": not a " + std::string(what) + " (a JSON " + json.type_name() +
                      ", not an object). Fix: " + std::string(fix));
   return json;
+}
+
+// Worker records (a fit run in another process, handed back as text): every
+// double exact. Finite ones are JSON numbers (nlohmann writes the digits that
+// read back to the same double); the others, which JSON lacks, by name.
+inline nlohmann::json ExactJsonNumber(double v) {
+  if (std::isfinite(v)) return v;
+  return std::isnan(v) ? "nan" : v > 0 ? "inf" : "-inf";
+}
+// Throws std::runtime_error (or a nlohmann exception) on anything
+// ExactJsonNumber did not write.
+inline double ExactNumberFromJson(const nlohmann::json& v) {
+  if (v.is_number()) return v.get<double>();
+  const std::string& name = v.get_ref<const std::string&>();
+  if (name == "nan") return std::numeric_limits<double>::quiet_NaN();
+  if (name == "inf") return std::numeric_limits<double>::infinity();
+  if (name == "-inf") return -std::numeric_limits<double>::infinity();
+  throw std::runtime_error("not a number: " + name);
+}
+inline nlohmann::json ExactJsonNumbers(const std::vector<double>& values) {
+  nlohmann::json out = nlohmann::json::array();
+  for (double v : values) out.push_back(ExactJsonNumber(v));
+  return out;
+}
+inline std::vector<double> ExactNumbersFromJson(const nlohmann::json& array) {
+  std::vector<double> out;
+  for (const auto& v : array.get_ref<const nlohmann::json::array_t&>()) out.push_back(ExactNumberFromJson(v));
+  return out;
 }
 
 }  // namespace beamid

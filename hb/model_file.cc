@@ -3,13 +3,33 @@
 #include <fstream>
 #include <sstream>
 
+#include "hb/errors.h"
+#include "hb/scenario.h"
 #include "hb/text_file.h"
+#include "hb/version.h"
 #include "hb/internal/json_object_reader.h"
+#include "hb/internal/json_object_writer.h"
 
 namespace beamid::hb {
 
 using internal::Json;
 using internal::ObjectReader;
+using internal::OrderedJson;
+
+namespace {
+
+// Checked first, so that another kind of file is named as such instead of by
+// its first missing field. A scenario is a model file too (see the header).
+void ReadFormat(ObjectReader& top) {
+  top.String("beamid_version", "");  // the writer's stamp: for the reader of the file, not for beamid
+  const std::string format = top.String("format", std::string(kModelFileFormat));
+  if (format != kModelFileFormat && format != kScenarioFormat)
+    throw InputError(top.source() + ": field \"format\" is \"" + format + "\", not \"" +
+                     std::string(kModelFileFormat) + "\" (or a scenario's \"" + std::string(kScenarioFormat) +
+                     "\"). Fix: give a model file (README.md, Model files), or remove \"format\"");
+}
+
+}  // namespace
 
 std::unique_ptr<SupportLaw> ModelFile::MakeSupportLaw() const { return MakePolynomialSupportLaw(polynomial, jenkins, one_sided_stiffness_Nm_rad); }
 
@@ -23,6 +43,7 @@ ModelFile ParseModelFile(const std::string& json_text, const std::string& source
   constexpr const char* kDoc = "README.md, Model files";
   ModelFile model;
   ObjectReader top(root, source, "", kDoc);
+  ReadFormat(top);
   for (const char* scenario_only : {"nominal_beam", "damping", "mesh", "hidden_positions_m", "levels", "timing", "noise"})
     top.Ignore(scenario_only);
   model.name = top.String("name", "beam model");
@@ -67,6 +88,30 @@ ModelFile ParseModelFile(const std::string& json_text, const std::string& source
 
 ModelFile ReadModelFile(const std::filesystem::path& file) {
   return ParseModelFile(ReadTextFile(file, "model file", "check the path"), file.string());
+}
+
+std::string ModelFileToJson(const ModelFile& model) {
+  OrderedJson sensors = OrderedJson::array();
+  for (const ModelSensor& sensor : model.sensors) {
+    OrderedJson j = OrderedJson::object();
+    j["channel"] = sensor.channel;
+    j["position_m"] = sensor.position_m;
+    sensors.push_back(j);
+  }
+  OrderedJson root = OrderedJson::object();
+  root["format"] = std::string(kModelFileFormat);
+  root["beamid_version"] = kVersion;
+  root["name"] = model.name;
+  root["beam"] = internal::BeamToJson(model.beam);
+  root["support"] = internal::SupportToJson(model.polynomial, model.jenkins, model.one_sided_stiffness_Nm_rad);
+  root["attachments"] = internal::AttachmentsToJson(model.attachments);
+  root["excitation"] = {{"position_m", model.force_position_m}};
+  root["sensors"] = sensors;
+  return root.dump(2) + "\n";
+}
+
+void WriteModelFile(const std::filesystem::path& path, const ModelFile& model) {
+  WriteTextFileAtomically(path, ModelFileToJson(model));
 }
 
 }  // namespace beamid::hb

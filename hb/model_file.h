@@ -1,14 +1,17 @@
 // The physical model of the beam and its support as read from a JSON model
-// file (format in the README, "Model files"): the beam, the support law, the
-// linear attachments, where the force acts and where the sensors sit.
-// A simulation scenario (docs/simulator.md) is also a valid model file: its
-// test-running fields (levels, timing, noise, …) are accepted and ignored.
+// file (format "beamid-model/1", described in the README, "Model files"):
+// the beam, the support law, the linear attachments, where the force acts
+// and where the sensors sit. This file holds the format's one reader and
+// writer. A simulation scenario (docs/simulator.md, "beamid-scenario/1") is
+// also a valid model file: its test-running fields (levels, timing, noise, …)
+// are accepted and ignored.
 #pragma once
 
 #include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "hb/beam_properties.h"
@@ -36,8 +39,23 @@ struct ModelFile {
   std::unique_ptr<SupportLaw> MakeSupportLaw() const;
 };
 
-// Throws std::invalid_argument naming the file, the field and what to fix.
+// The value of the optional "format" key. A file without it (every file
+// written before the key) reads as this version; so does a scenario's
+// "beamid-scenario/1"; another value is refused.
+inline constexpr std::string_view kModelFileFormat = "beamid-model/1";
+
+// Throws std::invalid_argument naming the file, the field and what to fix
+// (InputError for a wrong "format"); "beamid_version" is accepted and ignored.
 ModelFile ParseModelFile(const std::string& json_text, const std::string& source);
 ModelFile ReadModelFile(const std::filesystem::path& file);
+
+// Every field the reader reads, with "format" and "beamid_version", so that
+// reading the text gives the same ModelFile back. The sensors' masses are
+// among the point masses (where the reader put them), so the sensors are
+// written without "mass_kg"; a rigid attachment (infinite stiffness) is left
+// out, as JSON has no infinity.
+std::string ModelFileToJson(const ModelFile& model);
+// Atomically (hb/text_file.h): the old file or the new one, never half.
+void WriteModelFile(const std::filesystem::path& path, const ModelFile& model);
 
 }  // namespace beamid::hb

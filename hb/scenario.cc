@@ -10,14 +10,18 @@
 
 #include <nlohmann/json.hpp>
 
+#include "hb/errors.h"
 #include "hb/text_file.h"
+#include "hb/version.h"
 #include "hb/internal/json_object_reader.h"
+#include "hb/internal/json_object_writer.h"
 
 namespace beamid::hb {
 namespace {
 
 using Json = nlohmann::json;
 using internal::ObjectReader;
+using internal::OrderedJson;
 using internal::ReadBeam;
 
 }  // namespace
@@ -102,18 +106,31 @@ int Scenario::NumSteps() const {
   return n;
 }
 
-Scenario ParseScenario(const std::string& json_text, const std::string& source) {
-  Json root;
+namespace {
+
+// ---------------------------------------------------------------- reading, one helper per section
+
+Json ParseJson(const std::string& json_text, const std::string& source) {
   try {
-    root = Json::parse(json_text);
+    return Json::parse(json_text);
   } catch (const Json::exception& e) {  // syntax, and numbers beyond double (1e400)
     throw std::invalid_argument(source + ": not valid JSON (" + e.what() + ")");
   }
-  Scenario s;
-  ObjectReader top(root, source, "");
-  s.name = top.String("name", "simulated stepped-sine campaign");
+}
+
+// Checked first, so that another kind of file (a model file has no levels)
+// is named as such instead of by its first missing field.
+void ReadFormat(ObjectReader& top) {
+  top.String("beamid_version", "");  // the writer's stamp: for the reader of the file, not for beamid
+  const std::string format = top.String("format", std::string(kScenarioFormat));
+  if (format != kScenarioFormat)
+    throw InputError(top.source() + ": field \"format\" is \"" + format + "\", not \"" + std::string(kScenarioFormat) +
+                     "\". Fix: give a simulation scenario (docs/simulator.md), or remove \"format\"");
+}
+
+void ReadBeams(ObjectReader& top, Scenario& s) {
   {
-    ObjectReader beam(top.Raw("beam"), source, "beam");
+    ObjectReader beam(top.Raw("beam"), top.source(), "beam");
     // The true beam is spelled out: a default would hide a forgotten field.
     for (const char* key : {"length_m", "width_m", "thickness_m", "youngs_modulus_Pa", "density_kg_m3"})
       if (!beam.Has(key)) beam.FailField(key, "is required (the true beam)");
@@ -122,123 +139,137 @@ Scenario ParseScenario(const std::string& json_text, const std::string& source) 
   s.nominal_beam = s.beam;
   s.nominal_beam.loss_factor = 0.0;
   if (top.Has("nominal_beam")) {
-    ObjectReader nominal(top.Raw("nominal_beam"), source, "nominal_beam");
+    ObjectReader nominal(top.Raw("nominal_beam"), top.source(), "nominal_beam");
     ReadBeam(nominal, s.nominal_beam, false);
   }
-  internal::ReadSupport(top, "docs/simulator.md", s.polynomial, s.jenkins, s.one_sided_stiffness_Nm_rad);
-  internal::ReadAttachments(top, "docs/simulator.md", s.attachments);
+}
+
+void ReadDampingAndMesh(ObjectReader& top, Scenario& s) {
   if (top.Has("damping")) {
-    ObjectReader d(top.Raw("damping"), source, "damping");
+    ObjectReader d(top.Raw("damping"), top.source(), "damping");
     s.damping_reference_frequency_hz = d.NonNegative("reference_frequency_Hz", 0.0);
   }
   if (top.Has("mesh")) {
-    ObjectReader m(top.Raw("mesh"), source, "mesh");
+    ObjectReader m(top.Raw("mesh"), top.source(), "mesh");
     const double n = m.Positive("min_elements", 40);
     if (n != std::floor(n) || n > 2000) m.FailField("min_elements", "must be an integer from 1 to 2000");
     s.mesh_min_elements = static_cast<int>(n);
   }
-  {
-    ObjectReader e(top.Raw("excitation"), source, "excitation");
-    s.force_channel = e.String("channel", "force");
-    s.force_position_m = e.Positive("position_m", 0.0);
-    if (e.Has("distortion")) {
-      const Json& list = e.Array("distortion");
-      for (size_t i = 0; i < list.size(); ++i) {
-        ObjectReader h(list[i], source, "excitation.distortion[" + std::to_string(i) + "]");
-        const double k = h.Number("harmonic");
-        if (k != std::floor(k) || k < 2 || k > 20) h.FailField("harmonic", "must be an integer from 2 to 20");
-        s.force_distortion.push_back({static_cast<int>(k), h.NonNegative("amplitude_ratio", 0.0), h.Number("phase_rad", 0.0)});
-      }
-    }
-  }
-  {
-    const Json& sensors = top.Array("sensors");
-    if (sensors.empty()) top.FailField("sensors", "must list at least one sensor");
-    for (size_t i = 0; i < sensors.size(); ++i) {
-      ObjectReader r(sensors[i], source, "sensors[" + std::to_string(i) + "]");
-      ScenarioSensor sensor;
-      sensor.channel = r.String("channel", "");
-      sensor.position_m = r.Positive("position_m", 0.0);
-      sensor.quantity = r.String("quantity", "acceleration");
-      const std::string default_unit =
-          sensor.quantity == "velocity" ? "m/s" : sensor.quantity == "displacement" ? "m" : "m/s^2";
-      sensor.unit = r.String("unit", default_unit);
-      sensor.mass_kg = r.NonNegative("mass_kg", 0.0);
-      if (sensor.quantity != "acceleration" && sensor.quantity != "velocity" && sensor.quantity != "displacement")
-        r.FailField("quantity", "must be acceleration, velocity or displacement");
-      if (UnitToSi(sensor.quantity, sensor.unit) == 0.0)
-        r.FailField("unit", "'" + sensor.unit + "' is not a unit of " + sensor.quantity +
-                                " (m/s^2, g, m/s, mm/s, m, mm)");
-      s.sensors.push_back(sensor);
-    }
-  }
-  if (top.Has("hidden_positions_m")) {
-    for (const Json& v : top.Array("hidden_positions_m")) {
-      if (!v.is_number()) top.FailField("hidden_positions_m", "must hold numbers");
-      s.hidden_positions_m.push_back(v.get<double>());
-    }
-  }
-  {
-    const Json& levels = top.Array("levels");
-    if (levels.empty()) top.FailField("levels", "must list at least one level");
-    for (size_t i = 0; i < levels.size(); ++i) {
-      ObjectReader r(levels[i], source, "levels[" + std::to_string(i) + "]");
-      ScenarioLevel level;
-      level.label = r.String("label", "");
-      if (!IsSafeLabel(level.label))
-        r.FailField("label", "must be 1-64 letters, digits, '_' or '-' (it names the level's folder)");
-      level.force_amplitude_N = r.Positive("force_amplitude_N", 0.0);
-      level.frequencies_hz = ReadFrequencies(r);
-      s.levels.push_back(std::move(level));
-    }
-  }
-  if (top.Has("timing")) {
-    ObjectReader t(top.Raw("timing"), source, "timing");
-    ScenarioTiming& timing = s.timing;
-    timing.sample_rate_hz = t.Positive("sample_rate_Hz", timing.sample_rate_hz);
-    timing.max_time_step_s = t.Positive("max_time_step_s", timing.max_time_step_s);
-    timing.settle_min_s = t.NonNegative("settle_min_s", timing.settle_min_s);
-    timing.settle_max_s = t.Positive("settle_max_s", timing.settle_max_s);
-    timing.settle_tolerance = t.Positive("settle_tolerance", timing.settle_tolerance);
-    timing.transient_s = t.NonNegative("transient_s", timing.transient_s);
-    timing.record_s = t.Positive("record_s", timing.record_s);
-    timing.restart_each_level = t.Bool("restart_each_level", timing.restart_each_level);
-    if (timing.settle_max_s < timing.settle_min_s) t.FailField("settle_max_s", "must not be below settle_min_s");
-    // Limits that keep one simulated step within memory and minutes: at
-    // most 2^24 samples per record, and a time step no finer than 1e-7 s.
-    if (timing.record_s * timing.sample_rate_hz > 16777216.0)
-      t.FailField("record_s", "times sample_rate_Hz gives more than 16777216 samples per record; record shorter");
-    if (timing.max_time_step_s < 1e-7) t.FailField("max_time_step_s", "must be at least 1e-7 s");
-    if (timing.settle_max_s > 3600.0) t.FailField("settle_max_s", "must not exceed 3600 s");
-  }
-  if (top.Has("noise")) {
-    ObjectReader n(top.Raw("noise"), source, "noise");
-    const double seed = n.NonNegative("seed", 1.0);
-    if (seed != std::floor(seed) || seed > 9.0e15) n.FailField("seed", "must be a non-negative integer");
-    s.seed = static_cast<std::uint64_t>(seed);
-    s.clock_offset_ppm = n.Number("clock_offset_ppm", 0.0);
-    if (std::abs(s.clock_offset_ppm) > 1e4) n.FailField("clock_offset_ppm", "must lie within ±10000 ppm");
-    if (n.Has("default")) {
-      ObjectReader d(n.Raw("default"), source, "noise.default");
-      s.default_noise = ReadNoise(d);
-    }
-    if (n.Has("channels")) {
-      const Json& channels = n.Raw("channels");
-      if (!channels.is_object()) n.FailField("channels", "must map channel names to noise settings");
-      for (const auto& [channel, spec] : channels.items()) {
-        ObjectReader c(spec, source, "noise.channels." + channel);
-        s.channel_noise[channel] = ReadNoise(c);
-      }
-    }
-  }
+}
 
-  // Consistency of the whole.
+void ReadExcitation(ObjectReader& top, Scenario& s) {
+  ObjectReader e(top.Raw("excitation"), top.source(), "excitation");
+  s.force_channel = e.String("channel", "force");
+  s.force_position_m = e.Positive("position_m", 0.0);
+  if (!e.Has("distortion")) return;
+  const Json& list = e.Array("distortion");
+  for (size_t i = 0; i < list.size(); ++i) {
+    ObjectReader h(list[i], top.source(), "excitation.distortion[" + std::to_string(i) + "]");
+    const double k = h.Number("harmonic");
+    if (k != std::floor(k) || k < 2 || k > 20) h.FailField("harmonic", "must be an integer from 2 to 20");
+    s.force_distortion.push_back({static_cast<int>(k), h.NonNegative("amplitude_ratio", 0.0), h.Number("phase_rad", 0.0)});
+  }
+}
+
+ScenarioSensor ReadSensor(ObjectReader& r) {
+  ScenarioSensor sensor;
+  sensor.channel = r.String("channel", "");
+  sensor.position_m = r.Positive("position_m", 0.0);
+  sensor.quantity = r.String("quantity", "acceleration");
+  const std::string default_unit =
+      sensor.quantity == "velocity" ? "m/s" : sensor.quantity == "displacement" ? "m" : "m/s^2";
+  sensor.unit = r.String("unit", default_unit);
+  sensor.mass_kg = r.NonNegative("mass_kg", 0.0);
+  if (sensor.quantity != "acceleration" && sensor.quantity != "velocity" && sensor.quantity != "displacement")
+    r.FailField("quantity", "must be acceleration, velocity or displacement");
+  if (UnitToSi(sensor.quantity, sensor.unit) == 0.0)
+    r.FailField("unit", "'" + sensor.unit + "' is not a unit of " + sensor.quantity + " (m/s^2, g, m/s, mm/s, m, mm)");
+  return sensor;
+}
+
+void ReadSensorsAndHiddenPositions(ObjectReader& top, Scenario& s) {
+  const Json& sensors = top.Array("sensors");
+  if (sensors.empty()) top.FailField("sensors", "must list at least one sensor");
+  for (size_t i = 0; i < sensors.size(); ++i) {
+    ObjectReader r(sensors[i], top.source(), "sensors[" + std::to_string(i) + "]");
+    s.sensors.push_back(ReadSensor(r));
+  }
+  if (!top.Has("hidden_positions_m")) return;
+  for (const Json& v : top.Array("hidden_positions_m")) {
+    if (!v.is_number()) top.FailField("hidden_positions_m", "must hold numbers");
+    s.hidden_positions_m.push_back(v.get<double>());
+  }
+}
+
+void ReadLevels(ObjectReader& top, Scenario& s) {
+  const Json& levels = top.Array("levels");
+  if (levels.empty()) top.FailField("levels", "must list at least one level");
+  for (size_t i = 0; i < levels.size(); ++i) {
+    ObjectReader r(levels[i], top.source(), "levels[" + std::to_string(i) + "]");
+    ScenarioLevel level;
+    level.label = r.String("label", "");
+    if (!IsSafeLabel(level.label))
+      r.FailField("label", "must be 1-64 letters, digits, '_' or '-' (it names the level's folder)");
+    level.force_amplitude_N = r.Positive("force_amplitude_N", 0.0);
+    level.frequencies_hz = ReadFrequencies(r);
+    s.levels.push_back(std::move(level));
+  }
+}
+
+void ReadTiming(ObjectReader& top, ScenarioTiming& timing) {
+  if (!top.Has("timing")) return;
+  ObjectReader t(top.Raw("timing"), top.source(), "timing");
+  timing.sample_rate_hz = t.Positive("sample_rate_Hz", timing.sample_rate_hz);
+  timing.max_time_step_s = t.Positive("max_time_step_s", timing.max_time_step_s);
+  timing.settle_min_s = t.NonNegative("settle_min_s", timing.settle_min_s);
+  timing.settle_max_s = t.Positive("settle_max_s", timing.settle_max_s);
+  timing.settle_tolerance = t.Positive("settle_tolerance", timing.settle_tolerance);
+  timing.transient_s = t.NonNegative("transient_s", timing.transient_s);
+  timing.record_s = t.Positive("record_s", timing.record_s);
+  timing.restart_each_level = t.Bool("restart_each_level", timing.restart_each_level);
+  if (timing.settle_max_s < timing.settle_min_s) t.FailField("settle_max_s", "must not be below settle_min_s");
+  // Limits that keep one simulated step within memory and minutes: at
+  // most 2^24 samples per record, and a time step no finer than 1e-7 s.
+  if (timing.record_s * timing.sample_rate_hz > 16777216.0)
+    t.FailField("record_s", "times sample_rate_Hz gives more than 16777216 samples per record; record shorter");
+  if (timing.max_time_step_s < 1e-7) t.FailField("max_time_step_s", "must be at least 1e-7 s");
+  if (timing.settle_max_s > 3600.0) t.FailField("settle_max_s", "must not exceed 3600 s");
+}
+
+void ReadNoiseSection(ObjectReader& top, Scenario& s) {
+  if (!top.Has("noise")) return;
+  ObjectReader n(top.Raw("noise"), top.source(), "noise");
+  const double seed = n.NonNegative("seed", 1.0);
+  if (seed != std::floor(seed) || seed > 9.0e15) n.FailField("seed", "must be a non-negative integer");
+  s.seed = static_cast<std::uint64_t>(seed);
+  s.clock_offset_ppm = n.Number("clock_offset_ppm", 0.0);
+  if (std::abs(s.clock_offset_ppm) > 1e4) n.FailField("clock_offset_ppm", "must lie within ±10000 ppm");
+  if (n.Has("default")) {
+    ObjectReader d(n.Raw("default"), top.source(), "noise.default");
+    s.default_noise = ReadNoise(d);
+  }
+  if (n.Has("channels")) {
+    const Json& channels = n.Raw("channels");
+    if (!channels.is_object()) n.FailField("channels", "must map channel names to noise settings");
+    for (const auto& [channel, spec] : channels.items()) {
+      ObjectReader c(spec, top.source(), "noise.channels." + channel);
+      s.channel_noise[channel] = ReadNoise(c);
+    }
+  }
+}
+
+// ---------------------------------------------------------------- consistency of the whole
+
+void ValidateBeams(const Scenario& s, const std::string& source) {
   try {
     s.beam.Validate();
     s.nominal_beam.Validate();
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(source + ": " + e.what() + ". Fix: give the beam in SI (m, Pa, kg/m³)");
   }
+}
+
+void CheckPositionsAndChannels(const Scenario& s, const std::string& source) {
   const double length = s.beam.length_m;
   auto inside = [&](double x, const std::string& what, bool allow_ends) {
     if (!(x >= 0.0 && x <= length) || (!allow_ends && (x <= 0.0 || x >= length)))
@@ -262,6 +293,9 @@ Scenario ParseScenario(const std::string& json_text, const std::string& source) 
   for (const auto& [channel, noise] : s.channel_noise)
     if (!channels.count(channel))
       throw std::invalid_argument(source + ": noise.channels names '" + channel + "', which is not a channel");
+}
+
+void CheckLevelsAndFrequencies(const Scenario& s, const std::string& source) {
   std::set<std::string> labels;
   for (const ScenarioLevel& level : s.levels)
     if (!labels.insert(level.label).second)
@@ -280,11 +314,137 @@ Scenario ParseScenario(const std::string& json_text, const std::string& source) 
     if (h.harmonic * max_frequency_hz >= nyquist_hz)
       throw std::invalid_argument(source + ": excitation.distortion harmonic " + std::to_string(h.harmonic) +
                                   " exceeds the Nyquist frequency; raise timing.sample_rate_Hz");
+}
+
+// ---------------------------------------------------------------- writing, one helper per section
+
+OrderedJson NoiseToJson(const ChannelNoise& n) {
+  OrderedJson out = OrderedJson::object();
+  out["relative_rms"] = n.relative_rms;
+  out["absolute"] = n.absolute;
+  out["adc_bits"] = n.adc_bits;
+  out["adc_range"] = n.adc_range;
+  return out;
+}
+
+OrderedJson ExcitationToJson(const Scenario& s) {
+  OrderedJson distortion = OrderedJson::array();
+  for (const ForceHarmonic& h : s.force_distortion) {
+    OrderedJson j = OrderedJson::object();
+    j["harmonic"] = h.harmonic;
+    j["amplitude_ratio"] = h.amplitude_ratio;
+    j["phase_rad"] = h.phase_rad;
+    distortion.push_back(j);
+  }
+  OrderedJson out = OrderedJson::object();
+  out["channel"] = s.force_channel;
+  out["position_m"] = s.force_position_m;
+  out["distortion"] = distortion;
+  return out;
+}
+
+OrderedJson SensorsToJson(const std::vector<ScenarioSensor>& sensors) {
+  OrderedJson out = OrderedJson::array();
+  for (const ScenarioSensor& sensor : sensors) {
+    OrderedJson j = OrderedJson::object();
+    j["channel"] = sensor.channel;
+    j["position_m"] = sensor.position_m;
+    j["quantity"] = sensor.quantity;
+    j["unit"] = sensor.unit;
+    j["mass_kg"] = sensor.mass_kg;
+    out.push_back(j);
+  }
+  return out;
+}
+
+// The frequencies as the list in run order: the reader's range and
+// "direction" are only ways of spelling that list.
+OrderedJson LevelsToJson(const std::vector<ScenarioLevel>& levels) {
+  OrderedJson out = OrderedJson::array();
+  for (const ScenarioLevel& level : levels) {
+    OrderedJson j = OrderedJson::object();
+    j["label"] = level.label;
+    j["force_amplitude_N"] = level.force_amplitude_N;
+    j["frequencies_Hz"] = level.frequencies_hz;
+    out.push_back(j);
+  }
+  return out;
+}
+
+OrderedJson TimingToJson(const ScenarioTiming& t) {
+  OrderedJson out = OrderedJson::object();
+  out["sample_rate_Hz"] = t.sample_rate_hz;
+  out["max_time_step_s"] = t.max_time_step_s;
+  out["settle_min_s"] = t.settle_min_s;
+  out["settle_max_s"] = t.settle_max_s;
+  out["settle_tolerance"] = t.settle_tolerance;
+  out["transient_s"] = t.transient_s;
+  out["record_s"] = t.record_s;
+  out["restart_each_level"] = t.restart_each_level;
+  return out;
+}
+
+OrderedJson NoiseSectionToJson(const Scenario& s) {
+  OrderedJson channels = OrderedJson::object();
+  for (const auto& [channel, noise] : s.channel_noise) channels[channel] = NoiseToJson(noise);
+  OrderedJson out = OrderedJson::object();
+  out["seed"] = s.seed;
+  out["clock_offset_ppm"] = s.clock_offset_ppm;
+  out["default"] = NoiseToJson(s.default_noise);
+  out["channels"] = channels;
+  return out;
+}
+
+}  // namespace
+
+Scenario ParseScenario(const std::string& json_text, const std::string& source) {
+  const Json root = ParseJson(json_text, source);
+  Scenario s;
+  // `top` refuses its unknown fields when it goes, after the checks of the whole.
+  ObjectReader top(root, source, "");
+  ReadFormat(top);
+  s.name = top.String("name", "simulated stepped-sine campaign");
+  ReadBeams(top, s);
+  internal::ReadSupport(top, "docs/simulator.md", s.polynomial, s.jenkins, s.one_sided_stiffness_Nm_rad);
+  internal::ReadAttachments(top, "docs/simulator.md", s.attachments);
+  ReadDampingAndMesh(top, s);
+  ReadExcitation(top, s);
+  ReadSensorsAndHiddenPositions(top, s);
+  ReadLevels(top, s);
+  ReadTiming(top, s.timing);
+  ReadNoiseSection(top, s);
+  ValidateBeams(s, source);
+  CheckPositionsAndChannels(s, source);
+  CheckLevelsAndFrequencies(s, source);
   return s;
 }
 
 Scenario ReadScenario(const std::filesystem::path& file) {
   return ParseScenario(ReadTextFile(file, "scenario file", "check the path"), file.string());
+}
+
+std::string ScenarioToJson(const Scenario& s) {
+  OrderedJson root = OrderedJson::object();
+  root["format"] = std::string(kScenarioFormat);
+  root["beamid_version"] = kVersion;
+  root["name"] = s.name;
+  root["beam"] = internal::BeamToJson(s.beam);
+  root["nominal_beam"] = internal::BeamToJson(s.nominal_beam);
+  root["support"] = internal::SupportToJson(s.polynomial, s.jenkins, s.one_sided_stiffness_Nm_rad);
+  root["attachments"] = internal::AttachmentsToJson(s.attachments);
+  root["damping"] = {{"reference_frequency_Hz", s.damping_reference_frequency_hz}};
+  root["mesh"] = {{"min_elements", s.mesh_min_elements}};
+  root["excitation"] = ExcitationToJson(s);
+  root["sensors"] = SensorsToJson(s.sensors);
+  root["hidden_positions_m"] = s.hidden_positions_m;
+  root["levels"] = LevelsToJson(s.levels);
+  root["timing"] = TimingToJson(s.timing);
+  root["noise"] = NoiseSectionToJson(s);
+  return root.dump(2) + "\n";
+}
+
+void WriteScenarioFile(const std::filesystem::path& path, const Scenario& scenario) {
+  WriteTextFileAtomically(path, ScenarioToJson(scenario));
 }
 
 }  // namespace beamid::hb

@@ -1,8 +1,9 @@
 // A simulation scenario: the true physics of a stepped-sine test (beam,
 // support law, attachments, damping, force distortion) and how the test is
 // run and recorded (levels, frequency steps, timing, sensors, noise). The
-// JSON format is documented in docs/simulator.md; `beamid simulate` turns a
-// scenario into a campaign (docs/campaign-format.md) plus a truth file.
+// JSON format (format "beamid-scenario/1") is documented in docs/simulator.md;
+// `beamid simulate` turns a scenario into a campaign (docs/campaign-format.md)
+// plus a truth file. This file holds the format's one reader and writer.
 //
 // Everything is SI except where a field names its unit (frequencies in Hz,
 // clock offset in ppm, noise of a channel in the channel's written unit).
@@ -14,6 +15,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "hb/beam_properties.h"
@@ -113,10 +115,24 @@ struct Scenario {
 // not belong to the quantity.
 double UnitToSi(const std::string& quantity, const std::string& unit);
 
+// The value of the optional "format" key. A file without it (every file
+// written before the key) reads as this version; another value is refused.
+inline constexpr std::string_view kScenarioFormat = "beamid-scenario/1";
+
 // Parses and validates a scenario. Throws std::invalid_argument naming
 // `source` (the file), the field and what to fix; unknown fields are errors
-// (a typo must not silently fall back to a default).
+// (a typo must not silently fall back to a default). A "format" other than
+// kScenarioFormat is an InputError; "beamid_version" is accepted and ignored.
 Scenario ParseScenario(const std::string& json_text, const std::string& source);
 Scenario ReadScenario(const std::filesystem::path& file);
+
+// Every field the reader reads, with "format" and "beamid_version", so that
+// reading the text gives the same Scenario back. What the struct does not
+// keep is written in its resolved form: the frequencies as the list in run
+// order (no range, no "direction"), the nominal beam in full. A rigid
+// attachment (infinite stiffness) is left out, as JSON has no infinity.
+std::string ScenarioToJson(const Scenario& scenario);
+// Atomically (hb/text_file.h): the old file or the new one, never half.
+void WriteScenarioFile(const std::filesystem::path& path, const Scenario& scenario);
 
 }  // namespace beamid::hb

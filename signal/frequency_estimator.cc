@@ -1,6 +1,7 @@
 #include "signal/frequency_estimator.h"
 
 #include "hb/errors.h"
+#include "hb/fftw_real_transform.h"
 #include "hb/option_checks.h"
 
 #include <algorithm>
@@ -10,7 +11,6 @@
 #include <string>
 #include <vector>
 
-#include "signal/internal/fftw_plan.h"
 #include "signal/internal/harmonic_basis.h"
 #include "signal/internal/text.h"
 
@@ -23,7 +23,7 @@ double InterpolatedDftFrequency(const Eigen::Ref<const Eigen::VectorXd>& samples
   Eigen::VectorXd windowed(n);
   for (int i = 0; i < n; ++i)
     windowed(i) = (samples(i) - mean) * (0.5 - 0.5 * std::cos(2.0 * std::numbers::pi * i / n));
-  internal::RealFft fft(n);
+  hb::FftwRealTransform fft(n);
   std::vector<std::complex<double>> spectrum(static_cast<std::size_t>(fft.num_bins()));
   fft.Forward(windowed.data(), spectrum.data());
 

@@ -4,7 +4,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "signal/internal/fftw_plan.h"
+#include "hb/fftw_real_transform.h"
+
 #include "signal/internal/harmonic_basis.h"
 
 namespace beamid::signal {
@@ -16,7 +17,7 @@ constexpr int kMinNoiseBins = 4;
 
 // σ_k² for k = 1..h from the Hann periodogram of one residual.
 Eigen::VectorXd LocalNoiseFloor(const Eigen::VectorXd& residual, double bin_per_harmonic, int h,
-                                double fallback_variance, internal::RealFft& fft, Eigen::VectorXd& windowed,
+                                double fallback_variance, hb::FftwRealTransform& fft, Eigen::VectorXd& windowed,
                                 std::vector<std::complex<double>>& spectrum) {
   const Eigen::Index n = residual.size();
   double window_power = 0.0;
@@ -62,7 +63,7 @@ HarmonicFit FitHarmonics(const Eigen::Ref<const Eigen::MatrixXd>& samples, doubl
   HarmonicFit fit;
   fit.frequency_hz = frequency_hz;
   fit.num_harmonics = h;
-  internal::RealFft fft(n);
+  hb::FftwRealTransform fft(n);
   Eigen::VectorXd windowed(n);
   std::vector<std::complex<double>> spectrum(static_cast<std::size_t>(fft.num_bins()));
   Eigen::VectorXd residual(n);

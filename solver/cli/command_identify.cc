@@ -13,7 +13,7 @@
 #include "solver/cli/cli_output.h"
 #include "solver/cli/command_registry.h"
 #include "solver/estimation/identify.h"
-#include "solver/estimation/multiple_scales_problem.h"
+#include "solver/estimation/model_family.h"
 #include "solver/estimation/result_file.h"
 #include "solver/estimation/result_io.h"
 
@@ -29,7 +29,7 @@ struct IdentifyCommandOptions {
   int harmonics = 5;
   int fit_harmonics = 3;
   int starts = 0;
-  int threads = 0;
+  int workers = 0;
   bool fit_ei_scale = false;
   bool fix_loss_factor = false;
   double beam_loss_factor = 0.0;
@@ -38,10 +38,7 @@ struct IdentifyCommandOptions {
 
 void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& global) {
   RequireWritableOutput(options.output, {std::filesystem::path(options.campaign_folder) / "campaign.json", options.phasors_file});
-  const bool multiple_scales = options.model == "ms";
-  if (!multiple_scales && options.model != "hb")
-    throw std::invalid_argument("--model " + options.model +
-                                ": unknown model (use hb for exact harmonic balance or ms for multiple scales)");
+  const solver::ModelFamily& family = solver::FindModelFamily(options.model);
   RequireFitWithinModelHarmonics(options.fit_harmonics, options.harmonics);
   const signal::Campaign campaign = signal::ReadCampaign(options.campaign_folder);
   const signal::PhasorSet phasors =
@@ -59,23 +56,17 @@ void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& glo
   // in c with an interval that does not cover the truth: fit it by default.
   if (!options.fix_loss_factor) structure.linear.push_back(solver::LossFactor(std::max(options.beam_loss_factor, 1e-4)));
   solver::IdentifyOptions identify;
+  identify.family = &family;
   identify.model.num_harmonics = options.harmonics;
   identify.model.beam_loss_factor = options.beam_loss_factor;
   identify.num_starts = options.starts;
-  identify.num_threads = options.threads;
+  identify.num_workers = options.workers;
   Progress progress("identify", global);
   const auto report_progress = [&](double fraction, const std::string& what) { progress.Update(fraction, what); };
-  const solver::IdentifyResult result = multiple_scales
-                                            ? solver::IdentifyMultipleScales(fit, structure, identify, report_progress)
-                                            : solver::Identify(fit, structure, identify, report_progress);
+  const solver::IdentifyResult result = solver::Identify(fit, structure, identify, report_progress);
   progress.Done();
 
-  std::unique_ptr<solver::FitProblem> problem;
-  if (multiple_scales)
-    problem = std::make_unique<solver::MultipleScalesProblem>(
-        fit, structure, solver::MultipleScalesProblemOptions{.beam_loss_factor = options.beam_loss_factor});
-  else
-    problem = std::make_unique<solver::IdentificationProblem>(fit, structure, identify.model);
+  const std::unique_ptr<solver::FitProblem> problem = family.MakeProblem(fit, structure, identify.model);
   problem->FeasiblePoint(result.starts[result.best_start].scaled_at);  // the winning run's scales
   solver::FitData fit_with_loss = fit;
   fit_with_loss.beam.loss_factor = options.beam_loss_factor;
@@ -85,12 +76,12 @@ void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& glo
        .campaign_name = campaign.name,
        // `beamid report` finds the campaign from anywhere on this machine.
        .campaign_absolute_folder = std::filesystem::absolute(options.campaign_folder).lexically_normal().string(),
-       .model_kind = options.model});
+       .family = &family});
   solver::WriteResultFile(options.output, result_file);
 
   if (!global.quiet) {
     fmt::print("identified ({}) from {} steps, {} channel(s), harmonics 1..{} in {:.2f} s ({} of {} starts reached the best fit)\n",
-               multiple_scales ? "multiple scales" : "harmonic balance", fit.steps.size(), fit.channels.size(),
+               family.Description(), fit.steps.size(), fit.channels.size(),
                fit.num_fit_harmonics, result.seconds, result.starts_at_best,
                result.starts.size());
     for (const auto& p : result.parameters)
@@ -121,16 +112,22 @@ BEAMID_REGISTER_COMMAND("identify", [](CLI::App& app, const GlobalOptions& globa
   sub->add_option("--fit", options->fit_channels, "Response channels to fit (default: all)")->delimiter(',');
   sub->add_option("--validate", options->validate_channels, "Held-out channels to predict and compare")
       ->delimiter(',');
-  sub->add_option("--model", options->model,
-                  "Model: hb (exact harmonic balance) or ms (the seed's multiple-scales model: first mode, "
-                  "harmonics 1..3, small amplitudes near the first resonance, no sensor masses)")
+  std::string families;
+  for (const solver::ModelFamily* family : solver::ModelFamilies())
+    families += (families.empty() ? "" : ", ") + family->Name() + " (" + family->Description() + ")";
+  sub->add_option("--model", options->model, "Model family: " + families)
+      ->check([](const std::string& name) {
+        for (const solver::ModelFamily* family : solver::ModelFamilies())
+          if (family->Name() == name) return std::string();
+        return "unknown model family '" + name + "' (use " + solver::ModelFamilyNames() + ")";
+      })
       ->capture_default_str();
   sub->add_option("--phasors", options->phasors_file, "Use phasors from 'beamid extract' instead of extracting");
   AddModelHarmonicsOptions(sub, &options->harmonics, &options->fit_harmonics, "Harmonics of the model (hb; ms has 3)");
   sub->add_option("--starts", options->starts, "Further starts besides the direct estimate")
       ->check(CLI::Range(0, 1000))
       ->capture_default_str();
-  sub->add_option("--threads", options->threads, "Parallel starts (0: one per core)")
+  sub->add_option("--workers", options->workers, "Worker processes that run the starts in parallel (0: one per core)")
       ->check(CLI::Range(0, 256))
       ->capture_default_str();
   sub->add_flag("--fit-ei-scale", options->fit_ei_scale, "Also fit a scale of the nominal bending stiffness EI");

@@ -74,7 +74,7 @@ void RunPredict(const PredictOptions& options, const GlobalOptions& global) {
   const char* const quantity = compared_order == 0 ? "displacement_m" : compared_order == 1 ? "velocity_m_s" : "acceleration_m_s2";
   solver::PredictionFile file{.beamid_version = kVersion,
                               .result_file = options.result_file,
-                              .model_kind = model.kind,
+                              .model_kind = model.family->Name(),
                               .position_m = options.position_m,
                               .compared_channel = compared,
                               .compared_quantity = compared.empty() ? "" : quantity,
@@ -115,7 +115,7 @@ void RunPredict(const PredictOptions& options, const GlobalOptions& global) {
   solver::WritePredictionFile(options.output, file);
   if (!global.quiet) {
     fmt::print("predicted {} steps at x = {:.3f} m with the {} model\n", steps.size(), options.position_m,
-               model.kind == "ms" ? "multiple-scales" : "harmonic-balance");
+               model.family->Description());
     if (!compared.empty()) fmt::print("  against {}: worst first-harmonic error {:.2f} %\n", compared, 100 * worst);
     fmt::print("wrote {}\n", options.output);
   }

@@ -13,7 +13,7 @@
 #include "hb/errors.h"
 #include "solver/diagnosis/diagnosis_io.h"
 #include "solver/estimation/chi_square.h"
-#include "solver/estimation/identification_problem.h"
+#include "solver/estimation/model_phasors.h"
 #include "solver/estimation/internal/worker_processes.h"
 
 namespace beamid::solver {
@@ -90,7 +90,8 @@ IdentifyOptions BaseIdentifyOptions(const DiagnosisOptions& options) {
   IdentifyOptions identify;
   identify.model.num_harmonics = options.model_harmonics;
   identify.ipopt = options.ipopt;
-  identify.num_threads = 1;
+  identify.family = options.family;
+  identify.num_workers = 1;
   return identify;
 }
 
@@ -108,7 +109,7 @@ IdentifyResult FitPolynomialThenLossFactor(const FitData& fit, const DiagnosisOp
   first.push_back(options.loss_factor_start);
   try {
     IdentifyResult full = IdentifyWith(
-        [&] { return std::make_unique<IdentificationProblem>(fit, with_loss, identify.model); }, with_loss, first,
+        [&] { return identify.family->MakeProblem(fit, with_loss, identify.model); }, with_loss, first,
         identify);
     if (full.chi_square <= polynomial.chi_square) {
       *structure = with_loss;
@@ -150,9 +151,10 @@ struct RefitRun {
 // What the candidates see of the base fit: the rotation amplitude of every step.
 BaseFitContext ContextOf(const FitData& fit, const BaseFit& base) {
   BaseFitContext context{.data = &fit, .model_harmonics = base.model.model_harmonics};
-  for (int i = 0; i < base.model.problem->num_steps(); ++i)
-    context.theta_amplitude_rad.push_back(
-        std::abs(hb::HarmonicBalance::ToComplex(base.model.problem->States(base.model.x, i))[1]));
+  for (int i = 0; i < base.model.problem->num_steps(); ++i) {
+    const Eigen::VectorXcd theta = base.model.family->SupportRotation_rad(base.model.problem->StepState(base.model.x, i));
+    context.theta_amplitude_rad.push_back(theta.size() > 1 ? std::abs(theta[1]) : 0.0);
+  }
   return context;
 }
 
@@ -184,7 +186,7 @@ std::string RunRefitJob(const FitData& fit, const CandidateExtension& extension,
   // Branch repair stays on.
   refit.seed_states_from_measurements = false;
   const IdentifyResult r = IdentifyWith(
-      [&] { return std::make_unique<IdentificationProblem>(fit, extension.structure, refit.model); },
+      [&] { return refit.family->MakeProblem(fit, extension.structure, refit.model); },
       extension.structure, start, refit);
   CandidateRefit record{.chi_square = r.chi_square, .seconds = r.seconds};
   for (const auto& p : r.parameters) {
@@ -282,7 +284,7 @@ std::unique_ptr<FittedModel> TestCandidate(const FitData& fit, const FitSummary&
   outcome->fit =
       Summarize(extension.structure, extension.model_harmonics, o.chi_square, fit.NumResiduals(), o.values, o.std);
   auto model = std::make_unique<FittedModel>(
-      fit, extension.structure, extension.model_harmonics, o.scaled_at,
+      fit, *options.family, extension.structure, extension.model_harmonics, o.scaled_at,
       Eigen::Map<const Eigen::VectorXd>(o.x.data(), static_cast<Eigen::Index>(o.x.size())), o.values);
   const double per_candidate_significance = options.significance / std::max<std::size_t>(1, run.library.size());
   const double scale = std::max(1.0, outcome->fit.reduced_chi_square);
@@ -340,36 +342,24 @@ void DiagnosisOptions::Validate() const {
     Refuse("DiagnosisOptions.min_relative_improvement", FormatValue(min_relative_improvement), "in [0, 1)");
   RequireNonNegative("DiagnosisOptions.acceptable_reduced_chi_square", acceptable_reduced_chi_square);
   RequireInRange("DiagnosisOptions.num_workers", num_workers, 0, 256);
+  if (family == nullptr) Refuse("DiagnosisOptions.family", "null", "a model family (solver/estimation/model_family.h)");
   ipopt.Validate();
   RequireAtLeast("DiagnosisOptions.refit_max_iterations", refit_max_iterations, 1);
   RequireNonNegative("DiagnosisOptions.refit_max_cpu_seconds", refit_max_cpu_seconds);
 }
 
-FittedModel::FittedModel(const FitData& fit, const ModelStructure& s, int harmonics, const std::vector<double>& scaled_at,
-                         Eigen::VectorXd variables, const std::vector<double>& values)
-    : structure(s), x(std::move(variables)), model_harmonics(harmonics) {
-  problem = std::make_unique<IdentificationProblem>(fit, structure, IdentificationProblemOptions{.num_harmonics = harmonics});
+FittedModel::FittedModel(const FitData& fit, const ModelFamily& model_family, const ModelStructure& s, int harmonics,
+                         const std::vector<double>& scaled_at, Eigen::VectorXd variables,
+                         const std::vector<double>& values)
+    : family(&model_family), structure(s), x(std::move(variables)), model_harmonics(harmonics) {
+  problem = model_family.MakeProblem(fit, structure, ModelOptions{.num_harmonics = harmonics});
   problem->FeasiblePoint(scaled_at);
   // After the problem: its internal scales are those of the structure the
   // optimiser started from.
   structure.SetValues(values);
 }
 
-std::vector<Eigen::MatrixXcd> FittedModel::Phasors(const FitData& data) const {
-  std::vector<double> positions;
-  for (const auto& c : data.channels) positions.push_back(c.position_m);
-  std::vector<Eigen::MatrixXcd> out;
-  const int k_max = data.num_fit_harmonics;
-  for (int i = 0; i < static_cast<int>(data.steps.size()); ++i) {
-    const Eigen::MatrixXcd y = problem->DisplacementPhasors(x, i, positions);
-    Eigen::MatrixXcd m = Eigen::MatrixXcd::Zero(static_cast<Eigen::Index>(positions.size()), k_max);
-    for (int c = 0; c < static_cast<int>(positions.size()); ++c)
-      for (int k = 1; k <= std::min(k_max, model_harmonics); ++k)
-        m(c, k - 1) = DerivativeFactor(data.channels[c].derivative_order, k * data.steps[i].omega_rad_s) * y(c, k);
-    out.push_back(m);
-  }
-  return out;
-}
+std::vector<Eigen::MatrixXcd> FittedModel::Phasors(const FitData& data) const { return ModelPhasors(data, *problem, x); }
 
 BaseFit FitBase(const FitData& fit, const DiagnosisOptions& options) {
   ModelStructure structure;
@@ -379,7 +369,7 @@ BaseFit FitBase(const FitData& fit, const DiagnosisOptions& options) {
     values.push_back(p.value);
     std.push_back(p.std);
   }
-  return {.model = FittedModel(fit, structure, options.model_harmonics, r.starts[r.best_start].scaled_at, r.x, values),
+  return {.model = FittedModel(fit, *options.family, structure, options.model_harmonics, r.starts[r.best_start].scaled_at, r.x, values),
           .summary = Summarize(structure, options.model_harmonics, r.chi_square, fit.NumResiduals(), values, std)};
 }
 
@@ -410,9 +400,8 @@ LocationStage Locate(const FitData& fit, const BaseFit& base, const FitData& loc
   try {
     const ModelStructure& fitted = base.model.structure;
     hb::LinearBeamModel reference = fitted.ApplyLinear({.beam = fit.beam, .attachments = fit.sensor_masses});
-    const auto& k = dynamic_cast<const hb::PolynomialSupportLaw&>(*fitted.law).coefficients();
-    reference.support_stiffness_Nm_rad = k.k1_Nm_rad;
-    reference.support_damping_Nms_rad = k.c_Nms_rad;
+    reference.support_stiffness_Nm_rad = fitted.law->InitialStiffness_Nm_rad();
+    reference.support_damping_Nms_rad = fitted.law->InitialDamping_Nms_rad();
     stage.location = LocateMisfit(located, base.model.Phasors(located), fit.num_fit_harmonics, reference,
                                   {.num_fitted_parameters = static_cast<int>(base.summary.parameters.size())});
   } catch (const std::exception& e) {

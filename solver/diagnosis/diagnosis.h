@@ -37,13 +37,16 @@
 
 #include "solver/diagnosis/candidate_physics.h"
 #include "solver/estimation/fit_data.h"
-#include "solver/estimation/identification_problem.h"
+#include "solver/estimation/fit_problem.h"
+#include "solver/estimation/model_family.h"
 #include "solver/estimation/identify.h"
 #include "solver/diagnosis/misfit_location.h"
 
 namespace beamid::solver {
 
 struct DiagnosisOptions {
+  // The family of the base model and of every candidate's refit.
+  const ModelFamily* family = &HarmonicBalanceFamily();
   int model_harmonics = 5;          // H of the base model
   bool fit_loss_factor = true;      // the beam's η beside the support (as `beamid identify`)
   double loss_factor_start = 1e-4;
@@ -57,7 +60,7 @@ struct DiagnosisOptions {
   // `beamid identify` warns above the same value.
   double acceptable_reduced_chi_square = 4.0;
   int num_workers = 0;              // 0: one per hardware core
-  internal::IpoptOptions ipopt;     // the base fit's
+  IpoptOptions ipopt;     // the base fit's
   // Each candidate refit starts at the base optimum and needs < 40
   // iterations when the candidate fits; a start that wanders is cut short.
   int refit_max_iterations = 80;
@@ -142,14 +145,15 @@ DiagnosisResult Diagnose(const FitData& fit, const FitData& validation, const Fi
 // its phasors at any channel are the fit's own (not a re-solve that could
 // land on another branch).
 struct FittedModel {
+  const ModelFamily* family;
   ModelStructure structure;  // values: the optimum
-  std::unique_ptr<IdentificationProblem> problem;
+  std::unique_ptr<FitProblem> problem;
   Eigen::VectorXd x;
   int model_harmonics = 5;
 
   // structure: the fitted one (its values are replaced by `values`);
   // scaled_at: the parameters whose FeasiblePoint set x's scales.
-  FittedModel(const FitData& fit, const ModelStructure& structure, int model_harmonics,
+  FittedModel(const FitData& fit, const ModelFamily& family, const ModelStructure& structure, int model_harmonics,
               const std::vector<double>& scaled_at, Eigen::VectorXd variables, const std::vector<double>& values);
 
   // Per step, channels × K phasors of `data`'s channels in its units

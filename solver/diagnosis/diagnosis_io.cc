@@ -384,36 +384,6 @@ DiagnosisResult ResultFromJson(const Field& root) {
   return r;
 }
 
-// ---------------------------------------------------------------- worker records
-
-// Finite doubles as JSON numbers (nlohmann writes the digits that read back
-// to the same double); the others, which JSON lacks, by name.
-nlohmann::json ExactNumber(double v) {
-  if (std::isfinite(v)) return v;
-  return std::isnan(v) ? "nan" : v > 0 ? "inf" : "-inf";
-}
-
-double ExactNumberFrom(const nlohmann::json& v) {
-  if (v.is_number()) return v.get<double>();
-  const std::string& name = v.get_ref<const std::string&>();
-  if (name == "nan") return std::numeric_limits<double>::quiet_NaN();
-  if (name == "inf") return std::numeric_limits<double>::infinity();
-  if (name == "-inf") return -std::numeric_limits<double>::infinity();
-  throw std::runtime_error("not a number: " + name);
-}
-
-nlohmann::json ExactNumbers(const std::vector<double>& values) {
-  nlohmann::json out = nlohmann::json::array();
-  for (double v : values) out.push_back(ExactNumber(v));
-  return out;
-}
-
-std::vector<double> ExactNumbersFrom(const nlohmann::json& array) {
-  std::vector<double> out;
-  for (const auto& v : array.get_ref<const nlohmann::json::array_t&>()) out.push_back(ExactNumberFrom(v));
-  return out;
-}
-
 }  // namespace
 
 std::string DiagnosisFileToJson(const DiagnosisFile& file) {
@@ -493,24 +463,24 @@ DiagnosisFile ReadDiagnosisFile(const std::filesystem::path& path) {
 }
 
 std::string CandidateRefitToText(const CandidateRefit& refit) {
-  const nlohmann::json j = {{"chi_square", ExactNumber(refit.chi_square)},
-                            {"seconds", ExactNumber(refit.seconds)},
-                            {"values", ExactNumbers(refit.values)},
-                            {"std", ExactNumbers(refit.std)},
-                            {"scaled_at", ExactNumbers(refit.scaled_at)},
-                            {"x", ExactNumbers(refit.x)}};
+  const nlohmann::json j = {{"chi_square", ExactJsonNumber(refit.chi_square)},
+                            {"seconds", ExactJsonNumber(refit.seconds)},
+                            {"values", ExactJsonNumbers(refit.values)},
+                            {"std", ExactJsonNumbers(refit.std)},
+                            {"scaled_at", ExactJsonNumbers(refit.scaled_at)},
+                            {"x", ExactJsonNumbers(refit.x)}};
   return j.dump();
 }
 
 CandidateRefit CandidateRefitFromText(const std::string& text) {
   try {
     const nlohmann::json j = nlohmann::json::parse(text);
-    return {.chi_square = ExactNumberFrom(j.at("chi_square")),
-            .seconds = ExactNumberFrom(j.at("seconds")),
-            .values = ExactNumbersFrom(j.at("values")),
-            .std = ExactNumbersFrom(j.at("std")),
-            .scaled_at = ExactNumbersFrom(j.at("scaled_at")),
-            .x = ExactNumbersFrom(j.at("x"))};
+    return {.chi_square = ExactNumberFromJson(j.at("chi_square")),
+            .seconds = ExactNumberFromJson(j.at("seconds")),
+            .values = ExactNumbersFromJson(j.at("values")),
+            .std = ExactNumbersFromJson(j.at("std")),
+            .scaled_at = ExactNumbersFromJson(j.at("scaled_at")),
+            .x = ExactNumbersFromJson(j.at("x"))};
   } catch (const std::exception& e) {
     throw std::runtime_error(std::string("a candidate refit's record is damaged: ") + e.what());
   }

@@ -66,11 +66,10 @@ class FitProblem {
   // (positions × (H + 1)), with the parameters and states of x.
   virtual Eigen::MatrixXcd DisplacementPhasors(const Eigen::VectorXd& x, int step,
                                                const std::vector<double>& positions_m) = 0;
-  // Step i's state as complex phasors in physical units, and its name in
-  // result.json: the harmonics Θ_0..Θ_H of θ ("theta_rad") for harmonic
-  // balance, the modal phasor U ("modal_phasor_m") for multiple scales.
+  // Step i's state as complex phasors in physical units: the harmonics
+  // Θ_0..Θ_H of θ for harmonic balance, the modal phasor U for multiple
+  // scales (its family names it in result.json).
   virtual Eigen::VectorXcd StepState(const Eigen::VectorXd& x, int step) const = 0;
-  virtual std::string StepStateName() const = 0;
 };
 
 }  // namespace beamid::solver

@@ -31,20 +31,8 @@ constexpr double kLinearNudge = 1e-6;
 
 }  // namespace
 
-void IdentificationProblemOptions::Validate() const {
-  using namespace option_checks;
-  RequireInRange("IdentificationProblemOptions.num_harmonics", num_harmonics, 1, kMaxHarmonics);
-  // Fewer than 2H + 2 samples cannot carry H harmonics (Nyquist).
-  if (num_time_samples != 0)
-    RequireAtLeast("IdentificationProblemOptions.num_time_samples (0: automatic)", num_time_samples,
-                   2 * num_harmonics + 2);
-  // The readers' range of η (docs/architecture.md).
-  if (!(beam_loss_factor >= 0.0 && beam_loss_factor < 1.0))
-    Refuse("IdentificationProblemOptions.beam_loss_factor", FormatValue(beam_loss_factor), "in [0, 1)");
-}
-
 IdentificationProblem::IdentificationProblem(const FitData& data, const ModelStructure& structure,
-                                             const IdentificationProblemOptions& options)
+                                             const ModelOptions& options)
     : data_(data), structure_(structure), options_(options) {
   options_.Validate();
   if (!structure_.law) throw std::invalid_argument("the model structure has no support law");

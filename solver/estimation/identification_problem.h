@@ -22,32 +22,16 @@
 #include "hb/harmonic_balance.h"
 #include "solver/estimation/fit_data.h"
 #include "solver/estimation/fit_problem.h"
+#include "solver/estimation/model_options.h"
 #include "solver/estimation/model_structure.h"
 #include "solver/estimation/support_reconstruction.h"
 
 namespace beamid::solver {
 
-struct IdentificationProblemOptions {
-  int num_harmonics = 5;  // H of the model (≥ K + 2 keeps harmonics 1..K accurate)
-  int num_time_samples = 0;  // 0: HarmonicBalanceOptions' automatic choice
-  // The Hessian's constraint curvature Σλ·∂²R (by differences of the
-  // analytic Jacobians). Off: the constrained Gauss–Newton method (Bock),
-  // whose Hessian is the objective's JᵀJ alone — measured 4× cheaper per
-  // iteration and as fast to converge on the paper's campaigns, since the
-  // multipliers are small when the fit is good.
-  bool constraint_curvature = false;
-  // The beam's structural loss factor η when it is known (a separate test of
-  // the beam); campaign.json has none. Steel: ~1e-4.
-  double beam_loss_factor = 0.0;
-
-  // Throws InputError naming the field, its value and the allowed range.
-  void Validate() const;
-};
-
 class IdentificationProblem : public FitProblem {
  public:
   IdentificationProblem(const FitData& data, const ModelStructure& structure,
-                        const IdentificationProblemOptions& options = {});
+                        const ModelOptions& options = {});
   ~IdentificationProblem();
   IdentificationProblem(const IdentificationProblem&) = delete;
   IdentificationProblem& operator=(const IdentificationProblem&) = delete;
@@ -102,7 +86,6 @@ class IdentificationProblem : public FitProblem {
   Eigen::VectorXcd StepState(const Eigen::VectorXd& x, int step) const override {
     return hb::HarmonicBalance::ToComplex(States(x, step));
   }
-  std::string StepStateName() const override { return "theta_rad"; }
 
  private:
   struct StepCache;
@@ -119,7 +102,7 @@ class IdentificationProblem : public FitProblem {
 
   FitData data_;
   ModelStructure structure_;
-  IdentificationProblemOptions options_;
+  ModelOptions options_;
   int num_law_ = 0, num_linear_ = 0, num_parameters_ = 0, state_size_ = 0;
   std::vector<double> parameter_scale_;
   // Per step: the scale of its states (its rotation's size) and of its

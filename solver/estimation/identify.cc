@@ -5,7 +5,7 @@
 
 #include "solver/estimation/internal/ipopt_program.h"
 #include "solver/estimation/internal/worker_processes.h"
-#include "solver/estimation/multiple_scales_problem.h"
+#include "solver/estimation/start_record_io.h"
 
 #include <algorithm>
 #include <chrono>
@@ -45,7 +45,7 @@ constexpr double kRepairGain = 1e-6;
 constexpr int kMaxBranchRepairs = 3;
 
 // One Ipopt run from x0, which `problem` has just scaled at `scaled_at`.
-StartOutcome RunFrom(FitProblem& problem, const internal::IpoptOptions& ipopt, const Eigen::VectorXd& x0,
+StartOutcome RunFrom(FitProblem& problem, const IpoptOptions& ipopt, const Eigen::VectorXd& x0,
                      const std::vector<double>& scaled_at, Eigen::VectorXd* x_out) {
   const internal::IpoptOutcome outcome = internal::RunIpopt(problem, x0, ipopt);
   *x_out = outcome.x;
@@ -75,7 +75,7 @@ constexpr int kSeededProbeIterations = 25;
 
 StartOutcome RunStart(FitProblem& problem, const IdentifyOptions& options, const std::vector<double>& start,
                       bool first, Eigen::VectorXd* x_out) {
-  internal::IpoptOptions ipopt = options.ipopt;
+  IpoptOptions ipopt = options.ipopt;
   if (first) ipopt.max_iterations = std::max(ipopt.max_iterations, kFirstStartMaxIterations);
   struct Attempt {
     StartRoute route;
@@ -97,7 +97,7 @@ StartOutcome RunStart(FitProblem& problem, const IdentifyOptions& options, const
     std::optional<Eigen::VectorXd>& x0 = attempt.route == StartRoute::kMeasuredStates ? seeded : feasible;
     if (!x0)
       x0 = attempt.route == StartRoute::kMeasuredStates ? problem.MeasuredStatePoint(start) : problem.FeasiblePoint(start);
-    internal::IpoptOptions limited = ipopt;
+    IpoptOptions limited = ipopt;
     limited.max_iterations = attempt.max_iterations;
     Eigen::VectorXd x_attempt;
     StartOutcome outcome = RunFrom(problem, limited, *x0, start, &x_attempt);
@@ -123,7 +123,7 @@ StartOutcome RunStart(FitProblem& problem, const IdentifyOptions& options, const
 // answer), and the fit is re-run from there, up to kMaxBranchRepairs times.
 // Done for the winner only: the other starts do not change the result.
 void RepairBranches(FitProblem& problem, const IdentifyOptions& options, StartOutcome* best, Eigen::VectorXd* x) {
-  internal::IpoptOptions ipopt = options.ipopt;
+  IpoptOptions ipopt = options.ipopt;
   ipopt.max_iterations = std::max(ipopt.max_iterations, kFirstStartMaxIterations);
   for (int repair = 0; best->success && repair < kMaxBranchRepairs; ++repair) {
     const std::vector<double> at = best->parameters;
@@ -139,38 +139,6 @@ void RepairBranches(FitProblem& problem, const IdentifyOptions& options, StartOu
     *best = repaired;
     *x = x_repaired;
   }
-}
-
-// A start's outcome through a worker process's pipe of doubles: the one
-// place that knows the layout.
-std::vector<double> EncodeOutcome(const StartOutcome& outcome, const Eigen::VectorXd& x) {
-  std::vector<double> record = {outcome.objective,
-                                outcome.success ? 1.0 : 0.0,
-                                static_cast<double>(outcome.iterations),
-                                static_cast<double>(outcome.status_code),
-                                static_cast<double>(outcome.route),
-                                static_cast<double>(outcome.branch_repairs)};
-  record.insert(record.end(), outcome.parameters.begin(), outcome.parameters.end());
-  record.insert(record.end(), outcome.scaled_at.begin(), outcome.scaled_at.end());
-  record.insert(record.end(), x.data(), x.data() + x.size());
-  return record;
-}
-
-void DecodeOutcome(const std::vector<double>& record, int num_parameters, StartOutcome* outcome,
-                   Eigen::VectorXd* x) {
-  constexpr int kHead = 6;
-  outcome->objective = record[0];
-  outcome->success = record[1] != 0.0;
-  outcome->iterations = static_cast<int>(record[2]);
-  outcome->status_code = static_cast<int>(record[3]);
-  outcome->status = internal::IpoptStatusText(outcome->status_code);
-  outcome->route = static_cast<StartRoute>(static_cast<int>(record[4]));
-  outcome->branch_repairs = static_cast<int>(record[5]);
-  const auto parameters = record.begin() + kHead;
-  outcome->parameters.assign(parameters, parameters + num_parameters);
-  outcome->scaled_at.assign(parameters + num_parameters, parameters + 2 * num_parameters);
-  const int offset = kHead + 2 * num_parameters;
-  *x = Eigen::Map<const Eigen::VectorXd>(record.data() + offset, static_cast<Eigen::Index>(record.size()) - offset);
 }
 
 // Physical bounds on k2 and k3 from the data: over the rotations the test
@@ -236,30 +204,18 @@ void IdentifyOptions::Validate() const {
   RequireInRange("IdentifyOptions.num_starts", num_starts, 0, 1000);
   // [value/spread, value·spread] is empty or inverted at a spread of 1 or below.
   RequireAbove("IdentifyOptions.start_spread", start_spread, 1.0);
-  RequireInRange("IdentifyOptions.num_threads (worker processes, 0: one per core)", num_threads, 0, 256);
+  if (family == nullptr) Refuse("IdentifyOptions.family", "null", "a model family (solver/estimation/model_family.h)");
+  RequireInRange("IdentifyOptions.num_workers (worker processes, 0: one per core)", num_workers, 0, 256);
   RequirePositive("IdentifyOptions.decisive_chi_square_gap", decisive_chi_square_gap);
 }
 
 IdentifyResult Identify(const FitData& data, const ModelStructure& structure, const IdentifyOptions& options,
                         const ProgressCallback& progress) {
   options.Validate();
+  options.family->CheckCanHold(data, structure, options.model);
   return IdentifyFromDirectEstimate(
-      [&](const ModelStructure& bounded) {
-        return std::make_unique<IdentificationProblem>(data, bounded, options.model);
-      },
-      data, structure, options, progress);
-}
-
-IdentifyResult IdentifyMultipleScales(const FitData& data, const ModelStructure& structure,
-                                      const IdentifyOptions& options, const ProgressCallback& progress) {
-  options.Validate();
-  const MultipleScalesProblemOptions model{.beam_loss_factor = options.model.beam_loss_factor};
-  // What the model cannot hold (sensor masses, harmonics above 3) is bad
-  // input: refuse it here, not as a failure of every start.
-  { const MultipleScalesProblem check(data, structure, model); }
-  return IdentifyFromDirectEstimate(
-      [&](const ModelStructure& bounded) { return std::make_unique<MultipleScalesProblem>(data, bounded, model); },
-      data, structure, options, progress);
+      [&](const ModelStructure& bounded) { return options.family->MakeProblem(data, bounded, options.model); }, data,
+      structure, options, progress);
 }
 
 IdentifyResult IdentifyWith(const ProblemFactory& make_problem, const ModelStructure& structure,
@@ -287,27 +243,34 @@ IdentifyResult IdentifyWith(const ProblemFactory& make_problem, const ModelStruc
   }
   result.starts.resize(starts.size());
   std::vector<Eigen::VectorXd> finals(starts.size());
-  const int workers = std::max(1, std::min<int>(options.num_threads > 0
-                                                    ? options.num_threads
+  const int workers = std::max(1, std::min<int>(options.num_workers > 0
+                                                    ? options.num_workers
                                                     : static_cast<int>(std::thread::hardware_concurrency()),
                                                 static_cast<int>(starts.size())));
   // Ipopt's MUMPS keeps global Fortran state and cannot run in two threads
   // at once, so parallel starts run in worker processes.
-  internal::RunInWorkers(
+  internal::RunTextJobsInWorkers(
       static_cast<int>(starts.size()), workers,
       [&](int i) {
         const std::unique_ptr<FitProblem> problem = make_problem();
         Eigen::VectorXd x;
         const StartOutcome outcome = RunStart(*problem, options, starts[i], i == 0, &x);
-        return EncodeOutcome(outcome, x);
+        return StartRecordToText({.outcome = outcome, .x = std::vector<double>(x.data(), x.data() + x.size())});
       },
-      [&](int i, const std::vector<double>& record, const std::string& error, int done) {
+      [&](int i, const std::string& text, const std::string& error, int done) {
         StartOutcome& outcome = result.starts[i];
-        outcome.start = starts[i];
-        if (!error.empty())
+        if (error.empty()) {
+          try {
+            StartRecord record = StartRecordFromText(text);
+            outcome = std::move(record.outcome);
+            finals[i] = Eigen::Map<const Eigen::VectorXd>(record.x.data(), static_cast<Eigen::Index>(record.x.size()));
+          } catch (const std::runtime_error& e) {
+            outcome.status = std::string("failed: ") + e.what();
+          }
+        } else {
           outcome.status = "failed: " + error;
-        else
-          DecodeOutcome(record, num_parameters, &outcome, &finals[i]);
+        }
+        outcome.start = starts[i];
         if (progress)
           progress(0.05 + 0.9 * done / starts.size(),
                    "start " + std::to_string(done) + "/" + std::to_string(starts.size()));

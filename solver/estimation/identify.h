@@ -1,7 +1,7 @@
 // Identification of the support (and optional linear parameters) from a
 // whole stepped-sine campaign: a direct linear least-squares estimate from
-// the reconstructed support, then Ipopt on the constrained program of
-// solver/identification_problem.h from that estimate and from a
+// the reconstructed support, then Ipopt on the constrained program of the
+// chosen model family (solver/estimation/model_family.h) from that estimate and from a
 // space-filling set of further starts (in parallel), then the Gauss–Newton
 // covariance in the reduced parameter space:
 //     Cov(p) = s²·(JᵀJ)⁻¹,  J = dr/dp along the constraint manifold,
@@ -17,8 +17,10 @@
 #include <Eigen/Core>
 
 #include "solver/estimation/fit_data.h"
-#include "solver/estimation/identification_problem.h"
-#include "solver/estimation/internal/ipopt_program.h"
+#include "solver/estimation/fit_problem.h"
+#include "solver/estimation/ipopt_options.h"
+#include "solver/estimation/model_family.h"
+#include "solver/estimation/model_options.h"
 #include "solver/estimation/model_structure.h"
 #include "solver/estimation/multistart.h"
 #include "solver/estimation/support_reconstruction.h"
@@ -26,16 +28,19 @@
 namespace beamid::solver {
 
 struct IdentifyOptions {
-  IdentificationProblemOptions model;
-  internal::IpoptOptions ipopt;
+  // The model to fit: its family (exact harmonic balance by default) and
+  // what the family is told about it.
+  const ModelFamily* family = &HarmonicBalanceFamily();
+  ModelOptions model;
+  IpoptOptions ipopt;
   // Further starts besides the direct estimate (0: only that one).
   int num_starts = 0;
   // Space-filling starts cover [value/spread, value·spread] around the direct
   // estimate for positive parameters and ±spread·|value| for signed ones.
   double start_spread = 3.0;
-  // Worker processes that run the starts in parallel (the pool that
-  // DiagnosisOptions calls num_workers); 0: one per hardware core.
-  int num_threads = 0;
+  // Worker processes that run the starts in parallel; 0: one per hardware
+  // core.
+  int num_workers = 0;
   unsigned seed = 1;
   // Start from the structure's own values instead of the direct estimate
   // (the direct estimate needs a polynomial law).
@@ -87,18 +92,11 @@ using ProgressCallback = std::function<void(double fraction, const std::string& 
 // Makes a fresh problem (each parallel start owns one).
 using ProblemFactory = std::function<std::unique_ptr<FitProblem>()>;
 
-// The exact harmonic-balance model (IdentificationProblem), started from the
-// direct estimate of the polynomial law.
+// The model of options.family, started from the direct estimate of the
+// polynomial law. Throws InputError (or std::invalid_argument) for data the
+// family cannot hold, before any start.
 IdentifyResult Identify(const FitData& data, const ModelStructure& structure, const IdentifyOptions& options,
                         const ProgressCallback& progress = {});
-
-// The seed's multiple-scales model (MultipleScalesProblem, `--model ms`),
-// started from the same direct estimate; options.model.beam_loss_factor is
-// the beam's known η, the other model options are the harmonic balance's.
-// Throws std::invalid_argument for data the model cannot hold (sensor
-// masses, more than 3 fitted harmonics, another law).
-IdentifyResult IdentifyMultipleScales(const FitData& data, const ModelStructure& structure,
-                                      const IdentifyOptions& options, const ProgressCallback& progress = {});
 
 // Any model: starts at `first` (physical parameters, structure order) and
 // around it; the structure gives names, units and bounds.

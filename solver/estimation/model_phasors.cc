@@ -1,6 +1,5 @@
 #include "solver/estimation/model_phasors.h"
 
-#include <complex>
 #include <stdexcept>
 #include <string>
 
@@ -19,12 +18,8 @@ std::vector<Eigen::MatrixXcd> ModelPhasors(const FitData& data, FitProblem& prob
     const Eigen::MatrixXcd y = problem.DisplacementPhasors(x, i, positions);
     Eigen::MatrixXcd m = Eigen::MatrixXcd::Zero(data.channels.size(), data.num_fit_harmonics);
     for (std::size_t c = 0; c < data.channels.size(); ++c) {
-      for (int k = 1; k <= data.num_fit_harmonics && k < y.cols(); ++k) {
-        std::complex<double> value = y(c, k);
-        for (int d = 0; d < data.channels[c].derivative_order; ++d)
-          value *= std::complex<double>(0.0, k * data.steps[i].omega_rad_s);
-        m(c, k - 1) = value;
-      }
+      for (int k = 1; k <= data.num_fit_harmonics && k < y.cols(); ++k)
+        m(c, k - 1) = DerivativeFactor(data.channels[c].derivative_order, k * data.steps[i].omega_rad_s) * y(c, k);
     }
     out.push_back(std::move(m));
   }

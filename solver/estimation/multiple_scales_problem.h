@@ -131,7 +131,6 @@ class MultipleScalesProblem : public FitProblem {
   Eigen::VectorXcd StepState(const Eigen::VectorXd& x, int step) const override {
     return Eigen::VectorXcd::Constant(1, ModalPhasor_m(x, step));
   }
-  std::string StepStateName() const override { return "modal_phasor_m"; }
 
  private:
   struct StepCache;

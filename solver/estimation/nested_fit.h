@@ -14,7 +14,7 @@
 namespace beamid::solver {
 
 struct NestedFitOptions {
-  IdentificationProblemOptions model;
+  ModelOptions model;
   int max_iterations = 100;
   double relative_tolerance = 1e-8;  // on the change of χ² and of the parameters
 

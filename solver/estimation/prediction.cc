@@ -1,6 +1,5 @@
 #include "solver/estimation/prediction.h"
 
-#include "solver/estimation/multiple_scales_problem.h"
 #include "solver/estimation/result_io.h"
 
 #include <algorithm>
@@ -14,54 +13,6 @@ namespace beamid::solver {
 namespace {
 
 using Complex = std::complex<double>;
-
-// Displacement phasors at x for every step with parameters p (warm-started).
-std::vector<Eigen::VectorXcd> SolveHarmonicBalance(const IdentifiedModel& model, const std::vector<double>& p, double x,
-                                    std::vector<bool>* converged) {
-  const hb::HarmonicBalance balance = IdentifiedHarmonicBalance(model, p);
-  std::vector<Eigen::VectorXcd> out;
-  for (std::size_t i = 0; i < model.steps.size(); ++i) {
-    const IdentifiedStep& s = model.steps[i];
-    const auto solution = balance.Solve(s.omega_rad_s, s.force_N,
-                                        hb::HarmonicBalance::ToReal(hb::PadHarmonics(s.theta_rad, model.num_harmonics)));
-    if (converged) (*converged)[i] = solution.converged;
-    out.push_back(balance.Displacements(solution, s.force_N, {x}).row(0).transpose());
-  }
-  return out;
-}
-
-// The same with the multiple-scales model: per step the root of the
-// amplitude equation nearest the identified U (the branch the test was on).
-std::vector<Eigen::VectorXcd> SolveMultipleScales(const IdentifiedModel& model, const std::vector<double>& p, double x,
-                                                  std::vector<bool>* converged) {
-  const hb::MultipleScalesModel ms = MakeMultipleScalesModel(model.beam.beam, model.force_position_m, model.structure, p);
-  std::vector<Eigen::VectorXcd> out;
-  for (std::size_t i = 0; i < model.steps.size(); ++i) {
-    const IdentifiedStep& s = model.steps[i];
-    Eigen::VectorXcd y = Eigen::VectorXcd::Zero(4);
-    bool solved = false;
-    try {
-      const std::vector<Complex> roots = ms.Solve(s.omega_rad_s, s.force_N[1]);
-      const Complex u = *std::min_element(roots.begin(), roots.end(), [&](Complex a, Complex b) {
-        return std::abs(a - s.modal_phasor_m) < std::abs(b - s.modal_phasor_m);
-      });
-      const hb::MultipleScalesModel::Harmonics h = ms.Response(x, u, s.omega_rad_s, s.force_N[1]);
-      y << h.h0_m, h.h1_m, h.h2_m, h.h3_m;
-      solved = true;
-    } catch (const std::runtime_error&) {
-      // An internal resonance at 2Ω or 3Ω: the model has no steady state here.
-    }
-    if (converged) (*converged)[i] = solved;
-    out.push_back(y);
-  }
-  return out;
-}
-
-std::vector<Eigen::VectorXcd> Solve(const IdentifiedModel& model, const std::vector<double>& p, double x,
-                                    std::vector<bool>* converged) {
-  return model.kind == "ms" ? SolveMultipleScales(model, p, x, converged)
-                            : SolveHarmonicBalance(model, p, x, converged);
-}
 
 }  // namespace
 
@@ -83,7 +34,7 @@ IdentifiedModel ReadIdentifiedModel(const std::filesystem::path& result_file) {
 
 IdentifiedModel ToIdentifiedModel(const ResultFile& result) {
   IdentifiedModel model;
-  model.kind = result.model.kind;
+  model.family = &FindModelFamily(result.model.kind);
   model.beam.beam = result.model.beam;
   model.beam.attachments.point_masses = result.model.sensor_masses;
   model.force_position_m = result.model.force_position_m;
@@ -118,8 +69,7 @@ IdentifiedModel ToIdentifiedModel(const ResultFile& result) {
                            .file = s.file,
                            .omega_rad_s = 2 * std::numbers::pi * s.frequency_hz,
                            .force_N = s.force_N,
-                           .theta_rad = s.theta_rad,
-                           .modal_phasor_m = s.modal_phasor_m});
+                           .state = s.state});
   return model;
 }
 
@@ -130,7 +80,7 @@ std::vector<PredictedStep> PredictAt(const IdentifiedModel& model, double positi
   const std::vector<double> p = model.structure.Values();
   const int np = static_cast<int>(p.size()), h = model.num_harmonics;
   std::vector<bool> converged(model.steps.size(), true);
-  const std::vector<Eigen::VectorXcd> nominal = Solve(model, p, position_m, &converged);
+  const std::vector<Eigen::VectorXcd> nominal = model.family->DisplacementAt(model, p, position_m, &converged);
   // ∂Y/∂p_j, j = 1..P, central differences of the re-solved model.
   std::vector<std::vector<Eigen::VectorXcd>> derivative(np);
   const auto bounds = model.structure.Bounds();
@@ -140,8 +90,8 @@ std::vector<PredictedStep> PredictAt(const IdentifiedModel& model, double positi
     std::vector<double> up = p, down = p;
     up[j] = std::min(p[j] + step, bounds[j].upper);
     down[j] = std::max(p[j] - step, bounds[j].lower);
-    const auto y_up = Solve(model, up, position_m, nullptr);
-    const auto y_down = Solve(model, down, position_m, nullptr);
+    const auto y_up = model.family->DisplacementAt(model, up, position_m, nullptr);
+    const auto y_down = model.family->DisplacementAt(model, down, position_m, nullptr);
     for (std::size_t i = 0; i < model.steps.size(); ++i)
       derivative[j].push_back((y_up[i] - y_down[i]) / (up[j] - down[j]));
   }

@@ -6,9 +6,8 @@
 //     perturbed model solved again),
 // and the steady-state time history over one period with a 95 % band.
 // The model is the one the parameters were fitted with (their values absorb
-// that model's own error): harmonic balance (kind "hb": harmonics 0..H,
-// all force harmonics) or multiple scales (kind "ms": harmonics 0..3 from the
-// force's fundamental, on the branch of the identified modal phasor).
+// that model's own error): its family (solver/estimation/model_family.h)
+// solves it at every step on the branch of the step's fitted state.
 #pragma once
 
 #include <complex>
@@ -19,6 +18,7 @@
 #include <Eigen/Core>
 
 #include "hb/harmonic_balance.h"
+#include "solver/estimation/model_family.h"
 #include "solver/estimation/model_structure.h"
 #include "solver/estimation/result_file.h"
 
@@ -29,15 +29,14 @@ struct IdentifiedStep {
   std::string file;
   double omega_rad_s = 0.0;
   Eigen::VectorXcd force_N;
-  Eigen::VectorXcd theta_rad;       // hb: Θ_0..Θ_H at the fit
-  std::complex<double> modal_phasor_m;  // ms: U at the fit
+  Eigen::VectorXcd state;  // the family's state at the fit (ModelFamily::StateName)
 };
 
 struct IdentifiedModel {
-  std::string kind = "hb";   // "hb" harmonic balance, "ms" multiple scales
+  const ModelFamily* family = &HarmonicBalanceFamily();
   hb::LinearBeamModel beam;  // nominal beam with sensor masses, before linear parameters
   double force_position_m = 0.0;
-  int num_harmonics = 5;     // H (3 for ms)
+  int num_harmonics = 5;     // H of the family's model
   ModelStructure structure;  // values = identified
   Eigen::MatrixXd covariance;
   std::vector<IdentifiedStep> steps;

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "hb/json_field.h"
+#include "solver/estimation/model_family.h"
 #include "hb/errors.h"
 #include "hb/text_file.h"
 
@@ -150,6 +151,11 @@ PredictionFile PredictionFileFromJson(const std::string& text, const std::string
   file.beamid_version = root.Has("beamid_version") ? root.String("beamid_version") : "";
   file.result_file = root.String("result");
   file.model_kind = root.String("model");
+  try {
+    FindModelFamily(file.model_kind);
+  } catch (const InputError&) {
+    root.At("model").Fail("is \"" + file.model_kind + "\"", "give one of " + ModelFamilyNames());
+  }
   file.position_m = root.Number("position_m");
   file.compared_channel = root.String("compared_channel");
   if (root.Has("compared_quantity")) {

@@ -3,7 +3,7 @@
 // the beam for every step of the fit, with its uncertainty, and, when a
 // campaign sensor sits there, the measured phasors beside the predicted ones.
 // Keys, as earlier files have them: command ("predict"), beamid_version,
-// result (the result.json), model ("hb" or "ms"), position_m,
+// result (the result.json), model (the model family's name), position_m,
 // compared_channel ("" when none), steps [{level, file, frequency_Hz,
 // converged, harmonics [{k, displacement_m: [re, im], displacement_std_m:
 // [std re, std im], acceleration_m_s2: [re, im], acceleration_amplitude_m_s2,
@@ -58,7 +58,7 @@ struct PredictionStep {
 struct PredictionFile {
   std::string beamid_version = kVersion;  // "" in files older than the key
   std::string result_file;                // as given to `beamid predict`
-  std::string model_kind = "hb";          // "hb" harmonic balance, "ms" multiple scales
+  std::string model_kind = "hb";          // the model family's name (solver/estimation/model_family.h)
   double position_m = 0.0;
   std::string compared_channel;   // "" when no campaign sensor sits at position_m
   std::string compared_quantity;  // "displacement_m", "velocity_m_s" or "acceleration_m_s2"; "" without one

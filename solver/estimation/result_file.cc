@@ -94,20 +94,14 @@ std::vector<HeldOutChannel> Validation(const FitData& validation, FitProblem& pr
 
 ResultFile MakeResultFile(const FitData& fit, const FitData& validation, FitProblem& problem,
                           const IdentifyResult& result, const ResultContext& context) {
-  // The file says which state each step holds by the model's kind alone.
-  const std::string expected_state = context.model_kind == "ms"   ? "modal_phasor_m"
-                                    : context.model_kind == "hb" ? "theta_rad"
-                                                                 : "";
-  if (problem.StepStateName() != expected_state)
-    throw std::logic_error("MakeResultFile: model kind '" + context.model_kind + "' but the problem's state is " +
-                           problem.StepStateName());
+  if (context.family == nullptr) throw std::logic_error("MakeResultFile: no model family");
   ResultFile out;
   out.beamid_version = kVersion;
   out.campaign = {.folder = context.campaign_folder,
                   .name = context.campaign_name,
                   .absolute_folder = context.campaign_absolute_folder};
   const ModelStructure& structure = problem.structure();
-  out.model = {.kind = context.model_kind,
+  out.model = {.kind = context.family->Name(),
                .law = structure.law->Name(),
                .beam = fit.beam,
                .force_position_m = fit.force_position_m,
@@ -156,13 +150,9 @@ ResultFile MakeResultFile(const FitData& fit, const FitData& validation, FitProb
   for (int i = 0; i < static_cast<int>(fit.steps.size()); ++i) {
     const FitStep& s = fit.steps[i];
     ResultStep step{.level = s.level, .file = s.file, .frequency_hz = FrequencyHz(s.omega_rad_s), .force_N = s.force_N};
-    const Eigen::VectorXcd state_phasors = problem.StepState(result.x, i);
-    if (context.model_kind == "ms") {
-      if (state_phasors.size() != 1) throw std::logic_error("MakeResultFile: a multiple-scales state is one phasor");
-      step.modal_phasor_m = state_phasors[0];
-    } else {
-      step.theta_rad = state_phasors;
-    }
+    step.state = problem.StepState(result.x, i);
+    if (step.state.size() != context.family->StateSize(problem.num_model_harmonics()))
+      throw std::logic_error("MakeResultFile: the problem's state is not its family's");
     out.steps.push_back(std::move(step));
   }
   return out;

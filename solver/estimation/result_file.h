@@ -18,6 +18,7 @@
 
 #include "hb/beam_properties.h"
 #include "hb/linear_attachments.h"
+#include "solver/estimation/model_family.h"
 #include "solver/estimation/multistart.h"
 
 namespace beamid::solver {
@@ -31,7 +32,7 @@ struct ResultCampaign {
 };
 
 struct ResultModel {
-  std::string kind = "hb";          // "hb" harmonic balance, "ms" multiple scales
+  std::string kind = "hb";          // the model family's name (solver/estimation/model_family.h)
   std::string law = "polynomial";   // hb::SupportLaw::Name()
   hb::BeamProperties beam;          // nominal, with the loss factor identify started from
   double force_position_m = 0.0;
@@ -133,8 +134,7 @@ struct ResultStep {
   std::string file;
   double frequency_hz = 0.0;
   Eigen::VectorXcd force_N;             // F_0..F_H
-  Eigen::VectorXcd theta_rad;           // kind "hb": Θ_0..Θ_H
-  std::complex<double> modal_phasor_m;  // kind "ms": U
+  Eigen::VectorXcd state;               // the family's (ModelFamily::StateName: Θ_0..Θ_H, U, …)
 };
 
 struct ResultFile {
@@ -160,7 +160,7 @@ struct ResultContext {
   std::string campaign_folder;
   std::string campaign_name;
   std::string campaign_absolute_folder;  // lets `beamid report` find the campaign from elsewhere; "" = none
-  std::string model_kind = "hb";         // "hb" or "ms": which model `problem` is
+  const ModelFamily* family = &HarmonicBalanceFamily();  // the family `problem` is of
 };
 
 // `problem` must be the problem whose variables result.x are (its internal

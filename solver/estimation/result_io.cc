@@ -9,6 +9,7 @@
 
 #include "hb/errors.h"
 #include "hb/text_file.h"
+#include "solver/estimation/model_family.h"
 
 namespace beamid::solver {
 namespace {
@@ -136,14 +137,11 @@ Json ValidationJson(const std::vector<HeldOutChannel>& validation) {
   return out;
 }
 
-Json StepsJson(const std::vector<ResultStep>& steps, const std::string& kind) {
+Json StepsJson(const std::vector<ResultStep>& steps, const ModelFamily& family) {
   Json out = Json::array();
   for (const auto& s : steps) {
     Json step = {{"level", s.level}, {"file", s.file}, {"frequency_Hz", s.frequency_hz}, {"force_N", PhasorsJson(s.force_N)}};
-    if (kind == "ms")
-      step["modal_phasor_m"] = Json::array({PhasorJson(s.modal_phasor_m)});
-    else
-      step["theta_rad"] = PhasorsJson(s.theta_rad);
+    step[family.StateName()] = PhasorsJson(s.state);
     out.push_back(std::move(step));
   }
   return out;
@@ -262,7 +260,11 @@ class Field {
 ResultModel ReadModel(const Field& m) {
   ResultModel out;
   if (m.Has("kind")) out.kind = m["kind"].String();  // files from before `--model ms` are hb
-  if (out.kind != "hb" && out.kind != "ms") m["kind"].Fail("is '" + out.kind + "': unknown model (hb or ms)");
+  try {
+    FindModelFamily(out.kind);
+  } catch (const InputError&) {
+    m["kind"].Fail("is '" + out.kind + "': unknown model (" + ModelFamilyNames() + ")");
+  }
   out.law = m["law"].String();
   const Field b = m["beam"];
   out.beam = {.length_m = b["length_m"].Number(),
@@ -391,21 +393,21 @@ std::vector<HeldOutChannel> ReadValidation(const Field& validation, int num_fit_
   return out;
 }
 
-std::vector<ResultStep> ReadSteps(const Field& steps, const std::string& kind) {
+std::vector<ResultStep> ReadSteps(const Field& steps, const ResultModel& model) {
+  const ModelFamily& family = FindModelFamily(model.kind);
+  const int state_size = family.StateSize(model.num_harmonics);
   std::vector<ResultStep> out;
   for (const Field& s : steps.Elements()) {
     ResultStep step{.level = s["level"].String(),
                     .file = s["file"].String(),
                     .frequency_hz = s["frequency_Hz"].Number(),
                     .force_N = s["force_N"].Phasors()};
-    if (kind == "ms") {
-      const Eigen::VectorXcd u = s["modal_phasor_m"].Phasors();
-      if (u.size() != 1 || step.force_N.size() < 2)
-        s["modal_phasor_m"].Fail("must hold one phasor and force_N the fundamental (step " + step.file + ")");
-      step.modal_phasor_m = u[0];
-    } else {
-      step.theta_rad = s["theta_rad"].Phasors();
-    }
+    const Field state = s[family.StateName()];
+    step.state = state.Phasors();
+    // A model is driven by the force's fundamental at least.
+    if (step.state.size() != state_size || step.force_N.size() < 2)
+      state.Fail("must hold " + std::to_string(state_size) + " phasor(s) for a " + family.Description() + " model of " +
+                 std::to_string(model.num_harmonics) + " harmonics, and force_N the fundamental (step " + step.file + ")");
     out.push_back(std::move(step));
   }
   return out;
@@ -431,7 +433,7 @@ ResultFile ReadResult(const Json& root, const std::string& source) {
   out.warnings = r["warnings"].Strings();
   out.quality = ReadQuality(r["quality"], out.model.num_fit_harmonics);
   if (r.Has("validation")) out.validation = ReadValidation(r["validation"], out.model.num_fit_harmonics);
-  out.steps = ReadSteps(r["steps"], out.model.kind);
+  out.steps = ReadSteps(r["steps"], out.model);
   return out;
 }
 
@@ -459,7 +461,7 @@ std::string ResultFileToJson(const ResultFile& result) {
   root["warnings"] = Json(result.warnings);
   root["quality"] = QualityJson(result.quality);
   if (!result.validation.empty()) root["validation"] = ValidationJson(result.validation);
-  root["steps"] = StepsJson(result.steps, result.model.kind);
+  root["steps"] = StepsJson(result.steps, FindModelFamily(result.model.kind));
   return root.dump(1) + "\n";
 }
 

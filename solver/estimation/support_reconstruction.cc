@@ -32,8 +32,7 @@ std::vector<ReconstructedStep> ReconstructSupport(const FitData& data, const hb:
       Complex numerator = 0.0;
       double denominator = 0.0;
       for (std::size_t c = 0; c < data.channels.size(); ++c) {
-        Complex factor(1.0);
-        for (int d = 0; d < data.channels[c].derivative_order; ++d) factor *= Complex(0.0, k * s.omega_rad_s);
+        const Complex factor = DerivativeFactor(data.channels[c].derivative_order, k * s.omega_rad_s);
         const Complex g = factor * linear.displacement_per_rotation(c, k);
         const Complex offset = factor * linear.displacement_per_force(c, k) * force;
         const double weight = 1.0 / std::pow(s.std_amplitude(c, k - 1), 2);

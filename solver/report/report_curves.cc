@@ -50,6 +50,33 @@ std::vector<ReportChannel> Channels(const ResultFile& result, const signal::Camp
   return out;
 }
 
+// An amplitude of displacement in the quantity of a channel of that
+// derivative order, at one frequency.
+double ToChannel(double displacement_m, double frequency_hz, int derivative_order) {
+  return displacement_m * std::pow(kTwoPi * frequency_hz, derivative_order);
+}
+
+// The single-nonlinear-mode fit across levels, drawn over the measured range
+// of amplitudes (nothing when the fit failed).
+void SingleModeFitCurve(const MeasuredBackbone& measured, int derivative_order, MeasuredNonlinearMode& mode) {
+  const SingleModeFit& fit = measured.fit;
+  if (!fit.ok) return;
+  mode.fit_form = fit.FormName();
+  mode.damping_trend = measured.damping_trend.verdict;
+  mode.damping_trend_z = measured.damping_trend.z;
+  constexpr int kCurvePoints = 60;
+  for (int k = 0; k <= kCurvePoints; ++k) {
+    const double a = measured.min_amplitude_m +
+                     (measured.max_amplitude_m - measured.min_amplitude_m) * k / static_cast<double>(kCurvePoints);
+    const double f = fit.NaturalFrequency_rad_s(a) / kTwoPi;
+    mode.fit.push_back({.amplitude = ToChannel(a, f, derivative_order),
+                        .frequency_hz = f,
+                        .frequency_std_hz = fit.NaturalFrequencyStd_rad_s(a) / kTwoPi,
+                        .damping_ratio = fit.DampingRatio(a),
+                        .damping_ratio_std = fit.DampingRatioStd(a)});
+  }
+}
+
 // The measured phase-resonance points of every level at `reference`, set
 // beside the model's backbone there (amplitudes of displacement).
 void MeasuredPhaseResonance(const signal::PhasorSet& phasors, const ReportChannel& reference,
@@ -69,7 +96,7 @@ void MeasuredPhaseResonance(const signal::PhasorSet& phasors, const ReportChanne
         }))
       curves.phase_resonance_warnings.push_back(warning);
   const auto to_channel = [&](double displacement_m, double frequency_hz) {
-    return displacement_m * std::pow(kTwoPi * frequency_hz, reference.derivative_order);
+    return ToChannel(displacement_m, frequency_hz, reference.derivative_order);
   };
   MeasuredNonlinearMode& mode = curves.measured_mode;
   for (const auto& level : measured.levels) {
@@ -102,22 +129,227 @@ void MeasuredPhaseResonance(const signal::PhasorSet& phasors, const ReportChanne
                                       .z = (f - model_f) / sigma,
                                       .note = level.quadrature_note});
   }
-  const SingleModeFit& fit = measured.fit;
-  if (!fit.ok) return;
-  mode.fit_form = fit.FormName();
-  mode.damping_trend = measured.damping_trend.verdict;
-  mode.damping_trend_z = measured.damping_trend.z;
-  constexpr int kCurvePoints = 60;
-  for (int k = 0; k <= kCurvePoints; ++k) {
-    const double a = measured.min_amplitude_m +
-                     (measured.max_amplitude_m - measured.min_amplitude_m) * k / static_cast<double>(kCurvePoints);
-    const double f = fit.NaturalFrequency_rad_s(a) / kTwoPi;
-    mode.fit.push_back({.amplitude = to_channel(a, f),
-                        .frequency_hz = f,
-                        .frequency_std_hz = fit.NaturalFrequencyStd_rad_s(a) / kTwoPi,
-                        .damping_ratio = fit.DampingRatio(a),
-                        .damping_ratio_std = fit.DampingRatioStd(a)});
+  SingleModeFitCurve(measured, reference.derivative_order, mode);
+}
+
+using Progress = std::function<void(double, const std::string&)>;
+
+void Report(const Progress& progress, double fraction, const std::string& what) {
+  if (progress) progress(fraction, what);
+}
+
+// The backbone and the phase resonances are drawn at the first fitted
+// channel: that is where the fit has the most say about the model.
+int ReferenceChannel(const std::vector<ReportChannel>& channels) {
+  for (std::size_t c = 0; c < channels.size(); ++c)
+    if (channels[c].fitted) return static_cast<int>(c);
+  return 0;
+}
+
+// Levels in campaign order (the order the test was run in).
+std::vector<std::string> LevelNames(const signal::PhasorSet& phasors) {
+  std::vector<std::string> names;
+  for (const auto& step : phasors.steps)
+    if (std::find(names.begin(), names.end(), step.level) == names.end()) names.push_back(step.level);
+  return names;
+}
+
+struct FrequencySpan {
+  double min_hz = 1e300, max_hz = 0.0;
+};
+
+// A level's measured points and mean force; `span` is the range of its steps,
+// which the model's curve must cover.
+LevelCurves MeasuredLevel(const signal::PhasorSet& phasors, const std::vector<ReportChannel>& channels,
+                          const std::string& name, FrequencySpan& span) {
+  LevelCurves level{.level = name};
+  double force_sum = 0.0;
+  for (const auto& step : phasors.steps) {
+    if (step.level != level.level) continue;
+    MeasuredPoint point{.frequency_hz = step.frequency_hz};
+    for (const auto& channel : channels) {
+      const signal::ChannelPhasors* p = step.Find(channel.channel);
+      point.amplitude.push_back(p ? p->Harmonic(1).Amplitude() : std::nan(""));
+    }
+    force_sum += step.force.Harmonic(1).Amplitude();
+    span.min_hz = std::min(span.min_hz, step.frequency_hz);
+    span.max_hz = std::max(span.max_hz, step.frequency_hz);
+    level.measured.push_back(std::move(point));
   }
+  level.force_amplitude_N = force_sum / static_cast<double>(level.measured.size());
+  return level;
+}
+
+// The model's frequency response under a pure sine of the level's mean force,
+// a little wider than the measured span so that its ends show.
+void TraceModelCurve(const hb::HarmonicBalance& balance, const std::vector<ReportChannel>& channels,
+                     const std::vector<double>& positions, const FrequencySpan& span, int max_points,
+                     const std::function<void(double)>& on_fraction, LevelCurves& level) {
+  Eigen::VectorXcd force = Eigen::VectorXcd::Zero(2);
+  force[1] = level.force_amplitude_N;
+  const double margin = 0.01 * (span.max_hz - span.min_hz) + 1e-3 * span.min_hz;
+  const auto summary = hb::TraceFrequencyResponse(
+      balance, force,
+      {.omega_start_rad_s = kTwoPi * (span.min_hz - margin), .omega_end_rad_s = kTwoPi * (span.max_hz + margin),
+       .max_points = max_points},
+      on_fraction);
+  level.model_complete = summary.reached_end;
+  level.model_message = summary.message;
+  for (const auto& p : summary.points) {
+    const hb::HarmonicBalanceSolution solution{.omega_rad_s = p.omega_rad_s, .theta_rad = p.theta_rad};
+    const Eigen::MatrixXcd y = balance.Displacements(solution, force, positions);
+    ModelCurvePoint point{.frequency_hz = p.omega_rad_s / kTwoPi, .stable = p.stable};
+    for (std::size_t c = 0; c < channels.size(); ++c)
+      point.amplitude.push_back(std::abs(
+          FromDisplacement(y(static_cast<Eigen::Index>(c), 1), channels[c].derivative_order, p.omega_rad_s)));
+    level.model.push_back(std::move(point));
+  }
+}
+
+// Measured and model curves of every level; the first half of the progress.
+std::vector<LevelCurves> FrequencyResponses(const hb::HarmonicBalance& balance, const signal::PhasorSet& phasors,
+                                            const std::vector<ReportChannel>& channels,
+                                            const std::vector<std::string>& level_names,
+                                            const ReportCurveOptions& options, const Progress& progress) {
+  const std::vector<double> positions = Positions(channels);
+  std::vector<LevelCurves> levels;
+  for (std::size_t l = 0; l < level_names.size(); ++l) {
+    FrequencySpan span;
+    LevelCurves level = MeasuredLevel(phasors, channels, level_names[l], span);
+    Report(progress, 0.5 * l / level_names.size(), "frequency response of level " + level.level);
+    TraceModelCurve(balance, channels, positions, span, options.frc_max_points,
+                    [&](double fraction) {
+                      Report(progress, 0.5 * (l + fraction) / level_names.size(), "frequency response");
+                    },
+                    level);
+    levels.push_back(std::move(level));
+  }
+  return levels;
+}
+
+// The model's backbone at the reference sensor over the identified steps'
+// range of |Θ_1| (empty when there is none or it fails: the page is still
+// worth having without it), also stored in the channel's quantity.
+std::vector<SensorBackbonePoint> ModelBackbone(const IdentifiedModel& model, const ReportChannel& reference,
+                                               int num_points, ReportCurves& curves) {
+  double theta_max = 0.0;
+  for (const auto& s : model.steps)
+    if (const Eigen::VectorXcd theta = model.family->SupportRotation_rad(s.state); theta.size() > 1)
+      theta_max = std::max(theta_max, std::abs(theta[1]));
+  std::vector<SensorBackbonePoint> model_backbone;
+  if (theta_max <= 0.0) return model_backbone;
+  try {
+    model_backbone = ModelBackboneAtSensor(model.structure.ApplyLinear(model.beam), *model.structure.law,
+                                           model.force_position_m, reference.position_m,
+                                           {.min_theta_amplitude_rad = theta_max / 30.0,
+                                            .max_theta_amplitude_rad = 1.3 * theta_max,
+                                            .num_points = num_points},
+                                           model.num_harmonics);
+  } catch (const std::runtime_error& error) {
+    curves.phase_resonance_warnings.push_back(std::string("the model's backbone: ") + error.what());
+  }
+  for (const auto& p : model_backbone)
+    curves.backbone.push_back(
+        {p.frequency_hz, ToChannel(p.amplitude_m, p.frequency_hz, reference.derivative_order), ""});
+  return model_backbone;
+}
+
+// The level's step of largest predicted acceleration (|Y_1|·f² ∝ it), where
+// the nonlinearity shows most; null when the level has no predicted step.
+const PredictedStep* LargestResponse(const std::vector<PredictedStep>& predicted, const std::string& level) {
+  const PredictedStep* best = nullptr;
+  for (const auto& p : predicted)
+    if (p.level == level && (!best || std::abs(p.displacement_m[1]) * p.frequency_hz * p.frequency_hz >
+                                          std::abs(best->displacement_m[1]) * best->frequency_hz * best->frequency_hz))
+      best = &p;
+  return best;
+}
+
+// The predicted history beside the recording's harmonics, resynthesised at
+// the prediction's times as acceleration.
+TimeHistory PredictedBesideMeasured(const PredictedStep& best, const signal::ChannelPhasors& channel,
+                                    int derivative_order, const std::string& level) {
+  TimeHistory history{.level = level, .frequency_hz = best.frequency_hz};
+  const double omega = kTwoPi * best.frequency_hz;
+  for (Eigen::Index n = 0; n < best.time_s.size(); ++n) {
+    const double t = best.time_s[n];
+    double a = 0.0;
+    for (const auto& harmonic : channel.harmonics) {
+      const double kw = harmonic.harmonic * omega;
+      Complex acc = harmonic.value;  // to acceleration: (ikω)^(2 − order)
+      for (int d = derivative_order; d < 2; ++d) acc *= Complex(0.0, kw);
+      a += std::real(acc * std::polar(1.0, kw * t));
+    }
+    history.time_s.push_back(t);
+    history.predicted.push_back(best.acceleration_m_s2[n]);
+    history.predicted_std.push_back(best.acceleration_std_m_s2[n]);
+    history.measured.push_back(a);
+  }
+  return history;
+}
+
+// Predicted and measured histories at the first held-out channel, one per level.
+void HeldOutHistories(const ResultFile& result, const signal::Campaign& campaign, const signal::PhasorSet& phasors,
+                      const IdentifiedModel& model, const std::vector<std::string>& level_names,
+                      int samples_per_period, ReportCurves& curves) {
+  if (result.validation.empty()) return;
+  curves.held_out_channel = result.validation.front().channel;
+  const auto it = std::find_if(curves.channels.begin(), curves.channels.end(),
+                               [&](const ReportChannel& c) { return c.channel == curves.held_out_channel; });
+  if (it == curves.channels.end())
+    throw std::invalid_argument("the held-out channel '" + curves.held_out_channel +
+                                "' of the result is not a sensor of campaign " + campaign.folder.string());
+  const std::vector<PredictedStep> predicted = PredictAt(model, it->position_m, samples_per_period);
+  for (const auto& name : level_names) {
+    const PredictedStep* best = LargestResponse(predicted, name);
+    if (!best) continue;
+    const signal::StepPhasors* measured = nullptr;
+    for (const auto& s : phasors.steps)
+      if (s.file == best->file) measured = &s;
+    const signal::ChannelPhasors* channel = measured ? measured->Find(curves.held_out_channel) : nullptr;
+    if (!channel) continue;
+    curves.time_histories.push_back(PredictedBesideMeasured(*best, *channel, it->derivative_order, name));
+  }
+}
+
+// Residual map of the fitted channels, from the fitted states; NaN where a
+// step has no identified state.
+ResidualMap Residuals(const ResultFile& result, const signal::Campaign& campaign, const signal::PhasorSet& phasors,
+                      const IdentifiedModel& model, const hb::HarmonicBalance& balance,
+                      const std::vector<ReportChannel>& channels) {
+  std::vector<std::string> fitted;
+  for (const auto& c : channels)
+    if (c.fitted) fitted.push_back(c.channel);
+  const int k_fit = result.model.num_fit_harmonics;
+  const FitData fit = MakeFitData(campaign, phasors, {.channels = fitted, .num_fit_harmonics = k_fit});
+  std::vector<double> fit_positions;
+  for (const auto& c : fit.channels) fit_positions.push_back(c.position_m);
+  ResidualMap residuals;
+  for (const auto& c : fit.channels)
+    for (int k = 1; k <= k_fit; ++k) residuals.rows.push_back(c.channel + " h" + std::to_string(k));
+  residuals.whitened_norm = Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(residuals.rows.size()),
+                                                      static_cast<Eigen::Index>(fit.steps.size()), std::nan(""));
+  for (std::size_t i = 0; i < fit.steps.size(); ++i) {
+    const FitStep& s = fit.steps[i];
+    residuals.step_level.push_back(s.level);
+    residuals.step_frequency_hz.push_back(s.omega_rad_s / kTwoPi);
+    const IdentifiedStep* identified = FindStep(model, s.file);
+    // A family whose state is not the support rotation has no residuals here.
+    const Eigen::VectorXcd theta = identified ? model.family->SupportRotation_rad(identified->state) : Eigen::VectorXcd();
+    if (theta.size() == 0) continue;
+    const hb::HarmonicBalanceSolution solution{.omega_rad_s = identified->omega_rad_s,
+                                               .theta_rad = hb::PadHarmonics(theta, model.num_harmonics)};
+    const Eigen::MatrixXcd y = balance.Displacements(solution, identified->force_N, fit_positions);
+    for (std::size_t c = 0; c < fit.channels.size(); ++c)
+      for (int k = 1; k <= k_fit; ++k) {
+        const Complex misfit = FromDisplacement(y(static_cast<Eigen::Index>(c), k), fit.channels[c].derivative_order,
+                                                k * identified->omega_rad_s) -
+                               s.measured(static_cast<Eigen::Index>(c), k - 1);
+        residuals.whitened_norm(static_cast<Eigen::Index>(c * k_fit + k - 1), static_cast<Eigen::Index>(i)) =
+            (s.whitening[c][k - 1] * Eigen::Vector2d(misfit.real(), misfit.imag())).norm();
+      }
+  }
+  return residuals;
 }
 
 }  // namespace
@@ -125,167 +357,26 @@ void MeasuredPhaseResonance(const signal::PhasorSet& phasors, const ReportChanne
 ReportCurves ComputeReportCurves(const ResultFile& result, const signal::Campaign& campaign,
                                  const signal::PhasorSet& phasors, const ReportCurveOptions& options,
                                  const std::function<void(double, const std::string&)>& progress) {
-  auto report = [&](double fraction, const std::string& what) {
-    if (progress) progress(fraction, what);
-  };
   const IdentifiedModel model = ToIdentifiedModel(result);
   const hb::HarmonicBalance balance = IdentifiedHarmonicBalance(model);
-  const int h = model.num_harmonics;
   ReportCurves curves;
   curves.channels = Channels(result, campaign);
-  const std::vector<double> positions = Positions(curves.channels);
-  for (std::size_t c = 0; c < curves.channels.size(); ++c)
-    if (curves.channels[c].fitted) {
-      curves.reference_channel = static_cast<int>(c);
-      break;
-    }
+  curves.reference_channel = ReferenceChannel(curves.channels);
+  const std::vector<std::string> level_names = LevelNames(phasors);
+  curves.levels = FrequencyResponses(balance, phasors, curves.channels, level_names, options, progress);
 
-  // Levels in campaign order, with the measured points and the mean force.
-  std::vector<std::string> level_names;
-  for (const auto& step : phasors.steps)
-    if (std::find(level_names.begin(), level_names.end(), step.level) == level_names.end())
-      level_names.push_back(step.level);
-  for (std::size_t l = 0; l < level_names.size(); ++l) {
-    LevelCurves level{.level = level_names[l]};
-    double force_sum = 0.0, f_min = 1e300, f_max = 0.0;
-    for (const auto& step : phasors.steps) {
-      if (step.level != level.level) continue;
-      MeasuredPoint point{.frequency_hz = step.frequency_hz};
-      for (const auto& channel : curves.channels) {
-        const signal::ChannelPhasors* p = step.Find(channel.channel);
-        point.amplitude.push_back(p ? p->Harmonic(1).Amplitude() : std::nan(""));
-      }
-      force_sum += step.force.Harmonic(1).Amplitude();
-      f_min = std::min(f_min, step.frequency_hz);
-      f_max = std::max(f_max, step.frequency_hz);
-      level.measured.push_back(std::move(point));
-    }
-    level.force_amplitude_N = force_sum / static_cast<double>(level.measured.size());
-    report(0.5 * l / level_names.size(), "frequency response of level " + level.level);
-    Eigen::VectorXcd force = Eigen::VectorXcd::Zero(2);
-    force[1] = level.force_amplitude_N;
-    const double margin = 0.01 * (f_max - f_min) + 1e-3 * f_min;
-    const auto summary = hb::TraceFrequencyResponse(
-        balance, force,
-        {.omega_start_rad_s = kTwoPi * (f_min - margin), .omega_end_rad_s = kTwoPi * (f_max + margin),
-         .max_points = options.frc_max_points},
-        [&](double fraction) { report(0.5 * (l + fraction) / level_names.size(), "frequency response"); });
-    level.model_complete = summary.reached_end;
-    level.model_message = summary.message;
-    for (const auto& p : summary.points) {
-      const hb::HarmonicBalanceSolution solution{.omega_rad_s = p.omega_rad_s, .theta_rad = p.theta_rad};
-      const Eigen::MatrixXcd y = balance.Displacements(solution, force, positions);
-      ModelCurvePoint point{.frequency_hz = p.omega_rad_s / kTwoPi, .stable = p.stable};
-      for (std::size_t c = 0; c < curves.channels.size(); ++c)
-        point.amplitude.push_back(
-            std::abs(FromDisplacement(y(static_cast<Eigen::Index>(c), 1), curves.channels[c].derivative_order,
-                                      p.omega_rad_s)));
-      level.model.push_back(std::move(point));
-    }
-    curves.levels.push_back(std::move(level));
-  }
-
-  // Backbone over the identified steps' range of |Θ_1|.
-  report(0.5, "backbone");
+  Report(progress, 0.5, "backbone");
   const ReportChannel& reference = curves.channels[static_cast<std::size_t>(curves.reference_channel)];
-  double theta_max = 0.0;
-  for (const auto& s : model.steps)
-    if (s.theta_rad.size() > 1) theta_max = std::max(theta_max, std::abs(s.theta_rad[1]));
-  std::vector<SensorBackbonePoint> model_backbone;
-  if (theta_max > 0.0) {
-    try {
-      model_backbone = ModelBackboneAtSensor(model.structure.ApplyLinear(model.beam), *model.structure.law,
-                                             model.force_position_m, reference.position_m,
-                                             {.min_theta_amplitude_rad = theta_max / 30.0,
-                                              .max_theta_amplitude_rad = 1.3 * theta_max,
-                                              .num_points = options.backbone_points},
-                                             h);
-    } catch (const std::runtime_error& error) {
-      // The page is still worth having without it.
-      curves.phase_resonance_warnings.push_back(std::string("the model's backbone: ") + error.what());
-    }
-    for (const auto& p : model_backbone)
-      curves.backbone.push_back(
-          {p.frequency_hz, p.amplitude_m * std::pow(kTwoPi * p.frequency_hz, reference.derivative_order), ""});
-  }
+  const std::vector<SensorBackbonePoint> model_backbone =
+      ModelBackbone(model, reference, options.backbone_points, curves);
   MeasuredPhaseResonance(phasors, reference, model_backbone, curves);
 
-  // Predicted and measured histories at the first held-out channel.
-  report(0.6, "prediction at the held-out channel");
-  if (!result.validation.empty()) {
-    curves.held_out_channel = result.validation.front().channel;
-    const auto it = std::find_if(curves.channels.begin(), curves.channels.end(),
-                                 [&](const ReportChannel& c) { return c.channel == curves.held_out_channel; });
-    if (it == curves.channels.end())
-      throw std::invalid_argument("the held-out channel '" + curves.held_out_channel +
-                                  "' of the result is not a sensor of campaign " + campaign.folder.string());
-    const std::vector<PredictedStep> predicted = PredictAt(model, it->position_m, options.samples_per_period);
-    for (const auto& name : level_names) {
-      const PredictedStep* best = nullptr;
-      for (const auto& p : predicted)
-        if (p.level == name && (!best || std::abs(p.displacement_m[1]) * p.frequency_hz * p.frequency_hz >
-                                             std::abs(best->displacement_m[1]) * best->frequency_hz * best->frequency_hz))
-          best = &p;
-      if (!best) continue;
-      const signal::StepPhasors* measured = nullptr;
-      for (const auto& s : phasors.steps)
-        if (s.file == best->file) measured = &s;
-      const signal::ChannelPhasors* channel = measured ? measured->Find(curves.held_out_channel) : nullptr;
-      if (!channel) continue;
-      TimeHistory history{.level = name, .frequency_hz = best->frequency_hz};
-      const double omega = kTwoPi * best->frequency_hz;
-      for (Eigen::Index n = 0; n < best->time_s.size(); ++n) {
-        const double t = best->time_s[n];
-        double a = 0.0;
-        for (const auto& harmonic : channel->harmonics) {
-          const double kw = harmonic.harmonic * omega;
-          Complex acc = harmonic.value;  // to acceleration: (ikω)^(2 − order)
-          for (int d = it->derivative_order; d < 2; ++d) acc *= Complex(0.0, kw);
-          a += std::real(acc * std::polar(1.0, kw * t));
-        }
-        history.time_s.push_back(t);
-        history.predicted.push_back(best->acceleration_m_s2[n]);
-        history.predicted_std.push_back(best->acceleration_std_m_s2[n]);
-        history.measured.push_back(a);
-      }
-      curves.time_histories.push_back(std::move(history));
-    }
-  }
+  Report(progress, 0.6, "prediction at the held-out channel");
+  HeldOutHistories(result, campaign, phasors, model, level_names, options.samples_per_period, curves);
 
-  // Residual map of the fitted channels, from the fitted states.
-  report(0.9, "residual map");
-  std::vector<std::string> fitted;
-  for (const auto& c : curves.channels)
-    if (c.fitted) fitted.push_back(c.channel);
-  const int k_fit = result.model.num_fit_harmonics;
-  const FitData fit = MakeFitData(campaign, phasors, {.channels = fitted, .num_fit_harmonics = k_fit});
-  std::vector<double> fit_positions;
-  for (const auto& c : fit.channels) fit_positions.push_back(c.position_m);
-  for (const auto& c : fit.channels)
-    for (int k = 1; k <= k_fit; ++k) curves.residuals.rows.push_back(c.channel + " h" + std::to_string(k));
-  curves.residuals.whitened_norm =
-      Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(curves.residuals.rows.size()),
-                                static_cast<Eigen::Index>(fit.steps.size()), std::nan(""));
-  for (std::size_t i = 0; i < fit.steps.size(); ++i) {
-    const FitStep& s = fit.steps[i];
-    curves.residuals.step_level.push_back(s.level);
-    curves.residuals.step_frequency_hz.push_back(s.omega_rad_s / kTwoPi);
-    const IdentifiedStep* identified = FindStep(model, s.file);
-    if (!identified) continue;
-    const hb::HarmonicBalanceSolution solution{.omega_rad_s = identified->omega_rad_s,
-                                               .theta_rad = hb::PadHarmonics(identified->theta_rad, h)};
-    const Eigen::MatrixXcd y = balance.Displacements(solution, identified->force_N, fit_positions);
-    for (std::size_t c = 0; c < fit.channels.size(); ++c)
-      for (int k = 1; k <= k_fit; ++k) {
-        const Complex misfit =
-            FromDisplacement(y(static_cast<Eigen::Index>(c), k), fit.channels[c].derivative_order,
-                             k * identified->omega_rad_s) -
-            s.measured(static_cast<Eigen::Index>(c), k - 1);
-        curves.residuals.whitened_norm(static_cast<Eigen::Index>(c * k_fit + k - 1), static_cast<Eigen::Index>(i)) =
-            (s.whitening[c][k - 1] * Eigen::Vector2d(misfit.real(), misfit.imag())).norm();
-      }
-  }
-  report(1.0, "done");
+  Report(progress, 0.9, "residual map");
+  curves.residuals = Residuals(result, campaign, phasors, model, balance, curves.channels);
+  Report(progress, 1.0, "done");
   return curves;
 }
 

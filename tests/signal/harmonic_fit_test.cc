@@ -8,7 +8,7 @@
 
 #include "signal/frequency_estimator.h"
 #include "signal/harmonic_fit.h"
-#include "signal/internal/fftw_plan.h"
+#include "hb/fftw_real_transform.h"
 #include "tests/signal/synthetic_signal.h"
 
 namespace beamid::signal {
@@ -20,13 +20,13 @@ using testing::Tone;
 
 constexpr double kBiasLimitRel = 1e-4;  // the requirement
 
-TEST(RealFftTest, MatchesDirectDft) {
+TEST(FftwRealTransformTest, MatchesDirectDft) {
   for (int n : {2, 7, 64, 1000}) {
     std::mt19937 rng(static_cast<unsigned>(n));
     std::normal_distribution<double> normal;
     Eigen::VectorXd x(n);
     for (int i = 0; i < n; ++i) x(i) = normal(rng);
-    internal::RealFft fft(n);
+    hb::FftwRealTransform fft(n);
     std::vector<std::complex<double>> y(static_cast<std::size_t>(fft.num_bins()));
     fft.Forward(x.data(), y.data());
     for (int j = 0; j < fft.num_bins(); ++j) {
@@ -35,10 +35,10 @@ TEST(RealFftTest, MatchesDirectDft) {
       EXPECT_NEAR(std::abs(y[static_cast<std::size_t>(j)] - direct), 0.0, 1e-10 * n) << "n=" << n << " j=" << j;
     }
   }
-  internal::RealFft a(16);
-  internal::RealFft b = std::move(a);
+  hb::FftwRealTransform a(16);
+  hb::FftwRealTransform b = std::move(a);
   EXPECT_EQ(b.size(), 16);
-  EXPECT_THROW(internal::RealFft(1), std::invalid_argument);
+  EXPECT_THROW(hb::FftwRealTransform(1), std::invalid_argument);
 }
 
 // Noise-free records with random non-integer numbers of periods, random

@@ -81,8 +81,8 @@ class Determinism : public ::testing::Test {
   fs::path folder_;
 };
 
-TEST_F(Determinism, IdentifyGivesTheSameNumbersOnEveryRunAndWithOneThread) {
-  ExpectSameNumbers("identify " + campaign().string() + " --fit acc1,acc2 --validate acc3 --starts 5", "--threads 1");
+TEST_F(Determinism, IdentifyGivesTheSameNumbersOnEveryRunAndWithOneWorker) {
+  ExpectSameNumbers("identify " + campaign().string() + " --fit acc1,acc2 --validate acc3 --starts 5", "--workers 1");
 }
 
 TEST_F(Determinism, DiagnoseGivesTheSameNumbersOnEveryRunAndWithOneWorker) {

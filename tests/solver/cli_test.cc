@@ -111,7 +111,7 @@ TEST_F(CommandLine, OptionsOutOfRangeAreBadInputNamedBeforeAnyWork) {
     std::string arguments, named;
   } cases[] = {
       {"identify " + campaign + " --starts -1", "--starts"},
-      {"identify " + campaign + " --threads -3", "--threads"},
+      {"identify " + campaign + " --workers -3", "--workers"},
       {"identify " + campaign + " -H 0", "--harmonics"},
       {"identify " + campaign + " -H 100000", "--harmonics"},
       {"identify " + campaign + " -H 2", "--fit-harmonics 3 exceeds the model's -H 2"},
@@ -180,7 +180,7 @@ TEST_F(CommandLine, IdentifyWithTheMultipleScalesModelAndPredictWithIt) {
   EXPECT_THAT(ReadFile(result), HasSubstr("\"modal_phasor_m\""));
   run = Beamid("predict " + result + " --x 0.57 --campaign " + campaign + " -o " + (folder_ / "pred.json").string());
   ASSERT_EQ(run.exit_code, 0) << run.output;
-  EXPECT_THAT(run.output, HasSubstr("with the multiple-scales model"));
+  EXPECT_THAT(run.output, HasSubstr("with the multiple scales model"));
   EXPECT_THAT(ReadFile(folder_ / "pred.json"), HasSubstr("\"model\": \"ms\""));
   // Compared in the channel's own quantity (acc3 measures acceleration).
   EXPECT_THAT(ReadFile(folder_ / "pred.json"), HasSubstr("\"predicted_acceleration_m_s2\""));
@@ -191,7 +191,7 @@ TEST_F(CommandLine, IdentifyWithTheMultipleScalesModelAndPredictWithIt) {
   EXPECT_THAT(run.output, HasSubstr("fit at most 3 harmonics"));
   run = Beamid("identify " + campaign + " --fit acc1,acc2 --model duffing");
   EXPECT_EQ(run.exit_code, 2);
-  EXPECT_THAT(run.output, HasSubstr("--model duffing: unknown model (use hb"));
+  EXPECT_THAT(run.output, HasSubstr("--model: unknown model family 'duffing' (use hb, ms)"));
   // A channel fitted twice would count double.
   run = Beamid("identify " + campaign + " --fit acc1,acc1");
   EXPECT_EQ(run.exit_code, 2);

@@ -1,6 +1,7 @@
 // Identification on a campaign from the independent time-domain simulator
 // (never from the harmonic-balance model it fits): the paper's set-up, base
 // physics (polynomial support), three force levels, realistic noise.
+#include "solver/estimation/identification_problem.h"
 #include "solver/estimation/identify.h"
 
 #include <algorithm>
@@ -208,10 +209,10 @@ TEST_F(IdentifyOnSimulatedCampaign, GivesIdenticalNumbersOnEveryRunAndAnyNumberO
   const FitData fit = Fit({"acc1", "acc2"});
   IdentifyOptions options;
   options.num_starts = 4;
-  options.num_threads = 2;
+  options.num_workers = 2;
   const IdentifyResult parallel = Identify(fit, PolynomialModel({.k1_Nm_rad = 100.0}), options);
   const IdentifyResult again = Identify(fit, PolynomialModel({.k1_Nm_rad = 100.0}), options);
-  options.num_threads = 1;
+  options.num_workers = 1;
   const IdentifyResult serial = Identify(fit, PolynomialModel({.k1_Nm_rad = 100.0}), options);
   for (const IdentifyResult* other : {&again, &serial}) {
     ASSERT_EQ(other->parameters.size(), parallel.parameters.size());

@@ -47,6 +47,11 @@ IdentifyOptions KnownLossFactor() {
   return options;
 }
 
+IdentifyOptions MultipleScales(IdentifyOptions options) {
+  options.family = &MultipleScalesFamily();
+  return options;
+}
+
 double Value(const IdentifyResult& r, const std::string& name) {
   for (const auto& p : r.parameters)
     if (p.name == name) return p.value;
@@ -65,7 +70,7 @@ class MultipleScalesIdentification : public ::testing::Test {
   static void SetUpTestSuite() {
     simulated_ = new testing::SimulatedCampaign(kScenario, "beamid_ms_identify_slow_test");
     fit_ = new FitData(Fit({"acc1", "acc2"}));
-    ms_ = new IdentifyResult(IdentifyMultipleScales(*fit_, PolynomialModel({.k1_Nm_rad = 100.0}), KnownLossFactor()));
+    ms_ = new IdentifyResult(Identify(*fit_, PolynomialModel({.k1_Nm_rad = 100.0}), MultipleScales(KnownLossFactor())));
     hb_ = new IdentifyResult(Identify(*fit_, PolynomialModel({.k1_Nm_rad = 100.0}), KnownLossFactor()));
     Print("multiple scales", *ms_);
     Print("harmonic balance", *hb_);
@@ -111,7 +116,7 @@ TEST_F(MultipleScalesIdentification, PredictsTheHeldOutChannelAndAHiddenPosition
   problem.FeasiblePoint(ms_->starts[ms_->best_start].scaled_at);
   FitData fit_with_loss = *fit_;
   fit_with_loss.beam.loss_factor = kLossFactor;
-  const ResultFile report = MakeResultFile(fit_with_loss, Fit({"acc3"}), problem, *ms_, {.model_kind = "ms"});
+  const ResultFile report = MakeResultFile(fit_with_loss, Fit({"acc3"}), problem, *ms_, {.family = &MultipleScalesFamily()});
   EXPECT_EQ(report.model.kind, "ms");
   EXPECT_EQ(report.model.num_harmonics, 3);
   ASSERT_EQ(report.validation.size(), 1u);
@@ -122,7 +127,7 @@ TEST_F(MultipleScalesIdentification, PredictsTheHeldOutChannelAndAHiddenPosition
   const auto file = simulated_->folder / "ms_result.json";
   WriteResultFile(file, report);
   const IdentifiedModel model = ReadIdentifiedModel(file);
-  EXPECT_EQ(model.kind, "ms");
+  EXPECT_EQ(model.family, &MultipleScalesFamily());
   const std::vector<PredictedStep> predicted = PredictAt(model, 0.45);
   ASSERT_EQ(predicted.size(), fit_->steps.size());
   double worst_hidden = 0.0;
@@ -150,7 +155,7 @@ TEST_F(MultipleScalesIdentification, ThePapersOwnFlowOneStepTwoAccelerometers) {
   fit.steps = {fit.steps[chosen]};
   fit.levels = {"high"};
   const ModelStructure structure = PolynomialModel({.k1_Nm_rad = 100.0});
-  const IdentifyResult result = IdentifyMultipleScales(fit, structure, KnownLossFactor());
+  const IdentifyResult result = Identify(fit, structure, MultipleScales(KnownLossFactor()));
   MultipleScalesProblem problem(fit, structure, {.beam_loss_factor = kLossFactor});
   problem.FeasiblePoint(result.starts[result.best_start].scaled_at);
   const double omega = fit.steps[0].omega_rad_s;

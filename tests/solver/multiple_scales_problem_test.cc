@@ -11,7 +11,7 @@
 
 #include <gtest/gtest.h>
 
-#include "tests/support/paper_setup.h"
+#include "tests/support/synthetic_fit_data.h"
 
 namespace beamid::solver {
 namespace {
@@ -25,32 +25,8 @@ using hb::Complex;
 constexpr double kRelativeTolerance = 1e-5;
 constexpr double kStep = 1e-6;  // in the scaled variables (each ~1)
 
-// Any data will do for derivatives: a plain paper beam, acc1 and acc2,
-// three steps around the resonance at a level where the response is
-// single-valued (so that re-solving follows one branch).
-FitData SyntheticData() {
-  FitData data;
-  data.beam = testing::PaperBeam();
-  data.force_position_m = testing::kForcePosition_m;
-  data.channels = {{.channel = "acc1", .position_m = 0.1}, {.channel = "acc2", .position_m = 0.3}};
-  data.num_fit_harmonics = 3;
-  data.levels = {"low"};
-  int index = 0;
-  for (double frequency_hz : {53.4, 54.1, 54.9}) {
-    FitStep step{.level = "low", .file = "step" + std::to_string(index++) + ".csv",
-                 .omega_rad_s = 2 * std::numbers::pi * frequency_hz};
-    step.force_N = Eigen::VectorXcd::Zero(6);
-    step.force_N[1] = std::polar(0.5, 0.3);
-    step.force_N[3] = Complex(0.004, -0.002);
-    step.measured.resize(2, 3);
-    for (int c = 0; c < 2; ++c)
-      for (int k = 0; k < 3; ++k) step.measured(c, k) = Complex(1.0 + c, -2.0 + k) * std::pow(0.02, k);
-    step.whitening.assign(2, std::vector<Eigen::Matrix2d>(3, Eigen::Matrix2d::Identity() / 0.01));
-    step.std_amplitude = Eigen::MatrixXd::Constant(2, 3, 0.01);
-    data.steps.push_back(step);
-  }
-  return data;
-}
+// Any data will do for derivatives.
+FitData SyntheticData() { return testing::SyntheticFitData(); }
 
 ModelStructure Structure() {
   ModelStructure structure = PolynomialModel({});

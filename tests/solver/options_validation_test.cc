@@ -26,11 +26,11 @@ namespace {
 using beamid::testing::ExpectRefused;
 
 TEST(OptionsValidation, DefaultsAreValid) {
-  EXPECT_NO_THROW(IdentificationProblemOptions{}.Validate());
+  EXPECT_NO_THROW(ModelOptions{}.Validate());
   EXPECT_NO_THROW(MultipleScalesProblemOptions{}.Validate());
   EXPECT_NO_THROW(FitDataOptions{}.Validate());
   EXPECT_NO_THROW(NestedFitOptions{}.Validate());
-  EXPECT_NO_THROW(internal::IpoptOptions{}.Validate());
+  EXPECT_NO_THROW(IpoptOptions{}.Validate());
   EXPECT_NO_THROW(IdentifyOptions{}.Validate());
   EXPECT_NO_THROW(MeasuredBackboneOptions{}.Validate());
   EXPECT_NO_THROW(SingleModeFitOptions{}.Validate());
@@ -49,15 +49,15 @@ TEST(OptionsValidation, FitDataRefusesEachFieldOutOfRange) {
 TEST(OptionsValidation, FitProblemsRefuseEachFieldOutOfRange) {
   const FitData data;
   const ModelStructure structure;
-  auto refused = [&](const IdentificationProblemOptions& options, const std::string& field) {
+  auto refused = [&](const ModelOptions& options, const std::string& field) {
     ExpectRefused([&] { IdentificationProblem(data, structure, options); }, field);
     ExpectRefused([&] { NestedFit(data, structure, {}, {.model = options}); }, field);
     ExpectRefused([&] { Identify(data, structure, {.model = options}); }, field);
   };
-  refused({.num_harmonics = 0}, "IdentificationProblemOptions.num_harmonics");
-  refused({.num_harmonics = 51}, "IdentificationProblemOptions.num_harmonics");
+  refused({.num_harmonics = 0}, "ModelOptions.num_harmonics");
+  refused({.num_harmonics = 51}, "ModelOptions.num_harmonics");
   refused({.num_harmonics = 5, .num_time_samples = 8}, "num_time_samples");
-  refused({.beam_loss_factor = 1.0}, "IdentificationProblemOptions.beam_loss_factor");
+  refused({.beam_loss_factor = 1.0}, "ModelOptions.beam_loss_factor");
 
   auto refused_ms = [&](const MultipleScalesProblemOptions& options, const std::string& field) {
     ExpectRefused([&] { MultipleScalesProblem(data, structure, options); }, field);
@@ -78,15 +78,16 @@ TEST(OptionsValidation, IdentifyRefusesEachFieldOutOfRange) {
     IdentifyOptions options;
     change(options);
     ExpectRefused([&] { Identify(data, structure, options); }, field);
-    ExpectRefused([&] { IdentifyMultipleScales(data, structure, options); }, field);
+    options.family = &MultipleScalesFamily();
+    ExpectRefused([&] { Identify(data, structure, options); }, field);
     ExpectRefused([&] { IdentifyWith([] { return std::unique_ptr<FitProblem>(); }, structure, {}, options); },
                   field);
   };
   refused([](IdentifyOptions& o) { o.num_starts = -1; }, "num_starts");
   refused([](IdentifyOptions& o) { o.num_starts = 1001; }, "num_starts");
   refused([](IdentifyOptions& o) { o.start_spread = 1.0; }, "start_spread");
-  refused([](IdentifyOptions& o) { o.num_threads = -1; }, "num_threads");
-  refused([](IdentifyOptions& o) { o.num_threads = 257; }, "num_threads");
+  refused([](IdentifyOptions& o) { o.num_workers = -1; }, "num_workers");
+  refused([](IdentifyOptions& o) { o.num_workers = 257; }, "num_workers");
   refused([](IdentifyOptions& o) { o.decisive_chi_square_gap = 0.0; }, "decisive_chi_square_gap");
   refused([](IdentifyOptions& o) { o.ipopt.max_iterations = 0; }, "IpoptOptions.max_iterations");
   refused([](IdentifyOptions& o) { o.ipopt.tolerance = 0.0; }, "IpoptOptions.tolerance");

@@ -149,7 +149,7 @@ ResultFile HarmonicBalanceResult() {
                        .file = "level " + std::to_string(i) + "/step.csv",
                        .frequency_hz = 52.0 + 0.45 * i,
                        .force_N = Phasors(8, 700 + 20 * i),
-                       .theta_rad = Phasors(8, 800 + 20 * i)});
+                       .state = Phasors(8, 800 + 20 * i)});
   return r;
 }
 
@@ -184,7 +184,7 @@ ResultFile MultipleScalesResult() {
                        .file = "low/step_" + std::to_string(i) + ".csv",
                        .frequency_hz = 53.6 + 0.5 * i,
                        .force_N = Phasors(4, 900 + 10 * i),
-                       .modal_phasor_m = Complex(Distinct(950 + i) * 1e-4, -Distinct(960 + i) * 1e-5)});
+                       .state = Eigen::VectorXcd::Constant(1, Complex(Distinct(950 + i) * 1e-4, -Distinct(960 + i) * 1e-5))});
   return r;
 }
 
@@ -331,8 +331,7 @@ void ExpectSame(const ResultFile& a, const ResultFile& b) {
     EXPECT_EQ(a.steps[i].file, b.steps[i].file);
     EXPECT_EQ(a.steps[i].frequency_hz, b.steps[i].frequency_hz);
     EXPECT_TRUE(Same(a.steps[i].force_N, b.steps[i].force_N));
-    EXPECT_TRUE(Same(a.steps[i].theta_rad, b.steps[i].theta_rad));
-    EXPECT_TRUE(Same(a.steps[i].modal_phasor_m, b.steps[i].modal_phasor_m));
+    EXPECT_TRUE(Same(a.steps[i].state, b.steps[i].state));
   }
 }
 
@@ -391,7 +390,7 @@ TEST(ResultFile, WrittenFileReadsBackAndGivesTheIdentifiedModel) {
   ExpectSame(original, ReadResultFile(file));
   const IdentifiedModel model = ReadIdentifiedModel(file);
   std::filesystem::remove(file);
-  EXPECT_EQ(model.kind, "hb");
+  EXPECT_EQ(model.family, &HarmonicBalanceFamily());
   EXPECT_EQ(model.num_harmonics, 7);
   EXPECT_EQ(model.beam.beam.thickness_m, 0.0051);
   ASSERT_EQ(model.beam.attachments.point_masses.size(), 2u);
@@ -401,12 +400,12 @@ TEST(ResultFile, WrittenFileReadsBackAndGivesTheIdentifiedModel) {
   EXPECT_TRUE(Same(model.covariance, original.covariance));
   ASSERT_EQ(model.steps.size(), 3u);
   EXPECT_DOUBLE_EQ(model.steps[2].omega_rad_s, 2 * std::numbers::pi * (52.0 + 0.9));
-  EXPECT_TRUE(Same(model.steps[2].theta_rad, original.steps[2].theta_rad));
+  EXPECT_TRUE(Same(model.steps[2].state, original.steps[2].state));
   EXPECT_TRUE(Same(model.steps[2].force_N, original.steps[2].force_N));
 
   const IdentifiedModel ms = ToIdentifiedModel(MultipleScalesResult());
-  EXPECT_EQ(ms.kind, "ms");
-  EXPECT_EQ(ms.steps[1].modal_phasor_m, MultipleScalesResult().steps[1].modal_phasor_m);
+  EXPECT_EQ(ms.family, &MultipleScalesFamily());
+  EXPECT_EQ(ms.steps[1].state, MultipleScalesResult().steps[1].state);
 }
 
 // result.json as the writer before the typed result wrote it: keys sorted,
@@ -496,7 +495,7 @@ TEST(ResultFile, AFileOfTheEarlierWriterStillReads) {
   EXPECT_EQ(r.validation[0].steps[0].harmonics[1].predicted, Complex(0.0012, 0.0001));
   EXPECT_EQ(r.validation[0].steps[0].harmonics[0].relative_error, 0.004);
   ASSERT_EQ(r.steps.size(), 1u);
-  EXPECT_EQ(r.steps[0].theta_rad[1], Complex(0.001, -0.0002));
+  EXPECT_EQ(r.steps[0].state[1], Complex(0.001, -0.0002));
   EXPECT_EQ(r.steps[0].force_N[2], Complex(0.01, -0.02));
   EXPECT_EQ(r.warnings, (std::vector<std::string>{"the fit is worse than the phasor uncertainties allow"}));
 
@@ -576,7 +575,7 @@ TEST(ResultFile, AFieldOfTheWrongTypeIsRefusedNamingTheFileAndTheField) {
       {[](Json& j) { j["fit"]["starts"][0]["converged"] = 1; }, "field 'fit.starts[0].converged' must be true or false"},
       {[](Json& j) { j["fit"]["starts"][1]["states_seeded"] = "guessed"; },
        "field 'fit.starts[1].states_seeded' must be \"measured\" or \"feasible\""},
-      {[](Json& j) { j["model"]["kind"] = "duffing"; }, "field 'model.kind' is 'duffing': unknown model (hb or ms)"},
+      {[](Json& j) { j["model"]["kind"] = "duffing"; }, "field 'model.kind' is 'duffing': unknown model (hb, ms)"},
       {[](Json& j) { j["warnings"] = "none"; }, "field 'warnings' must be an array (it is string)"},
       {[](Json& j) { j["quality"] = Json::array(); }, "field 'quality' must be an object (it is array)"},
       {[](Json& j) { j["covariance"].erase(4); }, "field 'covariance' must have 5 rows, one per parameter"},
@@ -592,7 +591,8 @@ TEST(ResultFile, AFieldOfTheWrongTypeIsRefusedNamingTheFileAndTheField) {
     j["steps"][0]["modal_phasor_m"].push_back(Json::array({1.0, 2.0}));
   });
   EXPECT_THAT(InputErrorOf([&] { ResultFileFromJson(text, "ms.json"); }),
-              HasSubstr("ms.json: field 'steps[0].modal_phasor_m' must hold one phasor and force_N the fundamental"));
+              HasSubstr("ms.json: field 'steps[0].modal_phasor_m' must hold 1 phasor(s) for a multiple scales model of 3 "
+                        "harmonics, and force_N the fundamental"));
 }
 
 TEST(ResultFile, AModelPredictCannotRebuildIsRefusedNamingTheFileAndTheField) {

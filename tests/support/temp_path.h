@@ -21,4 +21,14 @@ inline std::filesystem::path UniqueTempPath(const std::string& name) {
   return std::filesystem::temp_directory_path() / (name + "_" + std::to_string(::getpid()) + "_" + test);
 }
 
+// A temporary file removed when the test ends, also when an assertion ends
+// it early.
+struct TempFile {
+  std::filesystem::path path;
+  explicit TempFile(const std::string& name) : path(UniqueTempPath(name)) {}
+  ~TempFile() { std::filesystem::remove(path); }
+  TempFile(const TempFile&) = delete;
+  TempFile& operator=(const TempFile&) = delete;
+};
+
 }  // namespace beamid::testing

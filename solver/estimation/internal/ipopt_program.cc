@@ -1,7 +1,6 @@
 #include "solver/estimation/internal/ipopt_program.h"
 
 #include "hb/errors.h"
-#include "hb/option_checks.h"
 
 #include <exception>
 #include <stdexcept>
@@ -131,16 +130,6 @@ std::string StatusTextOf(Ipopt::ApplicationReturnStatus status) {
 }  // namespace
 
 std::string IpoptStatusText(int status) { return StatusTextOf(static_cast<Ipopt::ApplicationReturnStatus>(status)); }
-
-void IpoptOptions::Validate() const {
-  using namespace option_checks;
-  RequireAtLeast("IpoptOptions.max_iterations", max_iterations, 1);
-  RequirePositive("IpoptOptions.tolerance", tolerance);
-  RequirePositive("IpoptOptions.constraint_tolerance", constraint_tolerance);
-  RequireNonNegative("IpoptOptions.max_cpu_seconds (0: no limit)", max_cpu_seconds);
-  // Ipopt's own range of print_level.
-  RequireInRange("IpoptOptions.print_level", print_level, 0, 12);
-}
 
 IpoptOutcome RunIpopt(FitProblem& problem, const Eigen::VectorXd& start, const IpoptOptions& options) {
   options.Validate();

@@ -54,22 +54,6 @@ void SendResult(int fd, std::int64_t index, const std::string& result, const std
 
 }  // namespace
 
-void RunInWorkers(int num_jobs, int num_workers, const std::function<std::vector<double>(int)>& job,
-                  const std::function<void(int, const std::vector<double>&, const std::string&, int)>& collect) {
-  // The doubles' bytes as they are in memory: the same process image reads them.
-  RunTextJobsInWorkers(
-      num_jobs, num_workers,
-      [&](int i) {
-        const std::vector<double> values = job(i);
-        return std::string(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(double));
-      },
-      [&](int i, const std::string& bytes, const std::string& error, int done) {
-        std::vector<double> values(bytes.size() / sizeof(double));
-        std::memcpy(values.data(), bytes.data(), values.size() * sizeof(double));
-        collect(i, values, error, done);
-      });
-}
-
 void RunTextJobsInWorkers(int num_jobs, int num_workers, const std::function<std::string(int)>& job,
                           const std::function<void(int, const std::string&, const std::string&, int)>& collect) {
   if (num_workers <= 1 || num_jobs <= 1) {

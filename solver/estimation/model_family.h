@@ -1,0 +1,72 @@
+// A model family: one way of computing the beam's periodic steady state
+// with its support, e.g. the exact harmonic balance of the clamped beam
+// (IdentificationProblem: per step the harmonics Θ_0..Θ_H of the support
+// rotation θ = y'(L), with D(kω)·Θ_k + M_k(Θ) = B(kω)·F_k) or the seed's
+// method of multiple scales (MultipleScalesProblem: per step the modal
+// phasor U of the first mode, with the solvability condition S(U) = 0).
+// Everything that identify, predict, diagnose and report need of a model
+// goes through this interface — build the fit problem, name and size its
+// state, rebuild the identified model's response at any position — so a
+// new family (another beam damping law, say) is one new file implementing
+// it and one line in ModelFamilies().
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "solver/estimation/model_options.h"
+
+namespace beamid::solver {
+
+struct FitData;
+class FitProblem;
+struct IdentifiedModel;
+struct ModelStructure;
+
+class ModelFamily {
+ public:
+  virtual ~ModelFamily() = default;
+
+  // The key of result.json's "model.kind" and of `--model`.
+  virtual std::string Name() const = 0;
+  // For people: "harmonic balance".
+  virtual std::string Description() const = 0;
+  // result.json's name of a step's state ("theta_rad", "modal_phasor_m"),
+  // and how many complex phasors it holds in a model of H harmonics.
+  virtual std::string StateName() const = 0;
+  virtual int StateSize(int num_harmonics) const = 0;
+  // The highest harmonic the family's model gives when H is asked for.
+  virtual int ModelHarmonics(int requested_harmonics) const = 0;
+
+  // Throws InputError (or std::invalid_argument) for data or a structure
+  // the family cannot hold, before any work is spent on it.
+  virtual void CheckCanHold(const FitData& data, const ModelStructure& structure,
+                            const ModelOptions& options) const = 0;
+  virtual std::unique_ptr<FitProblem> MakeProblem(const FitData& data, const ModelStructure& structure,
+                                                  const ModelOptions& options) const = 0;
+
+  // The identified model with parameters p (structure order) at every one of
+  // its steps: the displacement phasors Y_0..Y_H at position_m, on the branch
+  // of the step's fitted state. converged[i] (when given) says whether step i
+  // has a steady state.
+  virtual std::vector<Eigen::VectorXcd> DisplacementAt(const IdentifiedModel& model, const std::vector<double>& p,
+                                                       double position_m, std::vector<bool>* converged) const = 0;
+  // The support rotation's harmonics Θ_0..Θ_H in a step's state, when the
+  // family's state holds them (empty otherwise).
+  virtual Eigen::VectorXcd SupportRotation_rad(const Eigen::VectorXcd& state) const = 0;
+};
+
+// Every family, in the order `--model` lists them.
+std::vector<const ModelFamily*> ModelFamilies();
+// The family of this name; throws InputError naming the known ones.
+const ModelFamily& FindModelFamily(const std::string& name);
+// "hb, ms": for help texts and messages.
+std::string ModelFamilyNames();
+
+const ModelFamily& HarmonicBalanceFamily();  // "hb"
+const ModelFamily& MultipleScalesFamily();   // "ms"
+
+}  // namespace beamid::solver
