@@ -15,6 +15,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -66,6 +67,17 @@ class JsonField {
   }
   JsonField At(std::size_t i) const { return JsonField(value_[i], path_ + "[" + std::to_string(i) + "]", source_, format_, fix_); }
   std::size_t Size() const { return Array().value_.size(); }
+  // An array's elements, and an object's members in the file's order.
+  std::vector<JsonField> Elements() const {
+    std::vector<JsonField> out;
+    for (std::size_t i = 0; i < Size(); ++i) out.push_back(At(i));
+    return out;
+  }
+  std::vector<std::pair<std::string, JsonField>> Members() const {
+    std::vector<std::pair<std::string, JsonField>> out;
+    for (const auto& item : Object().value_.items()) out.emplace_back(item.key(), Child(item.value(), item.key()));
+    return out;
+  }
 
   const JsonField& Object() const {
     if (!value_.is_object()) Expected("an object");
@@ -79,6 +91,11 @@ class JsonField {
   double Number() const {
     if (value_.is_null()) return std::numeric_limits<double>::quiet_NaN();
     if (!value_.is_number()) Expected("a number (or null)");
+    return value_.get<double>();
+  }
+  // A number that the format never leaves out: null is refused.
+  double NumberNotNull() const {
+    if (!value_.is_number()) Expected("a number");
     return value_.get<double>();
   }
   int Integer() const {
@@ -127,7 +144,9 @@ class JsonField {
   }
 
   [[noreturn]] void Expected(const std::string& what) const {
-    Fail("must be " + what + ", not " + (value_.is_null() ? "null" : "a " + std::string(value_.type_name())));
+    const std::string type = value_.type_name();
+    const bool vowel = type.find_first_of("aeiou") == 0;
+    Fail("must be " + what + ", not " + (value_.is_null() ? "null" : (vowel ? "an " : "a ") + type));
   }
 
   const nlohmann::ordered_json& value_;

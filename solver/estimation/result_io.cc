@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "hb/errors.h"
+#include "hb/json_field.h"
 #include "hb/text_file.h"
 #include "solver/estimation/model_family.h"
 
@@ -149,163 +150,84 @@ Json StepsJson(const std::vector<ResultStep>& steps, const ModelFamily& family) 
 
 // ---- reading ----------------------------------------------------------------
 
-// A value of the file with its path ("fit.starts[2].objective"), so that
-// every complaint names the field.
-class Field {
- public:
-  Field(const Json& json, std::string path, const std::string& source)
-      : json_(&json), path_(std::move(path)), source_(&source) {}
+// Every value carries its path ("fit.starts[2].objective") for the complaint
+// (hb/json_field.h); null is NaN where the fit may not have given a number
+// (Number), refused where the model needs one (NumberNotNull).
+using Field = JsonField;
 
-  [[noreturn]] void Fail(const std::string& problem) const {
-    throw InputError(*source_ + ": field '" + path_ + "' " + problem + ". Fix: " + kFix);
-  }
+Complex FinitePhasor(const Field& f) {
+  if (f.Size() != 2) f.Fail("must be a phasor [re, im]");
+  return {f.At(0).NumberNotNull(), f.At(1).NumberNotNull()};
+}
 
-  bool Has(const std::string& key) const { return json_->is_object() && json_->contains(key); }
+Eigen::VectorXcd FinitePhasors(const Field& f) {
+  Eigen::VectorXcd out(static_cast<Eigen::Index>(f.Size()));
+  for (std::size_t i = 0; i < f.Size(); ++i) out[static_cast<Eigen::Index>(i)] = FinitePhasor(f.At(i));
+  return out;
+}
 
-  Field operator[](const std::string& key) const {
-    RequireObject();
-    const auto it = json_->find(key);
-    const std::string path = path_.empty() ? key : path_ + "." + key;
-    if (it == json_->end()) Field(*json_, path, *source_).Fail("is missing");
-    return Field(*it, path, *source_);
+// size × size, one row per parameter.
+Eigen::MatrixXd SquareMatrix(const Field& f, std::size_t size) {
+  if (f.Size() != size) f.Fail("must have " + std::to_string(size) + " rows, one per parameter");
+  Eigen::MatrixXd out(size, size);
+  for (std::size_t r = 0; r < size; ++r) {
+    const std::vector<double> row = f.At(r).Numbers();
+    if (row.size() != size) f.At(r).Fail("must have " + std::to_string(size) + " columns, one per parameter");
+    for (std::size_t c = 0; c < size; ++c) out(r, c) = row[c];
   }
-
-  std::vector<Field> Elements() const {
-    if (!json_->is_array()) Fail(std::string("must be an array (it is ") + json_->type_name() + ")");
-    std::vector<Field> out;
-    for (std::size_t i = 0; i < json_->size(); ++i)
-      out.emplace_back((*json_)[i], path_ + "[" + std::to_string(i) + "]", *source_);
-    return out;
-  }
-
-  std::vector<std::pair<std::string, Field>> Members() const {
-    RequireObject();
-    std::vector<std::pair<std::string, Field>> out;
-    for (auto it = json_->begin(); it != json_->end(); ++it)
-      out.emplace_back(it.key(), Field(it.value(), path_ + "." + it.key(), *source_));
-    return out;
-  }
-
-  std::size_t Size() const { return json_->size(); }
-
-  double Number() const {
-    if (!json_->is_number()) Fail(std::string("must be a number (it is ") + json_->type_name() + ")");
-    return json_->get<double>();
-  }
-  // A statistic the fit may not have given: null (a NaN when written) is NaN.
-  double NumberOrNaN() const {
-    return json_->is_null() ? std::numeric_limits<double>::quiet_NaN() : Number();
-  }
-  int Integer() const {
-    const double value = json_->is_number() ? json_->get<double>() : std::nan("");
-    if (!json_->is_number() || value != std::floor(value) || std::abs(value) > std::numeric_limits<int>::max())
-      Fail(std::string("must be an integer (it is ") + (json_->is_number() ? json_->dump() : json_->type_name()) + ")");
-    return static_cast<int>(value);
-  }
-  bool Boolean() const {
-    if (!json_->is_boolean()) Fail(std::string("must be true or false (it is ") + json_->type_name() + ")");
-    return json_->get<bool>();
-  }
-  std::string String() const {
-    if (!json_->is_string()) Fail(std::string("must be a string (it is ") + json_->type_name() + ")");
-    return json_->get<std::string>();
-  }
-
-  std::vector<std::string> Strings() const {
-    std::vector<std::string> out;
-    for (const Field& e : Elements()) out.push_back(e.String());
-    return out;
-  }
-  std::vector<double> NumbersOrNaN() const {
-    std::vector<double> out;
-    for (const Field& e : Elements()) out.push_back(e.NumberOrNaN());
-    return out;
-  }
-  // [re, im]; `nan_allowed` for the statistics of a prediction.
-  Complex Phasor(bool nan_allowed = false) const {
-    const std::vector<Field> parts = Elements();
-    if (parts.size() != 2) Fail("must be a phasor [re, im]");
-    return nan_allowed ? Complex(parts[0].NumberOrNaN(), parts[1].NumberOrNaN())
-                       : Complex(parts[0].Number(), parts[1].Number());
-  }
-  Eigen::VectorXcd Phasors() const {
-    const std::vector<Field> items = Elements();
-    Eigen::VectorXcd out(static_cast<Eigen::Index>(items.size()));
-    for (std::size_t i = 0; i < items.size(); ++i) out[static_cast<Eigen::Index>(i)] = items[i].Phasor();
-    return out;
-  }
-  // size × size, one row per parameter.
-  Eigen::MatrixXd SquareMatrix(std::size_t size) const {
-    const std::vector<Field> rows = Elements();
-    if (rows.size() != size) Fail("must have " + std::to_string(size) + " rows, one per parameter");
-    Eigen::MatrixXd out(size, size);
-    for (std::size_t r = 0; r < size; ++r) {
-      const std::vector<double> row = rows[r].NumbersOrNaN();
-      if (row.size() != size) rows[r].Fail("must have " + std::to_string(size) + " columns, one per parameter");
-      for (std::size_t c = 0; c < size; ++c) out(r, c) = row[c];
-    }
-    return out;
-  }
-
- private:
-  void RequireObject() const {
-    if (!json_->is_object()) Fail(std::string("must be an object (it is ") + json_->type_name() + ")");
-  }
-
-  const Json* json_;
-  std::string path_;
-  const std::string* source_;
-};
+  return out;
+}
 
 ResultModel ReadModel(const Field& m) {
   ResultModel out;
-  if (m.Has("kind")) out.kind = m["kind"].String();  // files from before `--model ms` are hb
+  if (m.Has("kind")) out.kind = m.String("kind");  // files from before `--model ms` are hb
   try {
     FindModelFamily(out.kind);
   } catch (const InputError&) {
-    m["kind"].Fail("is '" + out.kind + "': unknown model (" + ModelFamilyNames() + ")");
+    m.At("kind").Fail("is '" + out.kind + "': unknown model (" + ModelFamilyNames() + ")");
   }
-  out.law = m["law"].String();
-  const Field b = m["beam"];
-  out.beam = {.length_m = b["length_m"].Number(),
-              .width_m = b["width_m"].Number(),
-              .thickness_m = b["thickness_m"].Number(),
-              .youngs_modulus_Pa = b["youngs_modulus_Pa"].Number(),
-              .density_kg_m3 = b["density_kg_m3"].Number(),
-              .loss_factor = b.Has("loss_factor") ? b["loss_factor"].Number() : 0.0};
+  out.law = m.String("law");
+  const Field b = m.At("beam");
+  out.beam = {.length_m = b.At("length_m").NumberNotNull(),
+              .width_m = b.At("width_m").NumberNotNull(),
+              .thickness_m = b.At("thickness_m").NumberNotNull(),
+              .youngs_modulus_Pa = b.At("youngs_modulus_Pa").NumberNotNull(),
+              .density_kg_m3 = b.At("density_kg_m3").NumberNotNull(),
+              .loss_factor = b.Has("loss_factor") ? b.At("loss_factor").NumberNotNull() : 0.0};
   try {
     out.beam.Validate();
   } catch (const std::invalid_argument& e) {
     b.Fail(std::string("is not a beam's (") + e.what() + ")");
   }
-  out.force_position_m = m["force_position_m"].Number();
-  for (const Field& mass : m["sensor_masses"].Elements())
-    out.sensor_masses.push_back({.position_m = mass["position_m"].Number(), .mass_kg = mass["mass_kg"].Number()});
-  out.fit_channels = m["fit_channels"].Strings();
+  out.force_position_m = m.At("force_position_m").NumberNotNull();
+  for (const Field& mass : m.At("sensor_masses").Elements())
+    out.sensor_masses.push_back(
+        {.position_m = mass.At("position_m").NumberNotNull(), .mass_kg = mass.At("mass_kg").NumberNotNull()});
+  out.fit_channels = m.At("fit_channels").Strings();
   // The ranges identify takes (-H 1..50, --fit-harmonics 1..H).
-  out.num_harmonics = m["num_harmonics"].Integer();
-  if (out.num_harmonics < 1 || out.num_harmonics > 50) m["num_harmonics"].Fail("must lie in 1..50");
-  out.num_fit_harmonics = m["num_fit_harmonics"].Integer();
+  out.num_harmonics = m.Integer("num_harmonics");
+  if (out.num_harmonics < 1 || out.num_harmonics > 50) m.At("num_harmonics").Fail("must lie in 1..50");
+  out.num_fit_harmonics = m.Integer("num_fit_harmonics");
   if (out.num_fit_harmonics < 1 || out.num_fit_harmonics > out.num_harmonics)
-    m["num_fit_harmonics"].Fail("must lie in 1..num_harmonics (" + std::to_string(out.num_harmonics) + ")");
+    m.At("num_fit_harmonics").Fail("must lie in 1..num_harmonics (" + std::to_string(out.num_harmonics) + ")");
   return out;
 }
 
 std::vector<ResultParameter> ReadParameters(const Field& root) {
-  const std::vector<std::string> order = root["parameter_order"].Strings();
-  const Field parameters = root["parameters"];
+  const std::vector<std::string> order = root.At("parameter_order").Strings();
+  const Field parameters = root.At("parameters");
   if (parameters.Members().size() != order.size())
-    parameters.Fail("holds " + std::to_string(parameters.Size()) + " parameters but parameter_order names " +
+    parameters.Fail("holds " + std::to_string(parameters.Members().size()) + " parameters but parameter_order names " +
                     std::to_string(order.size()));
   std::vector<ResultParameter> out;
   for (const auto& name : order) {
-    const Field p = parameters[name];
-    const std::vector<double> ci95 = p["ci95"].NumbersOrNaN();
-    if (ci95.size() != 2) p["ci95"].Fail("must be [low, high]");
+    const Field p = parameters.At(name);
+    const std::vector<double> ci95 = p.At("ci95").Numbers();
+    if (ci95.size() != 2) p.At("ci95").Fail("must be [low, high]");
     out.push_back({.name = name,
-                   .unit = p["unit"].String(),
-                   .value = p["value"].Number(),
-                   .std = p["std"].NumberOrNaN(),
+                   .unit = p.String("unit"),
+                   .value = p.At("value").NumberNotNull(),
+                   .std = p.Number("std"),
                    .lower_95 = ci95[0],
                    .upper_95 = ci95[1]});
   }
@@ -314,38 +236,38 @@ std::vector<ResultParameter> ReadParameters(const Field& root) {
 
 ResultFit ReadFit(const Field& f) {
   ResultFit out;
-  out.chi_square = f["chi_square"].NumberOrNaN();
-  out.degrees_of_freedom = f["degrees_of_freedom"].Integer();
-  out.reduced_chi_square = f["reduced_chi_square"].NumberOrNaN();
-  out.seconds = f["seconds"].Number();
-  for (const Field& s : f["starts"].Elements()) {
-    const std::string seeded = s["states_seeded"].String();
-    if (seeded != "measured" && seeded != "feasible") s["states_seeded"].Fail("must be \"measured\" or \"feasible\"");
-    out.starts.push_back({.start = s["start"].NumbersOrNaN(),
-                          .parameters = s["parameters"].NumbersOrNaN(),
-                          .objective = s["objective"].NumberOrNaN(),
-                          .converged = s["converged"].Boolean(),
-                          .iterations = s["iterations"].Integer(),
-                          .status = s["status"].String(),
+  out.chi_square = f.Number("chi_square");
+  out.degrees_of_freedom = f.Integer("degrees_of_freedom");
+  out.reduced_chi_square = f.Number("reduced_chi_square");
+  out.seconds = f.At("seconds").NumberNotNull();
+  for (const Field& s : f.At("starts").Elements()) {
+    const std::string seeded = s.String("states_seeded");
+    if (seeded != "measured" && seeded != "feasible") s.At("states_seeded").Fail("must be \"measured\" or \"feasible\"");
+    out.starts.push_back({.start = s.At("start").Numbers(),
+                          .parameters = s.At("parameters").Numbers(),
+                          .objective = s.Number("objective"),
+                          .converged = s.Boolean("converged"),
+                          .iterations = s.Integer("iterations"),
+                          .status = s.String("status"),
                           .states_seeded = seeded == "measured" ? StartRoute::kMeasuredStates : StartRoute::kFeasibleStates,
-                          .branch_repairs = s["branch_repairs"].Integer()});
+                          .branch_repairs = s.Integer("branch_repairs")});
   }
-  out.best_start = f["best_start"].Integer();
+  out.best_start = f.Integer("best_start");
   if (out.best_start < 0 || out.best_start >= static_cast<int>(std::max<std::size_t>(out.starts.size(), 1)))
-    f["best_start"].Fail("must be the index of one of fit.starts");
-  out.starts_at_best = f["starts_at_best"].Integer();
-  for (const Field& m : f["minima"].Elements())
-    out.minima.push_back({.parameters = m["parameters"].NumbersOrNaN(),
-                          .chi_square = m["chi_square"].NumberOrNaN(),
-                          .num_starts = m["starts"].Integer()});
-  out.second_minimum_chi_square_gap = f["second_minimum_chi_square_gap"].NumberOrNaN();
-  out.minimum_decisive = f["minimum_decisive"].Boolean();
-  const Field d = f["direct_estimate"];
-  out.direct_estimate = {.k1_Nm_rad = d["k1"].NumberOrNaN(),
-                         .k2_Nm_rad2 = d["k2"].NumberOrNaN(),
-                         .k3_Nm_rad3 = d["k3"].NumberOrNaN(),
-                         .c_Nms_rad = d["c"].NumberOrNaN(),
-                         .relative_residual = d["relative_residual"].NumberOrNaN()};
+    f.At("best_start").Fail("must be the index of one of fit.starts");
+  out.starts_at_best = f.Integer("starts_at_best");
+  for (const Field& m : f.At("minima").Elements())
+    out.minima.push_back({.parameters = m.At("parameters").Numbers(),
+                          .chi_square = m.Number("chi_square"),
+                          .num_starts = m.Integer("starts")});
+  out.second_minimum_chi_square_gap = f.Number("second_minimum_chi_square_gap");
+  out.minimum_decisive = f.Boolean("minimum_decisive");
+  const Field d = f.At("direct_estimate");
+  out.direct_estimate = {.k1_Nm_rad = d.Number("k1"),
+                         .k2_Nm_rad2 = d.Number("k2"),
+                         .k3_Nm_rad3 = d.Number("k3"),
+                         .c_Nms_rad = d.Number("c"),
+                         .relative_residual = d.Number("relative_residual")};
   return out;
 }
 
@@ -355,11 +277,11 @@ std::vector<ChannelQuality> ReadQuality(const Field& quality, int num_fit_harmon
     ChannelQuality q{.channel = channel};
     for (int k = 0; k < num_fit_harmonics; ++k) {
       std::vector<LevelQuality> per_level;
-      for (const auto& [level, entry] : per_harmonic[HarmonicKey(k)].Members())
+      for (const auto& [level, entry] : per_harmonic.At(HarmonicKey(k)).Members())
         per_level.push_back({.level = level,
-                             .relative_rms_error = entry["relative_rms_error"].NumberOrNaN(),
-                             .chi_square = entry["chi_square"].NumberOrNaN(),
-                             .num_steps = entry["steps"].Integer()});
+                             .relative_rms_error = entry.Number("relative_rms_error"),
+                             .chi_square = entry.Number("chi_square"),
+                             .num_steps = entry.Integer("steps")});
       q.harmonics.push_back(std::move(per_level));
     }
     out.push_back(std::move(q));
@@ -371,20 +293,20 @@ std::vector<HeldOutChannel> ReadValidation(const Field& validation, int num_fit_
   std::vector<HeldOutChannel> out;
   for (const auto& [name, v] : validation.Members()) {
     HeldOutChannel channel{.channel = name,
-                           .position_m = v["position_m"].Number(),
-                           .worst_h1_relative_error = v["worst_h1_relative_error"].NumberOrNaN(),
-                           .worst_h3_relative_error = v["worst_h3_relative_error"].NumberOrNaN(),
-                           .measurable_relative_std = v["measurable_relative_std"].Number(),
-                           .measurable_steps_h1 = v["measurable_steps_h1"].Integer(),
-                           .measurable_steps_h3 = v["measurable_steps_h3"].Integer()};
-    for (const Field& s : v["steps"].Elements()) {
-      HeldOutStep step{.level = s["level"].String(), .file = s["file"].String(), .frequency_hz = s["frequency_Hz"].Number()};
+                           .position_m = v.At("position_m").NumberNotNull(),
+                           .worst_h1_relative_error = v.Number("worst_h1_relative_error"),
+                           .worst_h3_relative_error = v.Number("worst_h3_relative_error"),
+                           .measurable_relative_std = v.At("measurable_relative_std").NumberNotNull(),
+                           .measurable_steps_h1 = v.Integer("measurable_steps_h1"),
+                           .measurable_steps_h3 = v.Integer("measurable_steps_h3")};
+    for (const Field& s : v.At("steps").Elements()) {
+      HeldOutStep step{.level = s.String("level"), .file = s.String("file"), .frequency_hz = s.At("frequency_Hz").NumberNotNull()};
       for (int k = 0; k < num_fit_harmonics; ++k) {
         const std::string h = HarmonicKey(k);
-        step.harmonics.push_back({.relative_error = s[h + "_relative_error"].NumberOrNaN(),
-                                  .measured_relative_std = s[h + "_measured_relative_std"].NumberOrNaN(),
-                                  .predicted = s[h + "_predicted"].Phasor(true),
-                                  .measured = s[h + "_measured"].Phasor(true)});
+        step.harmonics.push_back({.relative_error = s.Number(h + "_relative_error"),
+                                  .measured_relative_std = s.Number(h + "_measured_relative_std"),
+                                  .predicted = s.At(h + "_predicted").Phasor(),
+                                  .measured = s.At(h + "_measured").Phasor()});
       }
       channel.steps.push_back(std::move(step));
     }
@@ -398,12 +320,12 @@ std::vector<ResultStep> ReadSteps(const Field& steps, const ResultModel& model) 
   const int state_size = family.StateSize(model.num_harmonics);
   std::vector<ResultStep> out;
   for (const Field& s : steps.Elements()) {
-    ResultStep step{.level = s["level"].String(),
-                    .file = s["file"].String(),
-                    .frequency_hz = s["frequency_Hz"].Number(),
-                    .force_N = s["force_N"].Phasors()};
-    const Field state = s[family.StateName()];
-    step.state = state.Phasors();
+    ResultStep step{.level = s.String("level"),
+                    .file = s.String("file"),
+                    .frequency_hz = s.At("frequency_Hz").NumberNotNull(),
+                    .force_N = FinitePhasors(s.At("force_N"))};
+    const Field state = s.At(family.StateName());
+    step.state = FinitePhasors(state);
     // A model is driven by the force's fundamental at least.
     if (step.state.size() != state_size || step.force_N.size() < 2)
       state.Fail("must hold " + std::to_string(state_size) + " phasor(s) for a " + family.Description() + " model of " +
@@ -414,26 +336,26 @@ std::vector<ResultStep> ReadSteps(const Field& steps, const ResultModel& model) 
 }
 
 ResultFile ReadResult(const Json& root, const std::string& source) {
-  if (!root.is_object() || !root.contains("format") || root["format"] != std::string(kResultFormat))
+  if (!root.contains("format") || root["format"] != std::string(kResultFormat))
     throw InputError(source + ": not a beamid result (format must be beamid-result/1). Fix: give the result.json "
                      "that 'beamid identify' wrote");
-  const Field r(root, "", source);
+  const Field r(root, "", source, kResultFormat, kFix);
   ResultFile out;
-  if (r.Has("beamid_version")) out.beamid_version = r["beamid_version"].String();
-  const Field campaign = r["campaign"];
-  out.campaign.folder = campaign["folder"].String();
-  out.campaign.name = campaign["name"].String();
-  if (campaign.Has("absolute_folder")) out.campaign.absolute_folder = campaign["absolute_folder"].String();
-  out.model = ReadModel(r["model"]);
+  if (r.Has("beamid_version")) out.beamid_version = r.String("beamid_version");
+  const Field campaign = r.At("campaign");
+  out.campaign.folder = campaign.String("folder");
+  out.campaign.name = campaign.String("name");
+  if (campaign.Has("absolute_folder")) out.campaign.absolute_folder = campaign.String("absolute_folder");
+  out.model = ReadModel(r.At("model"));
   out.parameters = ReadParameters(r);
-  out.linear_parameters = r["linear_parameters"].Strings();
-  out.covariance = r["covariance"].SquareMatrix(out.parameters.size());
-  out.correlation = r["correlation"].SquareMatrix(out.parameters.size());
-  out.fit = ReadFit(r["fit"]);
-  out.warnings = r["warnings"].Strings();
-  out.quality = ReadQuality(r["quality"], out.model.num_fit_harmonics);
-  if (r.Has("validation")) out.validation = ReadValidation(r["validation"], out.model.num_fit_harmonics);
-  out.steps = ReadSteps(r["steps"], out.model);
+  out.linear_parameters = r.At("linear_parameters").Strings();
+  out.covariance = SquareMatrix(r.At("covariance"), out.parameters.size());
+  out.correlation = SquareMatrix(r.At("correlation"), out.parameters.size());
+  out.fit = ReadFit(r.At("fit"));
+  out.warnings = r.At("warnings").Strings();
+  out.quality = ReadQuality(r.At("quality"), out.model.num_fit_harmonics);
+  if (r.Has("validation")) out.validation = ReadValidation(r.At("validation"), out.model.num_fit_harmonics);
+  out.steps = ReadSteps(r.At("steps"), out.model);
   return out;
 }
 
@@ -466,13 +388,8 @@ std::string ResultFileToJson(const ResultFile& result) {
 }
 
 ResultFile ResultFileFromJson(const std::string& text, const std::string& source) {
-  Json root;
-  try {
-    root = Json::parse(text);
-  } catch (const Json::exception& e) {  // syntax, and numbers beyond double (1e400)
-    throw InputError(source + ": not valid JSON (" + e.what() + "). Fix: " + kFix);
-  }
-  return ReadResult(root, source);
+  // Syntax, a root that is no object, and numbers beyond double (1e400).
+  return ReadResult(ParseJsonObject(text, source, "beamid result", kFix), source);
 }
 
 void WriteResultFile(const std::filesystem::path& file, const ResultFile& result) {

@@ -528,7 +528,7 @@ TEST(ResultFile, AWrongFormatOrNoJsonIsRefusedNamingTheFile) {
   message = InputErrorOf([] { ResultFileFromJson("[1, 2]", "list.json"); });
   EXPECT_THAT(message, HasSubstr("list.json: not a beamid result"));
   message = InputErrorOf([] { ResultFileFromJson(R"({"format": "beamid-result/1",)", "cut.json"); });
-  EXPECT_THAT(message, HasSubstr("cut.json: not valid JSON"));
+  EXPECT_THAT(message, HasSubstr("cut.json: not JSON"));
   const std::filesystem::path missing = testing::UniqueTempPath("no_such_result.json");
   message = InputErrorOf([&] { ReadResultFile(missing); });
   EXPECT_THAT(message, HasSubstr(missing.string()));
@@ -541,15 +541,15 @@ TEST(ResultFile, AMissingFieldIsRefusedNamingTheFileAndTheField) {
     std::function<void(Json&)> edit;
     const char* field;
   } cases[] = {
-      {[](Json& j) { j["fit"].erase("chi_square"); }, "field 'fit.chi_square' is missing"},
-      {[](Json& j) { j.erase("steps"); }, "field 'steps' is missing"},
-      {[](Json& j) { j["steps"][1].erase("theta_rad"); }, "field 'steps[1].theta_rad' is missing"},
-      {[](Json& j) { j["fit"]["starts"][2].erase("status"); }, "field 'fit.starts[2].status' is missing"},
-      {[](Json& j) { j["quality"]["acc1"].erase("h2"); }, "field 'quality.acc1.h2' is missing"},
+      {[](Json& j) { j["fit"].erase("chi_square"); }, "field \"fit.chi_square\" is missing"},
+      {[](Json& j) { j.erase("steps"); }, "field \"steps\" is missing"},
+      {[](Json& j) { j["steps"][1].erase("theta_rad"); }, "field \"steps[1].theta_rad\" is missing"},
+      {[](Json& j) { j["fit"]["starts"][2].erase("status"); }, "field \"fit.starts[2].status\" is missing"},
+      {[](Json& j) { j["quality"]["acc1"].erase("h2"); }, "field \"quality.acc1.h2\" is missing"},
       {[](Json& j) { j["validation"]["acc3"]["steps"][0].erase("h3_predicted"); },
-       "field 'validation.acc3.steps[0].h3_predicted' is missing"},
-      {[](Json& j) { j["parameters"].erase("k3"); }, "field 'parameters' holds 4 parameters but parameter_order names 5"},
-      {[](Json& j) { j["campaign"].erase("name"); }, "field 'campaign.name' is missing"},
+       "field \"validation.acc3.steps[0].h3_predicted\" is missing"},
+      {[](Json& j) { j["parameters"].erase("k3"); }, "field \"parameters\" holds 4 parameters but parameter_order names 5"},
+      {[](Json& j) { j["campaign"].erase("name"); }, "field \"campaign.name\" is missing"},
   };
   for (const auto& c : cases) {
     const std::string text = Edited(hb, c.edit);
@@ -565,21 +565,21 @@ TEST(ResultFile, AFieldOfTheWrongTypeIsRefusedNamingTheFileAndTheField) {
     std::function<void(Json&)> edit;
     const char* message;
   } cases[] = {
-      {[](Json& j) { j["model"]["num_harmonics"] = "seven"; }, "field 'model.num_harmonics' must be an integer (it is string)"},
-      {[](Json& j) { j["model"]["num_fit_harmonics"] = 2.5; }, "field 'model.num_fit_harmonics' must be an integer (it is 2.5)"},
-      {[](Json& j) { j["model"]["num_fit_harmonics"] = 8; }, "field 'model.num_fit_harmonics' must lie in 1..num_harmonics (7)"},
-      {[](Json& j) { j["model"]["beam"]["length_m"] = -0.6; }, "field 'model.beam' is not a beam's (beam: length_m"},
-      {[](Json& j) { j["parameters"]["k1"]["value"] = "150"; }, "field 'parameters.k1.value' must be a number (it is string)"},
+      {[](Json& j) { j["model"]["num_harmonics"] = "seven"; }, "field \"model.num_harmonics\" must be an integer, not a string"},
+      {[](Json& j) { j["model"]["num_fit_harmonics"] = 2.5; }, "field \"model.num_fit_harmonics\" must be an integer, not a number"},
+      {[](Json& j) { j["model"]["num_fit_harmonics"] = 8; }, "field \"model.num_fit_harmonics\" must lie in 1..num_harmonics (7)"},
+      {[](Json& j) { j["model"]["beam"]["length_m"] = -0.6; }, "field \"model.beam\" is not a beam's (beam: length_m"},
+      {[](Json& j) { j["parameters"]["k1"]["value"] = "150"; }, "field \"parameters.k1.value\" must be a number, not a string"},
       // NaN is allowed for a statistic, never for the model the prediction rebuilds.
-      {[](Json& j) { j["model"]["beam"]["length_m"] = nullptr; }, "field 'model.beam.length_m' must be a number (it is null)"},
-      {[](Json& j) { j["fit"]["starts"][0]["converged"] = 1; }, "field 'fit.starts[0].converged' must be true or false"},
+      {[](Json& j) { j["model"]["beam"]["length_m"] = nullptr; }, "field \"model.beam.length_m\" must be a number, not null"},
+      {[](Json& j) { j["fit"]["starts"][0]["converged"] = 1; }, "field \"fit.starts[0].converged\" must be true or false, not a number"},
       {[](Json& j) { j["fit"]["starts"][1]["states_seeded"] = "guessed"; },
-       "field 'fit.starts[1].states_seeded' must be \"measured\" or \"feasible\""},
-      {[](Json& j) { j["model"]["kind"] = "duffing"; }, "field 'model.kind' is 'duffing': unknown model (hb, ms)"},
-      {[](Json& j) { j["warnings"] = "none"; }, "field 'warnings' must be an array (it is string)"},
-      {[](Json& j) { j["quality"] = Json::array(); }, "field 'quality' must be an object (it is array)"},
-      {[](Json& j) { j["covariance"].erase(4); }, "field 'covariance' must have 5 rows, one per parameter"},
-      {[](Json& j) { j["steps"][0]["force_N"][1] = Json::array({1.0}); }, "field 'steps[0].force_N[1]' must be a phasor [re, im]"},
+       "field \"fit.starts[1].states_seeded\" must be \"measured\" or \"feasible\""},
+      {[](Json& j) { j["model"]["kind"] = "duffing"; }, "field \"model.kind\" is 'duffing': unknown model (hb, ms)"},
+      {[](Json& j) { j["warnings"] = "none"; }, "field \"warnings\" must be an array, not a string"},
+      {[](Json& j) { j["quality"] = Json::array(); }, "field \"quality\" must be an object, not an array"},
+      {[](Json& j) { j["covariance"].erase(4); }, "field \"covariance\" must have 5 rows, one per parameter"},
+      {[](Json& j) { j["steps"][0]["force_N"][1] = Json::array({1.0}); }, "field \"steps[0].force_N[1]\" must be a phasor [re, im]"},
   };
   for (const auto& c : cases) {
     const std::string text = Edited(hb, c.edit);
@@ -591,7 +591,7 @@ TEST(ResultFile, AFieldOfTheWrongTypeIsRefusedNamingTheFileAndTheField) {
     j["steps"][0]["modal_phasor_m"].push_back(Json::array({1.0, 2.0}));
   });
   EXPECT_THAT(InputErrorOf([&] { ResultFileFromJson(text, "ms.json"); }),
-              HasSubstr("ms.json: field 'steps[0].modal_phasor_m' must hold 1 phasor(s) for a multiple scales model of 3 "
+              HasSubstr("ms.json: field \"steps[0].modal_phasor_m\" must hold 1 phasor(s) for a multiple scales model of 3 "
                         "harmonics, and force_N the fundamental"));
 }
 
