@@ -44,6 +44,11 @@ PhasorSet ExtractCampaign(const Campaign& campaign, const ExtractOptions& option
         const Recording recording = ReadRecording(campaign, step, options.checks);
         try {
           set.steps[i] = EstimateStepPhasors(recording, campaign, step, options.estimator);
+          if (!recording.ignored_columns.empty()) {
+            std::string columns;
+            for (const auto& c : recording.ignored_columns) columns += (columns.empty() ? "" : ", ") + c;
+            set.steps[i].quality.warnings.push_back("columns no channel uses, ignored: " + columns);
+          }
         } catch (const NumericalError& e) {
           // Estimation fails on a recording only when its data do not hold
           // a steady sine: the user's to fix, in that file.

@@ -7,13 +7,13 @@
 #include <fstream>
 #include <numbers>
 #include <optional>
-#include <sstream>
 #include <vector>
 
 #include <Eigen/Geometry>
 
 #include "hb/text_file.h"
 #include "signal/input_error.h"
+#include "signal/table_reader.h"
 
 namespace beamid::signal {
 namespace {
@@ -41,22 +41,12 @@ std::string Lower(std::string text) {
   return text;
 }
 
-// The unit spellings we accept, normalised to the campaign format's words
-// (signal/quantity.h) plus Hz, rad/s, rad and deg; nullopt when unknown.
+// The unit spellings of signal/table_reader.h, without the time units (no
+// column of a phasor table is a time).
 std::optional<std::string> NormaliseUnit(const std::string& raw) {
-  static const std::array<std::pair<std::string_view, std::string_view>, 26> kSpellings = {{
-      {"hz", "Hz"},       {"1/s", "Hz"},       {"rad/s", "rad/s"},  {"rad_s", "rad/s"},
-      {"n", "N"},         {"m/s^2", "m/s^2"},  {"m/s2", "m/s^2"},   {"m/s²", "m/s^2"},
-      {"m_s2", "m/s^2"},  {"m_s^2", "m/s^2"},  {"ms-2", "m/s^2"},   {"m/s/s", "m/s^2"},
-      {"g", "g"},         {"m/s", "m/s"},      {"m_s", "m/s"},      {"ms-1", "m/s"},
-      {"mm/s", "mm/s"},   {"mm_s", "mm/s"},    {"m", "m"},          {"mm", "mm"},
-      {"rad", "rad"},     {"deg", "deg"},      {"degree", "deg"},   {"degrees", "deg"},
-      {"°", "deg"},       {"radian", "rad"},
-  }};
-  const std::string key = Lower(Trim(raw));
-  for (const auto& [spelling, unit] : kSpellings)
-    if (key == spelling) return std::string(unit);
-  return std::nullopt;
+  auto unit = signal::NormaliseUnit(raw);
+  if (unit == "s" || unit == "ms") return std::nullopt;
+  return unit;
 }
 
 // Splits "force [N]", "phase (deg)", "frequency_Hz", "acc_m_s2" into a
@@ -147,37 +137,16 @@ std::string_view RoleName(Role role) {
   return "";
 }
 
-std::vector<std::string> SplitCells(const std::string& line, char separator) {
-  std::vector<std::string> cells;
-  std::stringstream stream(line);
-  std::string cell;
-  while (std::getline(stream, cell, separator)) cells.push_back(cell);
-  if (!line.empty() && line.back() == separator) cells.emplace_back();
-  return cells;
-}
-
 class TableParser {
  public:
   TableParser(const std::string& source, const std::string& label) : source_(source), label_(label) {}
 
   FirstHarmonicLevel Parse(std::string_view text) {
-    std::istringstream stream{std::string(text)};
-    std::string line;
-    int line_number = 0;
-    bool have_header = false;
+    TableReader table(text, source_, {.blank_lines_inside = true});
+    if (!table.HasHeader()) Fail("", "the table is empty", "write a header line and one row per frequency step");
+    ReadHeader(table.Header());
     std::vector<std::array<double, 8>> rows;
-    while (std::getline(stream, line)) {
-      ++line_number;
-      if (!line.empty() && line.back() == '\r') line.pop_back();
-      if (Trim(line).empty() || Trim(line).starts_with('#')) continue;
-      if (!have_header) {
-        ReadHeader(line);
-        have_header = true;
-        continue;
-      }
-      rows.push_back(ReadRow(line, line_number));
-    }
-    if (!have_header) Fail("", "the table is empty", "write a header line and one row per frequency step");
+    while (table.NextRow()) rows.push_back(ReadRow(table));
     if (rows.size() < 3)
       Fail("", "only " + std::to_string(rows.size()) + " data rows", "a level needs at least 3 frequency steps");
     return MakeLevel(rows);
@@ -188,12 +157,10 @@ class TableParser {
     throw InputError(source_, "", column.empty() ? problem : "column '" + column + "': " + problem, fix);
   }
 
-  void ReadHeader(const std::string& line) {
-    separator_ = line.find(';') != std::string::npos ? ';' : line.find('\t') != std::string::npos ? '\t' : ',';
-    const auto cells = SplitCells(line, separator_);
+  void ReadHeader(const std::vector<HeaderCell>& cells) {
     num_cells_ = static_cast<int>(cells.size());
     for (int i = 0; i < num_cells_; ++i) {
-      const auto column = Classify(Trim(cells[i]), i);
+      const auto column = Classify(cells[static_cast<std::size_t>(i)].text, i);
       if (!column) continue;
       for (const auto& other : columns_)
         if (other.role == column->role && other.is_std == column->is_std)
@@ -206,7 +173,7 @@ class TableParser {
     for (Role role : {Role::kFrequency, Role::kForce, Role::kResponse, Role::kPhase}) {
       if (Main(role) != nullptr) continue;
       std::string found;
-      for (const auto& cell : cells) found += (found.empty() ? "'" : ", '") + Trim(cell) + "'";
+      for (const auto& cell : cells) found += (found.empty() ? "'" : ", '") + cell.text + "'";
       Fail(std::string(RoleName(role)), "missing (the header has " + found + ")",
            "name the columns frequency_Hz, force_N, one of acceleration_m_s2 / velocity_m_s / "
            "displacement_m (or response [unit]), and phase_rad or phase_deg (docs/phasor-table.md)");
@@ -263,26 +230,31 @@ class TableParser {
     }
   }
 
-  std::array<double, 8> ReadRow(const std::string& line, int line_number) const {
-    auto cells = SplitCells(line, separator_);
+  std::array<double, 8> ReadRow(const TableReader& table) const {
+    const int line_number = table.Line();
+    const auto& cells = table.Cells();
     if (static_cast<int>(cells.size()) < num_cells_)
-      Fail("", "line " + std::to_string(line_number) + " has " + std::to_string(cells.size()) + " cells, the header " +
-                   std::to_string(num_cells_),
+      Fail("", table.Format().Describe() + ": line " + std::to_string(line_number) + " has " +
+                   std::to_string(cells.size()) + " cells, the header " + std::to_string(num_cells_),
            "give every row a value in every column");
     std::array<double, 8> values{};
     for (const auto& c : columns_) {
-      std::string cell = Trim(cells[c.index]);
-      if (separator_ != ',') std::replace(cell.begin(), cell.end(), ',', '.');
+      const auto index = static_cast<std::size_t>(c.index);
+      const std::string cell(table.CellText(index));
       double value = 0.0;
-      const auto [end, error] = std::from_chars(cell.data(), cell.data() + cell.size(), value);
-      if (cell.empty() || error != std::errc() || end != cell.data() + cell.size() || !std::isfinite(value))
+      if (!table.Number(index, value))
+        throw InputError(source_, "", table.NotANumber(index, "'" + c.header + "'"),
+                         table.Format().decimal_mark == ','
+                             ? "write a number there with ',' as the decimal mark (as the rest of the file), or drop the row"
+                             : "write a number there or drop the row");
+      if (!std::isfinite(value))
         Fail(c.header, "line " + std::to_string(line_number) + ": '" + cell + "' is not a finite number",
              "write a number there or drop the row");
       const int slot = static_cast<int>(c.role) + (c.is_std ? 4 : 0);
       if ((c.is_std && value < 0) || (!c.is_std && c.role != Role::kPhase && value <= 0))
         Fail(c.header, "line " + std::to_string(line_number) + ": " + cell + (c.is_std ? " is negative" : " is not positive"),
              "frequencies and amplitudes are positive, uncertainties not negative");
-      values[slot] = value * factor_[slot];
+      values[static_cast<std::size_t>(slot)] = value * factor_[static_cast<std::size_t>(slot)];
     }
     return values;
   }
@@ -308,7 +280,6 @@ class TableParser {
   }
 
   std::string source_, label_;
-  char separator_ = ',';
   int num_cells_ = 0;
   const Column* Main(Role role) const {
     for (const auto& c : columns_)

@@ -8,12 +8,14 @@
 // (signal/phasor_set.h). Uncertainties given in polar form (σ_|X|, σ_φ) become
 // the Re/Im covariance R·diag(σ_|X|², |X|²σ_φ²)·Rᵀ, R the rotation by φ.
 //
-// Accepted variants: ',' ';' or tab separators (with ';' or tab a decimal
-// comma is read as a point); units in brackets "force [N]", parentheses
+// The text goes through signal/table_reader.h, like a recording: ',' ';' or
+// tab separators, a decimal comma with ';' or tab (detected: the whole file
+// then uses it), a BOM, CRLF, quoted headers, comment lines ('#', '%', '//')
+// and blank lines. Units in brackets "force [N]", parentheses
 // "phase (deg)" or as a suffix "frequency_Hz", "acc_m_s2"; phase in rad or
 // deg; the response an acceleration (m/s^2, g), velocity (m/s, mm/s) or
 // displacement (m, mm), its quantity named by the column or implied by the
-// unit. Lines starting with '#' are comments. Anything wrong throws InputError
+// unit. Anything wrong throws InputError
 // naming the file and the column (and row) to fix.
 #pragma once
 

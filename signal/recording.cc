@@ -3,73 +3,153 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <cstring>
+#include <cctype>
 #include <fstream>
 
 #include "hb/text_file.h"
 #include "signal/input_error.h"
+#include "signal/table_reader.h"
 #include "signal/uff_recording.h"
 
 namespace beamid::signal {
 namespace {
 
 constexpr int kTimeColumn = -1;
+constexpr int kIgnoredColumn = -2;
 constexpr double kLargestPlausibleValue = 1e15;
 
-bool IsBlank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
-
-std::string_view Trim(std::string_view s) {
-  while (!s.empty() && IsBlank(s.front())) s.remove_prefix(1);
-  while (!s.empty() && IsBlank(s.back())) s.remove_suffix(1);
-  return s;
+std::string LowerCase(std::string_view text) {
+  std::string out(text);
+  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return out;
 }
 
-std::string_view NextLine(std::string_view& text) {
-  const std::size_t end = text.find('\n');
-  std::string_view line = text.substr(0, end);
-  text.remove_prefix(end == std::string_view::npos ? text.size() : end + 1);
-  return line;
-}
+// What the header says of each CSV column.
+struct HeaderMap {
+  std::vector<int> columns;          // Recording column, kTimeColumn or kIgnoredColumn per cell
+  std::vector<std::string> names;    // per cell, for messages: the channel (or the time column's header)
+  int time_cell = -1;
+  double time_to_s = 1.0;            // 1e-3 for a time column in ms
+  std::vector<std::string> ignored;  // header cells no channel uses
+};
 
-// Maps each CSV column to a Recording column (or kTimeColumn).
-std::vector<int> MapHeader(std::string_view header, const std::vector<const ChannelSpec*>& channels,
-                           const std::string& source) {
-  if (header.size() >= 3 && std::memcmp(header.data(), "\xEF\xBB\xBF", 3) == 0) header.remove_prefix(3);
-  std::vector<int> columns;
-  std::vector<bool> seen(channels.size(), false);
-  bool time_seen = false;
-  while (true) {
-    const std::size_t comma = header.find(',');
-    const std::string name(Trim(header.substr(0, comma)));
-    int column = -2;
-    if (name == "time_s") {
-      if (time_seen) throw InputError(source, "time_s", "the header names time_s twice", "keep one time column");
-      time_seen = true;
-      column = kTimeColumn;
+// A header cell naming the time: "time_s", "t_ms", "time [ms]", "Time (s)";
+// the time unit's factor to s, 0 when the cell is not a time column. A time
+// column without a unit is an error.
+double TimeUnitFactor(const HeaderCell& cell, const std::string& source) {
+  const std::string text = LowerCase(cell.text), name = LowerCase(cell.name);
+  std::string unit = cell.unit;
+  if (cell.unit.empty()) {
+    for (const std::string_view word : {"time", "t"}) {
+      if (text == word)
+        throw InputError(source, cell.text, "the time column has no unit",
+                         "name it time_s (seconds) or time_ms, or write the unit: time [s], time [ms]");
+      if (const auto suffix = SplitUnitSuffix(text, word)) unit = *suffix;
     }
-    for (std::size_t c = 0; c < channels.size(); ++c) {
-      if (channels[c]->channel != name) continue;
-      if (seen[c]) throw InputError(source, name, "the header names the channel twice", "keep one column per channel");
-      seen[c] = true;
-      column = static_cast<int>(c);
-    }
-    if (column == -2) {
-      std::string known = "time_s";
-      for (const auto* ch : channels) known += ", " + ch->channel;
-      throw InputError(source, name, "unknown column in the header (campaign.json has no such channel)",
-                       "name the columns " + known + ", or add the channel to campaign.json's sensors");
-    }
-    columns.push_back(column);
-    if (comma == std::string_view::npos) break;
-    header.remove_prefix(comma + 1);
+    if (unit.empty()) return 0.0;
+  } else if (name != "time" && name != "t") {
+    return 0.0;
   }
-  if (!time_seen)
-    throw InputError(source, "time_s", "the header has no time_s column", "add the sample times in seconds as time_s");
-  for (std::size_t c = 0; c < channels.size(); ++c)
-    if (!seen[c])
-      throw InputError(source, channels[c]->channel, "the channel of campaign.json is missing from the header",
-                       "export this channel into the recording or correct its name in campaign.json");
-  return columns;
+  const auto normalised = NormaliseUnit(unit);
+  if (normalised == "s") return 1.0;
+  if (normalised == "ms") return 1e-3;
+  throw InputError(source, cell.text, "the time column's unit '" + unit + "' is not a time unit",
+                   "give the time in s or ms: time_s, time [ms]");
+}
+
+HeaderMap MapHeader(const TableReader& table, const std::vector<const ChannelSpec*>& channels,
+                    const std::string& source) {
+  HeaderMap map;
+  std::vector<bool> seen(channels.size(), false);
+  for (const HeaderCell& cell : table.Header()) {
+    int column = kIgnoredColumn;
+    std::string unit;
+    std::string name = cell.text;
+    for (std::size_t c = 0; c < channels.size() && column == kIgnoredColumn; ++c) {
+      const std::string& channel = channels[c]->channel;
+      if (cell.text == channel) {
+        column = static_cast<int>(c);
+      } else if (!cell.unit.empty() && cell.name == channel) {
+        column = static_cast<int>(c);
+        unit = cell.unit;
+      } else if (const auto suffix = SplitUnitSuffix(cell.text, channel)) {
+        column = static_cast<int>(c);
+        unit = *suffix;
+      }
+    }
+    if (column >= 0) {
+      const ChannelSpec& spec = *channels[static_cast<std::size_t>(column)];
+      name = spec.channel;
+      if (seen[static_cast<std::size_t>(column)])
+        throw InputError(source, name, "the header names the channel twice", "keep one column per channel");
+      seen[static_cast<std::size_t>(column)] = true;
+      if (!unit.empty()) {
+        const auto normalised = NormaliseUnit(unit);
+        if (!normalised || !UnitToSiFactor(spec.quantity, *normalised))
+          throw InputError(source, name,
+                           "the header gives the unit '" + unit + "', which is not a unit of " +
+                               std::string(QuantityName(spec.quantity)) + " (campaign.json declares '" + spec.unit +
+                               "')",
+                           "write the unit campaign.json declares, '" + spec.unit + "', or none in the header");
+        if (*normalised != spec.unit)
+          throw InputError(source, name,
+                           "the header gives the unit '" + unit + "' but campaign.json declares '" + spec.unit +
+                               "' for this channel",
+                           "make them agree: correct the channel's \"unit\" in campaign.json, or export the "
+                           "channel in " + spec.unit);
+      }
+    } else if (const double factor = TimeUnitFactor(cell, source); factor > 0.0) {
+      if (map.time_cell >= 0)
+        throw InputError(source, cell.text,
+                         "the header has two time columns ('" + map.names[static_cast<std::size_t>(map.time_cell)] +
+                             "' and '" + cell.text + "')",
+                         "keep one time column");
+      map.time_cell = static_cast<int>(map.columns.size());
+      map.time_to_s = factor;
+      column = kTimeColumn;
+    } else if (!cell.text.empty()) {
+      map.ignored.push_back(cell.text);
+    }
+    map.columns.push_back(column);
+    map.names.push_back(name);
+  }
+  for (std::size_t c = 0; c < channels.size(); ++c) {
+    if (seen[c]) continue;
+    std::string unused;
+    for (const auto& ignored : map.ignored) unused += (unused.empty() ? "'" : ", '") + ignored + "'";
+    // One header cell for several channels: the separator is none of ours.
+    const std::string single = table.Header().size() == 1 && channels.size() > 1
+                                   ? "; the header is a single column, so " + table.Format().Describe() +
+                                         " but the header may use another separator"
+                                   : "";
+    throw InputError(source, channels[c]->channel,
+                     "the channel of campaign.json is missing from the header" +
+                         (unused.empty() ? std::string() : " (columns no channel uses: " + unused + single + ")"),
+                     "export this channel into the recording or correct its name in campaign.json (a header may "
+                     "add a unit: " + channels[c]->channel + " [" + channels[c]->unit + "])");
+  }
+  return map;
+}
+
+// Half a unit of the last printed digit of each time value [s], judged over
+// the column: a printer that drops trailing zeros ("0.5" for 0.5000) is
+// credited with the digits its other values show.
+std::vector<double> TimeRounding(const std::vector<double>& time, const std::vector<PrintedPrecision>& precision,
+                                 double to_s) {
+  int max_decimals = -400, max_significant = 0;
+  for (const auto& p : precision) {
+    max_decimals = std::max(max_decimals, p.decimals);
+    max_significant = std::max(max_significant, p.significant);
+  }
+  std::vector<double> rounding(time.size());
+  for (std::size_t i = 0; i < time.size(); ++i) {
+    const double own = 0.5 * std::pow(10.0, -precision[i].decimals);
+    const double fixed = 0.5 * std::pow(10.0, -max_decimals);
+    const double magnitude = std::abs(time[i]) > 0.0 ? std::floor(std::log10(std::abs(time[i]))) : 0.0;
+    const double significant = 0.5 * std::pow(10.0, magnitude - max_significant + 1);
+    rounding[i] = std::min(own, std::max(fixed, significant)) * to_s;
+  }
+  return rounding;
 }
 
 }  // namespace
@@ -83,72 +163,91 @@ Recording ParseRecording(std::string_view csv_text, const Campaign& campaign, co
                          const std::string& source, const RecordingChecks& checks) {
   checks.Validate();
   const auto channels = campaign.Channels();
-  std::string_view text = csv_text;
-  if (Trim(text).empty()) throw InputError(source, "", "the file is empty", "export the recording again");
-  const std::vector<int> columns = MapHeader(NextLine(text), channels, source);
+  TableReader table(csv_text, source, {.blank_lines_inside = false});
+  if (!table.HasHeader()) throw InputError(source, "", "the file is empty", "export the recording again");
+  const HeaderMap map = MapHeader(table, channels, source);
+  const bool has_time = map.time_cell >= 0;
+  if (!has_time && !campaign.sample_rate_hz)
+    throw InputError(source, "",
+                     "the recording has no time column and campaign.json gives no sample_rate_Hz, so the sample rate "
+                     "is unknown",
+                     "add a time column (time_s, or time [ms]) to the recording, or \"sample_rate_Hz\" to "
+                     "campaign.json");
+  const std::size_t num_cells = map.columns.size();
 
-  const auto max_rows = static_cast<Eigen::Index>(std::count(text.begin(), text.end(), '\n') + 1);
+  const auto max_rows = static_cast<Eigen::Index>(std::count(csv_text.begin(), csv_text.end(), '\n') + 1);
   Eigen::MatrixXd samples(max_rows, static_cast<Eigen::Index>(channels.size()));
-  std::vector<double> time_s(static_cast<std::size_t>(max_rows));
+  std::vector<double> time_s;
+  std::vector<int> lines;
+  std::vector<PrintedPrecision> time_precision;
+  if (has_time) {
+    time_s.reserve(static_cast<std::size_t>(max_rows));
+    lines.reserve(static_cast<std::size_t>(max_rows));
+    time_precision.reserve(static_cast<std::size_t>(max_rows));
+  }
   Eigen::Index rows = 0;
-  int line_number = 1;
-  while (!text.empty()) {
-    std::string_view line = NextLine(text);
-    ++line_number;
-    if (Trim(line).empty()) {
-      if (Trim(text).empty()) break;  // trailing blank lines are harmless
-      throw InputError(source, "", "line " + std::to_string(line_number) + " is empty", "remove the blank line");
+  while (table.NextRow()) {
+    const int line_number = table.Line();
+    const auto& cells = table.Cells();
+    if (cells.size() != num_cells) {
+      const std::size_t at = std::min(cells.size(), num_cells - 1);
+      throw InputError(source, map.names[at],
+                       table.Format().Describe() + ": line " + std::to_string(line_number) +
+                           " does not have one value per header column (" + std::to_string(num_cells) +
+                           " columns, the line has " + std::to_string(cells.size()) + ")",
+                       "give every row one value per header column");
     }
-    const char* p = line.data();
-    const char* const end = line.data() + line.size();
-    for (std::size_t field = 0; field < columns.size(); ++field) {
-      const std::string_view channel_name = columns[field] == kTimeColumn
-                                                ? std::string_view("time_s")
-                                                : std::string_view(channels[static_cast<std::size_t>(columns[field])]->channel);
-      const char* field_end = std::find(p, end, ',');
-      const bool last = field + 1 == columns.size();
-      if ((field_end == end) != last)
-        throw InputError(source, std::string(channel_name),
-                         "line " + std::to_string(line_number) + " does not have one value per header column (" +
-                             std::to_string(columns.size()) + " columns)",
-                         "give every row one value per header column");
-      std::string_view token = Trim(std::string_view(p, static_cast<std::size_t>(field_end - p)));
-      if (!token.empty() && token.front() == '+') token.remove_prefix(1);
+    for (std::size_t field = 0; field < num_cells; ++field) {
+      const int column = map.columns[field];
+      if (column == kIgnoredColumn) continue;
+      const std::string& channel_name = map.names[field];
       double value = 0.0;
-      const auto [parsed_end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
-      if (token.empty() || error != std::errc() || parsed_end != token.data() + token.size())
-        throw InputError(source, std::string(channel_name),
-                         "cannot read '" + std::string(token) + "' at line " + std::to_string(line_number) +
-                             " as a number",
-                         "write plain decimal numbers with '.' as the decimal mark");
+      PrintedPrecision precision;
+      if (!table.Number(field, value, column == kTimeColumn ? &precision : nullptr))
+        throw InputError(source, channel_name, table.NotANumber(field, channel_name),
+                         table.Format().decimal_mark == ','
+                             ? "write plain decimal numbers with ',' as the decimal mark throughout the file"
+                             : "write plain decimal numbers with '.' as the decimal mark");
       if (!std::isfinite(value))
-        throw InputError(source, std::string(channel_name),
-                         "NaN or infinite value at line " + std::to_string(line_number),
+        throw InputError(source, channel_name, "NaN or infinite value at line " + std::to_string(line_number),
                          "remove or repair the invalid samples (a NaN is no measurement)");
       // No acquisition system writes 1e15 in any unit; such a value is a
       // corrupted sample, and 1e308 would overflow every sum of squares.
       if (std::abs(value) > kLargestPlausibleValue)
-        throw InputError(source, std::string(channel_name),
-                         "value " + std::string(token) + " at line " + std::to_string(line_number) +
+        throw InputError(source, channel_name,
+                         "value " + std::string(table.CellText(field)) + " at line " + std::to_string(line_number) +
                              " is beyond any measurement (|value| > 1e15)",
                          "remove or repair the corrupted sample");
-      if (columns[field] == kTimeColumn)
-        time_s[static_cast<std::size_t>(rows)] = value;
-      else
-        samples(rows, columns[field]) = value;
-      if (!last) p = field_end + 1;
+      if (column == kTimeColumn) {
+        time_s.push_back(map.time_to_s == 1.0 ? value : value / 1000.0);
+        lines.push_back(line_number);
+        time_precision.push_back(precision);
+      } else {
+        samples(rows, column) = value;
+      }
     }
     ++rows;
   }
-  time_s.resize(static_cast<std::size_t>(rows));
   samples.conservativeResize(rows, Eigen::NoChange);
 
   Recording recording;
   recording.file = source;
+  recording.ignored_columns = map.ignored;
   for (const auto* channel : channels) recording.channels.push_back(channel->channel);
-  recording.sample_rate_hz =
-      ValidateTimeColumn(time_s, campaign.sample_rate_hz.value_or(0.0), source, /*first_line=*/2, checks);
-  recording.start_time_s = time_s.front();
+  if (has_time) {
+    PrintedTime printed;
+    printed.column = map.names[static_cast<std::size_t>(map.time_cell)];
+    printed.first_line = lines.empty() ? table.HeaderLine() + 1 : lines.front();
+    printed.lines = std::move(lines);
+    printed.rounding_s = [&] { return TimeRounding(time_s, time_precision, map.time_to_s); };
+    recording.sample_rate_hz =
+        ValidateTimeColumn(time_s, campaign.sample_rate_hz.value_or(0.0), source, printed, checks);
+    recording.start_time_s = time_s.front();
+  } else {
+    if (rows < 2) throw InputError(source, "", "fewer than two samples", "record the whole step");
+    recording.sample_rate_hz = *campaign.sample_rate_hz;
+    recording.start_time_s = 0.0;
+  }
   for (std::size_t c = 0; c < channels.size(); ++c)
     if (channels[c]->to_si_factor != 1.0) samples.col(static_cast<Eigen::Index>(c)) *= channels[c]->to_si_factor;
   ValidateChannels(samples, recording.channels, recording.sample_rate_hz, recording.start_time_s, step.frequency_hz,

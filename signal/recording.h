@@ -1,7 +1,15 @@
-// One step's recording: uniformly sampled channels in SI units, read from the
-// campaign's CSV format (or a universal file, signal/uff_recording.h) (header "time_s,<channel>,..." in any column order,
-// "." decimal mark). Columns are reordered to Campaign::Channels() order:
-// the force first, then the sensors as campaign.json lists them.
+// One step's recording: uniformly sampled channels in SI units, read from a
+// CSV file (or a universal file, signal/uff_recording.h). The text goes
+// through signal/table_reader.h, so the CSV may be an acquisition system's
+// export: ',' ';' or tab separators, a decimal comma (with ';' or tab), a
+// BOM, CRLF, comment lines, quoted headers and units in the header ("acc2 [g]",
+// "acc2 (m/s²)", "acc2_g"), which must agree with the unit campaign.json
+// declares. The channels of campaign.json may come in any column order; other
+// columns are ignored (and listed in Recording::ignored_columns). The time
+// column is in s or ms ("time_s", "t_ms", "time [ms]"), or absent when
+// campaign.json gives sample_rate_Hz. Columns are reordered to
+// Campaign::Channels() order: the force first, then the sensors as
+// campaign.json lists them.
 // ReadRecording parses with std::from_chars (no per-value allocation) and
 // validates the file (signal/recording_validator.h); every problem is an
 // InputError naming the file, the channel and the line.
@@ -23,8 +31,9 @@ struct Recording {
   std::string file;                   // where it came from, for messages
   std::vector<std::string> channels;  // force first, then sensors
   double sample_rate_hz = 0.0;
-  double start_time_s = 0.0;          // time_s of the first sample
+  double start_time_s = 0.0;          // time_s of the first sample (0 without a time column)
   Eigen::MatrixXd samples;            // SI; rows = samples, one column per channel
+  std::vector<std::string> ignored_columns;  // header cells no channel uses, for the caller to mention
 
   int NumSamples() const { return static_cast<int>(samples.rows()); }
   double Duration_s() const { return NumSamples() / sample_rate_hz; }

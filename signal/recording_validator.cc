@@ -27,34 +27,111 @@ void RecordingChecks::Validate() const {
 
 double ValidateTimeColumn(std::span<const double> time_s, double expected_sample_rate_hz, const std::string& file,
                           int first_line, const RecordingChecks& checks) {
+  PrintedTime printed;
+  printed.first_line = first_line;
+  return ValidateTimeColumn(time_s, expected_sample_rate_hz, file, printed, checks);
+}
+
+double ValidateTimeColumn(std::span<const double> time_s, double expected_sample_rate_hz, const std::string& file,
+                          const PrintedTime& printed, const RecordingChecks& checks) {
   checks.Validate();
+  const std::string& column = printed.column;
+  auto line = [&](std::size_t i) {
+    return std::to_string(printed.lines.empty() ? printed.first_line + static_cast<int>(i) : printed.lines[i]);
+  };
   const std::size_t n = time_s.size();
-  if (n < 2) throw InputError(file, "time_s", "fewer than two samples", "record the whole step");
+  if (n < 2) throw InputError(file, column, "fewer than two samples", "record the whole step");
+  std::vector<double> rounding_values;
+  bool rounding_known = false;
+  auto rounding_of = [&]() -> std::span<const double> {
+    if (!rounding_known && printed.rounding_s) rounding_values = printed.rounding_s();
+    rounding_known = true;
+    return rounding_values;
+  };
+  auto too_coarse = [&](double dt_s, double max_pair_s) {
+    return InputError(file, column,
+                      "the time column is printed with too few digits to show a missing sample at " +
+                          FormatNumber(1.0 / dt_s) + " Hz (its values are rounded by up to " +
+                          FormatNumber(0.5 * max_pair_s) + " s, a sample lasts " + FormatNumber(dt_s) + " s)",
+                      "export the time with more decimals, or leave the time column out and give sample_rate_Hz in "
+                      "campaign.json");
+  };
   for (std::size_t i = 1; i < n; ++i) {
+    if (time_s[i] == time_s[i - 1] && !rounding_of().empty() && time_s[n - 1] > time_s[0]) {
+      const std::span<const double> rounding = rounding_of();
+      const double dt_s = (time_s[n - 1] - time_s[0]) / static_cast<double>(n - 1);
+      const double pair_s = rounding[i] + rounding[i - 1];
+      if (pair_s >= (1.0 - 2.0 * checks.max_time_deviation_samples) * dt_s) throw too_coarse(dt_s, pair_s);
+    }
     if (!(time_s[i] > time_s[i - 1]))
-      throw InputError(file, "time_s",
-                       "time does not increase at line " + std::to_string(first_line + i) + " (t = " +
-                           FormatNumber(time_s[i]) + " s after " + FormatNumber(time_s[i - 1]) + " s)",
+      throw InputError(file, column,
+                       "time does not increase at line " + line(i) + " (t = " + FormatNumber(time_s[i]) +
+                           " s after " + FormatNumber(time_s[i - 1]) + " s)",
                        "remove repeated rows and keep the samples in time order");
   }
+  const double tolerance = checks.max_time_deviation_samples;
+  auto check_rate = [&](double rate_hz) {
+    if (expected_sample_rate_hz > 0.0 &&
+        std::abs(rate_hz / expected_sample_rate_hz - 1.0) > checks.sample_rate_tolerance_rel)
+      throw InputError(file, column,
+                       "the time column implies " + FormatNumber(rate_hz) +
+                           " Hz but campaign.json says sample_rate_Hz = " + FormatNumber(expected_sample_rate_hz),
+                       "correct sample_rate_Hz in campaign.json or the time column");
+  };
+  auto non_uniform = [&](std::size_t i, double expected_s, double rate_hz, const std::string& why) {
+    return InputError(file, column,
+                      "non-uniform sampling at line " + line(i) + " (t = " + FormatNumber(time_s[i]) +
+                          " s where a uniform rate of " + FormatNumber(rate_hz) + " Hz puts " +
+                          FormatNumber(expected_s) + " s" + why +
+                          "; a sample is missing or the clock jumps)",
+                      "export the recording at one uniform sample rate");
+  };
   const double dt_s = (time_s[n - 1] - time_s[0]) / static_cast<double>(n - 1);
-  for (std::size_t i = 0; i < n; ++i) {
-    const double expected_s = time_s[0] + static_cast<double>(i) * dt_s;
-    if (std::abs(time_s[i] - expected_s) > checks.max_time_deviation_samples * dt_s)
-      throw InputError(file, "time_s",
-                       "non-uniform sampling at line " + std::to_string(first_line + i) + " (t = " +
-                           FormatNumber(time_s[i]) + " s where a uniform rate of " + FormatNumber(1.0 / dt_s) +
-                           " Hz puts " + FormatNumber(expected_s) + " s; a sample is missing or the clock jumps)",
-                       "export the recording at one uniform sample rate");
+  std::size_t first_off = n;
+  for (std::size_t i = 0; i < n && first_off == n; ++i)
+    if (std::abs(time_s[i] - (time_s[0] + static_cast<double>(i) * dt_s)) > tolerance * dt_s) first_off = i;
+  if (first_off == n) {  // uniform as printed: Δt from the end points
+    const double rate_hz = 1.0 / dt_s;
+    check_rate(rate_hz);
+    return rate_hz;
   }
-  const double rate_hz = 1.0 / dt_s;
-  if (expected_sample_rate_hz > 0.0 &&
-      std::abs(rate_hz / expected_sample_rate_hz - 1.0) > checks.sample_rate_tolerance_rel)
-    throw InputError(file, "time_s",
-                     "the time column implies " + FormatNumber(rate_hz) + " Hz but campaign.json says sample_rate_Hz = " +
-                         FormatNumber(expected_sample_rate_hz),
-                     "correct sample_rate_Hz in campaign.json or the time column");
-  return rate_hz;
+  const std::span<const double> rounding = rounding_of();
+  const double max_rounding = rounding.empty() ? 0.0 : *std::max_element(rounding.begin(), rounding.end());
+  if (max_rounding <= 0.0)
+    throw non_uniform(first_off, time_s[0] + static_cast<double>(first_off) * dt_s, 1.0 / dt_s, "");
+
+  // Printed with few digits: judge against the rounding, Δt by least squares.
+  const double mean_index = 0.5 * static_cast<double>(n - 1);
+  double mean_t = 0.0;
+  for (const double t : time_s) mean_t += t;
+  mean_t /= static_cast<double>(n);
+  double sxy = 0.0, sxx = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double di = static_cast<double>(i) - mean_index;
+    sxy += di * (time_s[i] - mean_t);
+    sxx += di * di;
+  }
+  const double slope_s = sxy / sxx;
+  const double rate_hz = 1.0 / slope_s;
+  double max_pair = 0.0;
+  for (std::size_t i = 1; i < n; ++i) max_pair = std::max(max_pair, rounding[i] + rounding[i - 1]);
+  if (max_pair >= (1.0 - 2.0 * tolerance) * slope_s) throw too_coarse(slope_s, max_pair);
+  const double line_error_s = 2.0 * max_rounding / std::sqrt(static_cast<double>(n));
+  // A missing sample shows first as one step of two periods: point at it.
+  for (std::size_t i = 1; i < n; ++i)
+    if (std::abs(time_s[i] - time_s[i - 1] - slope_s) > 2.0 * tolerance * slope_s + rounding[i] + rounding[i - 1])
+      throw non_uniform(i, time_s[i - 1] + slope_s, rate_hz,
+                        ", one period after the previous sample beyond the ±" + FormatNumber(rounding[i]) +
+                            " s rounding of its printed digits");
+  for (std::size_t i = 0; i < n; ++i) {
+    const double expected_s = mean_t + (static_cast<double>(i) - mean_index) * slope_s;
+    if (std::abs(time_s[i] - expected_s) > tolerance * slope_s + rounding[i] + line_error_s)
+      throw non_uniform(i, expected_s, rate_hz,
+                        ", beyond the ±" + FormatNumber(rounding[i]) + " s rounding of its printed digits");
+  }
+  check_rate(rate_hz);
+  // The campaign's rate is exact where the printed times are not.
+  return expected_sample_rate_hz > 0.0 ? expected_sample_rate_hz : rate_hz;
 }
 
 void ValidateChannels(const Eigen::MatrixXd& samples, std::span<const std::string> channels, double sample_rate_hz,

@@ -1,7 +1,12 @@
 // Checks that a recording can represent its step, before any estimation:
 //  - time: strictly increasing and uniform (every t_n within
 //    max_time_deviation_samples·Δt of t_0 + n·Δt, Δt from the end points), and
-//    consistent with the campaign's sample_rate_Hz when that is given;
+//    consistent with the campaign's sample_rate_Hz when that is given. A time
+//    column printed with few digits (4 decimals at 5120 Hz) is uniform when
+//    every t_n, and every step t_n − t_(n−1), lies within that tolerance plus
+//    half a unit of the last printed digits; Δt then comes from a
+//    least-squares line (or is the campaign's sample_rate_Hz when given), and
+//    a column too coarse to show a missing sample is refused;
 //  - length: at least min_periods periods of the nominal frequency;
 //  - per channel: no clipping (a run of identical samples at the channel's
 //    extreme value) and no dropout (a run of identical samples elsewhere,
@@ -19,8 +24,10 @@
 // NaN/Inf values are rejected while parsing (signal/recording.h).
 #pragma once
 
+#include <functional>
 #include <span>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -43,6 +50,21 @@ struct RecordingChecks {
 // of time_s[0], for messages.
 double ValidateTimeColumn(std::span<const double> time_s, double expected_sample_rate_hz, const std::string& file,
                           int first_line, const RecordingChecks& checks);
+
+// How a text file printed its time column (signal/table_reader.h).
+struct PrintedTime {
+  std::string column = "time_s";   // the header's name for it, for messages
+  int first_line = 2;              // file line of time_s[0] when lines is empty
+  std::vector<int> lines;          // file line of each sample, or empty
+  // Half a unit of each value's last printed digit [s], computed only when
+  // the times are not uniform as printed; empty: the values are exact.
+  std::function<std::vector<double>()> rounding_s;
+};
+
+// The same check for a printed time column: the deviations are judged
+// against the tolerance plus the printed rounding (see above).
+double ValidateTimeColumn(std::span<const double> time_s, double expected_sample_rate_hz, const std::string& file,
+                          const PrintedTime& printed, const RecordingChecks& checks);
 
 // Length, clipping, dropout and spike checks of every column (channel names in
 // column order); throws InputError naming the channel, the time and the fix.

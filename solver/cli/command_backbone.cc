@@ -3,15 +3,15 @@
 // corrected multiple-scales backbone beside it for a polynomial support; or,
 // with --measured, the measured backbone of a test (measured_backbone_command.h).
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <optional>
-#include <sstream>
 
 #include <fmt/core.h>
 
-#include "hb/version.h"
 #include "hb/errors.h"
 #include "hb/backbone.h"
+#include "hb/backbone_file.h"
 #include "hb/model_file.h"
 #include "hb/multiple_scales.h"
 #include "solver/cli/cli_output.h"
@@ -62,18 +62,20 @@ void RunBackbone(const BackboneCommandOptions& options, const GlobalOptions& glo
     ms.emplace(model.beam, model.polynomial, model.force_position_m);
 
   std::vector<double> positions;
-  for (const auto& s : model.sensors) positions.push_back(s.position_m);
-  std::ostringstream csv;
-  csv << "theta_amp_rad,frequency_Hz,force_N,ms_frequency_Hz";
-  for (const auto& s : model.sensors) csv << fmt::format(",{0}_h1_disp_amp_m,{0}_h1_acc_amp_m_s2", s.channel);
-  csv << '\n';
-  nlohmann::json points = nlohmann::json::array();
+  hb::BackboneFile file;
+  file.model = model.name;
+  file.harmonics = options.harmonics;
+  file.complete = summary.complete;
+  for (const auto& s : model.sensors) {
+    positions.push_back(s.position_m);
+    file.sensors.push_back({.channel = s.channel, .position_m = s.position_m});
+  }
   for (const auto& p : summary.points) {
     Eigen::VectorXcd force = Eigen::VectorXcd::Zero(2);
     force[1] = p.force_amplitude_N;
     const hb::HarmonicBalanceSolution solution{.omega_rad_s = p.omega_rad_s, .theta_rad = p.theta_rad};
     const Eigen::MatrixXcd y = balance.Displacements(solution, force, positions);
-    std::optional<double> ms_hz;
+    double ms_hz = std::numeric_limits<double>::quiet_NaN();  // none
     if (ms) {
       try {
         ms_hz = ms->Backbone_rad_s(p.theta_amplitude_rad / std::abs(ms->SupportSlope_per_m())) /
@@ -82,34 +84,18 @@ void RunBackbone(const BackboneCommandOptions& options, const GlobalOptions& glo
         // beyond the perturbation model's range: no value
       }
     }
-    const double f_hz = p.omega_rad_s / (2 * std::numbers::pi);
-    csv << fmt::format("{:.9g},{:.9g},{:.9g},{}", p.theta_amplitude_rad, f_hz, p.force_amplitude_N,
-                       ms_hz ? fmt::format("{:.9g}", *ms_hz) : "");
-    nlohmann::json sensors = nlohmann::json::object();
-    for (std::size_t i = 0; i < positions.size(); ++i) {
-      const double disp = std::abs(y(i, 1)), acc = disp * p.omega_rad_s * p.omega_rad_s;
-      csv << fmt::format(",{:.9g},{:.9g}", disp, acc);
-      sensors[model.sensors[i].channel] = {{"position_m", positions[i]},
-                                           {"displacement_m", PhasorsToJson(y.row(i).transpose())}};
-    }
-    csv << '\n';
-    points.push_back({{"theta_amplitude_rad", p.theta_amplitude_rad},
-                      {"frequency_Hz", f_hz},
-                      {"force_N", p.force_amplitude_N},
-                      {"multiple_scales_frequency_Hz", ms_hz ? nlohmann::json(*ms_hz) : nlohmann::json()},
-                      {"theta_rad", PhasorsToJson(p.theta_rad)},
-                      {"sensors", sensors}});
+    hb::BackboneFilePoint point{.theta_amplitude_rad = p.theta_amplitude_rad,
+                                .frequency_hz = p.omega_rad_s / (2 * std::numbers::pi),
+                                .force_N = p.force_amplitude_N,
+                                .multiple_scales_frequency_hz = ms_hz,
+                                .theta_rad = {p.theta_rad.begin(), p.theta_rad.end()},
+                                .displacement_m = {}};
+    for (std::size_t i = 0; i < positions.size(); ++i)
+      point.displacement_m.emplace_back(y.row(i).begin(), y.row(i).end());
+    file.points.push_back(std::move(point));
   }
-  const nlohmann::json out = {
-      {"command", "backbone"},
-      {"beamid_version", kVersion},
-      {"model", model.name},
-      {"definition", "phase resonance: first harmonic of theta in quadrature with the force"},
-      {"harmonics", options.harmonics},
-      {"complete", summary.complete},
-      {"points", points}};
-  WriteTextFile(options.output + ".csv", csv.str());
-  WriteTextFile(options.output + ".json", out.dump(1));
+  WriteTextFile(options.output + ".csv", hb::BackboneFileToCsv(file));
+  WriteTextFile(options.output + ".json", hb::BackboneFileToJson(file));
   if (!global.quiet && !summary.points.empty()) {
     const auto& first = summary.points.front();
     const auto& last = summary.points.back();

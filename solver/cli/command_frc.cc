@@ -2,14 +2,13 @@
 // pseudo-arclength continuation, at one or more force levels.
 #include <cmath>
 #include <numbers>
-#include <sstream>
 
 #include <fmt/core.h>
 #include <fmt/format.h>
 
-#include "hb/version.h"
 #include "hb/errors.h"
 #include "hb/continuation.h"
+#include "hb/frc_file.h"
 #include "hb/model_file.h"
 #include "solver/cli/cli_output.h"
 #include "solver/cli/command_registry.h"
@@ -47,21 +46,15 @@ void RunFrc(const FrcOptions& options, const GlobalOptions& global) {
                             {.max_frequency_hz = 1.5 * (options.harmonics + 1) * std::max(from_hz, to_hz)});
   const hb::HarmonicBalance balance(beam, *law, {.num_harmonics = options.harmonics});
   std::vector<double> positions;
-  std::vector<std::string> names;
+  hb::FrcFile file;
+  file.model = model.name;
+  file.harmonics = options.harmonics;
+  file.first_natural_frequency_hz = f1_hz;
   for (const auto& s : model.sensors) {
     positions.push_back(s.position_m);
-    names.push_back(s.channel);
+    file.sensors.push_back({.channel = s.channel, .position_m = s.position_m});
   }
 
-  std::ostringstream csv;
-  csv << "force_N,frequency_Hz,stable";
-  for (int k = 1; k <= options.harmonics; ++k) csv << fmt::format(",theta_h{0}_amp_rad,theta_h{0}_phase_rad", k);
-  for (const auto& name : names)
-    for (int k = 1; k <= options.harmonics; ++k)
-      csv << fmt::format(",{0}_h{1}_disp_amp_m,{0}_h{1}_disp_phase_rad,{0}_h{1}_acc_amp_m_s2,{0}_h{1}_acc_phase_rad",
-                         name, k);
-  csv << '\n';
-  nlohmann::json curves = nlohmann::json::array();
   std::string incomplete;
   for (std::size_t level = 0; level < options.force_levels_N.size(); ++level) {
     const double force_N = options.force_levels_N[level];
@@ -78,37 +71,29 @@ void RunFrc(const FrcOptions& options, const GlobalOptions& global) {
     if (!summary.reached_end)
       incomplete += fmt::format("{}the curve at {} N stopped early ({})", incomplete.empty() ? "" : "; ", force_N,
                                 summary.message);
-    nlohmann::json points = nlohmann::json::array();
+    hb::FrcCurve curve{.force_N = force_N,
+                       .turning_points = summary.num_turning_points,
+                       .complete = summary.reached_end,
+                       .points = {}};
     for (const auto& p : summary.points) {
       const hb::HarmonicBalanceSolution solution{.omega_rad_s = p.omega_rad_s, .theta_rad = p.theta_rad};
       const Eigen::MatrixXcd y = balance.Displacements(solution, force, positions);
-      csv << fmt::format("{},{:.9g},{:d}", force_N, p.omega_rad_s / (2 * std::numbers::pi), p.stable);
-      for (int k = 1; k <= options.harmonics; ++k)
-        csv << fmt::format(",{:.9g},{:.9g}", std::abs(p.theta_rad[k]), std::arg(p.theta_rad[k]));
-      nlohmann::json at_positions = nlohmann::json::object();
+      hb::FrcPoint point{.frequency_hz = p.omega_rad_s / (2 * std::numbers::pi),
+                         .stable = p.stable,
+                         .theta_rad = {p.theta_rad.begin(), p.theta_rad.end()},
+                         .sensors = {}};
       for (std::size_t i = 0; i < positions.size(); ++i) {
-        Eigen::VectorXcd acceleration(options.harmonics + 1);
+        hb::FrcSensorPhasors at_sensor;
         for (int k = 0; k <= options.harmonics; ++k) {
           const double kw = k * p.omega_rad_s;
-          acceleration[k] = -kw * kw * y(i, k);
-          if (k > 0)
-            csv << fmt::format(",{:.9g},{:.9g},{:.9g},{:.9g}", std::abs(y(i, k)), std::arg(y(i, k)),
-                               std::abs(acceleration[k]), std::arg(acceleration[k]));
+          at_sensor.displacement_m.push_back(y(i, k));
+          at_sensor.acceleration_m_s2.push_back(-kw * kw * y(i, k));
         }
-        at_positions[names[i]] = {{"position_m", positions[i]},
-                                  {"displacement_m", PhasorsToJson(y.row(i).transpose())},
-                                  {"acceleration_m_s2", PhasorsToJson(acceleration)}};
+        point.sensors.push_back(std::move(at_sensor));
       }
-      csv << '\n';
-      points.push_back({{"frequency_Hz", p.omega_rad_s / (2 * std::numbers::pi)},
-                        {"stable", p.stable},
-                        {"theta_rad", PhasorsToJson(p.theta_rad)},
-                        {"sensors", at_positions}});
+      curve.points.push_back(std::move(point));
     }
-    curves.push_back({{"force_N", force_N},
-                      {"turning_points", summary.num_turning_points},
-                      {"complete", summary.reached_end},
-                      {"points", points}});
+    file.curves.push_back(std::move(curve));
     if (!global.quiet) {
       double peak = 0, f_peak = 0;
       for (const auto& p : summary.points)
@@ -120,15 +105,8 @@ void RunFrc(const FrcOptions& options, const GlobalOptions& global) {
                  summary.points.size(), summary.num_turning_points, peak, f_peak);
     }
   }
-  nlohmann::json out = {{"command", "frc"},
-                        {"beamid_version", kVersion},
-                        {"model", model.name},
-                        {"harmonics", options.harmonics},
-                        {"phasor_convention", "x(t) = X0 + sum_k Re(X_k exp(i k w t)), peak amplitudes, SI"},
-                        {"first_natural_frequency_Hz", f1_hz},
-                        {"curves", curves}};
-  WriteTextFile(options.output + ".csv", csv.str());
-  WriteTextFile(options.output + ".json", out.dump(1));
+  WriteTextFile(options.output + ".csv", hb::FrcFileToCsv(file));
+  WriteTextFile(options.output + ".json", hb::FrcFileToJson(file));
   if (!global.quiet) fmt::print("wrote {0}.csv and {0}.json\n", options.output);
   // The partial curves are written; the run still failed to converge.
   if (!incomplete.empty())

@@ -42,7 +42,7 @@ IdentificationProblem::IdentificationProblem(const FitData& data, const ModelStr
   num_linear_ = static_cast<int>(structure_.linear.size());
   num_parameters_ = num_law_ + num_linear_;
   state_size_ = 2 * options_.num_harmonics + 1;
-  for (const auto& b : structure_.Bounds()) parameter_scale_.push_back(b.typical);
+  scaling_ = ParameterScaling(structure_.Bounds());
   for (const auto& c : data_.channels) positions_m_.push_back(c.position_m);
   base_model_ = {.beam = data_.beam, .attachments = data_.sensor_masses};
   base_model_.beam.loss_factor = options_.beam_loss_factor;
@@ -58,9 +58,7 @@ IdentificationProblem::IdentificationProblem(const FitData& data, const ModelStr
 IdentificationProblem::~IdentificationProblem() = default;
 
 std::vector<double> IdentificationProblem::Parameters(const Eigen::VectorXd& x) const {
-  std::vector<double> p(num_parameters_);
-  for (int j = 0; j < num_parameters_; ++j) p[j] = x[j] * parameter_scale_[j];
-  return p;
+  return scaling_.Physical(x);
 }
 
 Eigen::VectorXd IdentificationProblem::States(const Eigen::VectorXd& x, int step) const {
@@ -264,7 +262,7 @@ Eigen::VectorXd IdentificationProblem::FeasiblePointFrom(const std::vector<doubl
     }
   }
   Eigen::VectorXd x(num_variables());
-  for (int j = 0; j < num_parameters_; ++j) x[j] = parameters[j] / parameter_scale_[j];
+  scaling_.SetScaled(parameters, &x);
   for (int i = 0; i < num_steps(); ++i)
     x.segment(num_parameters_ + i * state_size_, state_size_) = states[i] / theta_scale_rad_[i];
   cached_x_.resize(0);
@@ -273,13 +271,7 @@ Eigen::VectorXd IdentificationProblem::FeasiblePointFrom(const std::vector<doubl
 }
 
 void IdentificationProblem::Bounds(Eigen::VectorXd* lower, Eigen::VectorXd* upper) const {
-  lower->setConstant(num_variables(), -1e20);
-  upper->setConstant(num_variables(), 1e20);
-  const auto bounds = structure_.Bounds();
-  for (int j = 0; j < num_parameters_; ++j) {
-    (*lower)[j] = bounds[j].lower / parameter_scale_[j];
-    (*upper)[j] = bounds[j].upper / parameter_scale_[j];
-  }
+  scaling_.Bounds(num_variables(), lower, upper);
 }
 
 double IdentificationProblem::Objective(const Eigen::VectorXd& x) {
@@ -296,7 +288,7 @@ void IdentificationProblem::Gradient(const Eigen::VectorXd& x, Eigen::VectorXd* 
     gradient->segment(num_parameters_ + i * state_size_, state_size_) =
         c.d_residual_d_z.transpose() * c.residual * theta_scale_rad_[i];
   }
-  for (int j = 0; j < num_parameters_; ++j) (*gradient)[j] *= parameter_scale_[j];
+  for (int j = 0; j < num_parameters_; ++j) (*gradient)[j] *= scaling_.scale(j);
 }
 
 void IdentificationProblem::Constraints(const Eigen::VectorXd& x, Eigen::VectorXd* constraints) {
@@ -329,7 +321,7 @@ void IdentificationProblem::JacobianValues(const Eigen::VectorXd& x, double* val
     for (int r = 0; r < state_size_; ++r) {
       const double row_scale = 1.0 / constraint_scale_Nm_[i][r];
       for (int j = 0; j < num_parameters_; ++j)
-        values[n++] = c.d_constraint_d_p(r, j) * parameter_scale_[j] * row_scale;
+        values[n++] = c.d_constraint_d_p(r, j) * scaling_.scale(j) * row_scale;
       for (int j = 0; j < state_size_; ++j) values[n++] = c.d_constraint_d_z(r, j) * theta_scale_rad_[i] * row_scale;
     }
   }
@@ -394,7 +386,7 @@ void IdentificationProblem::HessianValues(const Eigen::VectorXd& x, double objec
     Eigen::MatrixXd second = Eigen::MatrixXd::Zero(num_law_ + m, num_law_ + m);
     for (int j = 0; j < (options_.constraint_curvature ? num_law_ + m : 0); ++j) {
       const bool is_law = j < num_law_;
-      const double step = 1e-6 * (is_law ? parameter_scale_[j] : theta_scale_rad_[i]);
+      const double step = 1e-6 * (is_law ? scaling_.scale(j) : theta_scale_rad_[i]);
       Eigen::VectorXd z_up = z, z_down = z;
       std::vector<double> law_up = law, law_down = law;
       if (is_law) {
@@ -430,13 +422,13 @@ void IdentificationProblem::HessianValues(const Eigen::VectorXd& x, double objec
     // Into scaled variables and the lower-triangle layout.
     const double sz = theta_scale_rad_[i];
     for (int r = 0; r < m; ++r) {
-      for (int q = 0; q < p; ++q) values[n++] = hzp(r, q) * sz * parameter_scale_[q];
+      for (int q = 0; q < p; ++q) values[n++] = hzp(r, q) * sz * scaling_.scale(q);
       for (int q = 0; q <= r; ++q) values[n++] = hzz(r, q) * sz * sz;
     }
   }
   n = 0;
   for (int r = 0; r < p; ++r)
-    for (int q = 0; q <= r; ++q) values[n++] = hpp(r, q) * parameter_scale_[r] * parameter_scale_[q];
+    for (int q = 0; q <= r; ++q) values[n++] = hpp(r, q) * scaling_.scale(r) * scaling_.scale(q);
 }
 
 Eigen::VectorXd IdentificationProblem::WeightedResiduals(const Eigen::VectorXd& x) {

@@ -24,6 +24,7 @@
 #include "solver/estimation/fit_problem.h"
 #include "solver/estimation/model_options.h"
 #include "solver/estimation/model_structure.h"
+#include "solver/estimation/parameter_scaling.h"
 #include "solver/estimation/support_reconstruction.h"
 
 namespace beamid::solver {
@@ -104,7 +105,7 @@ class IdentificationProblem : public FitProblem {
   ModelStructure structure_;
   ModelOptions options_;
   int num_law_ = 0, num_linear_ = 0, num_parameters_ = 0, state_size_ = 0;
-  std::vector<double> parameter_scale_;
+  ParameterScaling scaling_;  // of the parameters, the first entries of x
   // Per step: the scale of its states (its rotation's size) and of its
   // constraints (the moment that rotation takes), so every variable and
   // every equation the optimiser sees is ~1 at every amplitude.

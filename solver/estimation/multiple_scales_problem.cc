@@ -105,8 +105,7 @@ MultipleScalesProblem::MultipleScalesProblem(const FitData& data, const ModelStr
     if (s.force_N.size() < 2)
       throw std::invalid_argument("step " + s.file + " has no force fundamental");
   num_parameters_ = structure_.NumParameters();
-  bounds_ = structure_.Bounds();
-  for (const auto& b : bounds_) parameter_scale_.push_back(b.typical);
+  scaling_ = ParameterScaling(structure_.Bounds());
   base_beam_ = data_.beam;
   base_beam_.loss_factor = options_.beam_loss_factor;
   cache_.resize(num_steps());
@@ -117,9 +116,7 @@ MultipleScalesProblem::MultipleScalesProblem(const FitData& data, const ModelStr
 MultipleScalesProblem::~MultipleScalesProblem() = default;
 
 std::vector<double> MultipleScalesProblem::Parameters(const Eigen::VectorXd& x) const {
-  std::vector<double> p(num_parameters_);
-  for (int j = 0; j < num_parameters_; ++j) p[j] = x[j] * parameter_scale_[j];
-  return p;
+  return scaling_.Physical(x);
 }
 
 Complex MultipleScalesProblem::ModalPhasor_m(const Eigen::VectorXd& x, int step) const {
@@ -133,7 +130,8 @@ MultipleScalesModel MultipleScalesProblem::Model(const std::vector<double>& para
   // Ipopt evaluates within its slightly relaxed bounds; the model refuses
   // k1 < 0 and c < 0 even by 1e-12.
   std::vector<double> p(parameters);
-  for (int j = 0; j < num_parameters_; ++j) p[j] = std::clamp(p[j], bounds_[j].lower, bounds_[j].upper);
+  for (int j = 0; j < num_parameters_; ++j)
+    p[j] = std::clamp(p[j], scaling_.bounds()[j].lower, scaling_.bounds()[j].upper);
   return MakeMultipleScalesModel(base_beam_, data_.force_position_m, structure_, p, options_.model);
 }
 
@@ -150,8 +148,8 @@ const MultipleScalesProblem::ModelSet& MultipleScalesProblem::ModelsAt(const std
   auto set = std::make_unique<ModelSet>(ModelSet{.parameters = parameters, .center = Model(parameters)});
   set->center_steps = excitations(set->center);
   for (int j = 0; j < num_parameters_; ++j) {
-    const double h = kParameterStep * std::max(std::abs(parameters[j]), parameter_scale_[j]);
-    const bool below = parameters[j] - h < bounds_[j].lower, above = parameters[j] + h > bounds_[j].upper;
+    const double h = kParameterStep * std::max(std::abs(parameters[j]), scaling_.scale(j));
+    const bool below = parameters[j] - h < scaling_.bounds()[j].lower, above = parameters[j] + h > scaling_.bounds()[j].upper;
     // Second-order one-sided stencils where the central one would leave the
     // bounds (the model may not exist there), central otherwise.
     ModelSet::Stencil stencil;
@@ -267,7 +265,7 @@ Eigen::VectorXd MultipleScalesProblem::FeasiblePoint(const std::vector<double>& 
     constraint_scale_N_[i] = std::isfinite(scale) && scale > 0.0 ? scale : 1.0;
   }
   Eigen::VectorXd x(num_variables());
-  for (int j = 0; j < num_parameters_; ++j) x[j] = parameters[j] / parameter_scale_[j];
+  scaling_.SetScaled(parameters, &x);
   for (int i = 0; i < num_steps(); ++i) {
     x[num_parameters_ + kStateSize * i] = states[i].real() / state_scale_m_[i];
     x[num_parameters_ + kStateSize * i + 1] = states[i].imag() / state_scale_m_[i];
@@ -278,12 +276,7 @@ Eigen::VectorXd MultipleScalesProblem::FeasiblePoint(const std::vector<double>& 
 }
 
 void MultipleScalesProblem::Bounds(Eigen::VectorXd* lower, Eigen::VectorXd* upper) const {
-  lower->setConstant(num_variables(), -1e20);
-  upper->setConstant(num_variables(), 1e20);
-  for (int j = 0; j < num_parameters_; ++j) {
-    (*lower)[j] = bounds_[j].lower / parameter_scale_[j];
-    (*upper)[j] = bounds_[j].upper / parameter_scale_[j];
-  }
+  scaling_.Bounds(num_variables(), lower, upper);
 }
 
 double MultipleScalesProblem::Objective(const Eigen::VectorXd& x) {
@@ -302,7 +295,7 @@ void MultipleScalesProblem::Gradient(const Eigen::VectorXd& x, Eigen::VectorXd* 
     gradient->segment<kStateSize>(num_parameters_ + kStateSize * i) =
         c.d_values_d_z.bottomRows(n).transpose() * r * state_scale_m_[i];
   }
-  for (int j = 0; j < num_parameters_; ++j) (*gradient)[j] *= parameter_scale_[j];
+  for (int j = 0; j < num_parameters_; ++j) (*gradient)[j] *= scaling_.scale(j);
 }
 
 void MultipleScalesProblem::Constraints(const Eigen::VectorXd& x, Eigen::VectorXd* constraints) {
@@ -330,7 +323,7 @@ void MultipleScalesProblem::JacobianValues(const Eigen::VectorXd& x, double* val
     const int step = row / kStateSize, r = row % kStateSize;
     const StepCache& c = cache_[step];
     const double row_scale = 1.0 / constraint_scale_N_[step];
-    for (int j = 0; j < num_parameters_; ++j) values[n++] = c.d_values_d_p(r, j) * parameter_scale_[j] * row_scale;
+    for (int j = 0; j < num_parameters_; ++j) values[n++] = c.d_values_d_p(r, j) * scaling_.scale(j) * row_scale;
     for (int j = 0; j < kStateSize; ++j) values[n++] = c.d_values_d_z(r, j) * state_scale_m_[step] * row_scale;
   }
 }
@@ -363,7 +356,7 @@ void MultipleScalesProblem::HessianValues(const Eigen::VectorXd& x, double objec
   Evaluate(x);
   const int p = num_parameters_;
   // Scaled residual Jacobians: J_p (shared columns) and J_z per step.
-  const Eigen::VectorXd s = Eigen::Map<const Eigen::VectorXd>(parameter_scale_.data(), p);
+  const Eigen::VectorXd s = Eigen::Map<const Eigen::VectorXd>(scaling_.scales().data(), p);
   Eigen::MatrixXd hpp = Eigen::MatrixXd::Zero(p, p);
   int n = p * (p + 1) / 2;
   for (int i = 0; i < num_steps(); ++i) {

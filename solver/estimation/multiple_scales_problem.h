@@ -44,6 +44,7 @@
 #include "solver/estimation/fit_data.h"
 #include "solver/estimation/fit_problem.h"
 #include "solver/estimation/model_structure.h"
+#include "solver/estimation/parameter_scaling.h"
 
 namespace beamid::solver {
 
@@ -146,8 +147,7 @@ class MultipleScalesProblem : public FitProblem {
   ModelStructure structure_;
   MultipleScalesProblemOptions options_;
   int num_parameters_ = 0;
-  std::vector<double> parameter_scale_;
-  std::vector<ParameterBounds> bounds_;
+  ParameterScaling scaling_;  // of the parameters, the first entries of x
   hb::BeamProperties base_beam_;
   // Per step: the scale of U_i (its size) and of S_i (the force that size
   // takes, |∂S/∂U|·|U|), so variables and equations are ~1 at every level.

@@ -23,8 +23,7 @@ constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 // Phasor of the channel's quantity from a displacement phasor: (ikω)^order.
 Complex FromDisplacement(Complex displacement, int order, double k_omega) {
-  for (int d = 0; d < order; ++d) displacement *= Complex(0.0, k_omega);
-  return displacement;
+  return DerivativeFactor(order, k_omega) * displacement;
 }
 
 std::vector<double> Positions(const std::vector<ReportChannel>& channels) {
@@ -276,8 +275,7 @@ TimeHistory PredictedBesideMeasured(const PredictedStep& best, const signal::Cha
     double a = 0.0;
     for (const auto& harmonic : channel.harmonics) {
       const double kw = harmonic.harmonic * omega;
-      Complex acc = harmonic.value;  // to acceleration: (ikω)^(2 − order)
-      for (int d = derivative_order; d < 2; ++d) acc *= Complex(0.0, kw);
+      const Complex acc = DerivativeFactor(2 - derivative_order, kw) * harmonic.value;  // to acceleration
       a += std::real(acc * std::polar(1.0, kw * t));
     }
     history.time_s.push_back(t);

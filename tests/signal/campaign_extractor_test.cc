@@ -2,6 +2,7 @@
 // one step with a transient): phasors equal those of the in-memory records,
 // the thread count changes nothing, and the first bad step stops the
 // extraction with an error naming its file.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -144,6 +145,28 @@ TEST_F(CampaignExtractorTest, FirstBadStepStopsWithItsFile) {
       EXPECT_NE(std::string(e.what()).find("NaN or infinite value at line 3"), std::string::npos) << e.what();
     }
   }
+}
+
+TEST_F(CampaignExtractorTest, AColumnNoChannelUsesIsIgnoredAndSaid) {
+  // Step 0 gains a temperature column an acquisition system wrote beside the
+  // channels: the step is analysed as before and the column named once.
+  std::ifstream in(folder_ / "low/s0.csv");
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  std::string with_extra;
+  std::size_t start = 0;
+  for (bool header = true; start < text.size(); header = false) {
+    const std::size_t end = text.find('\n', start);
+    with_extra += text.substr(start, end - start) + (header ? ",temperature [degC]\n" : ",21.5\n");
+    start = end + 1;
+  }
+  const PhasorSet clean = ExtractCampaign(ReadCampaign(folder_), {});
+  std::ofstream(folder_ / "low/s0.csv") << with_extra;
+  const PhasorSet set = ExtractCampaign(ReadCampaign(folder_), {});
+  EXPECT_EQ(set.steps[0].force.Harmonic(1).value, clean.steps[0].force.Harmonic(1).value);
+  EXPECT_EQ(set.steps[0].responses[1].Harmonic(3).value, clean.steps[0].responses[1].Harmonic(3).value);
+  const auto& warnings = set.steps[0].quality.warnings;
+  EXPECT_EQ(std::count(warnings.begin(), warnings.end(), "columns no channel uses, ignored: temperature [degC]"), 1);
+  for (const auto& w : set.steps[1].quality.warnings) EXPECT_EQ(w.find("ignored"), std::string::npos) << w;
 }
 
 }  // namespace

@@ -230,20 +230,21 @@ TEST_F(CampaignReaderTest, UnknownColumnInRecording) {
   std::string csv = RecordingCsv();
   csv.replace(0, 4, "acc9");
   Write("step_000.csv", csv);
-  ExpectNames(ExpectError(), StepFile(), "acc9", "unknown column");
+  // A column no channel uses is ignored; the channel it replaced is missing.
+  ExpectNames(ExpectError(), StepFile(), "acc1", "missing from the header (columns no channel uses: 'acc9')");
 }
 
 TEST_F(CampaignReaderTest, ChannelMissingFromRecording) {
   std::string csv = RecordingCsv();
   csv.replace(csv.find("vel2"), 4, "time");
   Write("step_000.csv", csv);
-  // "time" is unknown: the reader stops at the first wrong header entry.
-  ExpectNames(ExpectError(), StepFile(), "time", "unknown column");
+  // "time" is a time column without a unit: the reader stops there.
+  ExpectNames(ExpectError(), StepFile(), "time", "the time column has no unit");
   std::string json = CampaignJson();
   json.replace(json.find("\"vel2\""), 6, "\"vel3\"");
   Write("campaign.json", json);
   Write("step_000.csv", RecordingCsv());
-  ExpectNames(ExpectError(), StepFile(), "vel2", "unknown column");
+  ExpectNames(ExpectError(), StepFile(), "vel3", "missing from the header (columns no channel uses: 'vel2')");
 }
 
 TEST_F(CampaignReaderTest, CampaignChannelWithoutColumn) {
@@ -271,7 +272,8 @@ TEST_F(CampaignReaderTest, UnreadableNumber) {
   EXPECT_EQ(e.file(), StepFile());
   EXPECT_NE(std::string(e.what()).find("line 22"), std::string::npos) << e.what();
   EditRecording(20, 21, 3, "0.5V");
-  ExpectNames(ExpectError(), StepFile(), "force", "cannot read '0.5V' at line 22");
+  ExpectNames(ExpectError(), StepFile(), "force",
+              "the file uses ',' as separator and '.' as decimal mark: line 22, column force: '0.5V' is not a number");
 }
 
 TEST_F(CampaignReaderTest, NonIncreasingTime) {

@@ -165,8 +165,9 @@ TEST_F(BadInput, EveryBadInputEndsWithExitTwoAndAMessageThatNamesItAndTheFix) {
        "identify {m} -o {d}/r.json", {"step_001.csv", "force", "spike", "Fix:"}},
       {"NaN in a recording", [&](auto m, auto) { ReplaceSample(step(m, 2), 9, 3, "nan"); },
        "extract {m} -o {d}/p.json", {"step_002.csv", "acc2", "NaN", "line 9", "Fix:"}},
-      {"an unknown column", [&](auto m, auto) { Replace(step(m, 1), "acc2", "acc9"); },
-       "extract {m} -o {d}/p.json", {"step_001.csv", "acc9", "unknown column", "Fix:"}},
+      // A column no channel uses is ignored; the channel it replaced is missing.
+      {"a channel renamed in the header", [&](auto m, auto) { Replace(step(m, 1), "acc2", "acc9"); },
+       "extract {m} -o {d}/p.json", {"step_001.csv", "channel 'acc2'", "missing from the header", "acc9", "Fix:"}},
       {"time going backwards", [&](auto m, auto) { ReplaceSample(step(m, 1), 5, 0, "0.0009"); },
        "extract {m} -o {d}/p.json", {"step_001.csv", "time does not increase", "Fix:"}},
       {"a record of one period", [&](auto m, auto) {

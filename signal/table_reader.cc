@@ -1,0 +1,221 @@
+#include "signal/table_reader.h"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <charconv>
+#include <cstring>
+
+#include "signal/input_error.h"
+
+namespace beamid::signal {
+namespace {
+
+bool IsBlank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
+
+std::string_view Trim(std::string_view s) {
+  while (!s.empty() && IsBlank(s.front())) s.remove_prefix(1);
+  while (!s.empty() && IsBlank(s.back())) s.remove_suffix(1);
+  return s;
+}
+
+// Blanks, then one pair of surrounding quotes.
+std::string_view Unquote(std::string_view s) {
+  s = Trim(s);
+  if (s.size() >= 2 && (s.front() == '"' || s.front() == '\'') && s.back() == s.front())
+    s = Trim(s.substr(1, s.size() - 2));
+  return s;
+}
+
+std::string_view NextLine(std::string_view& text) {
+  const std::size_t end = text.find('\n');
+  std::string_view line = text.substr(0, end);
+  text.remove_prefix(end == std::string_view::npos ? text.size() : end + 1);
+  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  return line;
+}
+
+bool IsComment(std::string_view trimmed) {
+  return trimmed.starts_with('#') || trimmed.starts_with('%') || trimmed.starts_with("//");
+}
+
+// True when nothing but blank and comment lines is left.
+bool OnlyBlankOrComments(std::string_view text) {
+  while (!text.empty()) {
+    const std::string_view line = Trim(NextLine(text));
+    if (!line.empty() && !IsComment(line)) return false;
+  }
+  return true;
+}
+
+std::string Lower(std::string_view text) {
+  std::string out(text);
+  std::transform(out.begin(), out.end(), out.begin(), [](unsigned char c) { return std::tolower(c); });
+  return out;
+}
+
+std::string SeparatorName(char c) { return c == '\t' ? "tab" : std::string("'") + c + "'"; }
+
+}  // namespace
+
+std::string TableFormat::Describe() const {
+  return "the file uses " + SeparatorName(separator) + " as separator and '" + std::string(1, decimal_mark) +
+         "' as decimal mark";
+}
+
+std::optional<std::string> NormaliseUnit(std::string_view spelling) {
+  static const std::array<std::pair<std::string_view, std::string_view>, 38> kSpellings = {{
+      {"hz", "Hz"},       {"1/s", "Hz"},       {"rad/s", "rad/s"},  {"rad_s", "rad/s"},  {"n", "N"},
+      {"m/s^2", "m/s^2"}, {"m/s2", "m/s^2"},   {"m/s²", "m/s^2"},   {"m_s2", "m/s^2"},   {"m_s^2", "m/s^2"},
+      {"ms-2", "m/s^2"},  {"m/s/s", "m/s^2"},  {"ms^-2", "m/s^2"},  {"m s^-2", "m/s^2"}, {"g", "g"},
+      {"m/s", "m/s"},     {"m_s", "m/s"},      {"ms-1", "m/s"},     {"mm/s", "mm/s"},    {"mm_s", "mm/s"},
+      {"m", "m"},         {"mm", "mm"},        {"rad", "rad"},      {"deg", "deg"},      {"degree", "deg"},
+      {"degrees", "deg"}, {"°", "deg"},        {"radian", "rad"},   {"s", "s"},          {"sec", "s"},
+      {"second", "s"},    {"seconds", "s"},    {"ms", "ms"},        {"msec", "ms"},      {"millisecond", "ms"},
+      {"milliseconds", "ms"}, {"m/s^-2", "m/s^2"}, {"newton", "N"},
+  }};
+  const std::string key = Lower(Unquote(spelling));
+  for (const auto& [s, unit] : kSpellings)
+    if (key == s) return std::string(unit);
+  return std::nullopt;
+}
+
+std::optional<std::string> SplitUnitSuffix(std::string_view text, std::string_view name) {
+  if (name.empty() || text.size() <= name.size() + 1 || !text.starts_with(name) || text[name.size()] != '_')
+    return std::nullopt;
+  const std::string_view suffix = text.substr(name.size() + 1);
+  if (!NormaliseUnit(suffix)) return std::nullopt;
+  return std::string(suffix);
+}
+
+TableReader::TableReader(std::string_view text, std::string source, Options options)
+    : text_(text), source_(std::move(source)), options_(options) {
+  if (text_.size() >= 3 && std::memcmp(text_.data(), "\xEF\xBB\xBF", 3) == 0) text_.remove_prefix(3);
+  std::string_view header;
+  while (!text_.empty()) {
+    const std::string_view line = NextLine(text_);
+    ++line_;
+    const std::string_view trimmed = Trim(line);
+    if (trimmed.empty() || IsComment(trimmed)) continue;
+    header = line;
+    has_header_ = true;
+    break;
+  }
+  if (!has_header_) return;
+  header_line_ = line_;
+  format_.separator = header.find(';') != std::string_view::npos    ? ';'
+                      : header.find('\t') != std::string_view::npos ? '\t'
+                                                                    : ',';
+  std::vector<std::string_view> cells;
+  SplitCells(header, cells);
+  for (const std::string_view cell : cells) {
+    HeaderCell h;
+    h.text = std::string(Unquote(cell));
+    h.name = h.text;
+    for (const auto& [open, close] : {std::pair{'[', ']'}, std::pair{'(', ')'}}) {
+      const auto a = h.text.find(open), b = h.text.rfind(close);
+      if (a != std::string::npos && b != std::string::npos && b > a) {
+        h.name = std::string(Unquote(std::string_view(h.text).substr(0, a)));
+        h.unit = std::string(Trim(std::string_view(h.text).substr(a + 1, b - a - 1)));
+        break;
+      }
+    }
+    header_.push_back(std::move(h));
+  }
+  DetectDecimalMark(text_);
+}
+
+void TableReader::DetectDecimalMark(std::string_view rest) {
+  if (format_.separator == ',') return;
+  std::vector<std::string_view> cells;
+  for (int lines = 0; lines < 1000 && !rest.empty(); ++lines) {
+    const std::string_view line = NextLine(rest);
+    const std::string_view trimmed = Trim(line);
+    if (trimmed.empty() || IsComment(trimmed)) continue;
+    SplitCells(line, cells);
+    bool point = false;
+    for (const std::string_view cell : cells) {
+      if (cell.find(',') != std::string_view::npos) {
+        format_.decimal_mark = ',';
+        return;
+      }
+      point = point || cell.find('.') != std::string_view::npos;
+    }
+    if (point) return;
+  }
+}
+
+void TableReader::SplitCells(std::string_view line, std::vector<std::string_view>& cells) const {
+  cells.clear();
+  while (true) {
+    const std::size_t end = line.find(format_.separator);
+    cells.push_back(line.substr(0, end));
+    if (end == std::string_view::npos) break;
+    line.remove_prefix(end + 1);
+  }
+}
+
+bool TableReader::NextRow() {
+  while (!text_.empty()) {
+    const std::string_view line = NextLine(text_);
+    ++line_;
+    const std::string_view trimmed = Trim(line);
+    if (!trimmed.empty() && IsComment(trimmed)) continue;
+    if (trimmed.empty()) {
+      if (options_.blank_lines_inside) continue;
+      if (OnlyBlankOrComments(text_)) break;  // trailing blank lines are harmless
+      throw InputError(source_, "", "line " + std::to_string(line_) + " is empty", "remove the blank line");
+    }
+    SplitCells(line, cells_);
+    return true;
+  }
+  text_ = {};
+  cells_.clear();
+  return false;
+}
+
+std::string_view TableReader::CellText(std::size_t cell) const { return Unquote(cells_.at(cell)); }
+
+bool TableReader::Number(std::size_t cell, double& value, PrintedPrecision* precision) const {
+  std::string_view token = Unquote(cells_[cell]);
+  if (!token.empty() && token.front() == '+') token.remove_prefix(1);
+  if (token.empty()) return false;
+  char buffer[64];
+  if (format_.decimal_mark == ',') {
+    if (token.size() >= sizeof buffer || token.find('.') != std::string_view::npos) return false;
+    std::memcpy(buffer, token.data(), token.size());
+    std::replace(buffer, buffer + token.size(), ',', '.');
+    token = std::string_view(buffer, token.size());
+  }
+  const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
+  if (error != std::errc() || end != token.data() + token.size()) return false;
+  if (precision != nullptr) {
+    int after = 0, significant = 0, exponent = 0;
+    bool in_fraction = false, leading = true;
+    std::size_t i = 0;
+    if (i < token.size() && token[i] == '-') ++i;
+    for (; i < token.size(); ++i) {
+      const char c = token[i];
+      if (c == '.') {
+        in_fraction = true;
+      } else if (c >= '0' && c <= '9') {
+        if (in_fraction) ++after;
+        if (c != '0') leading = false;
+        if (!leading) ++significant;
+      } else {
+        if (c == 'e' || c == 'E') std::from_chars(token.data() + i + 1 + (token[i + 1] == '+' ? 1 : 0),
+                                                  token.data() + token.size(), exponent);
+        break;
+      }
+    }
+    *precision = {.decimals = after - exponent, .significant = significant};
+  }
+  return true;
+}
+
+std::string TableReader::NotANumber(std::size_t cell, std::string_view column) const {
+  return format_.Describe() + ": line " + std::to_string(line_) + ", column " + std::string(column) + ": '" +
+         std::string(CellText(cell)) + "' is not a number";
+}
+
+}  // namespace beamid::signal
