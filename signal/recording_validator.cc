@@ -1,8 +1,9 @@
 #include "signal/recording_validator.h"
 
 #include <algorithm>
-#include <vector>
 #include <cmath>
+#include <limits>
+#include <vector>
 
 #include "hb/option_checks.h"
 #include "signal/input_error.h"
@@ -23,6 +24,7 @@ void RecordingChecks::Validate() const {
   RequireNonNegative("RecordingChecks.min_run_fraction_of_period", min_run_fraction_of_period);
   // At 1 or below, the 1 % of samples beyond the 99th percentile would be spikes.
   RequireAbove("RecordingChecks.max_spike_ratio", max_spike_ratio, 1.0);
+  RequireNonNegative("RecordingChecks.min_converter_steps_for_runs", min_converter_steps_for_runs);
 }
 
 double ValidateTimeColumn(std::span<const double> time_s, double expected_sample_rate_hz, const std::string& file,
@@ -134,6 +136,30 @@ double ValidateTimeColumn(std::span<const double> time_s, double expected_sample
   return expected_sample_rate_hz > 0.0 ? expected_sample_rate_hz : rate_hz;
 }
 
+namespace {
+
+// How many steps of the converter the channel spans: its range over the
+// smallest difference between two of its distinct values, when every value
+// lies on that grid (the resolution it was recorded or printed with);
+// infinite when the values lie on no such grid (a sine sampled in step with
+// its period repeats a few values that are no converter's steps).
+double ConverterSteps(const Eigen::Ref<const Eigen::VectorXd>& x) {
+  std::vector<double> values(x.data(), x.data() + x.size());
+  std::sort(values.begin(), values.end());
+  values.erase(std::unique(values.begin(), values.end()), values.end());
+  if (values.size() < 2) return 0.0;
+  double step = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 1; i < values.size(); ++i) step = std::min(step, values[i] - values[i - 1]);
+  // 1e-3 of a step: values printed in decimal sit on the grid to far better.
+  for (double v : values) {
+    const double steps = (v - values.front()) / step;
+    if (std::abs(steps - std::round(steps)) > 1e-3) return std::numeric_limits<double>::infinity();
+  }
+  return (values.back() - values.front()) / step;
+}
+
+}  // namespace
+
 void ValidateChannels(const Eigen::MatrixXd& samples, std::span<const std::string> channels, double sample_rate_hz,
                       double start_time_s, double nominal_frequency_hz, const std::string& file,
                       const RecordingChecks& checks) {
@@ -174,6 +200,12 @@ void ValidateChannels(const Eigen::MatrixXd& samples, std::span<const std::strin
                                FormatNumber(std::abs(x[i] - median) / *p99) +
                                " times farther from the median than 99 % of the channel's samples",
                            "repair or remove the corrupted sample, or record the step again");
+    // A quiet channel resolved by a few steps of the converter (a sensor
+    // that is not excited much, read on a range set for more) repeats its
+    // values for many samples: that is quantisation, not a dropout, and its
+    // extremes repeat without clipping. Clipping and dropouts show on a
+    // channel that spans many converter steps.
+    if (ConverterSteps(samples.col(c)) < checks.min_converter_steps_for_runs) continue;
     Eigen::Index run_start = 0;
     for (Eigen::Index i = 1; i <= n; ++i) {
       if (i < n && x[i] == x[run_start]) continue;

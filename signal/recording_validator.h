@@ -40,6 +40,11 @@ struct RecordingChecks {
   int min_run_samples = 4;
   double min_run_fraction_of_period = 0.02;
   double max_spike_ratio = 10.0;
+  // Runs of identical samples (clipping, dropouts) are judged only on a
+  // channel that spans at least this many converter steps (its range over
+  // its resolution); below, repeated values are quantisation of a quiet
+  // signal. 64 steps: 6 bits of a converter's range.
+  double min_converter_steps_for_runs = 64.0;
 
   // Throws InputError naming the field, its value and the allowed range.
   void Validate() const;

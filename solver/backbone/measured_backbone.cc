@@ -6,11 +6,15 @@
 #include <limits>
 #include <numbers>
 #include <stdexcept>
+#include <tuple>
+
+#include <fmt/core.h>
 
 
 #include <Eigen/Cholesky>
 #include <Eigen/QR>
 
+#include "hb/errors.h"
 #include "hb/option_checks.h"
 #include "signal/quantity_conversion.h"
 
@@ -377,7 +381,7 @@ double SolveAmplitude(const SingleModeFit& fit, double omega, double force_ampli
 
 void Regenerate(const SingleModeFit& fit, const LevelData& data, double window, double a_max, LevelResonance& out) {
   const auto points = FitPoints(data, window);
-  double sum_sq = 0, worst = 0, chi_square = 0;
+  double sum_sq = 0, worst = 0, chi_square = 0, noise_sq = 0;
   int count = 0;
   for (int i = 0; i < data.size(); ++i) {
     const PointView p = At(data.raw, i);
@@ -401,6 +405,9 @@ void Regenerate(const SingleModeFit& fit, const LevelData& data, double window, 
     const std::complex<double> error = predicted - measured;
     const double relative = std::abs(error) / std::abs(measured);
     sum_sq += relative * relative;
+    // The relative error variance the noise of F and X_d alone gives (either way round).
+    noise_sq += data.raw_covariance.block(o + 1, o + 1, 2, 2).trace() / std::norm(p.force) +
+                data.raw_covariance.block(o + 3, o + 3, 2, 2).trace() / std::norm(p.disp);
     worst = std::max(worst, std::isfinite(relative) ? relative : INFINITY);
     if (covariance.trace() > 0) {
       const Eigen::Vector2d e(error.real(), error.imag());
@@ -411,6 +418,53 @@ void Regenerate(const SingleModeFit& fit, const LevelData& data, double window, 
   out.regeneration_relative_rms = count ? std::sqrt(sum_sq / count) : 0.0;
   out.regeneration_max_relative = worst;
   out.regeneration_reduced_chi_square = count ? chi_square / (2 * count) : 0.0;
+  out.regeneration_noise_relative_rms = count ? std::sqrt(noise_sq / count) : 0.0;
+}
+
+std::string Percent(double fraction) { return fmt::format("{:.3g} %", 100 * fraction); }
+
+// The checks of LevelResonance::flags on one level's numbers.
+void FlagLevel(const LevelData& data, bool regenerated, const MeasuredBackboneOptions& options, LevelResonance& r) {
+  const auto add = [&](LevelFlagKind kind, std::string quantity, std::string message) {
+    r.flags.push_back({.kind = kind, .quantity = std::move(quantity), .message = std::move(message)});
+  };
+  for (const auto& [estimate, quantity, name] :
+       {std::tuple{&r.quadrature_damping_ratio, "quadrature_damping_ratio", "phase-resonance"},
+        std::tuple{&r.local_damping_ratio, "local_damping_ratio", "local-fit"},
+        std::tuple{&r.half_power_damping_ratio, "half_power_damping_ratio", "half-power"}})
+    if (estimate->valid && !(estimate->value > 0.0))
+      add(LevelFlagKind::kDampingNotPositive, quantity,
+          fmt::format("the {} damping ratio is {:.3g} % (± {:.2g} %): not positive, no physical damping", name,
+                      100 * estimate->value, 100 * estimate->std));
+  const int n = data.size();
+  const double f_min = At(data.raw, 0).omega / kTwoPi, f_max = At(data.raw, n - 1).omega / kTwoPi;
+  const int m = PeakIndex(data.raw, n);
+  if (m == 0 || m == n - 1)
+    add(LevelFlagKind::kPeakOutsideBand, "peak_frequency",
+        fmt::format("the largest response is at the sweep's {} ({:.6g} Hz): the peak lies outside the measured band "
+                    "{:.6g} … {:.6g} Hz",
+                    m == 0 ? "start" : "end", At(data.raw, m).omega / kTwoPi, f_min, f_max));
+  for (const auto& [estimate, quantity, name] :
+       {std::tuple{&r.peak_frequency_hz, "peak_frequency", "peak"},
+        std::tuple{&r.quadrature_frequency_hz, "quadrature_frequency", "phase-resonance"},
+        std::tuple{&r.local_natural_frequency_hz, "local_natural_frequency", "local-fit natural"}})
+    if (estimate->valid && !(estimate->value >= f_min && estimate->value <= f_max))
+      add(LevelFlagKind::kPeakOutsideBand, quantity,
+          fmt::format("the {} frequency {:.6g} Hz lies outside the measured band {:.6g} … {:.6g} Hz", name,
+                      estimate->value, f_min, f_max));
+  if (regenerated) {
+    const double allowed =
+        std::max(options.max_regeneration_relative_rms, kRegenerationNoiseFactor * r.regeneration_noise_relative_rms);
+    if (!(r.regeneration_relative_rms <= allowed))
+      add(LevelFlagKind::kRegenerationBeyondNoise, "regeneration_relative_rms",
+          r.regeneration_noise_relative_rms > 0
+              ? fmt::format("the single-mode fit misses the level by {} RMS; its noise allows {} (the larger of {} × "
+                            "the noise's {} and {})",
+                            Percent(r.regeneration_relative_rms), Percent(allowed), kRegenerationNoiseFactor,
+                            Percent(r.regeneration_noise_relative_rms), Percent(options.max_regeneration_relative_rms))
+              : fmt::format("the single-mode fit misses the level by {} RMS, more than {} (the level gives no noise)",
+                            Percent(r.regeneration_relative_rms), Percent(allowed)));
+  }
 }
 
 // The global single-nonlinear-mode fit: every form of ω_n²(a) and ζω_n(a)
@@ -465,6 +519,39 @@ std::string_view LevelControlName(LevelControl control) {
   return "";
 }
 
+std::string_view LevelFlagName(LevelFlagKind kind) {
+  switch (kind) {
+    case LevelFlagKind::kDampingNotPositive: return "damping_not_positive";
+    case LevelFlagKind::kPeakOutsideBand: return "peak_outside_band";
+    case LevelFlagKind::kRegenerationBeyondNoise: return "regeneration_beyond_noise";
+  }
+  return "";
+}
+
+LevelFlagKind LevelFlagKindFromName(std::string_view name) {
+  for (LevelFlagKind kind : {LevelFlagKind::kDampingNotPositive, LevelFlagKind::kPeakOutsideBand,
+                             LevelFlagKind::kRegenerationBeyondNoise})
+    if (name == LevelFlagName(kind)) return kind;
+  throw InputError("unknown level flag \"" + std::string(name) +
+                   "\": give damping_not_positive, peak_outside_band or regeneration_beyond_noise");
+}
+
+bool LevelResonance::HasFlag(LevelFlagKind kind) const {
+  return std::any_of(flags.begin(), flags.end(), [&](const LevelFlag& f) { return f.kind == kind; });
+}
+
+std::string LevelResonance::FlagNote(std::string_view quantity) const {
+  std::string note;
+  for (const auto& f : flags) {
+    if (f.quantity != quantity) continue;
+    const std::string_view what = f.kind == LevelFlagKind::kDampingNotPositive ? "not positive"
+                                  : f.kind == LevelFlagKind::kPeakOutsideBand  ? "outside the measured band"
+                                                                               : "beyond the noise";
+    note += (note.empty() ? "[FLAG: " : "; ") + std::string(what);
+  }
+  return note.empty() ? note : note + "]";
+}
+
 void MeasuredBackboneOptions::Validate() const {
   using namespace option_checks;
   if (!(fit_window > 0.0 && fit_window <= 1.0))
@@ -475,12 +562,15 @@ void MeasuredBackboneOptions::Validate() const {
   RequireAtLeast("MeasuredBackboneOptions.max_frequency_degree", max_frequency_degree, 0);
   RequireAtLeast("MeasuredBackboneOptions.max_damping_degree", max_damping_degree, 0);
   RequirePositive("MeasuredBackboneOptions.trend_significance", trend_significance);
+  RequirePositive("MeasuredBackboneOptions.max_regeneration_relative_rms", max_regeneration_relative_rms);
 }
 
-MeasuredBackbone AnalyseMeasuredBackbone(const std::vector<signal::FirstHarmonicLevel>& levels,
-                                         const MeasuredBackboneOptions& options) {
-  options.Validate();
-  if (levels.empty()) throw std::invalid_argument("measured backbone: no levels to analyse");
+namespace {
+
+// The analysis with the levels of `in_fit` in the cross-level fit (all levels
+// are analysed, regenerated and flagged).
+MeasuredBackbone Analyse(const std::vector<signal::FirstHarmonicLevel>& levels, const MeasuredBackboneOptions& options,
+                         const std::vector<bool>& in_fit) {
   MeasuredBackbone result;
   result.response_quantity = signal::QuantityName(levels.front().response_quantity);
   std::vector<LevelData> data;
@@ -501,7 +591,8 @@ MeasuredBackbone AnalyseMeasuredBackbone(const std::vector<signal::FirstHarmonic
     data.push_back(MakeLevelData(level));
     level_points.push_back(FitPoints(data.back(), options.fit_window));
   }
-  for (const auto& points : level_points) all_points.insert(all_points.end(), points.begin(), points.end());
+  for (std::size_t l = 0; l < level_points.size(); ++l)
+    if (in_fit[l]) all_points.insert(all_points.end(), level_points[l].begin(), level_points[l].end());
   result.min_amplitude_m = INFINITY;
   for (const auto& p : all_points) {
     result.min_amplitude_m = std::min(result.min_amplitude_m, p.amplitude_m);
@@ -556,6 +647,8 @@ MeasuredBackbone AnalyseMeasuredBackbone(const std::vector<signal::FirstHarmonic
     EvaluateLocalFit(local_fits[l], r);
     if (!r.quadrature_note.empty()) result.warnings.push_back("level '" + r.label + "': " + r.quadrature_note);
     if (result.fit.ok) Regenerate(result.fit, data[l], options.fit_window, result.max_amplitude_m, r);
+    FlagLevel(data[l], result.fit.ok, options, r);
+    r.in_global_fit = in_fit[l];
     result.levels.push_back(std::move(r));
   }
   if (!result.fit.ok) return result;
@@ -577,6 +670,73 @@ MeasuredBackbone AnalyseMeasuredBackbone(const std::vector<signal::FirstHarmonic
     trend.verdict = trend.z > options.trend_significance    ? "rises"
                     : trend.z < -options.trend_significance ? "falls"
                                                             : "no significant trend";
+  }
+  return result;
+}
+
+std::string FlagSummary(const LevelResonance& level) {
+  std::string text;
+  for (const auto& f : level.flags) text += (text.empty() ? "" : "; ") + std::string(LevelFlagName(f.kind)) + ": " + f.message;
+  return text;
+}
+
+}  // namespace
+
+// Flags are found with every level in the cross-level fit; then, unless the
+// options keep them, flagged levels leave the fit one pass at a time: every
+// level with a flag the fit does not change (damping, band), and of those
+// the fit regenerates beyond their noise only the worst (a bad level bends
+// the fit and so the regeneration of the good ones), until no level in the
+// fit is flagged. A level left out keeps the flags it was left out for.
+MeasuredBackbone AnalyseMeasuredBackbone(const std::vector<signal::FirstHarmonicLevel>& levels,
+                                         const MeasuredBackboneOptions& options) {
+  options.Validate();
+  if (levels.empty()) throw std::invalid_argument("measured backbone: no levels to analyse");
+  const std::size_t n = levels.size();
+  std::vector<bool> in_fit(n, true);
+  MeasuredBackbone result = Analyse(levels, options, in_fit);
+  std::vector<std::vector<LevelFlag>> left_out_for(n);
+  bool fit_would_be_empty = false;
+  while (!options.keep_flagged_levels_in_fit) {
+    std::vector<bool> next = in_fit;
+    int worst = -1;
+    for (std::size_t l = 0; l < n; ++l) {
+      const LevelResonance& r = result.levels[l];
+      if (!in_fit[l] || r.flags.empty()) continue;
+      if (std::any_of(r.flags.begin(), r.flags.end(),
+                      [](const LevelFlag& f) { return f.kind != LevelFlagKind::kRegenerationBeyondNoise; }))
+        next[l] = false;
+      else if (worst < 0 || r.regeneration_relative_rms > result.levels[worst].regeneration_relative_rms)
+        worst = static_cast<int>(l);
+    }
+    if (worst >= 0 && std::equal(next.begin(), next.end(), in_fit.begin())) next[worst] = false;
+    if (std::equal(next.begin(), next.end(), in_fit.begin())) break;
+    if (std::none_of(next.begin(), next.end(), [](bool b) { return b; })) {
+      fit_would_be_empty = true;
+      break;
+    }
+    for (std::size_t l = 0; l < n; ++l)
+      if (in_fit[l] && !next[l]) left_out_for[l] = result.levels[l].flags;
+    in_fit = next;
+    result = Analyse(levels, options, in_fit);
+  }
+  // A level left out is flagged by the last fit (the flags the fit bends may
+  // have changed); only if that fit flags nothing does it keep the flags it
+  // was left out for.
+  for (std::size_t l = 0; l < n; ++l) {
+    auto& flags = result.levels[l].flags;
+    if (!flags.empty()) continue;
+    for (const auto& f : left_out_for[l])
+      flags.push_back({f.kind, f.quantity, f.message + " (when the level was in the cross-level fit)"});
+  }
+  for (const auto& level : result.levels) {
+    if (level.flags.empty()) continue;
+    result.warnings.push_back(
+        "level '" + level.label + "' is flagged (" + FlagSummary(level) + "): " +
+        (!level.in_global_fit ? "left out of the cross-level fit and the damping trend "
+                                "(MeasuredBackboneOptions.keep_flagged_levels_in_fit keeps it)"
+         : fit_would_be_empty ? "kept in the cross-level fit, which would otherwise hold no level"
+                              : "kept in the cross-level fit"));
   }
   return result;
 }

@@ -42,6 +42,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "signal/first_harmonic_level.h"
@@ -71,6 +72,16 @@ struct MeasuredBackboneOptions {
   bool estimate_residual = true;
   // |slope|/σ above which the damping trend counts as significant.
   double trend_significance = 3.0;
+  // A level's regeneration by the cross-level fit counts as beyond its noise
+  // (flag regeneration_beyond_noise) when its relative RMS error exceeds both
+  // kRegenerationNoiseFactor × what the phasors' noise alone explains and
+  // this floor: one nonlinear mode is an approximation (residual modes, a
+  // shape changing with amplitude) that misses clean data by a few per cent,
+  // so a level is only flagged when it misses by more than 10 %.
+  double max_regeneration_relative_rms = 0.10;
+  // Flagged levels (LevelResonance::flags) stay out of the cross-level fit and
+  // the damping trend unless this asks to keep them.
+  bool keep_flagged_levels_in_fit = false;
 
   // Throws InputError naming the field, its value and the allowed range.
   void Validate() const;
@@ -83,6 +94,27 @@ struct Estimate {
 };
 
 enum class LevelControl { kForce, kResponse, kNeither };
+
+// What makes a level's numbers untrustworthy. Names (LevelFlagName):
+// "damping_not_positive" (an estimator's ζ ≤ 0), "peak_outside_band" (the
+// peak, phase resonance or natural frequency outside the level's measured
+// frequencies, or the largest response at the sweep's end),
+// "regeneration_beyond_noise" (the cross-level single-mode fit misses the
+// level by more than its noise allows, see
+// MeasuredBackboneOptions::max_regeneration_relative_rms).
+enum class LevelFlagKind { kDampingNotPositive, kPeakOutsideBand, kRegenerationBeyondNoise };
+
+// Regeneration errors up to this many times what the noise alone explains are not flagged.
+inline constexpr double kRegenerationNoiseFactor = 3.0;
+
+struct LevelFlag {
+  LevelFlagKind kind = LevelFlagKind::kDampingNotPositive;
+  // The LevelResonance number it concerns: "quadrature_damping_ratio",
+  // "local_damping_ratio", "half_power_damping_ratio", "quadrature_frequency",
+  // "peak_frequency", "local_natural_frequency" or "regeneration_relative_rms".
+  std::string quantity;
+  std::string message;  // with the numbers
+};
 
 struct LevelResonance {
   std::string label;
@@ -118,6 +150,17 @@ struct LevelResonance {
   double regeneration_relative_rms = 0.0;
   double regeneration_max_relative = 0.0;
   double regeneration_reduced_chi_square = 0.0;
+  // The relative RMS error the phasors' noise alone would give (0: no noise given).
+  double regeneration_noise_relative_rms = 0.0;
+
+  // Empty for a level whose numbers pass the checks.
+  std::vector<LevelFlag> flags;
+  // Whether the level's points entered the cross-level fit and damping trend.
+  bool in_global_fit = true;
+
+  bool HasFlag(LevelFlagKind kind) const;
+  // The flags on one quantity, e.g. "[FLAG: not positive]"; "" when none.
+  std::string FlagNote(std::string_view quantity) const;
 };
 
 struct BackboneModelCandidate {
@@ -156,5 +199,8 @@ MeasuredBackbone AnalyseMeasuredBackbone(const std::vector<signal::FirstHarmonic
                                          const MeasuredBackboneOptions& options = {});
 
 std::string_view LevelControlName(LevelControl control);
+std::string_view LevelFlagName(LevelFlagKind kind);
+// Throws InputError for a name LevelFlagName does not give.
+LevelFlagKind LevelFlagKindFromName(std::string_view name);
 
 }  // namespace beamid::solver

@@ -39,6 +39,9 @@ Json EstimateToJson(const Estimate& e) {
 }
 
 Json LevelToJson(const LevelResonance& l) {
+  Json flags = Json::array();
+  for (const auto& f : l.flags)
+    flags.push_back({{"kind", std::string(LevelFlagName(f.kind))}, {"quantity", f.quantity}, {"message", f.message}});
   return {{"label", l.label},
           {"control", std::string(LevelControlName(l.control))},
           {"num_points", l.num_points},
@@ -63,7 +66,10 @@ Json LevelToJson(const LevelResonance& l) {
           {"regeneration",
            {{"relative_rms", Number(l.regeneration_relative_rms)},
             {"max_relative", Number(l.regeneration_max_relative)},
-            {"reduced_chi_square", Number(l.regeneration_reduced_chi_square)}}}};
+            {"reduced_chi_square", Number(l.regeneration_reduced_chi_square)},
+            {"noise_relative_rms", Number(l.regeneration_noise_relative_rms)}}},
+          {"flags", flags},
+          {"in_global_fit", l.in_global_fit}};
 }
 
 Json FitToJson(const MeasuredBackboneFit& fit) {
@@ -122,7 +128,7 @@ LevelControl ControlFromJson(const Field& f) {
 
 LevelResonance LevelFromJson(const Field& f) {
   f.OnlyKeys({"label", "control", "num_points", "num_fit_points", "phase_resonance", "peak", "half_power", "local_fit",
-              "regeneration"});
+              "regeneration", "flags", "in_global_fit"});
   LevelResonance l;
   l.label = f.String("label");
   l.control = ControlFromJson(f.At("control"));
@@ -153,10 +159,31 @@ LevelResonance LevelFromJson(const Field& f) {
   l.local_damping_ratio = AsEstimate(local.At("damping_ratio"));
   l.local_reduced_chi_square = local.Number("reduced_chi_square");
   const Field regeneration = f.At("regeneration");
-  regeneration.OnlyKeys({"relative_rms", "max_relative", "reduced_chi_square"});
+  regeneration.OnlyKeys({"relative_rms", "max_relative", "reduced_chi_square", "noise_relative_rms"});
   l.regeneration_relative_rms = regeneration.Number("relative_rms");
   l.regeneration_max_relative = regeneration.Number("max_relative");
   l.regeneration_reduced_chi_square = regeneration.Number("reduced_chi_square");
+  // Files written before the flags have neither these nor the flags: read as 0, none, in the fit.
+  if (regeneration.Has("noise_relative_rms")) l.regeneration_noise_relative_rms = regeneration.Number("noise_relative_rms");
+  if (f.Has("flags")) {
+    const Field flags = f.At("flags");
+    for (std::size_t i = 0; i < flags.Size(); ++i) {
+      const Field flag = flags.At(i);
+      flag.OnlyKeys({"kind", "quantity", "message"});
+      const Field kind = flag.At("kind");
+      const std::string name = kind.String();
+      LevelFlag parsed;
+      try {
+        parsed.kind = LevelFlagKindFromName(name);
+      } catch (const InputError&) {
+        kind.Fail("is \"" + name + "\"", "give \"damping_not_positive\", \"peak_outside_band\" or \"regeneration_beyond_noise\"");
+      }
+      parsed.quantity = flag.String("quantity");
+      parsed.message = flag.String("message");
+      l.flags.push_back(std::move(parsed));
+    }
+  }
+  if (f.Has("in_global_fit")) l.in_global_fit = f.Boolean("in_global_fit");
   return l;
 }
 

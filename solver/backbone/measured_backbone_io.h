@@ -10,7 +10,9 @@
 // after_jump, note}, peak {frequency_Hz, receptance_m_N,
 // displacement_amplitude_m}, half_power {damping_ratio, note}, local_fit
 // {natural_frequency_Hz, damping_ratio, reduced_chi_square}, regeneration
-// {relative_rms, max_relative, reduced_chi_square}}], single_mode_fit {model
+// {relative_rms, max_relative, reduced_chi_square, noise_relative_rms}, flags
+// [{kind (damping_not_positive, peak_outside_band, regeneration_beyond_noise),
+// quantity, message}], in_global_fit}], single_mode_fit {model
 // (a description), form, frequency_degree, damping_degree,
 // frequency_exponent, damping_exponent, amplitude_dependent_modal_constant,
 // residual_receptance_m_N, parameter_order (a description),
@@ -20,7 +22,9 @@
 // NaN: a number that is not finite is written as null and read back as NaN.
 // Reading checks every field and throws InputError naming the file, the field
 // (e.g. "levels[2].peak.frequency_Hz") and the fix; a key the format does not
-// have is refused; a file without beamid_version reads (version "").
+// have is refused; a file without beamid_version reads (version ""), one
+// without flags, in_global_fit or noise_relative_rms (older files) reads as
+// no flags, in the fit, 0.
 #pragma once
 
 #include <filesystem>

@@ -6,6 +6,8 @@
 #include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <string_view>
+#include <tuple>
 
 #include <fmt/core.h>
 #include "hb/version.h"
@@ -61,6 +63,16 @@ std::string Cell(const solver::Estimate& e) {
 void RunMeasuredBackbone(const MeasuredBackboneCommandOptions& options, const GlobalOptions& global) {
   std::vector<std::filesystem::path> inputs(options.inputs.begin(), options.inputs.end());
   inputs.push_back(options.result_file);
+  // -o naming an input itself (a prefix: nothing would be overwritten, but surely a slip).
+  for (const auto& input : options.inputs) {
+    std::error_code error;
+    const auto canonical = [&](const std::filesystem::path& p) {
+      return std::filesystem::weakly_canonical(std::filesystem::absolute(p), error);
+    };
+    if (canonical(options.output) == canonical(input))
+      throw InputError("-o " + options.output + " is also an input of this command (" + input +
+                       "): -o takes the prefix of the outputs; choose another name");
+  }
   for (const char* suffix : {".csv", "_curves.csv", ".json"}) RequireWritableOutput(options.output + suffix, inputs);
   const auto levels = ReadLevels(options, global.quiet);
   const solver::MeasuredBackbone measured = solver::AnalyseMeasuredBackbone(levels);
@@ -85,13 +97,20 @@ void RunMeasuredBackbone(const MeasuredBackboneCommandOptions& options, const Gl
   csv << "level,control,quadrature_frequency_Hz,quadrature_frequency_std_Hz,amplitude_m,amplitude_std_m,"
          "response_amplitude,response_amplitude_std,force_N,force_std_N,zeta_quadrature,zeta_quadrature_std,"
          "zeta_local,zeta_local_std,zeta_half_power,zeta_half_power_std,peak_frequency_Hz,peak_frequency_std_Hz,"
-         "local_natural_frequency_Hz,local_natural_frequency_std_Hz,regeneration_relative_rms\n";
+         "local_natural_frequency_Hz,local_natural_frequency_std_Hz,regeneration_relative_rms,in_global_fit,flags\n";
   for (const auto& l : measured.levels) {
-    csv << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{:.4g}\n", l.label, solver::LevelControlName(l.control),
+    // The flags' names, ';'-separated (the messages are in the .json).
+    std::string flags;
+    for (const auto& f : l.flags) {
+      const std::string name(solver::LevelFlagName(f.kind));
+      if (flags.find(name) == std::string::npos) flags += (flags.empty() ? "" : ";") + name;
+    }
+    csv << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{:.4g},{},{}\n", l.label, solver::LevelControlName(l.control),
                        Cell(l.quadrature_frequency_hz), Cell(l.quadrature_amplitude_m),
                        Cell(l.quadrature_response_amplitude), Cell(l.quadrature_force_N),
                        Cell(l.quadrature_damping_ratio), Cell(l.local_damping_ratio), Cell(l.half_power_damping_ratio),
-                       Cell(l.peak_frequency_hz), Cell(l.local_natural_frequency_hz), l.regeneration_relative_rms);
+                       Cell(l.peak_frequency_hz), Cell(l.local_natural_frequency_hz), l.regeneration_relative_rms,
+                       l.in_global_fit ? 1 : 0, flags);
   }
 
   // The single-mode fit against amplitude, and the model beside it.
@@ -141,13 +160,46 @@ void RunMeasuredBackbone(const MeasuredBackboneCommandOptions& options, const Gl
   solver::WriteMeasuredBackboneFile(options.output + ".json", file);
   if (global.quiet) return;
   for (const auto& w : measured.warnings) fmt::print(stderr, "beamid backbone: warning: {}\n", w);
-  for (const auto& l : measured.levels)
-    fmt::print("  {:>8} ({}-controlled): {:.4f} ± {:.4f} Hz at {:.3e} m, ζ = {:.5f} ± {:.2g} (local fit {})\n",
-               l.label, solver::LevelControlName(l.control), l.quadrature_frequency_hz.value,
-               l.quadrature_frequency_hz.std, l.quadrature_amplitude_m.value, l.quadrature_damping_ratio.value,
-               l.quadrature_damping_ratio.std,
-               l.local_damping_ratio.valid ? fmt::format("{:.5f}", l.local_damping_ratio.value)
-                                           : std::string("not available: too few steps near the mode"));
+  // A flag's note, with a space before it, next to the number it concerns.
+  const auto note = [](const solver::LevelResonance& l, std::string_view quantity) {
+    const std::string text = l.FlagNote(quantity);
+    return text.empty() ? text : "  " + text;
+  };
+  for (const auto& l : measured.levels) {
+    if (!l.quadrature_frequency_hz.valid)
+      fmt::print("  {:>8} ({}-controlled): no phase resonance ({}), local fit ζ {}{}\n", l.label,
+                 solver::LevelControlName(l.control), l.quadrature_note,
+                 l.local_damping_ratio.valid ? fmt::format("{:.5f}", l.local_damping_ratio.value) : std::string("not available"),
+                 note(l, "local_damping_ratio"));
+    else
+      fmt::print("  {:>8} ({}-controlled): {:.4f} ± {:.4f} Hz{} at {:.3e} m, ζ = {:.5f} ± {:.2g}{} (local fit {}{})\n",
+                 l.label, solver::LevelControlName(l.control), l.quadrature_frequency_hz.value,
+                 l.quadrature_frequency_hz.std, note(l, "quadrature_frequency"), l.quadrature_amplitude_m.value,
+                 l.quadrature_damping_ratio.value, l.quadrature_damping_ratio.std,
+                 note(l, "quadrature_damping_ratio"),
+                 l.local_damping_ratio.valid ? fmt::format("{:.5f}", l.local_damping_ratio.value)
+                                             : std::string("not available: too few steps near the mode"),
+                 note(l, "local_damping_ratio"));
+    if (l.flags.empty()) continue;
+    for (const auto& [quantity, what, estimate] :
+         {std::tuple{"peak_frequency", "peak", l.peak_frequency_hz},
+          std::tuple{"local_natural_frequency", "local-fit natural frequency", l.local_natural_frequency_hz}})
+      if (!l.FlagNote(quantity).empty())
+        fmt::print("           {} = {}{}\n", what,
+                   estimate.valid ? fmt::format("{:.4f} ± {:.2g} Hz", estimate.value, estimate.std) : "none in the band",
+                   note(l, quantity));
+    if (!l.FlagNote("half_power_damping_ratio").empty())
+      fmt::print("           ζ (half-power) = {:.3f} %{}\n", 100 * l.half_power_damping_ratio.value,
+                 note(l, "half_power_damping_ratio"));
+    if (!l.FlagNote("regeneration_relative_rms").empty())
+      fmt::print("           regeneration RMS = {:.3g} % ({}){}\n", 100 * l.regeneration_relative_rms,
+                 l.regeneration_noise_relative_rms > 0
+                     ? fmt::format("noise {:.3g} %", 100 * l.regeneration_noise_relative_rms)
+                     : std::string("no noise given"),
+                 note(l, "regeneration_relative_rms"));
+    fmt::print("           {}\n", l.in_global_fit ? "flagged, kept in the cross-level fit"
+                                                   : "flagged: left out of the cross-level fit and the damping trend");
+  }
   if (fit.ok) fmt::print("  single-mode fit (AICc): {}, reduced χ² {:.3g}\n", fit.FormName(), fit.ReducedChiSquare());
   fmt::print("  damping against amplitude: {} (slope {:.3g} ± {:.2g} per m, {:.1f} σ)\n", trend.verdict,
              trend.slope_per_m, trend.slope_std_per_m, trend.z);

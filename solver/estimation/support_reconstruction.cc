@@ -66,7 +66,7 @@ DirectEstimate EstimatePolynomialDirectly(const std::vector<ReconstructedStep>& 
       for (Eigen::Index k = 1; k < s.theta_rad.size(); ++k) {
         const Complex e = std::polar(1.0, k * phase);
         theta += std::real(s.theta_rad[k] * e);
-        rate += std::real(Complex(0.0, k * s.omega_rad_s) * s.theta_rad[k] * e);
+        rate += std::real(DerivativeFactor(1, k * s.omega_rad_s) * s.theta_rad[k] * e);
         m += std::real(s.moment_Nm[k] * e);
       }
       block.row(n) << theta, theta * theta, theta * theta * theta, rate;

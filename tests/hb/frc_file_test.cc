@@ -20,32 +20,20 @@
 #include <gtest/gtest.h>
 
 #include "hb/errors.h"
+#include "tests/support/same_value.h"
 #include "tests/support/expect_refused.h"
 #include "tests/support/temp_path.h"
 
 namespace beamid::hb {
 namespace {
 
+using beamid::testing::Same;
+
 using beamid::testing::ExpectRefused;
 using beamid::testing::InputErrorOf;
 using ::testing::HasSubstr;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-::testing::AssertionResult Same(double a, double b) {
-  if (std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b) || (std::isnan(a) && std::isnan(b)))
-    return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << a << " != " << b;
-}
-
-::testing::AssertionResult Same(const std::vector<std::complex<double>>& a,
-                                const std::vector<std::complex<double>>& b) {
-  if (a.size() != b.size()) return ::testing::AssertionFailure() << a.size() << " != " << b.size() << " phasors";
-  for (std::size_t i = 0; i < a.size(); ++i)
-    if (!Same(a[i].real(), b[i].real()) || !Same(a[i].imag(), b[i].imag()))
-      return ::testing::AssertionFailure() << "phasor " << i << ": " << a[i] << " != " << b[i];
-  return ::testing::AssertionSuccess();
-}
 
 // Every field differs from its default.
 FrcFile Filled() {

@@ -42,13 +42,15 @@ std::string CampaignJson(const std::string& acc_unit = "g", const std::string& e
 
 // Force = sin, acc1 (in g) = 2 cos, vel2 (in mm/s) = 300 sin(2·), columns in
 // a different order than campaign.json.
-std::string RecordingCsv(int num_samples = 1000, double acc_clip_g = 1e9) {
+// vel2_step_mm_s > 0: vel2 is a quiet signal (0.6 of a step in amplitude)
+// read by a converter of that resolution.
+std::string RecordingCsv(int num_samples = 1000, double acc_clip_g = 1e9, double vel2_step_mm_s = 0.0) {
   std::string csv = "acc1,time_s, vel2 ,force\n";
   char line[160];
   for (int n = 0; n < num_samples; ++n) {
     const double t = n / kRateHz;
     const double phase = 2.0 * std::numbers::pi * kFrequencyHz * t;
-    std::snprintf(line, sizeof line, "%.9f,%.7f,%.6f,%.9f\r\n", std::clamp(2.0 * std::cos(phase), -acc_clip_g, acc_clip_g), t, 300.0 * std::sin(2 * phase),
+    std::snprintf(line, sizeof line, "%.9f,%.7f,%.6f,%.9f\r\n", std::clamp(2.0 * std::cos(phase), -acc_clip_g, acc_clip_g), t, vel2_step_mm_s > 0.0 ? vel2_step_mm_s * std::round(0.6 * std::sin(phase)) : 300.0 * std::sin(2 * phase),
                   std::sin(phase) + 0.1);
     csv += line;
   }
@@ -307,6 +309,26 @@ TEST_F(CampaignReaderTest, ClippedChannel) {
 TEST_F(CampaignReaderTest, Dropout) {
   EditRecording(600, 610, 3, "0");
   ExpectNames(ExpectError(), StepFile(), "force", "dropout: 10 identical samples (0) from t = 0.6 s");
+}
+
+TEST_F(CampaignReaderTest, AQuietQuantisedChannelIsNoDropout) {
+  // vel2 spans two converter steps: zero for 7 samples in a row, then an
+  // extreme for 3. Those runs are the converter's resolution, not a dropout
+  // or clipping, and the recording is read.
+  Write("step_000.csv", RecordingCsv(1000, 1e9, 0.001));
+  const Campaign campaign = ReadCampaign(folder_);
+  const Recording recording = ReadRecording(campaign, campaign.steps.front());
+  EXPECT_EQ(recording.samples.rows(), 1000);
+  // The same runs on a channel that spans many steps are a dropout.
+  RecordingChecks strict;
+  strict.min_converter_steps_for_runs = 0.0;
+  try {
+    ReadRecording(campaign, campaign.steps.front(), strict);
+    ADD_FAILURE() << "no InputError thrown";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.channel(), "vel2");
+    EXPECT_NE(std::string(e.what()).find("identical samples"), std::string::npos) << e.what();
+  }
 }
 
 TEST_F(CampaignReaderTest, DisconnectedChannel) {

@@ -19,20 +19,17 @@
 #include <nlohmann/json.hpp>
 
 #include "hb/errors.h"
+#include "tests/support/same_value.h"
 #include "tests/support/temp_path.h"
 
 namespace beamid::solver {
 namespace {
 
+using beamid::testing::Same;
+
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Same double: same bits, so that NaN equals NaN and -0 differs from 0.
-::testing::AssertionResult Same(double a, double b) {
-  if (std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b) || (std::isnan(a) && std::isnan(b)))
-    return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << a << " != " << b;
-}
-
 // ---------------------------------------------------------------- a file with every field set
 
 FitSummary Fit(double seed, const std::vector<std::string>& names) {

@@ -19,12 +19,15 @@
 #include <nlohmann/json.hpp>
 
 #include "hb/errors.h"
+#include "tests/support/same_value.h"
 #include "tests/support/temp_path.h"
 
 #include "tests/support/expect_refused.h"
 
 namespace beamid::solver {
 namespace {
+
+using beamid::testing::Same;
 
 using beamid::testing::InputErrorOf;
 
@@ -33,12 +36,6 @@ using ::testing::HasSubstr;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Same double: same bits, so that NaN equals NaN and -0 differs from 0.
-::testing::AssertionResult Same(double a, double b) {
-  if (std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b) || (std::isnan(a) && std::isnan(b)))
-    return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << a << " != " << b;
-}
-
 Estimate Est(double value, double std) { return {.value = value, .std = std, .valid = true}; }
 
 LevelResonance Level(int k) {
@@ -66,6 +63,14 @@ LevelResonance Level(int k) {
   l.regeneration_relative_rms = 0.0123 * s;
   l.regeneration_max_relative = 0.0345 * s;
   l.regeneration_reduced_chi_square = k == 2 ? kNaN : 0.987 * s;
+  // Not the reader's defaults (0, no flags, in the fit), so that a field the writer forgets fails.
+  l.regeneration_noise_relative_rms = 0.0021 * s;
+  if (k != 0)
+    l.flags = {{.kind = LevelFlagKind::kDampingNotPositive, .quantity = "half_power_damping_ratio", .message = "ζ -0.14 %"},
+               {.kind = k == 1 ? LevelFlagKind::kPeakOutsideBand : LevelFlagKind::kRegenerationBeyondNoise,
+                .quantity = "peak_frequency",
+                .message = "flag " + std::to_string(k)}};
+  l.in_global_fit = k == 0;
   return l;
 }
 
@@ -154,6 +159,14 @@ void ExpectSame(const MeasuredBackboneFile& a, const MeasuredBackboneFile& b) {
     EXPECT_TRUE(Same(x.regeneration_relative_rms, y.regeneration_relative_rms));
     EXPECT_TRUE(Same(x.regeneration_max_relative, y.regeneration_max_relative));
     EXPECT_TRUE(Same(x.regeneration_reduced_chi_square, y.regeneration_reduced_chi_square));
+    EXPECT_TRUE(Same(x.regeneration_noise_relative_rms, y.regeneration_noise_relative_rms));
+    ASSERT_EQ(x.flags.size(), y.flags.size());
+    for (std::size_t k = 0; k < x.flags.size(); ++k) {
+      EXPECT_EQ(x.flags[k].kind, y.flags[k].kind);
+      EXPECT_EQ(x.flags[k].quantity, y.flags[k].quantity);
+      EXPECT_EQ(x.flags[k].message, y.flags[k].message);
+    }
+    EXPECT_EQ(x.in_global_fit, y.in_global_fit);
   }
   const auto& f = a.single_mode_fit;
   const auto& g = b.single_mode_fit;
@@ -273,6 +286,10 @@ TEST(MeasuredBackboneFile, AFileInTheEarlierLayoutReads) {
   EXPECT_FALSE(l.half_power_damping_ratio.valid);
   EXPECT_EQ(l.half_power_note, "no half-power points");
   EXPECT_TRUE(std::isnan(l.regeneration_reduced_chi_square));
+  // Before the flags: none, in the fit, no noise figure.
+  EXPECT_TRUE(l.flags.empty());
+  EXPECT_TRUE(l.in_global_fit);
+  EXPECT_EQ(l.regeneration_noise_relative_rms, 0.0);
   EXPECT_EQ(f.single_mode_fit.parameters.size(), 5u);
   EXPECT_EQ(f.single_mode_fit.parameters[2], 36000.0);
   ASSERT_EQ(f.single_mode_fit.curve.size(), 1u);
@@ -329,6 +346,10 @@ TEST(MeasuredBackboneFile, AFieldOfTheWrongTypeIsRefusedNamingTheFileAndTheField
        "single_mode_fit.curve[1].damping_ratio", "must be a number"},
       {[](nlohmann::json& j) { j["warnings"] = "none"; }, "warnings", "must be an array"},
       {[](nlohmann::json& j) { j["damping_trend"]["slope"] = 1.0; }, "damping_trend.slope", "is not a field"},
+      {[](nlohmann::json& j) { j["levels"][1]["flags"][0]["kind"] = "odd"; }, "levels[1].flags[0].kind", "is \"odd\""},
+      {[](nlohmann::json& j) { j["levels"][1]["flags"][1].erase("message"); }, "levels[1].flags[1].message",
+       "is missing"},
+      {[](nlohmann::json& j) { j["levels"][0]["in_global_fit"] = 1; }, "levels[0].in_global_fit", "must be true or false"},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.field);

@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "hb/errors.h"
+#include "tests/support/same_value.h"
 #include "tests/support/temp_path.h"
 
 #include "tests/support/expect_refused.h"
@@ -25,22 +26,13 @@
 namespace beamid::solver {
 namespace {
 
+using beamid::testing::Same;
+
 using beamid::testing::InputErrorOf;
 
 using ::testing::HasSubstr;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-::testing::AssertionResult Same(double a, double b) {
-  if (std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b) || (std::isnan(a) && std::isnan(b)))
-    return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << a << " != " << b;
-}
-
-::testing::AssertionResult Same(std::complex<double> a, std::complex<double> b) {
-  if (Same(a.real(), b.real()) && Same(a.imag(), b.imag())) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << a << " != " << b;
-}
 
 PredictionFile Filled() {
   PredictionFile f;

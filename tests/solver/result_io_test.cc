@@ -19,6 +19,7 @@
 
 #include "hb/errors.h"
 #include "solver/estimation/prediction.h"
+#include "tests/support/same_value.h"
 #include "tests/support/temp_path.h"
 
 namespace beamid::solver {
@@ -188,21 +189,7 @@ ResultFile MultipleScalesResult() {
   return r;
 }
 
-bool Same(double a, double b) { return (std::isnan(a) && std::isnan(b)) || a == b; }
-bool Same(Complex a, Complex b) { return Same(a.real(), b.real()) && Same(a.imag(), b.imag()); }
-template <typename Matrix>
-bool Same(const Matrix& a, const Matrix& b) {
-  if (a.rows() != b.rows() || a.cols() != b.cols()) return false;
-  for (Eigen::Index i = 0; i < a.size(); ++i)
-    if (!Same(a.data()[i], b.data()[i])) return false;
-  return true;
-}
-bool Same(const std::vector<double>& a, const std::vector<double>& b) {
-  if (a.size() != b.size()) return false;
-  for (std::size_t i = 0; i < a.size(); ++i)
-    if (!Same(a[i], b[i])) return false;
-  return true;
-}
+using beamid::testing::Same;
 
 // Every field, NaN equal to NaN.
 void ExpectSame(const ResultFile& a, const ResultFile& b) {
