@@ -20,6 +20,7 @@
 #include <gtest/gtest.h>
 
 #include "hb/errors.h"
+#include "tests/support/csv_text.h"
 #include "tests/support/same_value.h"
 #include "tests/support/expect_refused.h"
 #include "tests/support/temp_path.h"
@@ -98,22 +99,9 @@ void ExpectSame(const FrcFile& a, const FrcFile& b) {
   }
 }
 
-std::vector<std::string> Lines(const std::string& text) {
-  std::vector<std::string> out;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) out.push_back(line);
-  return out;
-}
-
-std::vector<std::string> Cells(const std::string& line) {
-  std::vector<std::string> out;
-  std::istringstream in(line);
-  for (std::string cell; std::getline(in, cell, ',');) out.push_back(cell);
-  if (!line.empty() && line.back() == ',') out.push_back("");
-  return out;
-}
-
-std::string G9(double v) { return fmt::format("{:.9g}", v); }
+using beamid::testing::Cells;
+using beamid::testing::G9;
+using beamid::testing::Lines;
 
 TEST(FrcFile, EveryFieldSurvivesTheTextAndBackAndTheTextIsStable) {
   const FrcFile original = Filled();
