@@ -73,7 +73,7 @@ class Reader {
   ChannelSpec Channel(const json& entry, const std::string& where, bool is_excitation, double length_m) const {
     RequireObject(entry, where);
     if (is_excitation)
-      OnlyKeys(entry, where, {"channel", "position_m", "quantity", "unit"});
+      OnlyKeys(entry, where, {"channel", "position_m", "quantity", "unit", "sensitivity_N_per_V"});
     else
       OnlyKeys(entry, where, {"channel", "position_m", "quantity", "unit", "mass_kg"});
     ChannelSpec spec;
@@ -88,9 +88,11 @@ class Reader {
            "measure x from the clamp, in metres");
     std::string quantity_name = String(entry, where, "quantity");
     auto quantity = ParseQuantity(quantity_name);
-    if (is_excitation && quantity != Quantity::kForce)
-      Fail(where, spec.channel, "the excitation quantity is '" + quantity_name + "'", "the excitation must be \"force\"");
-    if (!is_excitation && (!quantity || *quantity == Quantity::kForce))
+    if (is_excitation && (!quantity || !IsExcitationQuantity(*quantity)))
+      Fail(where, spec.channel, "the excitation quantity is '" + quantity_name + "'",
+           "use \"force\" (N, a force transducer), \"voltage\" (V, the amplifier's drive) or \"base_acceleration\" "
+           "(the clamp's acceleration)");
+    if (!is_excitation && (!quantity || !IsResponseQuantity(*quantity)))
       Fail(where, spec.channel, "unknown sensor quantity '" + quantity_name + "'",
            "use \"acceleration\", \"velocity\" or \"displacement\"");
     spec.quantity = *quantity;
@@ -99,8 +101,14 @@ class Reader {
     if (!factor)
       Fail(where, spec.channel,
            "unit '" + spec.unit + "' is not accepted for a " + std::string(QuantityName(spec.quantity)),
-           "use one of " + AcceptedUnits(spec.quantity) + " (all accepted units: N, m/s^2, g, m/s, mm/s, m, mm)");
+           "use one of " + AcceptedUnits(spec.quantity) + " (all accepted units: N, V, mV, m/s^2, g, m/s, mm/s, m, mm)");
     spec.to_si_factor = *factor;
+    if (entry.contains("sensitivity_N_per_V")) {
+      if (spec.quantity != Quantity::kVoltage)
+        Fail(where, spec.channel, "'sensitivity_N_per_V' is given for a " + quantity_name + " excitation",
+             "give it only with \"quantity\": \"voltage\"");
+      spec.sensitivity_N_per_V = Number(entry, where, "sensitivity_N_per_V", /*zero_allowed=*/false, spec.channel);
+    }
     if (!is_excitation && entry.contains("mass_kg"))
       spec.mass_kg = Number(entry, where, "mass_kg", /*zero_allowed=*/true, spec.channel);
     return spec;
@@ -111,6 +119,33 @@ class Reader {
 };
 
 }  // namespace
+
+ChannelUse Campaign::Use(std::string_view channel) const {
+  if (channel == excitation.channel) return ChannelUse::kUsed;
+  if (std::find(ignored_channels.begin(), ignored_channels.end(), channel) != ignored_channels.end())
+    return ChannelUse::kIgnored;
+  if (analysed_sensors.empty() ||
+      std::find(analysed_sensors.begin(), analysed_sensors.end(), channel) != analysed_sensors.end())
+    return ChannelUse::kUsed;
+  return ChannelUse::kUnused;
+}
+
+void Campaign::Analyse(const std::vector<std::string>& channels) {
+  const std::string source = (folder / "campaign.json").string();
+  for (const auto& channel : channels) {
+    if (std::none_of(sensors.begin(), sensors.end(),
+                     [&](const ChannelSpec& sensor) { return sensor.channel == channel; })) {
+      std::string known;
+      for (const auto& sensor : sensors) known += (known.empty() ? "" : ", ") + sensor.channel;
+      throw InputError(source, channel, "is not a sensor of the campaign (sensors: " + known + ")",
+                       "name one of the channels listed under \"sensors\"");
+    }
+    if (Use(channel) == ChannelUse::kIgnored)
+      throw InputError(source, channel, "the channel is listed in ignore_channels, so it cannot be analysed",
+                       "remove it from ignore_channels, or analyse other channels");
+  }
+  analysed_sensors = channels;
+}
 
 std::vector<const ChannelSpec*> Campaign::Channels() const {
   std::vector<const ChannelSpec*> channels{&excitation};
@@ -142,7 +177,8 @@ Campaign ParseCampaign(std::string_view json_text, const std::filesystem::path& 
     reader.Fail("", "", "the key \"" + duplicate_key + "\" is written twice in one object",
                 "keep one of the two entries");
   reader.RequireObject(root, "");
-  reader.OnlyKeys(root, "", {"format", "beamid_version", "name", "beam", "excitation", "sensors", "steps", "sample_rate_Hz"});
+  reader.OnlyKeys(root, "", {"format", "beamid_version", "name", "beam", "excitation", "sensors", "steps", "sample_rate_Hz",
+                             "ignore_channels"});
 
   Campaign campaign;
   campaign.folder = folder;
@@ -195,6 +231,29 @@ Campaign ParseCampaign(std::string_view json_text, const std::filesystem::path& 
     campaign.steps.push_back(std::move(step));
   }
   if (root.contains("sample_rate_Hz")) campaign.sample_rate_hz = reader.Number(root, "", "sample_rate_Hz");
+  if (root.contains("ignore_channels")) {
+    const json& ignored = root.at("ignore_channels");
+    if (!ignored.is_array())
+      reader.Fail("", "", "'ignore_channels' must be an array of sensor channel names",
+                  "write e.g. \"ignore_channels\": [\"acc4\"]");
+    for (std::size_t i = 0; i < ignored.size(); ++i) {
+      const std::string where = "ignore_channels[" + std::to_string(i) + "]";
+      if (!ignored[i].is_string())
+        reader.Fail(where, "", "must be a sensor's channel name (a string)", "write the name in quotes");
+      const std::string name = ignored[i].get<std::string>();
+      if (name == campaign.excitation.channel)
+        reader.Fail(where, name, "the excitation cannot be ignored: every step is referenced to it",
+                    "remove it from ignore_channels");
+      const bool known = std::any_of(campaign.sensors.begin(), campaign.sensors.end(),
+                                     [&](const ChannelSpec& sensor) { return sensor.channel == name; });
+      if (!known)
+        reader.Fail(where, name, "names no sensor of the campaign", "use a channel name listed under \"sensors\"");
+      if (std::find(campaign.ignored_channels.begin(), campaign.ignored_channels.end(), name) !=
+          campaign.ignored_channels.end())
+        reader.Fail(where, name, "the channel is listed twice", "list it once");
+      campaign.ignored_channels.push_back(name);
+    }
+  }
   return campaign;
 }
 

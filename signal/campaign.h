@@ -1,7 +1,9 @@
 // A stepped-sine campaign (docs/campaign-format.md, format
-// "stepped-sine-campaign/1"): the beam's nominal properties, the force channel,
-// the response channels and the list of steps (one recording per nominal
-// generator frequency and level). ReadCampaign validates campaign.json
+// "stepped-sine-campaign/1"): the beam's nominal properties, the excitation
+// channel (a force, or a drive voltage or base acceleration, which only the
+// model-free tools can use), the response channels, the channels to ignore
+// and the list of steps (one recording per nominal generator frequency and
+// level). ReadCampaign validates campaign.json
 // strictly — unknown keys, missing or non-physical values, unknown quantities
 // or units, duplicate channels, missing recording files — and throws
 // InputError (a std::invalid_argument) naming the file, the entry and the fix.
@@ -22,7 +24,7 @@ namespace beamid::signal {
 
 inline constexpr std::string_view kCampaignFormat = "stepped-sine-campaign/1";
 
-// One channel of the recordings: the force transducer or a response sensor.
+// One channel of the recordings: the excitation or a response sensor.
 struct ChannelSpec {
   std::string channel;        // column name in the recording files
   double position_m = 0.0;    // x from the clamp
@@ -30,7 +32,15 @@ struct ChannelSpec {
   std::string unit;           // unit in the files, as written in campaign.json
   double to_si_factor = 1.0;  // SI value = factor · file value
   std::optional<double> mass_kg;  // sensor mass, when the engineer knows it
+  // A voltage excitation's nominal force per volt (the amplifier and
+  // shaker's), when the engineer knows it; labels only, never a force.
+  std::optional<double> sensitivity_N_per_V;
 };
+
+// How an analysis treats a channel's problems (signal/quality_finding.h): a
+// problem of a channel it uses is an error, of a channel it does not use a
+// warning, of a channel campaign.json ignores a note.
+enum class ChannelUse { kUsed, kUnused, kIgnored };
 
 struct Step {
   std::string file;           // relative to the campaign folder
@@ -46,6 +56,16 @@ struct Campaign {
   std::vector<ChannelSpec> sensors;
   std::vector<Step> steps;  // in the order they were run
   std::optional<double> sample_rate_hz;  // "sample_rate_Hz", when given
+  std::vector<std::string> ignored_channels;  // "ignore_channels": sensors not to judge or use
+  // The sensors the running analysis uses (set by the command: fitted,
+  // validated, named with --channel); empty: every sensor not ignored.
+  std::vector<std::string> analysed_sensors;
+
+  // kUsed for the excitation and the analysed sensors.
+  ChannelUse Use(std::string_view channel) const;
+  // Sets analysed_sensors; throws InputError for a name that is no sensor,
+  // or one that campaign.json ignores.
+  void Analyse(const std::vector<std::string>& channels);
 
   // The force channel first, then the sensors in campaign order: the column
   // order of every Recording.

@@ -1,9 +1,12 @@
 // The phasors of a whole campaign: every step's recording is read, validated
 // (signal/recording.h) and reduced to phasors (signal/phasor_estimator.h).
 // Steps are independent, so they run on worker threads; the result keeps the
-// campaign's step order. The first failing step (in campaign order) stops the
-// extraction and its error is rethrown: InputError for bad input, and
-// std::runtime_error, prefixed with the file, for a numerical failure.
+// campaign's step order. Every step is tried: the problems of all failing
+// steps are reported together, in one InputError listing each step's file
+// and errors (in campaign order) — or, with skip_bad_steps, those steps are
+// left out of the result and listed in PhasorSet::skipped with their errors.
+// A recording's warnings and notes (problems of channels the analysis does
+// not use, Campaign::Use) go to the step's quality.
 #pragma once
 
 #include <cstddef>
@@ -20,6 +23,8 @@ struct ExtractOptions {
   PhasorEstimatorOptions estimator;
   RecordingChecks checks;
   int num_threads = 0;  // 0: one per hardware core
+  // Leave out the steps whose recordings hold errors instead of stopping.
+  bool skip_bad_steps = false;
   // Called (serialised) after each step with the number of steps done.
   std::function<void(std::size_t done, std::size_t total, const StepPhasors& step)> progress;
 

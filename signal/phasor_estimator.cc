@@ -1,6 +1,7 @@
 #include "signal/phasor_estimator.h"
 
 #include <cmath>
+#include <vector>
 
 #include "hb/option_checks.h"
 #include "signal/input_error.h"
@@ -78,6 +79,8 @@ void PhasorEstimatorOptions::Validate() const {
   RequireNonNegative("PhasorEstimatorOptions.warn_frequency_offset_rel", warn_frequency_offset_rel);
   RequireInRange("PhasorEstimatorOptions.warn_transient_fraction", warn_transient_fraction, 0.0, 1.0);
   RequireNonNegative("PhasorEstimatorOptions.min_force_snr", min_force_snr);
+  RequireNonNegative("PhasorEstimatorOptions.note_drift_relative", note_drift_relative);
+  driven_span.Validate();
 }
 
 StepPhasors EstimateStepPhasors(const Recording& recording, const Campaign& campaign, const Step& step,
@@ -87,35 +90,51 @@ StepPhasors EstimateStepPhasors(const Recording& recording, const Campaign& camp
   if (recording.channels.size() != specs.size() || recording.channels.front() != campaign.excitation.channel)
     throw std::invalid_argument(recording.file + ": the recording's channels do not follow campaign.json's");
   const double fs = recording.sample_rate_hz;
-  const Eigen::Index n = recording.NumSamples();
   const std::string& force_name = campaign.excitation.channel;
+  const std::string unit(SiUnit(campaign.excitation.quantity));
   FrequencyEstimatorOptions frequency_options = options.frequency;
   frequency_options.num_harmonics = options.num_harmonics;
+
+  // 0. Only the part during which the excitation runs.
+  const DrivenSpan span = FindDrivenSpan(recording.samples.col(0), fs, step.frequency_hz, options.driven_span);
+  const auto driven = recording.samples.middleRows(span.first_sample, span.end_sample - span.first_sample);
+  const Eigen::Index n = driven.rows();
+  if (static_cast<double>(n) < options.steady_state.min_steady_periods * fs / step.frequency_hz)
+    throw InputError(recording.file, force_name, span.Describe(fs, recording.NumSamples()) + ", too short for a step",
+                     "record with the excitation running until the end of the record");
 
   // 1. Frequency on the last half, assumed steady.
   const Eigen::Index half = n / 2;
   FrequencyEstimate first;
   try {
-    first = EstimateFrequency(recording.samples.col(0).tail(half), fs, step.frequency_hz, frequency_options);
+    first = EstimateFrequency(driven.col(0).tail(half), fs, step.frequency_hz, frequency_options);
   } catch (const std::invalid_argument& e) {
     throw InputError(recording.file, force_name, e.what(), "check the step's frequency_Hz and the sample rate");
   } catch (const std::runtime_error& e) {
     // No stable sine to lock on: the force column holds no excitation.
     throw InputError(recording.file, force_name,
                      "no excitation near the nominal " + FormatNumber(step.frequency_hz) + " Hz (" + e.what() + ")",
-                     "check which column holds the force and the step's frequency_Hz");
+                     "check which column holds the excitation and the step's frequency_Hz");
   }
   if (first.fundamental_amplitude < options.min_force_snr * first.fundamental_std)
     throw InputError(recording.file, force_name,
                      "no excitation near the nominal " + FormatNumber(step.frequency_hz) +
-                         " Hz (force fundamental " + FormatNumber(first.fundamental_amplitude) + " N, noise " +
-                         FormatNumber(first.fundamental_std) + " N)",
-                     "check which column holds the force and the step's frequency_Hz");
+                         " Hz (excitation fundamental " + FormatNumber(first.fundamental_amplitude) + " " + unit +
+                         ", noise " + FormatNumber(first.fundamental_std) + " " + unit + ")",
+                     "check which column holds the excitation and the step's frequency_Hz");
 
-  // 2. Steady state.
-  const SteadyState steady = DetectSteadyState(recording.samples, recording.channels, fs, first.frequency_hz,
+  // 2. Steady state, judged on the channels the analysis uses: a rattling
+  // accelerometer nobody fits must not cut every step's record.
+  std::vector<Eigen::Index> judged;
+  std::vector<std::string> judged_names;
+  for (std::size_t c = 0; c < recording.channels.size(); ++c)
+    if (campaign.Use(recording.channels[c]) == ChannelUse::kUsed) {
+      judged.push_back(static_cast<Eigen::Index>(c));
+      judged_names.push_back(recording.channels[c]);
+    }
+  const SteadyState steady = DetectSteadyState(driven(Eigen::all, judged), judged_names, fs, first.frequency_hz,
                                                options.num_harmonics, recording.file, options.steady_state);
-  const auto steady_samples = recording.samples.bottomRows(n - steady.first_sample);
+  const auto steady_samples = driven.bottomRows(n - steady.first_sample);
 
   // 3–4. Frequency and phasors on the steady part.
   const FrequencyEstimate frequency =
@@ -134,16 +153,20 @@ StepPhasors EstimateStepPhasors(const Recording& recording, const Campaign& camp
   result.responses.assign(std::make_move_iterator(channels.begin() + 1), std::make_move_iterator(channels.end()));
 
   StepQuality& quality = result.quality;
-  quality.settled_after_s = steady.settled_after_s;
+  quality.settled_after_s = static_cast<double>(span.first_sample + steady.first_sample) / fs;
+  if (const std::string stop = span.Describe(fs, recording.NumSamples()); !stop.empty())
+    quality.warnings.push_back(stop);
+  if (!steady.drift_channel.empty())
+    (steady.drift_relative > options.note_drift_relative ? quality.warnings : quality.notes).push_back(steady.reason);
   quality.analysed_duration_s = static_cast<double>(steady_samples.rows()) / fs;
   quality.settling = steady.reason;
   quality.snr_db = result.force.snr_db;
   std::vector<const ChannelPhasors*> all{&result.force};
   for (const auto& response : result.responses) all.push_back(&response);
   for (const auto* channel : all) {
-    quality.snr_db = std::min(quality.snr_db, channel->snr_db);
+    if (campaign.Use(channel->channel) == ChannelUse::kUsed) quality.snr_db = std::min(quality.snr_db, channel->snr_db);
     if (channel->snr_db < options.warn_snr_db)
-      quality.warnings.push_back("channel '" + channel->channel + "': SNR " +
+      (campaign.Use(channel->channel) == ChannelUse::kIgnored ? quality.notes : quality.warnings).push_back("channel '" + channel->channel + "': SNR " +
                                  FormatNumber(std::round(channel->snr_db * 10.0) / 10.0) + " dB is below " +
                                  FormatNumber(options.warn_snr_db) + " dB");
   }
@@ -158,7 +181,8 @@ StepPhasors EstimateStepPhasors(const Recording& recording, const Campaign& camp
   if (static_cast<double>(steady.first_sample) > options.warn_transient_fraction * static_cast<double>(n))
     quality.warnings.push_back("the transient took " +
                                FormatNumber(std::round(100.0 * static_cast<double>(steady.first_sample) / n)) +
-                               " % of the record; record longer");
+                               " % of the " + (span.stops_early || span.starts_late ? "driven part" : "record") +
+                               "; record longer");
   return result;
 }
 

@@ -1,7 +1,10 @@
-// Harmonic phasors of one step (issue 4), the chain of
+// Harmonic phasors of one step, the chain of
+//   0. the part of the record during which the excitation runs
+//      (signal/driven_span.h): a ring-down after the shaker stops is cut;
 //   1. frequency from the force channel on the last half of the record
 //      (signal/frequency_estimator.h), to locate the steady state;
-//   2. steady-state detection (signal/steady_state.h): the transient is dropped;
+//   2. steady-state detection (signal/steady_state.h) on the channels the
+//      analysis uses (Campaign::Use): the transient is dropped;
 //   3. frequency again, on the steady part (Gauss–Newton from step 1's value);
 //   4. least-squares phasors of harmonics 1..H of every channel at that
 //      frequency with their covariances (signal/harmonic_fit.h);
@@ -11,11 +14,14 @@
 //          v = (Im Z_k, −Re Z_k),  var(φ) = wᵀ C_F1 w / |F_1|², w = (−sin φ, cos φ)
 //      (channels' noises independent; F_1 itself keeps only its amplitude
 //      variance). The time origin of step 4 drops out.
-// Quality: SNR per channel, THD, settling, and warnings (low SNR, frequency far
-// from nominal, harmonics cut at Nyquist, long transient).
+// Quality: SNR per channel, THD, settling, warnings (low SNR, frequency far
+// from nominal, harmonics cut at Nyquist, long transient, excitation stopping
+// inside the record, drift beyond note_drift_relative) and notes (a small
+// drift).
 #pragma once
 
 #include "signal/campaign.h"
+#include "signal/driven_span.h"
 #include "signal/frequency_estimator.h"
 #include "signal/harmonic_fit.h"
 #include "signal/phasor_set.h"
@@ -27,11 +33,13 @@ namespace beamid::signal {
 struct PhasorEstimatorOptions {
   int num_harmonics = 5;                   // H (the model uses 1–3, the diagnosis looks further)
   FrequencyEstimatorOptions frequency;     // its num_harmonics is set to H
+  DrivenSpanOptions driven_span;
   SteadyStateOptions steady_state;
   double warn_snr_db = 20.0;               // warn when a channel's SNR is lower
   double warn_frequency_offset_rel = 0.01; // warn when |f/f_nominal − 1| is larger
   double warn_transient_fraction = 0.5;    // warn when more of the record was dropped
   double min_force_snr = 10.0;             // |F_1|/σ(F_1) below this: no excitation found
+  double note_drift_relative = 0.05;       // a steady state with drift up to this is a note, beyond a warning
 
   // Throws InputError naming the field, its value and the allowed range.
   void Validate() const;

@@ -58,7 +58,8 @@ struct StepQuality {
   double settled_after_s = 0.0;      // transient dropped from the start of the record
   double analysed_duration_s = 0.0;  // steady part used for the phasors
   std::string settling;              // why that much was dropped (or "no transient detected")
-  std::vector<std::string> warnings;
+  std::vector<std::string> warnings;  // the result stands; the engineer should look
+  std::vector<std::string> notes;     // recorded, nothing to do
 };
 
 struct StepPhasors {
@@ -76,10 +77,19 @@ struct StepPhasors {
   const ChannelPhasors* Find(std::string_view channel) const;
 };
 
+// A step the extraction left out (ExtractOptions::skip_bad_steps), and why.
+struct SkippedStep {
+  std::string file;
+  std::string level;
+  double nominal_frequency_hz = 0.0;
+  std::string reason;  // the errors found in its recording
+};
+
 struct PhasorSet {
   std::string campaign;        // campaign name
   int num_harmonics = 0;       // H requested
   std::vector<StepPhasors> steps;  // campaign order
+  std::vector<SkippedStep> skipped;  // campaign order
 };
 
 }  // namespace beamid::signal

@@ -78,25 +78,35 @@ std::string PhasorSetToJson(const PhasorSet& set) {
     json channels = json::array();
     channels.push_back(ChannelToJson(step.force, "excitation"));
     for (const auto& response : step.responses) channels.push_back(ChannelToJson(response, "response"));
+    json quality = {{"snr_dB", step.quality.snr_db},
+                    {"settled_after_s", step.quality.settled_after_s},
+                    {"analysed_duration_s", step.quality.analysed_duration_s},
+                    {"settling", step.quality.settling},
+                    {"warnings", step.quality.warnings}};
+    if (!step.quality.notes.empty()) quality["notes"] = step.quality.notes;
     steps.push_back({{"file", step.file},
                      {"level", step.level},
                      {"nominal_frequency_Hz", step.nominal_frequency_hz},
                      {"frequency_Hz", step.frequency_hz},
                      {"frequency_std_Hz", step.frequency_std_hz},
-                     {"quality",
-                      {{"snr_dB", step.quality.snr_db},
-                       {"settled_after_s", step.quality.settled_after_s},
-                       {"analysed_duration_s", step.quality.analysed_duration_s},
-                       {"settling", step.quality.settling},
-                       {"warnings", step.quality.warnings}}},
+                     {"quality", quality},
                      {"channels", channels}});
   }
-  const json root = {{"format", kPhasorFormat},
-                     {"beamid_version", kVersion},
-                     {"convention", kConvention},
-                     {"campaign", set.campaign},
-                     {"num_harmonics", set.num_harmonics},
-                     {"steps", steps}};
+  json root = {{"format", kPhasorFormat},
+               {"beamid_version", kVersion},
+               {"convention", kConvention},
+               {"campaign", set.campaign},
+               {"num_harmonics", set.num_harmonics},
+               {"steps", steps}};
+  if (!set.skipped.empty()) {
+    json skipped = json::array();
+    for (const auto& step : set.skipped)
+      skipped.push_back({{"file", step.file},
+                         {"level", step.level},
+                         {"nominal_frequency_Hz", step.nominal_frequency_hz},
+                         {"reason", step.reason}});
+    root["skipped_steps"] = skipped;
+  }
   return root.dump(1) + "\n";
 }
 
@@ -122,6 +132,7 @@ PhasorSet PhasorSetFromJson(std::string_view json_text, const std::string& sourc
       step.quality.analysed_duration_s = q.at("analysed_duration_s").get<double>();
       step.quality.settling = q.at("settling").get<std::string>();
       step.quality.warnings = q.at("warnings").get<std::vector<std::string>>();
+      if (q.contains("notes")) step.quality.notes = q.at("notes").get<std::vector<std::string>>();
       const json& channels = s.at("channels");
       if (channels.empty() || channels.front().at("role") != "excitation")
         throw std::invalid_argument("step '" + step.file + "' does not start with its excitation channel");
@@ -129,6 +140,12 @@ PhasorSet PhasorSetFromJson(std::string_view json_text, const std::string& sourc
       for (std::size_t c = 1; c < channels.size(); ++c) step.responses.push_back(ChannelFromJson(channels[c]));
       set.steps.push_back(std::move(step));
     }
+    if (root.contains("skipped_steps"))
+      for (const auto& s : root.at("skipped_steps"))
+        set.skipped.push_back({.file = s.at("file").get<std::string>(),
+                               .level = s.at("level").get<std::string>(),
+                               .nominal_frequency_hz = s.at("nominal_frequency_Hz").get<double>(),
+                               .reason = s.at("reason").get<std::string>()});
     return set;
   } catch (const InputError&) {
     throw;

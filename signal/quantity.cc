@@ -14,7 +14,7 @@ struct UnitEntry {
 
 constexpr double kStandardGravity_m_s2 = 9.80665;
 
-constexpr std::array<UnitEntry, 7> kUnits = {{
+constexpr std::array<UnitEntry, 11> kUnits = {{
     {Quantity::kForce, "N", 1.0},
     {Quantity::kAcceleration, "m/s^2", 1.0},
     {Quantity::kAcceleration, "g", kStandardGravity_m_s2},
@@ -22,13 +22,19 @@ constexpr std::array<UnitEntry, 7> kUnits = {{
     {Quantity::kVelocity, "mm/s", 1e-3},
     {Quantity::kDisplacement, "m", 1.0},
     {Quantity::kDisplacement, "mm", 1e-3},
+    {Quantity::kVoltage, "V", 1.0},
+    {Quantity::kVoltage, "mV", 1e-3},
+    {Quantity::kBaseAcceleration, "m/s^2", 1.0},
+    {Quantity::kBaseAcceleration, "g", kStandardGravity_m_s2},
 }};
 
-constexpr std::array<std::pair<Quantity, std::string_view>, 4> kNames = {{
+constexpr std::array<std::pair<Quantity, std::string_view>, 6> kNames = {{
     {Quantity::kForce, "force"},
     {Quantity::kAcceleration, "acceleration"},
     {Quantity::kVelocity, "velocity"},
     {Quantity::kDisplacement, "displacement"},
+    {Quantity::kVoltage, "voltage"},
+    {Quantity::kBaseAcceleration, "base_acceleration"},
 }};
 
 }  // namespace
@@ -71,10 +77,22 @@ int DerivativeOrder(Quantity quantity) {
   switch (quantity) {
     case Quantity::kDisplacement: return 0;
     case Quantity::kVelocity: return 1;
-    case Quantity::kAcceleration: return 2;
-    case Quantity::kForce: break;
+    case Quantity::kAcceleration:
+    case Quantity::kBaseAcceleration: return 2;
+    case Quantity::kForce:
+    case Quantity::kVoltage: break;
   }
-  throw std::invalid_argument("a force is not a time derivative of a displacement; it cannot be converted");
+  throw std::invalid_argument("a " + std::string(QuantityName(quantity)) +
+                              " is not a time derivative of a displacement; it cannot be converted");
+}
+
+bool IsExcitationQuantity(Quantity quantity) {
+  return quantity == Quantity::kForce || quantity == Quantity::kVoltage || quantity == Quantity::kBaseAcceleration;
+}
+
+bool IsResponseQuantity(Quantity quantity) {
+  return quantity == Quantity::kAcceleration || quantity == Quantity::kVelocity ||
+         quantity == Quantity::kDisplacement;
 }
 
 }  // namespace beamid::signal

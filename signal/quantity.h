@@ -1,7 +1,9 @@
 // Physical quantities a campaign channel carries and the units the campaign
 // format (stepped-sine-campaign/1) accepts for each:
 //     force N;  acceleration m/s^2, g (= 9.80665 m/s^2);  velocity m/s, mm/s;
-//     displacement m, mm.
+//     displacement m, mm;  and for an excitation other than a force:
+//     voltage V, mV (the amplifier's drive signal);  base_acceleration m/s^2, g
+//     (the clamp's own acceleration, for a base-excited beam).
 // A value v in unit u is v·UnitToSiFactor(q, u) in SI. Inside beamid every
 // number is SI.
 #pragma once
@@ -12,9 +14,10 @@
 
 namespace beamid::signal {
 
-enum class Quantity { kForce, kAcceleration, kVelocity, kDisplacement };
+enum class Quantity { kForce, kAcceleration, kVelocity, kDisplacement, kVoltage, kBaseAcceleration };
 
-// "force", "acceleration", "velocity", "displacement" (the campaign's words).
+// "force", "acceleration", "velocity", "displacement", "voltage",
+// "base_acceleration" (the campaign's words).
 std::string_view QuantityName(Quantity quantity);
 std::optional<Quantity> ParseQuantity(std::string_view name);
 
@@ -29,7 +32,13 @@ std::optional<double> UnitToSiFactor(Quantity quantity, std::string_view unit);
 std::string AcceptedUnits(Quantity quantity);
 
 // Number of time derivatives from displacement: displacement 0, velocity 1,
-// acceleration 2. Force has none (throws std::invalid_argument).
+// acceleration and base acceleration 2. Force and voltage have none (throws
+// std::invalid_argument).
 int DerivativeOrder(Quantity quantity);
+
+// What may drive a campaign: a force, a voltage or a base acceleration.
+bool IsExcitationQuantity(Quantity quantity);
+// What a response sensor may measure: acceleration, velocity, displacement.
+bool IsResponseQuantity(Quantity quantity);
 
 }  // namespace beamid::signal

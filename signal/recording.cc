@@ -250,8 +250,9 @@ Recording ParseRecording(std::string_view csv_text, const Campaign& campaign, co
   }
   for (std::size_t c = 0; c < channels.size(); ++c)
     if (channels[c]->to_si_factor != 1.0) samples.col(static_cast<Eigen::Index>(c)) *= channels[c]->to_si_factor;
-  ValidateChannels(samples, recording.channels, recording.sample_rate_hz, recording.start_time_s, step.frequency_hz,
-                   source, checks);
+  recording.findings = GradeFindings(CheckChannels(samples, recording.channels, recording.sample_rate_hz,
+                                                  recording.start_time_s, step.frequency_hz, source, checks),
+                                    campaign, source);
   recording.samples = std::move(samples);
   return recording;
 }

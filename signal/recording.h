@@ -11,8 +11,11 @@
 // Campaign::Channels() order: the force first, then the sensors as
 // campaign.json lists them.
 // ReadRecording parses with std::from_chars (no per-value allocation) and
-// validates the file (signal/recording_validator.h); every problem is an
-// InputError naming the file, the channel and the line.
+// validates the file (signal/recording_validator.h). A problem of the file
+// is an InputError naming the file, the channel and the line; the channels'
+// problems are graded by the channel's use (Campaign::Use): the errors are
+// thrown together in one InputError, warnings and notes are kept in
+// Recording::findings.
 #pragma once
 
 #include <filesystem>
@@ -34,6 +37,8 @@ struct Recording {
   double start_time_s = 0.0;          // time_s of the first sample (0 without a time column)
   Eigen::MatrixXd samples;            // SI; rows = samples, one column per channel
   std::vector<std::string> ignored_columns;  // header cells no channel uses, for the caller to mention
+  // Graded problems of channels not analysed or ignored (errors throw).
+  std::vector<QualityFinding> findings;
 
   int NumSamples() const { return static_cast<int>(samples.rows()); }
   double Duration_s() const { return NumSamples() / sample_rate_hz; }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "hb/option_checks.h"
@@ -160,9 +161,9 @@ double ConverterSteps(const Eigen::Ref<const Eigen::VectorXd>& x) {
 
 }  // namespace
 
-void ValidateChannels(const Eigen::MatrixXd& samples, std::span<const std::string> channels, double sample_rate_hz,
-                      double start_time_s, double nominal_frequency_hz, const std::string& file,
-                      const RecordingChecks& checks) {
+std::vector<QualityFinding> CheckChannels(const Eigen::MatrixXd& samples, std::span<const std::string> channels,
+                                          double sample_rate_hz, double start_time_s, double nominal_frequency_hz,
+                                          const std::string& file, const RecordingChecks& checks) {
   checks.Validate();
   const Eigen::Index n = samples.rows();
   const double samples_per_period = sample_rate_hz / nominal_frequency_hz;
@@ -177,29 +178,38 @@ void ValidateChannels(const Eigen::MatrixXd& samples, std::span<const std::strin
       checks.min_run_samples,
       static_cast<Eigen::Index>(std::ceil(checks.min_run_fraction_of_period * samples_per_period)));
   auto time_at = [&](Eigen::Index i) { return FormatNumber(start_time_s + static_cast<double>(i) / sample_rate_hz); };
+  std::vector<QualityFinding> findings;
+  const auto found = [&](const std::string& channel, std::string problem, std::string fix) {
+    findings.push_back({Severity::kError, channel, std::move(problem), std::move(fix)});
+  };
 
   for (Eigen::Index c = 0; c < samples.cols(); ++c) {
     const double* x = samples.col(c).data();
     const double max_value = samples.col(c).maxCoeff();
     const double min_value = samples.col(c).minCoeff();
     const std::string& channel = channels[static_cast<std::size_t>(c)];
-    if (max_value == min_value)
-      throw InputError(file, channel, "the channel is constant (" + FormatNumber(max_value) + ") over the whole record",
-                       "check that the sensor is connected and its column is the right one");
+    if (max_value == min_value) {
+      found(channel, "the channel is constant (" + FormatNumber(max_value) + ") over the whole record",
+            "check that the sensor is connected and its column is the right one");
+      continue;
+    }
     std::vector<double> deviation(x, x + n);
     std::nth_element(deviation.begin(), deviation.begin() + n / 2, deviation.end());
     const double median = deviation[static_cast<std::size_t>(n / 2)];
     for (Eigen::Index i = 0; i < n; ++i) deviation[static_cast<std::size_t>(i)] = std::abs(x[i] - median);
     const auto p99 = deviation.begin() + static_cast<std::ptrdiff_t>(0.99 * static_cast<double>(n - 1));
     std::nth_element(deviation.begin(), p99, deviation.end());
+    Eigen::Index spikes = 0, first_spike = 0;
     if (*p99 > 0.0)
       for (Eigen::Index i = 0; i < n; ++i)
-        if (std::abs(x[i] - median) > checks.max_spike_ratio * *p99)
-          throw InputError(file, channel,
-                           "spike: the sample at t = " + time_at(i) + " s (" + FormatNumber(x[i]) + ") lies " +
-                               FormatNumber(std::abs(x[i] - median) / *p99) +
-                               " times farther from the median than 99 % of the channel's samples",
-                           "repair or remove the corrupted sample, or record the step again");
+        if (std::abs(x[i] - median) > checks.max_spike_ratio * *p99 && spikes++ == 0) first_spike = i;
+    if (spikes > 0)
+      found(channel,
+            (spikes == 1 ? std::string("spike: the sample") : std::to_string(spikes) + " spikes, the first") +
+                " at t = " + time_at(first_spike) + " s (" + FormatNumber(x[first_spike]) + ") lies " +
+                FormatNumber(std::abs(x[first_spike] - median) / *p99) +
+                " times farther from the median than 99 % of the channel's samples",
+            "repair or remove the corrupted samples, or record the step again");
     // A quiet channel resolved by a few steps of the converter (a sensor
     // that is not excited much, read on a range set for more) repeats its
     // values for many samples: that is quantisation, not a dropout, and its
@@ -207,6 +217,7 @@ void ValidateChannels(const Eigen::MatrixXd& samples, std::span<const std::strin
     // channel that spans many converter steps.
     if (ConverterSteps(samples.col(c)) < checks.min_converter_steps_for_runs) continue;
     Eigen::Index run_start = 0;
+    bool clipped = false, dropout = false;
     for (Eigen::Index i = 1; i <= n; ++i) {
       if (i < n && x[i] == x[run_start]) continue;
       const Eigen::Index run = i - run_start;
@@ -214,15 +225,18 @@ void ValidateChannels(const Eigen::MatrixXd& samples, std::span<const std::strin
         const double value = x[run_start];
         const std::string span = std::to_string(run) + " identical samples (" + FormatNumber(value) + ") from t = " +
                                  time_at(run_start) + " s to " + time_at(i - 1) + " s";
-        if (value == max_value || value == min_value)
-          throw InputError(file, channel, "clipped: " + span + " at the channel's extreme value",
-                           "reduce the excitation level or raise the input range of this channel and record again");
-        throw InputError(file, channel, "dropout: " + span,
-                         "check the cable and the acquisition of this channel and record the step again");
+        // The first run of each kind: one line per problem, not per run.
+        if ((value == max_value || value == min_value) && !std::exchange(clipped, true))
+          found(channel, "clipped: " + span + " at the channel's extreme value",
+                "reduce the excitation level or raise the input range of this channel and record again");
+        else if (value != max_value && value != min_value && !std::exchange(dropout, true))
+          found(channel, "dropout: " + span,
+                "check the cable and the acquisition of this channel and record the step again");
       }
       run_start = i;
     }
   }
+  return findings;
 }
 
 }  // namespace beamid::signal

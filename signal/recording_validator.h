@@ -8,6 +8,8 @@
 //    least-squares line (or is the campaign's sample_rate_Hz when given), and
 //    a column too coarse to show a missing sample is refused;
 //  - length: at least min_periods periods of the nominal frequency;
+// Channel problems are findings (signal/quality_finding.h), graded by the
+// channel's use, all reported together:
 //  - per channel: no clipping (a run of identical samples at the channel's
 //    extreme value) and no dropout (a run of identical samples elsewhere,
 //    e.g. exact zeros). A run counts when it is at least
@@ -30,6 +32,8 @@
 #include <vector>
 
 #include <Eigen/Core>
+
+#include "signal/quality_finding.h"
 
 namespace beamid::signal {
 
@@ -71,10 +75,13 @@ struct PrintedTime {
 double ValidateTimeColumn(std::span<const double> time_s, double expected_sample_rate_hz, const std::string& file,
                           const PrintedTime& printed, const RecordingChecks& checks);
 
-// Length, clipping, dropout and spike checks of every column (channel names in
-// column order); throws InputError naming the channel, the time and the fix.
-void ValidateChannels(const Eigen::MatrixXd& samples, std::span<const std::string> channels, double sample_rate_hz,
-                      double start_time_s, double nominal_frequency_hz, const std::string& file,
-                      const RecordingChecks& checks);
+// Clipping, dropout, spike and constant-channel checks of every column
+// (channel names in column order): every problem found, one per kind and
+// channel, naming the time and the fix, as ungraded findings
+// (signal/quality_finding.h grades them). A record too short for the step
+// throws InputError: nothing of it can be analysed.
+std::vector<QualityFinding> CheckChannels(const Eigen::MatrixXd& samples, std::span<const std::string> channels,
+                                          double sample_rate_hz, double start_time_s, double nominal_frequency_hz,
+                                          const std::string& file, const RecordingChecks& checks);
 
 }  // namespace beamid::signal

@@ -19,6 +19,17 @@
 //     falls by more than max_decay_ratio between the reference's two halves,
 //     a slow transient was taken for noise: the reference is halved towards
 //     the end of the record. (At most max_passes passes.)
+//  5. If that drops more than max_periodic_drop_fraction of the record (or
+//     finds no steady part), steps 1–4 run again with a drift model: every
+//     basis column also multiplied by the time from the reference's centre,
+//     so an amplitude, phase or offset that changes linearly (thermal creep
+//     of a few % over a long record, a generator's slow phase walk) is part
+//     of the steady response, and the residual minus its one-period moving
+//     mean, so low-frequency (1/f) sensor noise is not taken for a
+//     transient. A transient, which decays exponentially at the natural
+//     frequencies, stays above the noise under that model too. The drift
+//     model is kept when it settles earlier; the result then says "steady
+//     with drift" and by how much the worst channel changes.
 // A record whose steady part is shorter than min_steady_periods raises
 // InputError "no steady state" naming the file and the channel.
 #pragma once
@@ -41,6 +52,10 @@ struct SteadyStateOptions {
   // noise-free (simulated) records settle where the transient falls below
   // rounding instead of never.
   double relative_noise_floor = 1e-9;
+  // Step 5 runs when the periodic model drops more than this fraction
+  // (and not at all without drift_model).
+  bool drift_model = true;
+  double max_periodic_drop_fraction = 0.5;
 
   // Throws InputError naming the field, its value and the allowed range.
   void Validate() const;
@@ -50,6 +65,11 @@ struct SteadyState {
   Eigen::Index first_sample = 0;  // first sample of the steady part
   double settled_after_s = 0.0;   // first_sample / f_s
   std::string reason;             // for the quality record
+  // With the drift model (step 5): the largest relative change of a
+  // channel's fundamental over the analysed part, and that channel; 0 and
+  // empty when the record is steady without drift.
+  double drift_relative = 0.0;
+  std::string drift_channel;
 };
 
 // samples: one column per channel (names in channels, for messages).

@@ -149,8 +149,9 @@ Recording RecordingFromUff58(const std::vector<Uff58Dataset>& datasets, const Ca
                          FormatNumber(recording.sample_rate_hz) + " Hz, but campaign.json says sample_rate_Hz = " +
                          FormatNumber(*campaign.sample_rate_hz),
                      "correct sample_rate_Hz in campaign.json or export at that rate");
-  ValidateChannels(samples, recording.channels, recording.sample_rate_hz, recording.start_time_s, step.frequency_hz,
-                   source, checks);
+  recording.findings = GradeFindings(CheckChannels(samples, recording.channels, recording.sample_rate_hz,
+                                                  recording.start_time_s, step.frequency_hz, source, checks),
+                                    campaign, source);
   recording.samples = std::move(samples);
   return recording;
 }

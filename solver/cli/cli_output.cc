@@ -105,30 +105,75 @@ void RequireFitWithinModelHarmonics(int fit_harmonics, int harmonics) {
                      std::to_string(harmonics) + ": fit at most the harmonics the model holds");
 }
 
-signal::PhasorSet ReadOrExtractPhasors(const signal::Campaign& campaign, const std::string& phasors_file,
-                                       int num_harmonics, const GlobalOptions& global) {
-  if (!phasors_file.empty()) {
-    signal::PhasorSet phasors = signal::ReadPhasorSetJson(phasors_file);
-    // The phasors must be this campaign's, every step once and in its order:
-    // a file from another campaign or of a subset would be fitted silently.
-    bool same = phasors.steps.size() == campaign.steps.size();
-    for (std::size_t i = 0; same && i < campaign.steps.size(); ++i)
-      same = phasors.steps[i].file == campaign.steps[i].file && phasors.steps[i].level == campaign.steps[i].level;
+signal::Campaign ReadCampaignForAnalysis(const std::string& folder, const std::vector<std::string>& fit_channels,
+                                         const std::vector<std::string>& validate_channels) {
+  signal::Campaign campaign = signal::ReadCampaign(folder);
+  if (!fit_channels.empty()) {
+    std::vector<std::string> analysed = fit_channels;
+    analysed.insert(analysed.end(), validate_channels.begin(), validate_channels.end());
+    campaign.Analyse(analysed);
+  }
+  return campaign;
+}
+
+void AddPhasorInputOptions(CLI::App* command, PhasorInput* input) {
+  command->add_option("--phasors", input->phasors_file, "Use phasors from 'beamid extract' instead of extracting");
+  command->add_flag("--skip-bad-steps", input->skip_bad_steps,
+                    "Analyse the other steps when some recordings hold errors (they are listed); without it the "
+                    "run stops with the list");
+}
+
+void PrintSkippedSteps(const std::string& command, const signal::PhasorSet& phasors, const GlobalOptions& global) {
+  if (global.quiet) return;
+  for (const auto& step : phasors.skipped)
+    fmt::print(stderr, "beamid {}: warning: skipped {} ({} Hz, {}): {}\n", command, step.file,
+               step.nominal_frequency_hz, step.level, step.reason);
+}
+
+signal::PhasorSet ReadOrExtractPhasors(const signal::Campaign& campaign, const PhasorInput& input, int num_harmonics,
+                                       const GlobalOptions& global) {
+  if (!input.phasors_file.empty()) {
+    signal::PhasorSet phasors = signal::ReadPhasorSetJson(input.phasors_file);
+    // The phasors must be this campaign's, every step once (extracted or
+    // skipped) and in its order: a file from another campaign or of a
+    // subset would be fitted silently.
+    bool same = phasors.steps.size() + phasors.skipped.size() == campaign.steps.size();
+    std::size_t extracted = 0, skipped = 0;
+    for (std::size_t i = 0; same && i < campaign.steps.size(); ++i) {
+      const auto& step = campaign.steps[i];
+      if (extracted < phasors.steps.size() && phasors.steps[extracted].file == step.file &&
+          phasors.steps[extracted].level == step.level)
+        ++extracted;
+      else if (skipped < phasors.skipped.size() && phasors.skipped[skipped].file == step.file &&
+               phasors.skipped[skipped].level == step.level)
+        ++skipped;
+      else
+        same = false;
+    }
     if (!same)
-      throw InputError(phasors_file + ": these phasors are not the campaign's (" +
-                       std::to_string(phasors.steps.size()) + " steps against the campaign's " +
+      throw InputError(input.phasors_file + ": these phasors are not the campaign's (" +
+                       std::to_string(phasors.steps.size() + phasors.skipped.size()) + " steps against the campaign's " +
                        std::to_string(campaign.steps.size()) +
                        ", or other files or levels). Fix: extract this campaign again (beamid extract) or give "
                        "the phasor file extracted from it");
+    if (!phasors.skipped.empty() && !input.skip_bad_steps)
+      throw InputError(input.phasors_file + ": " + std::to_string(phasors.skipped.size()) +
+                       " steps were skipped at extraction (bad recordings). Fix: add --skip-bad-steps to analyse "
+                       "the other steps, or repair the recordings and extract again");
+    PrintSkippedSteps("extract", phasors, global);
     return phasors;
   }
   Progress progress("extract", global);
   signal::ExtractOptions extract;
   extract.estimator.num_harmonics = num_harmonics;
+  extract.skip_bad_steps = input.skip_bad_steps;
   extract.progress = [&](std::size_t done, std::size_t total, const signal::StepPhasors&) {
     progress.Update(static_cast<double>(done) / total);
   };
-  return signal::ExtractCampaign(campaign, extract);
+  signal::PhasorSet phasors = signal::ExtractCampaign(campaign, extract);
+  progress.Done();
+  PrintSkippedSteps("extract", phasors, global);
+  return phasors;
 }
 
 }  // namespace beamid::cli

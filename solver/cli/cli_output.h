@@ -67,10 +67,27 @@ void RequireWritableOutput(const std::filesystem::path& output, const std::vecto
 void AddModelHarmonicsOptions(CLI::App* command, int* harmonics, int* fit_harmonics, const std::string& model_help);
 void RequireFitWithinModelHarmonics(int fit_harmonics, int harmonics);
 
-// The phasors of a campaign: read from `phasors_file` (the output of
-// `beamid extract`) when given, else extracted with harmonics 1..num_harmonics
-// and progress on stderr.
-signal::PhasorSet ReadOrExtractPhasors(const signal::Campaign& campaign, const std::string& phasors_file,
-                                       int num_harmonics, const GlobalOptions& global);
+// campaign.json of a folder, with the sensors a fit uses (fit ∪ validate;
+// none named: every sensor not ignored) marked as analysed, so that only
+// their recordings' problems stop the run (signal::Campaign::Use).
+signal::Campaign ReadCampaignForAnalysis(const std::string& folder, const std::vector<std::string>& fit_channels,
+                                         const std::vector<std::string>& validate_channels);
+
+// Where a model-based command takes its phasors from.
+struct PhasorInput {
+  std::string phasors_file;     // --phasors: the output of `beamid extract`; empty: extract
+  bool skip_bad_steps = false;  // --skip-bad-steps: analyse the steps whose recordings hold no error
+};
+void AddPhasorInputOptions(CLI::App* command, PhasorInput* input);
+
+// The phasors of a campaign: read from input.phasors_file when given (and
+// checked to be this campaign's), else extracted with harmonics
+// 1..num_harmonics and progress on stderr. The steps left out (skipped) are
+// listed on stderr unless --quiet.
+signal::PhasorSet ReadOrExtractPhasors(const signal::Campaign& campaign, const PhasorInput& input, int num_harmonics,
+                                       const GlobalOptions& global);
+
+// The steps an extraction left out, one warning line each on stderr.
+void PrintSkippedSteps(const std::string& command, const signal::PhasorSet& phasors, const GlobalOptions& global);
 
 }  // namespace beamid::cli

@@ -22,7 +22,7 @@ struct DiagnoseCommandOptions {
   std::vector<std::string> fit_channels;
   std::vector<std::string> validate_channels;
   std::vector<std::string> candidates;
-  std::string phasors_file;
+  PhasorInput phasor_input;
   int harmonics = 5;
   int fit_harmonics = 3;
   int workers = 0;
@@ -63,7 +63,7 @@ std::string PlotScript(const solver::DiagnosisResult& result, const std::string&
 
 void RunDiagnose(const DiagnoseCommandOptions& options, const GlobalOptions& global) {
   RequireWritableOutput(options.output, {std::filesystem::path(options.campaign_folder) / "campaign.json",
-                                         options.phasors_file, options.result_file});
+                                         options.phasor_input.phasors_file, options.result_file});
   RequireFitWithinModelHarmonics(options.fit_harmonics, options.harmonics);
   for (const auto& name : options.candidates) {
     const auto names = solver::CandidateNames();
@@ -72,7 +72,8 @@ void RunDiagnose(const DiagnoseCommandOptions& options, const GlobalOptions& glo
                                   "' (known: support_friction, clamp_compliance, added_mass, modulus_error, "
                                   "support_asymmetry, harmonic_truncation)");
   }
-  const signal::Campaign campaign = signal::ReadCampaign(options.campaign_folder);
+  const signal::Campaign campaign =
+      ReadCampaignForAnalysis(options.campaign_folder, options.fit_channels, options.validate_channels);
   if (!options.result_file.empty()) {
     const std::string mismatch =
         solver::CampaignMismatch(solver::ReadResultFile(options.result_file), campaign.name, options.campaign_folder);
@@ -81,7 +82,7 @@ void RunDiagnose(const DiagnoseCommandOptions& options, const GlobalOptions& glo
                        ". Fix: give the result.json that 'beamid identify' wrote for this campaign");
   }
   const signal::PhasorSet phasors =
-      ReadOrExtractPhasors(campaign, options.phasors_file, std::max(5, options.fit_harmonics), global);
+      ReadOrExtractPhasors(campaign, options.phasor_input, std::max(5, options.fit_harmonics), global);
   const solver::FitData fit = solver::MakeFitData(
       campaign, phasors, {.channels = options.fit_channels, .num_fit_harmonics = options.fit_harmonics});
   const solver::FitData validation =
@@ -159,7 +160,7 @@ BEAMID_REGISTER_COMMAND("diagnose", [](CLI::App& app, const GlobalOptions& globa
   sub->add_option("--validate", options->validate_channels, "Held-out channels to predict and compare")
       ->delimiter(',');
   sub->add_option("--candidates", options->candidates, "Candidates to try (default: all)")->delimiter(',');
-  sub->add_option("--phasors", options->phasors_file, "Use phasors from 'beamid extract' instead of extracting");
+  AddPhasorInputOptions(sub, &options->phasor_input);
   AddModelHarmonicsOptions(sub, &options->harmonics, &options->fit_harmonics, "Harmonics of the base model");
   sub->add_option("--workers", options->workers, "Parallel refits (0: one per core)")
       ->check(CLI::Range(0, 256))

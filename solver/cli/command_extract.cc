@@ -22,6 +22,8 @@ struct ExtractCommandOptions {
   std::string output = "phasors.json";
   std::string csv_output;
   int threads = 0;
+  std::vector<std::string> channels;  // the sensors to be analysed; empty: all
+  bool skip_bad_steps = false;
 };
 
 void RunExtract(const ExtractCommandOptions& options, const GlobalOptions& global) {
@@ -29,8 +31,10 @@ void RunExtract(const ExtractCommandOptions& options, const GlobalOptions& globa
   if (options.harmonics < 1 || options.harmonics > 50)
     throw std::invalid_argument("-H/--harmonics must lie between 1 and 50 (got " + std::to_string(options.harmonics) +
                                 ")");
-  const signal::Campaign campaign = signal::ReadCampaign(options.campaign_folder);
+  signal::Campaign campaign = signal::ReadCampaign(options.campaign_folder);
+  campaign.Analyse(options.channels);
   signal::ExtractOptions extract;
+  extract.skip_bad_steps = options.skip_bad_steps;
   extract.estimator.num_harmonics = options.harmonics;
   extract.num_threads = options.threads;
   Progress progress("extract", global);
@@ -39,25 +43,28 @@ void RunExtract(const ExtractCommandOptions& options, const GlobalOptions& globa
   };
   const signal::PhasorSet set = signal::ExtractCampaign(campaign, extract);
   progress.Done();
+  PrintSkippedSteps("extract", set, global);
 
   WriteTextFile(options.output, signal::PhasorSetToJson(set));
   if (!options.csv_output.empty()) WriteTextFile(options.csv_output, signal::PhasorSetToCsv(set));
   if (global.quiet) return;
   double worst_snr_db = 1e300, longest_settling_s = 0.0;
-  std::size_t warned = 0;
+  std::size_t warned = 0, noted = 0;
   for (const auto& step : set.steps) {
     worst_snr_db = std::min(worst_snr_db, step.quality.snr_db);
     longest_settling_s = std::max(longest_settling_s, step.quality.settled_after_s);
+    noted += step.quality.notes.empty() ? 0 : 1;
     if (step.quality.warnings.empty()) continue;
     ++warned;
     for (const auto& warning : step.quality.warnings)
       fmt::print(stderr, "beamid extract: warning: {} ({} Hz, {}): {}\n", step.file, step.nominal_frequency_hz,
                  step.level, warning);
   }
-  fmt::print("{} steps, {} channels, harmonics 1..{}: worst SNR {:.1f} dB, longest transient {:.3f} s, {} steps with "
-             "warnings\nwrote {}{}\n",
-             set.steps.size(), campaign.sensors.size() + 1, options.harmonics, worst_snr_db, longest_settling_s,
-             warned, options.output, options.csv_output.empty() ? "" : " and " + options.csv_output);
+  fmt::print("{} steps{}, {} channels, harmonics 1..{}: worst SNR {:.1f} dB, longest transient {:.3f} s, {} steps with "
+             "warnings, {} with notes (in {})\nwrote {}{}\n",
+             set.steps.size(), set.skipped.empty() ? "" : fmt::format(" ({} skipped)", set.skipped.size()),
+             campaign.sensors.size() + 1, options.harmonics, worst_snr_db, longest_settling_s, warned, noted,
+             options.output, options.output, options.csv_output.empty() ? "" : " and " + options.csv_output);
 }
 
 BEAMID_REGISTER_COMMAND("extract", [](CLI::App& app, const GlobalOptions& global) {
@@ -76,6 +83,12 @@ BEAMID_REGISTER_COMMAND("extract", [](CLI::App& app, const GlobalOptions& global
       ->capture_default_str();
   sub->add_option("--csv", options->csv_output, "Also write a CSV table (one row per step, channel, harmonic)");
   sub->add_option("--threads", options->threads, "Worker threads (0: one per core)")->capture_default_str();
+  sub->add_option("--channel", options->channels,
+                  "Sensors to be analysed (default: all not ignored); problems of the others only warn")
+      ->delimiter(',');
+  sub->add_flag("--skip-bad-steps", options->skip_bad_steps,
+                "Leave out the steps whose recordings hold errors (listed, and kept in the phasors file as "
+                "skipped); without it the run stops with the list");
   sub->callback([options, &global] { RunExtract(*options, global); });
 });
 

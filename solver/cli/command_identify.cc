@@ -25,7 +25,7 @@ struct IdentifyCommandOptions {
   std::vector<std::string> fit_channels;
   std::vector<std::string> validate_channels;
   std::string model = "hb";
-  std::string phasors_file;  // reuse `beamid extract` output
+  PhasorInput phasor_input;
   int harmonics = 5;
   int fit_harmonics = 3;
   int starts = 0;
@@ -37,12 +37,13 @@ struct IdentifyCommandOptions {
 };
 
 void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& global) {
-  RequireWritableOutput(options.output, {std::filesystem::path(options.campaign_folder) / "campaign.json", options.phasors_file});
+  RequireWritableOutput(options.output, {std::filesystem::path(options.campaign_folder) / "campaign.json", options.phasor_input.phasors_file});
   const solver::ModelFamily& family = solver::FindModelFamily(options.model);
   RequireFitWithinModelHarmonics(options.fit_harmonics, options.harmonics);
-  const signal::Campaign campaign = signal::ReadCampaign(options.campaign_folder);
+  const signal::Campaign campaign =
+      ReadCampaignForAnalysis(options.campaign_folder, options.fit_channels, options.validate_channels);
   const signal::PhasorSet phasors =
-      ReadOrExtractPhasors(campaign, options.phasors_file, std::max(5, options.fit_harmonics), global);
+      ReadOrExtractPhasors(campaign, options.phasor_input, std::max(5, options.fit_harmonics), global);
   const solver::FitData fit =
       solver::MakeFitData(campaign, phasors, {.channels = options.fit_channels, .num_fit_harmonics = options.fit_harmonics});
   const solver::FitData validation =
@@ -122,7 +123,7 @@ BEAMID_REGISTER_COMMAND("identify", [](CLI::App& app, const GlobalOptions& globa
         return "unknown model family '" + name + "' (use " + solver::ModelFamilyNames() + ")";
       })
       ->capture_default_str();
-  sub->add_option("--phasors", options->phasors_file, "Use phasors from 'beamid extract' instead of extracting");
+  AddPhasorInputOptions(sub, &options->phasor_input);
   AddModelHarmonicsOptions(sub, &options->harmonics, &options->fit_harmonics, "Harmonics of the model (hb; ms has 3)");
   sub->add_option("--starts", options->starts, "Further starts besides the direct estimate")
       ->check(CLI::Range(0, 1000))

@@ -37,6 +37,16 @@ void FitDataOptions::Validate() const {
 FitData MakeFitData(const signal::Campaign& campaign, const signal::PhasorSet& phasors,
                     const FitDataOptions& options) {
   options.Validate();
+  if (campaign.excitation.quantity != signal::Quantity::kForce)
+    // The model is driven by a point force: a voltage's force changes with
+    // the amplifier and shaker near resonance, a base excitation is another
+    // load; fitting either as a force would print wrong parameters.
+    throw InputError((campaign.folder / "campaign.json").string(), campaign.excitation.channel,
+                     "the excitation is a " + std::string(signal::QuantityName(campaign.excitation.quantity)) +
+                         ", but the model-based tools (identify, diagnose, predict) need the force applied to the "
+                         "beam",
+                     "measure the force with a force transducer at the drive point, or use the model-free tools "
+                     "(beamid extract, beamid backbone --measured), which work with any excitation");
   if (phasors.num_harmonics < options.num_fit_harmonics)
     throw std::invalid_argument("the phasors hold " + std::to_string(phasors.num_harmonics) +
                                 " harmonics, the fit needs " + std::to_string(options.num_fit_harmonics) +
@@ -50,7 +60,8 @@ FitData MakeFitData(const signal::Campaign& campaign, const signal::PhasorSet& p
       data.sensor_masses.point_masses.push_back({sensor.position_m, *sensor.mass_kg});
   std::vector<std::string> names = options.channels;
   if (names.empty())
-    for (const auto& sensor : campaign.sensors) names.push_back(sensor.channel);
+    for (const auto& sensor : campaign.sensors)
+      if (campaign.Use(sensor.channel) != signal::ChannelUse::kIgnored) names.push_back(sensor.channel);
   for (std::size_t i = 0; i < names.size(); ++i)
     if (std::find(names.begin(), names.begin() + static_cast<std::ptrdiff_t>(i), names[i]) != names.begin() + static_cast<std::ptrdiff_t>(i))
       // Fitted twice, a channel would count double and its σ shrink by √2.

@@ -1,7 +1,7 @@
 // A small campaign on disk (CSV files in a temp folder, units in g and mm/s,
 // one step with a transient): phasors equal those of the in-memory records,
-// the thread count changes nothing, and the first bad step stops the
-// extraction with an error naming its file.
+// the thread count changes nothing, and bad steps are all listed together
+// (or skipped and listed).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -121,7 +121,7 @@ TEST_F(CampaignExtractorTest, FromDiskEqualsInMemoryForAnyThreadCount) {
   EXPECT_EQ(serial.steps[0].quality.settled_after_s, 0.0);
 }
 
-TEST_F(CampaignExtractorTest, FirstBadStepStopsWithItsFile) {
+TEST_F(CampaignExtractorTest, EveryBadStepIsListedTogetherOrSkipped) {
   // Step 2's force column has a NaN; step 3's file is cut short.
   std::string text;
   {
@@ -133,6 +133,11 @@ TEST_F(CampaignExtractorTest, FirstBadStepStopsWithItsFile) {
   text.replace(comma + 1, text.find(',', comma + 1) - comma - 1, "NaN");
   std::ofstream(folder_ / "low/s2.csv") << text;
   std::ofstream(folder_ / "low/s3.csv") << "time_s,vel2,force,acc1\n0,1,2,3\n";
+  const PhasorSet clean_steps = [&] {
+    ExtractOptions skip;
+    skip.skip_bad_steps = true;
+    return ExtractCampaign(ReadCampaign(folder_), skip);
+  }();
   for (int threads : {1, 2}) {
     ExtractOptions options;
     options.num_threads = threads;
@@ -140,11 +145,32 @@ TEST_F(CampaignExtractorTest, FirstBadStepStopsWithItsFile) {
       ExtractCampaign(ReadCampaign(folder_), options);
       FAIL() << "no error";
     } catch (const InputError& e) {
-      EXPECT_EQ(e.file(), (folder_ / "low/s2.csv").string());
-      EXPECT_EQ(e.channel(), "force");
-      EXPECT_NE(std::string(e.what()).find("NaN or infinite value at line 3"), std::string::npos) << e.what();
+      // Both bad steps, in campaign order, each with its file and problem,
+      // and the way to analyse the rest.
+      const std::string message = e.what();
+      const std::size_t nan = message.find((folder_ / "low/s2.csv").string() + ": channel 'force': NaN or infinite "
+                                           "value at line 3");
+      const std::size_t short_file = message.find((folder_ / "low/s3.csv").string());
+      EXPECT_NE(nan, std::string::npos) << message;
+      EXPECT_NE(short_file, std::string::npos) << message;
+      EXPECT_LT(nan, short_file) << message;
+      EXPECT_NE(message.find("2 of 4 steps cannot be analysed"), std::string::npos) << message;
+      EXPECT_NE(message.find("--skip-bad-steps"), std::string::npos) << message;
     }
   }
+  // Skipped: the good steps as extracted alone, the bad ones listed with why.
+  ASSERT_EQ(clean_steps.steps.size(), 2u);
+  EXPECT_EQ(clean_steps.steps[0].file, "low/s0.csv");
+  EXPECT_EQ(clean_steps.steps[1].file, "low/s1.csv");
+  ASSERT_EQ(clean_steps.skipped.size(), 2u);
+  EXPECT_EQ(clean_steps.skipped[0].file, "low/s2.csv");
+  EXPECT_EQ(clean_steps.skipped[0].nominal_frequency_hz, 42.0);
+  EXPECT_NE(clean_steps.skipped[0].reason.find("NaN"), std::string::npos);
+  EXPECT_EQ(clean_steps.skipped[1].file, "low/s3.csv");
+  const Campaign campaign = ReadCampaign(folder_);
+  const Recording s0 = ReadRecording(campaign, campaign.steps[0]);
+  const StepPhasors alone = EstimateStepPhasors(s0, campaign, campaign.steps[0]);
+  EXPECT_EQ(clean_steps.steps[0].responses[0].Harmonic(1).value, alone.responses[0].Harmonic(1).value);
 }
 
 TEST_F(CampaignExtractorTest, AColumnNoChannelUsesIsIgnoredAndSaid) {

@@ -394,5 +394,46 @@ TEST_F(CampaignReaderTest, RefusesAKeyWrittenTwiceAndANumberBeyondRange) {
   ExpectNames(ExpectError(), CampaignFile(), "", "not valid JSON");
 }
 
+// The excitation's line of CampaignJson() replaced by `excitation`.
+std::string WithExcitation(const std::string& excitation) {
+  std::string json = CampaignJson();
+  const std::string force = R"({"channel": "force", "position_m": 0.57, "quantity": "force", "unit": "N"})";
+  json.replace(json.find(force), force.size(), excitation);
+  return json;
+}
+
+TEST_F(CampaignReaderTest, AVoltageOrBaseAccelerationExcitationIsReadWithItsUnit) {
+  Write("campaign.json",
+        WithExcitation(
+            R"({"channel": "force", "position_m": 0.57, "quantity": "voltage", "unit": "mV", "sensitivity_N_per_V": 12.5})"));
+  Campaign campaign = ReadCampaign(folder_);
+  EXPECT_EQ(campaign.excitation.quantity, Quantity::kVoltage);
+  EXPECT_EQ(campaign.excitation.to_si_factor, 1e-3);
+  EXPECT_EQ(campaign.excitation.sensitivity_N_per_V, 12.5);
+  const Recording recording = ReadRecording(campaign, campaign.steps.front());
+  EXPECT_EQ(SiUnit(Quantity::kVoltage), "V");
+
+  Write("campaign.json",
+        WithExcitation(R"({"channel": "force", "position_m": 0.0, "quantity": "base_acceleration", "unit": "g"})"));
+  campaign = ReadCampaign(folder_);
+  EXPECT_EQ(campaign.excitation.quantity, Quantity::kBaseAcceleration);
+  EXPECT_EQ(campaign.excitation.to_si_factor, 9.80665);
+  EXPECT_EQ(DerivativeOrder(Quantity::kBaseAcceleration), 2);
+  EXPECT_THROW(DerivativeOrder(Quantity::kVoltage), std::invalid_argument);
+}
+
+TEST_F(CampaignReaderTest, AnExcitationQuantityOrSensitivityThatMakesNoSenseIsRefused) {
+  Write("campaign.json", WithExcitation(R"({"channel": "force", "position_m": 0.57, "quantity": "acceleration", "unit": "g"})"));
+  ExpectNames(ExpectError(), CampaignFile(), "force", "the excitation quantity is 'acceleration'");
+  Write("campaign.json",
+        WithExcitation(R"({"channel": "force", "position_m": 0.57, "quantity": "force", "unit": "N", "sensitivity_N_per_V": 3})"));
+  ExpectNames(ExpectError(), CampaignFile(), "force", "'sensitivity_N_per_V' is given for a force excitation");
+  Write("campaign.json", WithExcitation(R"({"channel": "force", "position_m": 0.57, "quantity": "voltage", "unit": "N"})"));
+  ExpectNames(ExpectError(), CampaignFile(), "force", "unit 'N' is not accepted for a voltage");
+  Write("campaign.json",
+        WithExcitation(R"({"channel": "force", "position_m": 0.57, "quantity": "voltage", "unit": "V", "sensitivity_N_per_V": -2})"));
+  ExpectNames(ExpectError(), CampaignFile(), "force", "'sensitivity_N_per_V' = -2 is not physical");
+}
+
 }  // namespace
 }  // namespace beamid::signal

@@ -182,6 +182,26 @@ TEST_F(BadInput, EveryBadInputEndsWithExitTwoAndAMessageThatNamesItAndTheFix) {
        "extract {m} -o {d}/p.json", {"sample_rate_Hz", "5000", "Fix:"}},
       {"a missing recording", [&](auto m, auto) { fs::remove(step(m, 2)); },
        "extract {m} -o {d}/p.json", {"step_002.csv", "is missing", "Fix:"}},
+      {"a voltage excitation given to identify",
+       [](auto m, auto) {
+         Replace(m / "campaign.json", "\"quantity\": \"force\"", "\"quantity\": \"voltage\"");
+         Replace(m / "campaign.json", "\"unit\": \"N\"", "\"unit\": \"V\"");
+       },
+       "identify {m} -o {d}/r.json", {"campaign.json", "the excitation is a voltage", "force transducer", "Fix:"}},
+      {"a base-acceleration excitation given to diagnose",
+       [](auto m, auto) {
+         Replace(m / "campaign.json", "\"quantity\": \"force\"", "\"quantity\": \"base_acceleration\"");
+         Replace(m / "campaign.json", "\"unit\": \"N\"", "\"unit\": \"m/s^2\"");
+       },
+       "diagnose {m} -o {d}/d.json", {"campaign.json", "the excitation is a base_acceleration", "model-free", "Fix:"}},
+      {"two bad recordings without --skip-bad-steps", [&](auto m, auto) {
+         ReplaceSample(step(m, 0), 9, 3, "nan");
+         ReplaceSample(step(m, 2), 9, 3, "nan");
+       },
+       "identify {m} -o {d}/r.json", {"2 of 3 steps cannot be analysed", "step_000.csv", "step_002.csv", "--skip-bad-steps"}},
+      {"a fitted channel that campaign.json ignores",
+       [](auto m, auto) { Replace(m / "campaign.json", "\"sample_rate_Hz\"", "\"ignore_channels\": [\"acc2\"], \"sample_rate_Hz\""); },
+       "identify {m} --fit acc1,acc2 -o {d}/r.json", {"acc2", "ignore_channels", "Fix:"}},
       // results, phasors, models and scenarios
       {"a folder given as result.json", [](auto, auto d) { fs::create_directories(d / "result.json"); },
        "predict {d}/result.json --x 0.3 -o {d}/pred.json", {"result.json", "folder"}},
@@ -223,6 +243,33 @@ TEST_F(BadInput, EveryBadInputEndsWithExitTwoAndAMessageThatNamesItAndTheFix) {
     for (const auto& word : row.key_words) EXPECT_THAT(run.output, HasSubstr(word)) << arguments;
     EXPECT_THAT(run.output, ::testing::Not(HasSubstr("internal error"))) << arguments;
   }
+}
+
+// The way out that the error above names: with --skip-bad-steps the other
+// steps are fitted, the skipped one is named on stderr and in the phasors
+// file, and identify reading that file needs the flag too.
+TEST_F(BadInput, SkipBadStepsFitsTheOtherStepsAndNamesTheSkippedOne) {
+  const fs::path d = root_ / "skip", m = d / "campaign";
+  fs::create_directories(d);
+  fs::copy(root_ / "clean", m, fs::copy_options::recursive);
+  ReplaceSample(m / "low" / "step_001.csv", 9, 3, "nan");
+  const ProgramRun identified = Beamid("identify " + m.string() + " --fit acc1,acc2 --skip-bad-steps -o " +
+                                       (d / "r.json").string());
+  ASSERT_EQ(identified.exit_code, 0) << identified.output;
+  EXPECT_THAT(identified.output, HasSubstr("warning: skipped low/step_001.csv"));
+  EXPECT_THAT(identified.output, HasSubstr("from 2 steps"));
+  const ProgramRun extracted =
+      Beamid("extract " + m.string() + " --skip-bad-steps -o " + (d / "p.json").string());
+  ASSERT_EQ(extracted.exit_code, 0) << extracted.output;
+  EXPECT_THAT(extracted.output, HasSubstr("2 steps (1 skipped)"));
+  EXPECT_THAT(ReadFile(d / "p.json"), HasSubstr("\"skipped_steps\""));
+  const ProgramRun without_flag =
+      Beamid("identify " + m.string() + " --phasors " + (d / "p.json").string() + " -o " + (d / "r2.json").string());
+  EXPECT_EQ(without_flag.exit_code, 2) << without_flag.output;
+  EXPECT_THAT(without_flag.output, HasSubstr("--skip-bad-steps"));
+  const ProgramRun with_flag = Beamid("identify " + m.string() + " --skip-bad-steps --phasors " +
+                                      (d / "p.json").string() + " -o " + (d / "r2.json").string());
+  EXPECT_EQ(with_flag.exit_code, 0) << with_flag.output;
 }
 
 }  // namespace

@@ -1,0 +1,169 @@
+// Graded quality checks on a campaign on disk (one step, force + acc1..acc3):
+//  - problems of channels the analysis uses are errors, all listed together;
+//  - the same problems on channels it does not use are warnings beside the
+//    result, which is that of a clean recording bit for bit (the steady state
+//    is judged on the analysed channels only);
+//  - on channels campaign.json ignores they are notes;
+//  - campaign.json's ignore_channels and Campaign::Analyse refuse what makes
+//    no sense, naming the entry.
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <random>
+#include <string>
+
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include "signal/campaign_extractor.h"
+#include "signal/input_error.h"
+#include "tests/signal/synthetic_signal.h"
+#include "tests/support/expect_refused.h"
+
+namespace beamid::signal {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kRateHz = 4096.0;
+constexpr int kSamples = 8192;
+constexpr double kFrequencyHz = 40.0;
+
+std::string CampaignJson(const std::string& extra) {
+  return R"({
+  "format": "stepped-sine-campaign/1", "name": "graded",
+  "beam": {"length_m": 0.6, "width_m": 0.04, "thickness_m": 0.005, "youngs_modulus_Pa": 2.1e11, "density_kg_m3": 7850},
+  "excitation": {"channel": "force", "position_m": 0.57, "quantity": "force", "unit": "N"},
+  "sensors": [{"channel": "acc1", "position_m": 0.1, "quantity": "acceleration", "unit": "m/s^2"},
+              {"channel": "acc2", "position_m": 0.3, "quantity": "acceleration", "unit": "m/s^2"},
+              {"channel": "acc3", "position_m": 0.5, "quantity": "acceleration", "unit": "m/s^2"}],
+  "steps": [{"file": "s0.csv", "frequency_Hz": 40.0, "level": "low"}])" +
+         extra + "\n}";
+}
+
+class GradedChecksTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    folder_ = fs::temp_directory_path() /
+              ("beamid_graded_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+               std::to_string(::getpid()));
+    fs::remove_all(folder_);
+    fs::create_directories(folder_);
+    std::mt19937 rng(11);
+    std::normal_distribution<double> normal;
+    samples_.resize(kSamples, 4);
+    for (int c = 0; c < 4; ++c) {
+      testing::Tone tone = testing::RandomTone(rng, 3, kFrequencyHz, 1.0 + c);
+      tone.sample_rate_hz = kRateHz;
+      samples_.col(c) = testing::Synthesize(tone, kSamples, 0.0);
+      for (int n = 0; n < kSamples; ++n) samples_(n, c) += 1e-3 * normal(rng);
+    }
+  }
+  void TearDown() override { fs::remove_all(folder_); }
+
+  void Write(const Eigen::MatrixXd& samples, const std::string& campaign_extra = "") {
+    std::ofstream(folder_ / "campaign.json") << CampaignJson(campaign_extra);
+    std::ofstream csv(folder_ / "s0.csv");
+    csv << "time_s,force,acc1,acc2,acc3\n";
+    char line[200];
+    for (int n = 0; n < kSamples; ++n) {
+      std::snprintf(line, sizeof line, "%.10f,%.9g,%.9g,%.9g,%.9g\n", n / kRateHz, samples(n, 0), samples(n, 1),
+                    samples(n, 2), samples(n, 3));
+      csv << line;
+    }
+  }
+
+  // acc2 clipped at 80 % of its peak, acc3 dropping out for 0.1 s and still
+  // ringing (a loose sensor) over the first half of the record.
+  Eigen::MatrixXd Faulty() const {
+    Eigen::MatrixXd samples = samples_;
+    const double limit = 0.8 * samples.col(2).cwiseAbs().maxCoeff();
+    samples.col(2) = samples.col(2).cwiseMin(limit).cwiseMax(-limit);
+    for (int n = 0; n < kSamples; ++n) {
+      const double t = n / kRateHz;
+      samples(n, 3) += 4.0 * std::exp(-t / 0.4) * std::sin(2.0 * std::numbers::pi * 77.0 * t);
+    }
+    samples.col(3).segment(4000, 410).setZero();
+    return samples;
+  }
+
+  PhasorSet Extract(const std::vector<std::string>& analysed) const {
+    Campaign campaign = ReadCampaign(folder_);
+    campaign.Analyse(analysed);
+    return ExtractCampaign(campaign, {});
+  }
+
+  fs::path folder_;
+  Eigen::MatrixXd samples_;
+};
+
+bool Mentions(const std::vector<std::string>& lines, const std::string& text) {
+  for (const auto& line : lines)
+    if (line.find(text) != std::string::npos) return true;
+  return false;
+}
+
+TEST_F(GradedChecksTest, ProblemsOfAnalysedChannelsAreErrorsListedTogether) {
+  Write(Faulty());
+  const std::string message = beamid::testing::InputErrorOf([&] { Extract({}); });
+  EXPECT_NE(message.find("2 problems"), std::string::npos) << message;
+  EXPECT_NE(message.find("channel 'acc2': clipped"), std::string::npos) << message;
+  EXPECT_NE(message.find("channel 'acc3': dropout"), std::string::npos) << message;
+  EXPECT_NE(message.find((folder_ / "s0.csv").string()), std::string::npos) << message;
+}
+
+TEST_F(GradedChecksTest, ProblemsOfOtherChannelsOnlyWarnAndChangeNothing) {
+  Write(samples_);
+  const PhasorSet clean = Extract({"acc1"});
+  Write(Faulty());
+  const PhasorSet set = Extract({"acc1"});
+  ASSERT_EQ(set.steps.size(), 1u);
+  const StepQuality& quality = set.steps[0].quality;
+  EXPECT_TRUE(Mentions(quality.warnings, "channel 'acc2' (not analysed): clipped")) << quality.warnings.size();
+  EXPECT_TRUE(Mentions(quality.warnings, "channel 'acc3' (not analysed): dropout"));
+  // acc3's ringing does not cut the analysed channels' record.
+  EXPECT_EQ(quality.settled_after_s, clean.steps[0].quality.settled_after_s) << quality.settling;
+  EXPECT_EQ(set.steps[0].responses[0].Harmonic(1).value, clean.steps[0].responses[0].Harmonic(1).value);
+  EXPECT_EQ(set.steps[0].force.Harmonic(2).value, clean.steps[0].force.Harmonic(2).value);
+  // Analysing acc3 too makes its problem an error again.
+  EXPECT_NE(beamid::testing::InputErrorOf([&] { Extract({"acc1", "acc3"}); }).find("channel 'acc3': dropout"),
+            std::string::npos);
+}
+
+TEST_F(GradedChecksTest, ProblemsOfIgnoredChannelsAreNotes) {
+  Write(Faulty(), R"(, "ignore_channels": ["acc2", "acc3"])");
+  const PhasorSet set = Extract({});
+  const StepQuality& quality = set.steps[0].quality;
+  EXPECT_TRUE(Mentions(quality.notes, "channel 'acc2' (ignored in campaign.json): clipped"));
+  EXPECT_TRUE(Mentions(quality.notes, "channel 'acc3' (ignored in campaign.json): dropout"));
+  EXPECT_FALSE(Mentions(quality.warnings, "acc2"));
+  EXPECT_FALSE(Mentions(quality.warnings, "acc3"));
+}
+
+TEST_F(GradedChecksTest, IgnoreChannelsAndAnalyseRefuseWhatMakesNoSense) {
+  for (const auto& [extra, expected] : std::vector<std::pair<std::string, std::string>>{
+           {R"(, "ignore_channels": "acc2")", "'ignore_channels' must be an array"},
+           {R"(, "ignore_channels": ["acc9"])", "ignore_channels[0]: names no sensor"},
+           {R"(, "ignore_channels": ["force"])", "the excitation cannot be ignored"},
+           {R"(, "ignore_channels": ["acc2", "acc2"])", "ignore_channels[1]: the channel is listed twice"},
+           {R"(, "ignore_channels": [3])", "ignore_channels[0]: must be a sensor's channel name"}}) {
+    Write(samples_, extra);
+    const std::string message = beamid::testing::InputErrorOf([&] { ReadCampaign(folder_); });
+    EXPECT_NE(message.find(expected), std::string::npos) << extra << " -> " << message;
+  }
+  Write(samples_, R"(, "ignore_channels": ["acc2"])");
+  Campaign campaign = ReadCampaign(folder_);
+  EXPECT_EQ(campaign.Use("acc2"), ChannelUse::kIgnored);
+  EXPECT_EQ(campaign.Use("force"), ChannelUse::kUsed);
+  EXPECT_NE(beamid::testing::InputErrorOf([&] { campaign.Analyse({"acc2"}); }).find("listed in ignore_channels"),
+            std::string::npos);
+  EXPECT_NE(beamid::testing::InputErrorOf([&] { campaign.Analyse({"accX"}); }).find("is not a sensor of the campaign"),
+            std::string::npos);
+  campaign.Analyse({"acc3"});
+  EXPECT_EQ(campaign.Use("acc1"), ChannelUse::kUnused);
+  EXPECT_EQ(campaign.Use("acc3"), ChannelUse::kUsed);
+}
+
+}  // namespace
+}  // namespace beamid::signal
