@@ -33,6 +33,24 @@ std::string RecordingCsv() {
   return csv;
 }
 
+// The same samples as an acquisition system's export: ';' separator,
+// decimal comma, a BOM, a comment line, units in the header, time in ms,
+// an extra column no channel uses, CRLF line ends.
+std::string AcquisitionExportCsv() {
+  std::string csv = "\xEF\xBB\xBF# exported by a DAQ\r\n\"t [ms]\";\"force [N]\";acc1_g;\"vel2 (mm/s)\";temp [degC]\r\n";
+  char line[160];
+  for (int n = 0; n < 200; ++n) {
+    const double t = n / 1000.0, phase = 2 * std::numbers::pi * 50.0 * t;
+    std::snprintf(line, sizeof line, "%.4f;%.6f;%.6f;%.6f;21.5\r\n", 1e3 * t, std::sin(phase), 2 * std::cos(phase),
+                  300 * std::sin(2 * phase));
+    std::string row = line;
+    for (char& c : row)
+      if (c == '.') c = ',';
+    csv += row;
+  }
+  return csv;
+}
+
 std::string UffFile(beamid::testing::UffEncoding encoding) {
   using beamid::testing::UffChannel;
   std::string text = beamid::testing::Uff151Header();
@@ -55,7 +73,13 @@ int main(int argc, char** argv) {
   }
   const std::filesystem::path dir = argv[1];
   Write(dir / "campaign_json_fuzzer" / "campaign.json", beamid::fuzz::kCampaignJson);
+  std::string voltage_campaign = beamid::fuzz::kCampaignJson;
+  const std::string force = R"("quantity": "force", "unit": "N"})";
+  voltage_campaign.replace(voltage_campaign.find(force), force.size(),
+                           R"("quantity": "voltage", "unit": "mV", "sensitivity_N_per_V": 12.5}, "ignore_channels": ["vel2"])");
+  Write(dir / "campaign_json_fuzzer" / "voltage_campaign.json", voltage_campaign);
   Write(dir / "recording_csv_fuzzer" / "step.csv", RecordingCsv());
+  Write(dir / "recording_csv_fuzzer" / "acquisition_export.csv", AcquisitionExportCsv());
   Write(dir / "uff58_fuzzer" / "ascii.uff", UffFile(beamid::testing::UffEncoding::kAsciiDouble));
   Write(dir / "uff58_fuzzer" / "binary.uff", UffFile(beamid::testing::UffEncoding::kBinaryLittleFloat));
   Write(dir / "phasor_table_fuzzer" / "comma.csv",

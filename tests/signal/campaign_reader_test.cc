@@ -14,6 +14,8 @@
 
 #include "signal/campaign.h"
 #include "signal/input_error.h"
+#include "signal/phasor_estimator.h"
+#include "signal/phasor_set_io.h"
 #include "signal/recording.h"
 
 namespace beamid::signal {
@@ -410,8 +412,15 @@ TEST_F(CampaignReaderTest, AVoltageOrBaseAccelerationExcitationIsReadWithItsUnit
   EXPECT_EQ(campaign.excitation.quantity, Quantity::kVoltage);
   EXPECT_EQ(campaign.excitation.to_si_factor, 1e-3);
   EXPECT_EQ(campaign.excitation.sensitivity_N_per_V, 12.5);
+  // The model-free chain takes it: phasors per volt, labelled as such.
   const Recording recording = ReadRecording(campaign, campaign.steps.front());
-  EXPECT_EQ(SiUnit(Quantity::kVoltage), "V");
+  const StepPhasors step = EstimateStepPhasors(recording, campaign, campaign.steps.front());
+  EXPECT_EQ(step.force.quantity, Quantity::kVoltage);
+  PhasorSet set;
+  set.num_harmonics = 5;
+  set.steps.push_back(step);
+  EXPECT_NE(PhasorSetToJson(set).find(R"("quantity": "voltage")"), std::string::npos);
+  EXPECT_NE(PhasorSetToJson(set).find(R"("unit": "V")"), std::string::npos);
 
   Write("campaign.json",
         WithExcitation(R"({"channel": "force", "position_m": 0.0, "quantity": "base_acceleration", "unit": "g"})"));
