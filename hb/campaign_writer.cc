@@ -47,8 +47,27 @@ Json PhasorsJson(const Eigen::VectorXcd& x) {
   return {{"mean", x(0).real()}, {"harmonics", harmonics}};
 }
 
+// The rig's quirks are written only when present, so that a campaign
+// without them is byte for byte what it was before they existed.
 Json NoiseJson(const ChannelNoise& n) {
-  return {{"relative_rms", n.relative_rms}, {"absolute", n.absolute}, {"adc_bits", n.adc_bits}, {"adc_range", n.adc_range}};
+  Json j = {{"relative_rms", n.relative_rms}, {"absolute", n.absolute}, {"adc_bits", n.adc_bits}, {"adc_range", n.adc_range}};
+  if (n.pink_rms > 0.0) j["pink_rms"] = n.pink_rms;
+  return j;
+}
+
+// campaign.json's excitation: the force transducer, or with a voltage drive
+// the amplifier's input voltage and its nominal gain g0 (what an engineer
+// reads off the amplifier; the sag near resonance is concealed).
+Json CampaignExcitationJson(const Scenario& s) {
+  if (s.BaseExcitation())
+    return {{"channel", s.force_channel}, {"position_m", 0.0}, {"quantity", "base_acceleration"}, {"unit", "m/s^2"}};
+  if (!s.VoltageDrive())
+    return {{"channel", s.force_channel}, {"position_m", s.force_position_m}, {"quantity", "force"}, {"unit", "N"}};
+  return {{"channel", s.force_channel},
+          {"position_m", s.force_position_m},
+          {"quantity", "voltage"},
+          {"unit", "V"},
+          {"sensitivity_N_per_V", s.amplifier.gain_N_per_V}};
 }
 
 void WriteFile(const std::filesystem::path& path, const std::string& text, std::uintmax_t& bytes) {
@@ -89,7 +108,7 @@ void CampaignWriter::Write(const SimulatedStep& step) {
   std::vector<std::string> names{s.force_channel};
   for (const ScenarioSensor& sensor : s.sensors) names.push_back(sensor.channel);
 
-  const Eigen::MatrixXd written = noise_.Measure(s, step.recording, &clipped_samples_);
+  const Eigen::MatrixXd written = noise_.Measure(s, step.recording, step.transient_samples, &clipped_samples_);
   std::string csv = "time_s";
   for (const std::string& name : names) csv += "," + name;
   csv += "\n";
@@ -108,8 +127,8 @@ void CampaignWriter::Write(const SimulatedStep& step) {
 
   Json channels = Json::object();
   channels[s.force_channel] = PhasorsJson(step.channel_phasors[0]);
-  channels[s.force_channel]["quantity"] = "force";
-  channels[s.force_channel]["unit"] = "N";
+  channels[s.force_channel]["quantity"] = ExcitationQuantityName(s.excitation_quantity);
+  channels[s.force_channel]["unit"] = s.VoltageDrive() ? "V" : s.BaseExcitation() ? "m/s^2" : "N";
   for (size_t i = 0; i < s.sensors.size(); ++i) {
     const ScenarioSensor& sensor = s.sensors[i];
     Json c = PhasorsJson(step.channel_phasors[i + 1]);
@@ -121,19 +140,30 @@ void CampaignWriter::Write(const SimulatedStep& step) {
   for (size_t h = 0; h < s.hidden_positions_m.size(); ++h)
     hidden.push_back({{"position_m", s.hidden_positions_m[h]},
                       {"displacement_m", PhasorsJson(step.hidden_displacement_phasors[h])}});
-  truth_steps_->push_back({{"file", step.file},
-                           {"level", step.level},
-                           {"nominal_frequency_Hz", step.nominal_frequency_hz},
-                           {"frequency_Hz", step.frequency_hz},
-                           {"force_amplitude_N", step.force_amplitude_N},
-                           {"settle_s", step.settle_s},
-                           {"settled", step.settled},
-                           {"settle_change", step.settle_change},
-                           {"steady_start_s", step.transient_samples / fs},
-                           {"channels", channels},
-                           {"hidden", hidden},
-                           {"support_rotation_rad", PhasorsJson(step.support_rotation_phasors)},
-                           {"support_moment_Nm", PhasorsJson(step.support_moment_phasors)}});
+  Json truth_step = {{"file", step.file},
+                      {"level", step.level},
+                      {"nominal_frequency_Hz", step.nominal_frequency_hz},
+                      {"frequency_Hz", step.frequency_hz},
+                      {"force_amplitude_N", step.force_amplitude_N},
+                      {"settle_s", step.settle_s},
+                      {"settled", step.settled},
+                      {"settle_change", step.settle_change},
+                      {"steady_start_s", step.transient_samples / fs},
+                      {"channels", channels},
+                      {"hidden", hidden},
+                      {"support_rotation_rad", PhasorsJson(step.support_rotation_phasors)},
+                      {"support_moment_Nm", PhasorsJson(step.support_moment_phasors)}};
+  if (s.BaseExcitation()) {
+    // No force acts: the base's acceleration is the drive (channels.<excitation>).
+    truth_step.erase("force_amplitude_N");
+    truth_step["base_acceleration_amplitude_m_s2"] = step.base_acceleration_amplitude_m_s2;
+  }
+  if (s.VoltageDrive()) {
+    truth_step["voltage_amplitude_V"] = step.voltage_amplitude_V;
+    truth_step["force_N"] = PhasorsJson(step.force_phasors);  // the true force: channel 0 holds the voltage
+  }
+  if (step.excitation_stop_s) truth_step["excitation_stop_s"] = *step.excitation_stop_s;
+  truth_steps_->push_back(std::move(truth_step));
 }
 
 void CampaignWriter::Finish() {
@@ -154,7 +184,7 @@ void CampaignWriter::Finish() {
       {"beamid_version", kVersion},
       {"name", s.name},
       {"beam", BeamJson(s.nominal_beam, false)},
-      {"excitation", {{"channel", s.force_channel}, {"position_m", s.force_position_m}, {"quantity", "force"}, {"unit", "N"}}},
+      {"excitation", CampaignExcitationJson(s)},
       {"sensors", sensors},
       {"sample_rate_Hz", s.timing.sample_rate_hz},
       {"steps", *campaign_steps_}};
@@ -173,6 +203,17 @@ void CampaignWriter::Finish() {
     natural.push_back(w / (2 * std::numbers::pi));
   Json noise = {{"seed", s.seed}, {"default", NoiseJson(s.default_noise)}, {"channels", Json::object()}};
   for (const auto& [channel, n] : s.channel_noise) noise["channels"][channel] = NoiseJson(n);
+  if (s.amplitude_creep_relative != 0.0) noise["amplitude_creep_relative"] = s.amplitude_creep_relative;
+  Json excitation = {{"channel", s.force_channel}, {"position_m", s.force_position_m}, {"distortion", distortion}};
+  if (s.BaseExcitation()) excitation["quantity"] = "base_acceleration";
+  if (s.VoltageDrive()) {
+    excitation["quantity"] = "voltage";
+    excitation["amplifier"] = {{"gain_N_per_V", s.amplifier.gain_N_per_V},
+                               {"sag", s.amplifier.sag},
+                               {"sag_center_Hz", simulation_.first_natural_frequency_hz()},
+                               {"sag_band_Hz", kAmplifierSagBandRelative * simulation_.first_natural_frequency_hz()}};
+  }
+  if (s.timing.excitation_stop_fraction > 0.0) excitation["stop_fraction"] = s.timing.excitation_stop_fraction;
 
   const Json truth = {
       {"format", "beamid-simulation-truth/1"},
@@ -205,7 +246,7 @@ void CampaignWriter::Finish() {
                   {"beta_s", sim.stiffness_proportional_damping_s()}}
            : Json{{"model", "hysteretic at each step: modal c_j = eta*w_j^2/(k_j*w), k_j*w the harmonic nearest w_j"},
                   {"loss_factor", s.beam.loss_factor}}},
-      {"excitation", {{"channel", s.force_channel}, {"position_m", s.force_position_m}, {"distortion", distortion}}},
+      {"excitation", excitation},
       {"generator_clock_offset_ppm", s.clock_offset_ppm},
       {"sample_rate_Hz", s.timing.sample_rate_hz},
       {"time_step_s", sim.time_step_s()},

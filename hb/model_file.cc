@@ -57,6 +57,12 @@ ModelFile ParseModelFile(const std::string& json_text, const std::string& source
     ObjectReader e(top.Raw("excitation"), source, "excitation", kDoc);
     e.Ignore("channel");
     e.Ignore("distortion");
+    // A voltage-driven scenario's shaker still applies a force at position_m.
+    for (const char* drive_only : {"amplifier_gain_N_per_V", "amplifier_sag"}) e.Ignore(drive_only);
+    if (e.String("quantity", "force") == "base_acceleration")
+      throw std::invalid_argument(source + ": excitation.quantity is base_acceleration: a model file drives the beam "
+                                  "with a force at excitation.position_m. Fix: give a force- or voltage-driven "
+                                  "scenario, or a model file");
     model.force_position_m = e.Positive("position_m", 0.0);
   }
   if (top.Has("sensors")) {

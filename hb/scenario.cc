@@ -47,6 +47,7 @@ ChannelNoise ReadNoise(ObjectReader& r) {
   n.adc_bits = static_cast<int>(bits);
   n.adc_range = r.NonNegative("adc_range", 0.0);
   if (n.adc_bits > 0 && !(n.adc_range > 0.0)) r.FailField("adc_range", "must be positive when adc_bits is set");
+  n.pink_rms = r.NonNegative("pink_rms", 0.0);
   return n;
 }
 
@@ -85,6 +86,20 @@ bool IsSafeLabel(const std::string& label) {
 }
 
 }  // namespace
+
+const char* ExcitationQuantityName(ExcitationQuantity quantity) {
+  switch (quantity) {
+    case ExcitationQuantity::kForce: return "force";
+    case ExcitationQuantity::kVoltage: return "voltage";
+    case ExcitationQuantity::kBaseAcceleration: return "base_acceleration";
+  }
+  return "force";
+}
+
+double ScenarioAmplifier::Gain_N_per_V(double frequency_hz, double first_natural_hz) const {
+  const double detuning = (frequency_hz - first_natural_hz) / (kAmplifierSagBandRelative * first_natural_hz);
+  return gain_N_per_V * (1.0 - sag / (1.0 + detuning * detuning));
+}
 
 std::unique_ptr<SupportLaw> Scenario::MakeSupportLaw() const { return MakePolynomialSupportLaw(polynomial, jenkins, one_sided_stiffness_Nm_rad); }
 
@@ -157,10 +172,43 @@ void ReadDampingAndMesh(ObjectReader& top, Scenario& s) {
   }
 }
 
+// "quantity": "force" (default) | "voltage" | "base_acceleration".
+ExcitationQuantity ReadExcitationQuantity(ObjectReader& e) {
+  const std::string quantity = e.String("quantity", "force");
+  for (ExcitationQuantity q : {ExcitationQuantity::kForce, ExcitationQuantity::kVoltage, ExcitationQuantity::kBaseAcceleration})
+    if (quantity == ExcitationQuantityName(q)) return q;
+  e.FailField("quantity", "must be \"force\" (the level's amplitude is the force), \"voltage\" (the amplifier's input) "
+                          "or \"base_acceleration\" (the clamp and the support move together)");
+}
+
+// The amplifier's fields belong to a voltage drive only, so that another
+// drive cannot carry a gain that silently does nothing.
+void ReadAmplifier(ObjectReader& e, bool voltage_drive, ScenarioAmplifier& amplifier) {
+  if (!voltage_drive) {
+    for (const char* key : {"amplifier_gain_N_per_V", "amplifier_sag"})
+      if (e.Has(key)) e.FailField(key, "belongs to a voltage drive; remove it or set excitation.quantity to \"voltage\"");
+    return;
+  }
+  if (!e.Has("amplifier_gain_N_per_V"))
+    e.FailField("amplifier_gain_N_per_V", "is required with excitation.quantity \"voltage\" (the amplifier's gain g0 in N/V)");
+  amplifier.gain_N_per_V = e.Positive("amplifier_gain_N_per_V", 0.0);
+  amplifier.sag = e.NonNegative("amplifier_sag", 0.0);
+  if (!(amplifier.sag < 1.0)) e.FailField("amplifier_sag", "must lie in [0, 1): the gain at f1 is g0·(1 − sag)");
+}
+
 void ReadExcitation(ObjectReader& top, Scenario& s) {
   ObjectReader e(top.Raw("excitation"), top.source(), "excitation");
   s.force_channel = e.String("channel", "force");
-  s.force_position_m = e.Positive("position_m", 0.0);
+  s.excitation_quantity = ReadExcitationQuantity(e);
+  if (s.BaseExcitation()) {
+    // The base moves clamp and support at once: there is no point of action.
+    if (e.Has("position_m"))
+      e.FailField("position_m", "must be left out with quantity \"base_acceleration\" (the clamp and the support move together)");
+    s.force_position_m = 0.0;
+  } else {
+    s.force_position_m = e.Positive("position_m", 0.0);
+  }
+  ReadAmplifier(e, s.VoltageDrive(), s.amplifier);
   if (!e.Has("distortion")) return;
   const Json& list = e.Array("distortion");
   for (size_t i = 0; i < list.size(); ++i) {
@@ -201,6 +249,34 @@ void ReadSensorsAndHiddenPositions(ObjectReader& top, Scenario& s) {
   }
 }
 
+// The one amplitude field of the scenario's excitation quantity; another
+// quantity's field is refused (it would be silently ignored).
+void ReadLevelAmplitude(ObjectReader& r, ExcitationQuantity quantity, ScenarioLevel& level) {
+  struct Field {
+    ExcitationQuantity quantity;
+    const char* key;
+    double* value;
+  };
+  const Field fields[] = {{ExcitationQuantity::kForce, "force_amplitude_N", &level.force_amplitude_N},
+                          {ExcitationQuantity::kVoltage, "voltage_amplitude_V", &level.voltage_amplitude_V},
+                          {ExcitationQuantity::kBaseAcceleration, "base_acceleration_amplitude_m_s2",
+                           &level.base_acceleration_amplitude_m_s2}};
+  const char* wanted = "";
+  for (const Field& f : fields)
+    if (f.quantity == quantity) wanted = f.key;
+  // Another drive's field first: its message names the one to give instead.
+  for (const Field& f : fields)
+    if (f.quantity != quantity && r.Has(f.key))
+      r.FailField(f.key, std::string("is not the drive with excitation.quantity \"") + ExcitationQuantityName(quantity) +
+                             "\"; give " + wanted);
+  for (const Field& f : fields) {
+    if (f.quantity != quantity) continue;
+    if (quantity != ExcitationQuantity::kForce && !r.Has(f.key))
+      r.FailField(f.key, std::string("is required with excitation.quantity \"") + ExcitationQuantityName(quantity) + "\"");
+    *f.value = r.Positive(f.key, 0.0);
+  }
+}
+
 void ReadLevels(ObjectReader& top, Scenario& s) {
   const Json& levels = top.Array("levels");
   if (levels.empty()) top.FailField("levels", "must list at least one level");
@@ -210,7 +286,7 @@ void ReadLevels(ObjectReader& top, Scenario& s) {
     level.label = r.String("label", "");
     if (!IsSafeLabel(level.label))
       r.FailField("label", "must be 1-64 letters, digits, '_' or '-' (it names the level's folder)");
-    level.force_amplitude_N = r.Positive("force_amplitude_N", 0.0);
+    ReadLevelAmplitude(r, s.excitation_quantity, level);
     level.frequencies_hz = ReadFrequencies(r);
     s.levels.push_back(std::move(level));
   }
@@ -227,6 +303,16 @@ void ReadTiming(ObjectReader& top, ScenarioTiming& timing) {
   timing.transient_s = t.NonNegative("transient_s", timing.transient_s);
   timing.record_s = t.Positive("record_s", timing.record_s);
   timing.restart_each_level = t.Bool("restart_each_level", timing.restart_each_level);
+  timing.excitation_stop_fraction = t.NonNegative("excitation_stop_fraction", timing.excitation_stop_fraction);
+  if (timing.excitation_stop_fraction != 0.0) {
+    // The truth is fitted over the steady part before the stop, so the stop
+    // must leave some of it (and happen before the file ends).
+    const double earliest = timing.transient_s / (timing.transient_s + timing.record_s);
+    if (!(timing.excitation_stop_fraction > earliest && timing.excitation_stop_fraction < 1.0))
+      t.FailField("excitation_stop_fraction", "must be 0 (never) or lie between transient_s/(transient_s + record_s) = " +
+                                                  std::to_string(earliest) +
+                                                  " and 1, so that the force stops inside the steady record");
+  }
   if (timing.settle_max_s < timing.settle_min_s) t.FailField("settle_max_s", "must not be below settle_min_s");
   // Limits that keep one simulated step within memory and minutes: at
   // most 2^24 samples per record, and a time step no finer than 1e-7 s.
@@ -244,6 +330,13 @@ void ReadNoiseSection(ObjectReader& top, Scenario& s) {
   s.seed = static_cast<std::uint64_t>(seed);
   s.clock_offset_ppm = n.Number("clock_offset_ppm", 0.0);
   if (std::abs(s.clock_offset_ppm) > 1e4) n.FailField("clock_offset_ppm", "must lie within ±10000 ppm");
+  s.amplitude_creep_relative = n.Number("amplitude_creep_relative", 0.0);
+  // The scale 1 + creep·(t/T − 1/2) must stay positive over the whole file,
+  // whose transient (t < 0) continues the line.
+  const double reach = s.timing.transient_s / s.timing.record_s + 0.5;
+  if (!(std::abs(s.amplitude_creep_relative) * reach < 1.0))
+    n.FailField("amplitude_creep_relative", "must lie within ±" + std::to_string(1.0 / reach) +
+                                                " (the scale 1 + creep·(t/T − 1/2) must stay positive over the transient and the record)");
   if (n.Has("default")) {
     ObjectReader d(n.Raw("default"), top.source(), "noise.default");
     s.default_noise = ReadNoise(d);
@@ -276,12 +369,17 @@ void CheckPositionsAndChannels(const Scenario& s, const std::string& source) {
       throw std::invalid_argument(source + ": " + what + " = " + std::to_string(x) + " m lies outside the beam (0, " +
                                   std::to_string(length) + ") m");
   };
-  inside(s.force_position_m, "excitation.position_m", false);
+  if (!s.BaseExcitation()) inside(s.force_position_m, "excitation.position_m", false);
   std::set<std::string> channels{s.force_channel};
   if (s.force_channel.empty() || s.force_channel == "time_s")
     throw std::invalid_argument(source + ": excitation.channel must be a name other than time_s");
   for (const ScenarioSensor& sensor : s.sensors) {
     inside(sensor.position_m, "sensor " + sensor.channel + " position_m", false);
+    // Absolute velocity and displacement would need the base's integrated
+    // motion, whose constants a real rig does not define.
+    if (s.BaseExcitation() && sensor.quantity != "acceleration")
+      throw std::invalid_argument(source + ": sensor " + sensor.channel + " quantity must be acceleration with "
+                                  "excitation.quantity \"base_acceleration\" (the sensors record absolute acceleration)");
     if (sensor.channel.empty() || sensor.channel == "time_s" || sensor.channel.find(',') != std::string::npos)
       throw std::invalid_argument(source + ": sensor channel '" + sensor.channel +
                                   "' must be a non-empty name without commas, other than time_s");
@@ -324,6 +422,7 @@ OrderedJson NoiseToJson(const ChannelNoise& n) {
   out["absolute"] = n.absolute;
   out["adc_bits"] = n.adc_bits;
   out["adc_range"] = n.adc_range;
+  out["pink_rms"] = n.pink_rms;
   return out;
 }
 
@@ -338,7 +437,15 @@ OrderedJson ExcitationToJson(const Scenario& s) {
   }
   OrderedJson out = OrderedJson::object();
   out["channel"] = s.force_channel;
-  out["position_m"] = s.force_position_m;
+  if (!s.BaseExcitation()) out["position_m"] = s.force_position_m;
+  // The quantity and the amplifier's fields only when not a force drive: the
+  // reader refuses the amplifier otherwise (and a force drive's file stays a
+  // model file).
+  if (s.excitation_quantity != ExcitationQuantity::kForce) out["quantity"] = ExcitationQuantityName(s.excitation_quantity);
+  if (s.VoltageDrive()) {
+    out["amplifier_gain_N_per_V"] = s.amplifier.gain_N_per_V;
+    out["amplifier_sag"] = s.amplifier.sag;
+  }
   out["distortion"] = distortion;
   return out;
 }
@@ -359,12 +466,15 @@ OrderedJson SensorsToJson(const std::vector<ScenarioSensor>& sensors) {
 
 // The frequencies as the list in run order: the reader's range and
 // "direction" are only ways of spelling that list.
-OrderedJson LevelsToJson(const std::vector<ScenarioLevel>& levels) {
+OrderedJson LevelsToJson(const std::vector<ScenarioLevel>& levels, ExcitationQuantity quantity) {
   OrderedJson out = OrderedJson::array();
   for (const ScenarioLevel& level : levels) {
     OrderedJson j = OrderedJson::object();
     j["label"] = level.label;
-    j["force_amplitude_N"] = level.force_amplitude_N;
+    if (quantity == ExcitationQuantity::kVoltage) j["voltage_amplitude_V"] = level.voltage_amplitude_V;
+    else if (quantity == ExcitationQuantity::kBaseAcceleration)
+      j["base_acceleration_amplitude_m_s2"] = level.base_acceleration_amplitude_m_s2;
+    else j["force_amplitude_N"] = level.force_amplitude_N;
     j["frequencies_Hz"] = level.frequencies_hz;
     out.push_back(j);
   }
@@ -381,6 +491,7 @@ OrderedJson TimingToJson(const ScenarioTiming& t) {
   out["transient_s"] = t.transient_s;
   out["record_s"] = t.record_s;
   out["restart_each_level"] = t.restart_each_level;
+  out["excitation_stop_fraction"] = t.excitation_stop_fraction;
   return out;
 }
 
@@ -390,6 +501,7 @@ OrderedJson NoiseSectionToJson(const Scenario& s) {
   OrderedJson out = OrderedJson::object();
   out["seed"] = s.seed;
   out["clock_offset_ppm"] = s.clock_offset_ppm;
+  out["amplitude_creep_relative"] = s.amplitude_creep_relative;
   out["default"] = NoiseToJson(s.default_noise);
   out["channels"] = channels;
   return out;
@@ -437,7 +549,7 @@ std::string ScenarioToJson(const Scenario& s) {
   root["excitation"] = ExcitationToJson(s);
   root["sensors"] = SensorsToJson(s.sensors);
   root["hidden_positions_m"] = s.hidden_positions_m;
-  root["levels"] = LevelsToJson(s.levels);
+  root["levels"] = LevelsToJson(s.levels, s.excitation_quantity);
   root["timing"] = TimingToJson(s.timing);
   root["noise"] = NoiseSectionToJson(s);
   return root.dump(2) + "\n";

@@ -44,7 +44,12 @@ struct ForceHarmonic {
 
 struct ScenarioLevel {
   std::string label;
-  double force_amplitude_N = 0.0;   // fundamental of the controlled force
+  double force_amplitude_N = 0.0;   // fundamental of the controlled force (force drive only; 0 otherwise)
+  // Fundamental of the amplifier's input voltage (voltage drive only; 0
+  // otherwise). The force is then g(f)·voltage, see ScenarioAmplifier.
+  double voltage_amplitude_V = 0.0;
+  // Fundamental of the base's acceleration (base excitation; 0 otherwise).
+  double base_acceleration_amplitude_m_s2 = 0.0;
   std::vector<double> frequencies_hz;  // nominal, in the order they are run
 };
 
@@ -54,6 +59,9 @@ struct ChannelNoise {
   double absolute = 0.0;      // Gaussian σ added on top
   int adc_bits = 0;           // 0 = no quantisation
   double adc_range = 0.0;     // full scale ±range; values beyond are clipped
+  // RMS of a low-frequency 1/f ("pink") drift added to the channel, spanning
+  // 1/T .. f_s/2 of each recording of duration T (hb/internal/pink_noise.h). 0 = none.
+  double pink_rms = 0.0;
 };
 
 struct ScenarioTiming {
@@ -74,7 +82,41 @@ struct ScenarioTiming {
   double record_s = 0.5;
   // Start every level from rest (the shaker stops between levels).
   bool restart_each_level = true;
+  // The shaker is switched off inside every recording, at this fraction of
+  // the recording's duration (file time, transient included); the beam then
+  // rings down and the excitation channel records only its noise. 0 = never.
+  // It must fall inside the steady part: > transient_s/(transient_s + record_s), < 1.
+  double excitation_stop_fraction = 0.0;
 };
+
+// What the excitation channel records and the level's amplitude sets
+// (excitation.quantity): "force" (default) a force at excitation.position_m;
+// "voltage" the amplifier's input (ScenarioAmplifier below);
+// "base_acceleration" the acceleration a_b of the clamp and the support rod,
+// which a shaker moves together: the beam, in coordinates relative to them,
+// carries the inertial load −ρA·a_b (and −m·a_b on every point mass), and
+// the sensors, all accelerometers, record the absolute acceleration
+// (relative + a_b).
+enum class ExcitationQuantity { kForce, kVoltage, kBaseAcceleration };
+// "force", "voltage", "base_acceleration".
+const char* ExcitationQuantityName(ExcitationQuantity quantity);
+
+// What drives the shaker. With a force drive (the default) the level's
+// amplitude is the force. With a voltage drive it is the amplifier's input
+// voltage V0, the excitation channel records that voltage (in V), and the
+// force applied is g(f)·V0 with a gain that sags near the first resonance
+// (the amplifier's current limit against the shaker's back EMF):
+//     g(f) = g0·(1 − sag/(1 + ((f − f1)/b)²)),  b = kAmplifierSagBandRelative·f1,
+// f1 the true first natural frequency (the FE model with the law's initial
+// stiffness). Each harmonic k of the voltage is applied with g(k·f).
+struct ScenarioAmplifier {
+  double gain_N_per_V = 0.0;       // g0 (voltage drive: required, > 0)
+  double sag = 0.0;                // 0 ≤ sag < 1: relative dip of the gain at f1
+
+  // g(f) [N/V] for the true first natural frequency f1.
+  double Gain_N_per_V(double frequency_hz, double first_natural_hz) const;
+};
+inline constexpr double kAmplifierSagBandRelative = 0.02;
 
 struct Scenario {
   std::string name;
@@ -89,8 +131,10 @@ struct Scenario {
   int mesh_min_elements = 40;
 
   std::string force_channel = "force";
-  double force_position_m = 0.570;
-  std::vector<ForceHarmonic> force_distortion;
+  double force_position_m = 0.570;  // 0 with base excitation
+  std::vector<ForceHarmonic> force_distortion;  // of the recorded excitation signal
+  ExcitationQuantity excitation_quantity = ExcitationQuantity::kForce;
+  ScenarioAmplifier amplifier;  // voltage drive only
   std::vector<ScenarioSensor> sensors;
   std::vector<double> hidden_positions_m;  // truth only, not in the campaign
   std::vector<ScenarioLevel> levels;
@@ -100,6 +144,12 @@ struct Scenario {
   std::map<std::string, ChannelNoise> channel_noise;  // overrides per channel
   double clock_offset_ppm = 0.0;  // true f = nominal·(1 + ppm·1e-6)
   std::uint64_t seed = 1;
+  // Every response channel's recorded signal is scaled by
+  // 1 + creep·(t/T − 1/2) over each steady record of duration T (t from the
+  // steady start; the transient before it continues the line), so the
+  // record-mean amplitude is the truth and it creeps by `creep` over the
+  // record (a sensor warming up). 0 = none.
+  double amplitude_creep_relative = 0.0;
 
   // The true support law: the polynomial, plus the Jenkins element and the
   // one-sided stiffness in parallel.
@@ -107,6 +157,8 @@ struct Scenario {
   // Concealed attachments plus the sensors' masses.
   LinearAttachments TrueAttachments() const;
   const ChannelNoise& NoiseOf(const std::string& channel) const;
+  bool VoltageDrive() const { return excitation_quantity == ExcitationQuantity::kVoltage; }
+  bool BaseExcitation() const { return excitation_quantity == ExcitationQuantity::kBaseAcceleration; }
   int NumSteps() const;
 };
 

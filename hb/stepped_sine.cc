@@ -44,7 +44,7 @@ class SampleRing {
 }  // namespace
 
 SteppedSineSimulation::SteppedSineSimulation(const Scenario& scenario)
-    : scenario_(scenario), law_(scenario.MakeSupportLaw()) {
+    : scenario_(scenario), law_(scenario.MakeSupportLaw()), base_excitation_(scenario.BaseExcitation()) {
   const ScenarioTiming& timing = scenario_.timing;
   const double sample_period_s = 1.0 / timing.sample_rate_hz;
   substeps_ = std::max(1, static_cast<int>(std::ceil(sample_period_s / timing.max_time_step_s - 1e-9)));
@@ -52,6 +52,7 @@ SteppedSineSimulation::SteppedSineSimulation(const Scenario& scenario)
   model.beam = scenario_.beam;
   model.attachments = scenario_.TrueAttachments();
   model.force_position_m = scenario_.force_position_m;
+  model.base_excitation = scenario_.BaseExcitation();
   for (const ScenarioSensor& s : scenario_.sensors) model.output_positions_m.push_back(s.position_m);
   for (double x : scenario_.hidden_positions_m) model.output_positions_m.push_back(x);
   TimeSimulatorOptions options;
@@ -59,6 +60,11 @@ SteppedSineSimulation::SteppedSineSimulation(const Scenario& scenario)
   options.damping_reference_rad_s = kTwoPi * scenario_.damping_reference_frequency_hz;
   options.mesh.min_elements = scenario_.mesh_min_elements;
   simulator_ = std::make_unique<TimeSimulator>(model, *law_, options);
+  // Only the amplifier's sag needs it; computed only then, so that a force
+  // drive costs nothing.
+  if (scenario_.VoltageDrive())
+    first_natural_hz_ =
+        simulator_->fe_beam().NaturalFrequencies_rad_s(1, law_->InitialStiffness_Nm_rad()).at(0) / kTwoPi;
   const int outputs = simulator_->NumOutputs();
   displacement_.resize(outputs);
   velocity_.resize(outputs);
@@ -67,20 +73,54 @@ SteppedSineSimulation::SteppedSineSimulation(const Scenario& scenario)
 
 SteppedSineSimulation::~SteppedSineSimulation() = default;
 
-double SteppedSineSimulation::Force_N(double amplitude_N, double phase_rad) const {
+SteppedSineSimulation::Drive SteppedSineSimulation::DriveOf(const ScenarioLevel& level, double frequency_hz) const {
+  Drive drive;
+  const ScenarioAmplifier& amplifier = scenario_.amplifier;
+  if (scenario_.BaseExcitation()) {
+    drive.amplitude = level.base_acceleration_amplitude_m_s2;
+    return drive;
+  }
+  if (!scenario_.VoltageDrive()) {
+    drive.amplitude = level.force_amplitude_N;
+    return drive;
+  }
+  drive.amplitude = level.voltage_amplitude_V;
+  drive.fundamental_gain = amplifier.Gain_N_per_V(frequency_hz, first_natural_hz_);
+  for (const ForceHarmonic& h : scenario_.force_distortion)
+    drive.distortion_gain.push_back(amplifier.Gain_N_per_V(h.harmonic * frequency_hz, first_natural_hz_));
+  return drive;
+}
+
+double SteppedSineSimulation::Signal(const Drive& drive, double phase_rad) const {
   double f = std::cos(phase_rad);
   for (const ForceHarmonic& h : scenario_.force_distortion)
     f += h.amplitude_ratio * std::cos(h.harmonic * phase_rad + h.phase_rad);
-  return amplitude_N * f;
+  return drive.amplitude * f;
+}
+
+double SteppedSineSimulation::Force_N(const Drive& drive, double phase_rad) const {
+  // A force drive is its own signal (and stays bit-identical to before the
+  // voltage drive existed); with base excitation the simulator's input is
+  // the base's acceleration itself (hb/time_simulator.h).
+  if (!scenario_.VoltageDrive()) return Signal(drive, phase_rad);
+  double f = drive.fundamental_gain * std::cos(phase_rad);
+  for (size_t k = 0; k < scenario_.force_distortion.size(); ++k) {
+    const ForceHarmonic& h = scenario_.force_distortion[k];
+    f += drive.distortion_gain[k] * h.amplitude_ratio * std::cos(h.harmonic * phase_rad + h.phase_rad);
+  }
+  return drive.amplitude * f;
 }
 
 void SteppedSineSimulation::ChannelValues(Eigen::Ref<Eigen::VectorXd> values) const {
   simulator_->Outputs(displacement_, velocity_, acceleration_);
-  values(0) = simulator_->state().force_N;
+  values(0) = excitation_signal_;
   for (size_t i = 0; i < scenario_.sensors.size(); ++i) {
     const std::string& q = scenario_.sensors[i].quantity;
     const Eigen::Index k = static_cast<Eigen::Index>(i);
     values(k + 1) = q == "acceleration" ? acceleration_(k) : q == "velocity" ? velocity_(k) : displacement_(k);
+    // The simulator's motion is relative to the moving base; an
+    // accelerometer feels the absolute one (the reader allows only those).
+    if (base_excitation_) values(k + 1) += excitation_signal_;
   }
 }
 
@@ -108,7 +148,9 @@ void SteppedSineSimulation::Run(const std::function<void(const SimulatedStep&)>&
     const ScenarioLevel& level = scenario_.levels[li];
     if (li == 0 || timing.restart_each_level) {
       phase = 0.0;
-      simulator_->Reset(Force_N(level.force_amplitude_N, phase));
+      const Drive first = DriveOf(level, level.frequencies_hz.front() * clock);
+      excitation_signal_ = Signal(first, phase);
+      simulator_->Reset(Force_N(first, phase));
     }
     for (size_t si = 0; si < level.frequencies_hz.size(); ++si) {
       SimulatedStep step;
@@ -121,7 +163,10 @@ void SteppedSineSimulation::Run(const std::function<void(const SimulatedStep&)>&
       step.file = level.label + "/" + name;
       step.nominal_frequency_hz = level.frequencies_hz[si];
       step.frequency_hz = step.nominal_frequency_hz * clock;
-      step.force_amplitude_N = level.force_amplitude_N;
+      const Drive drive = DriveOf(level, step.frequency_hz);
+      step.force_amplitude_N = scenario_.BaseExcitation() ? 0.0 : drive.fundamental_gain * drive.amplitude;
+      step.voltage_amplitude_V = level.voltage_amplitude_V;
+      step.base_acceleration_amplitude_m_s2 = level.base_acceleration_amplitude_m_s2;
       const double omega = kTwoPi * step.frequency_hz;
       // The beam's loss factor as the real, frequency-independent one at this
       // step (hb/time_simulator.h), unless the scenario asks for C = (η/ω_ref)·K.
@@ -130,11 +175,15 @@ void SteppedSineSimulation::Run(const std::function<void(const SimulatedStep&)>&
       // The generator's phase is continuous across the frequency change.
       const double phase_start = std::fmod(phase, kTwoPi);
       long substep = 0;
+      // Switched off (timing.excitation_stop_fraction): the generator's phase
+      // runs on, but the shaker applies nothing and its channel reads 0.
+      bool switched_off = false;
       auto next_sample = [&] {
         for (int i = 0; i < substeps_; ++i) {
           ++substep;
           phase = phase_start + omega * dt * static_cast<double>(substep);
-          simulator_->Advance(Force_N(level.force_amplitude_N, phase));
+          excitation_signal_ = switched_off ? 0.0 : Signal(drive, phase);
+          simulator_->Advance(switched_off ? 0.0 : Force_N(drive, phase));
         }
         ChannelValues(channels);
       };
@@ -182,19 +231,38 @@ void SteppedSineSimulation::Run(const std::function<void(const SimulatedStep&)>&
       step.recording.resize(step.transient_samples + record_samples, num_channels);
       ring.CopyTo(step.recording);
       TimeHarmonicFit truth(kTruthHarmonics, static_cast<int>(truth_values.size()));
+      // The last sample of the file with the force on (the whole file when it never stops).
+      int last_forced_sample = step.transient_samples + record_samples;
+      if (timing.excitation_stop_fraction > 0.0) {
+        // Inside the steady part by the reader's check (a shorter transient only moves it later in the record).
+        const int file_samples = step.transient_samples + record_samples;
+        last_forced_sample = std::min(
+            file_samples - 1, static_cast<int>(std::lround(timing.excitation_stop_fraction * file_samples)));
+        step.excitation_stop_s = last_forced_sample / fs;
+      }
       for (int i = 0; i < record_samples; ++i) {
+        // File sample n is reached from n − 1; past the stop the force is 0.
+        switched_off = step.transient_samples + i > last_forced_sample;
         next_sample();
         step.recording.row(step.transient_samples + i) = channels.transpose();
         for (int c = 0; c < num_channels; ++c) truth_values[c] = channels(c);
         for (int h = 0; h < num_hidden; ++h) truth_values[num_channels + h] = displacement_(num_sensors + h);
         truth_values[num_channels + num_hidden] = simulator_->SupportRotation_rad();
         truth_values[num_channels + num_hidden + 1] = simulator_->SupportMoment_Nm();
-        truth.Add(phase, truth_values);
+        if (step.transient_samples + i <= last_forced_sample) truth.Add(phase, truth_values);
       }
       std::vector<Eigen::VectorXcd> phasors = truth.Solve();
       const std::complex<double> force_fundamental = phasors[0](1);
       for (Eigen::VectorXcd& p : phasors) ReferenceToFundamental(force_fundamental, p);
       step.channel_phasors.assign(phasors.begin(), phasors.begin() + num_channels);
+      // The applied force, harmonic by harmonic: the recorded signal times
+      // the amplifier's gain at that harmonic's frequency (g is real, so the
+      // phase reference is the same).
+      step.force_phasors = phasors[0];
+      if (scenario_.BaseExcitation()) step.force_phasors.setZero();
+      if (scenario_.VoltageDrive())
+        for (Eigen::Index k = 0; k < step.force_phasors.size(); ++k)
+          step.force_phasors(k) *= scenario_.amplifier.Gain_N_per_V(k * step.frequency_hz, first_natural_hz_);
       step.hidden_displacement_phasors.assign(phasors.begin() + num_channels, phasors.begin() + num_channels + num_hidden);
       step.support_rotation_phasors = phasors[num_channels + num_hidden];
       step.support_moment_phasors = phasors[num_channels + num_hidden + 1];

@@ -4,7 +4,14 @@
 // channel stops changing, hb/scenario.h ScenarioTiming), then records. The
 // generator runs at the nominal frequency times (1 + clock_offset·1e-6) with a
 // continuous phase φ, and the force is
-//     F(t) = F₁·[cos φ + Σ_k r_k·cos(kφ + ψ_k)]        (prescribed force).
+//     F(t) = F₁·[cos φ + Σ_k r_k·cos(kφ + ψ_k)]        (prescribed force),
+// or, with a voltage drive, the voltage V₀·[cos φ + Σ_k r_k·cos(kφ + ψ_k)]
+// through the amplifier's gain g(f) (hb/scenario.h ScenarioAmplifier), or,
+// with base excitation, the base's acceleration a_b(t) of the same form (the
+// beam integrated relative to the base, hb/time_simulator.h). With
+// timing.excitation_stop_fraction the drive is switched off inside each
+// recording and the beam rings down. The phase reference of the truth is the
+// fundamental of the excitation channel (force, voltage or a_b).
 // Recordings are noise-free and in SI here (hb/noise.h adds noise); the truth
 // of each step is the least-squares fit (hb/time_harmonic_fit.h) of harmonics
 // 0..5 over its steady part, referenced to the force fundamental
@@ -13,6 +20,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,19 +41,28 @@ struct SimulatedStep {
   std::string file;       // relative path of its recording: <level>/step_NNN.csv
   double nominal_frequency_hz = 0.0;
   double frequency_hz = 0.0;  // true (generator clock offset applied)
-  double force_amplitude_N = 0.0;
+  double force_amplitude_N = 0.0;    // fundamental of the true force (g(f)·V0 with a voltage drive)
+  double voltage_amplitude_V = 0.0;  // voltage drive only: the level's V0
+  double base_acceleration_amplitude_m_s2 = 0.0;  // base excitation only: the level's a_b
 
   double settle_s = 0.0;      // integrated before the steady record
   bool settled = false;       // false: settle_max_s reached first
   double settle_change = 0.0; // last relative change between windows
   int transient_samples = 0;  // leading samples of the recording before the steady part
+  // timing.excitation_stop_fraction: the time in the recording [s] after
+  // which the force is zero (it falls to 0 over the next integration step).
+  // The truth is fitted over the steady samples up to it.
+  std::optional<double> excitation_stop_s;
 
-  // Samples × channels (force, then the sensors in scenario order), SI
-  // (N, m/s², m/s or m), noise-free, at the nominal sample rate.
+  // Samples × channels (the excitation, then the sensors in scenario order),
+  // SI (N, or V with a voltage drive, or the base's m/s²; m/s², m/s or m;
+  // absolute acceleration with base excitation), noise-free, at the nominal
+  // sample rate.
   Eigen::MatrixXd recording;
 
   // Truth, X_0..X_5 each, phase referenced to the force fundamental:
   std::vector<Eigen::VectorXcd> channel_phasors;              // per channel, SI
+  Eigen::VectorXcd force_phasors;  // the true force [N] (channel 0 itself with a force drive; 0 with base excitation)
   std::vector<Eigen::VectorXcd> hidden_displacement_phasors;  // per hidden position [m]
   Eigen::VectorXcd support_rotation_phasors;                  // θ = y'(L) [rad]
   Eigen::VectorXcd support_moment_phasors;                    // M_s [N·m]
@@ -60,6 +77,9 @@ class SteppedSineSimulation {
   const Scenario& scenario() const { return scenario_; }
   const TimeSimulator& simulator() const { return *simulator_; }
   int substeps_per_sample() const { return substeps_; }
+  // f1 of the amplifier's sag (hb/scenario.h ScenarioAmplifier): the first
+  // natural frequency of the true FE model with the law's initial stiffness.
+  double first_natural_frequency_hz() const { return first_natural_hz_; }
 
   // Runs every step in order and hands each to `sink` as soon as it is done
   // (the sink writes files and reports progress). Throws std::runtime_error
@@ -67,13 +87,28 @@ class SteppedSineSimulation {
   void Run(const std::function<void(const SimulatedStep&)>& sink);
 
  private:
-  double Force_N(double amplitude_N, double phase_rad) const;
+  // The drive of one step: what the excitation channel records (force,
+  // voltage or a_b) and the simulator's input (the force applied, or a_b),
+  // both at the generator phase φ.
+  struct Drive {
+    double amplitude = 0.0;  // the level's force [N], voltage [V] or a_b [m/s²]
+    // Force per unit of the recorded signal, per harmonic: 1 for a force
+    // drive; g(f) for the fundamental and g(k·f) for each distortion term.
+    double fundamental_gain = 1.0;
+    std::vector<double> distortion_gain;
+  };
+  Drive DriveOf(const ScenarioLevel& level, double frequency_hz) const;
+  double Signal(const Drive& drive, double phase_rad) const;
+  double Force_N(const Drive& drive, double phase_rad) const;
   void ChannelValues(Eigen::Ref<Eigen::VectorXd> values) const;
 
   Scenario scenario_;
   std::unique_ptr<SupportLaw> law_;
   std::unique_ptr<TimeSimulator> simulator_;
   int substeps_ = 1;
+  double first_natural_hz_ = 0.0;
+  bool base_excitation_ = false;
+  double excitation_signal_ = 0.0;  // the excitation channel's value now (force, voltage or a_b)
   // Scratch for the simulator's outputs (sensors, then hidden positions).
   mutable Eigen::VectorXd displacement_, velocity_, acceleration_;
 };

@@ -101,8 +101,8 @@ TimeSimulator::TimeSimulator(const TimeSimulatorModel& model, const SupportLaw& 
       law_(law.Clone()),
       time_step_s_(options.time_step_s),
       max_newton_iterations_(options.max_newton_iterations) {
-  const int force_dof = fe_beam_.DeflectionDof(model.force_position_m);
-  if (force_dof == FeBeam::kConstrained)
+  const int force_dof = model.base_excitation ? FeBeam::kConstrained : fe_beam_.DeflectionDof(model.force_position_m);
+  if (!model.base_excitation && force_dof == FeBeam::kConstrained)
     throw std::invalid_argument("time simulator: the force acts at a constrained point (x = 0 or a rigid support)");
 
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> modes(fe_beam_.Stiffness(), fe_beam_.Mass());
@@ -120,7 +120,17 @@ TimeSimulator::TimeSimulator(const TimeSimulatorModel& model, const SupportLaw& 
   beta_damping_s_ = loss_factor_ / damping_reference_rad_s_;
   modal_damping_ = beta_damping_s_ * modal_stiffness_;
 
-  force_shape_ = phi.row(force_dof).transpose().array();
+  if (model.base_excitation) {
+    // The modal load per unit of a_b: −Φᵀ·M·r, r the base's rigid translation.
+    Eigen::VectorXd translation = Eigen::VectorXd::Zero(fe_beam_.NumDofs());
+    for (double x : fe_beam_.node_positions_m()) {
+      const int dof = fe_beam_.DeflectionDof(x);
+      if (dof != FeBeam::kConstrained) translation(dof) = 1.0;
+    }
+    force_shape_ = -(phi.transpose() * (fe_beam_.Mass() * translation)).array();
+  } else {
+    force_shape_ = phi.row(force_dof).transpose().array();
+  }
   rotation_shape_ = phi.row(fe_beam_.SupportRotationDof()).transpose().array();
   output_modes_ = Eigen::MatrixXd::Zero(static_cast<int>(model.output_positions_m.size()), phi.cols());
   for (size_t i = 0; i < model.output_positions_m.size(); ++i) {

@@ -2,7 +2,8 @@
 // model (hb/fe_beam.h) integrated in time,
 //     M·q̈ + C·q̇ + K·q = f_F(t)·e_F − M_s(θ, θ̇, history)·e_θ,   θ = y'(L),
 // where f_F is the shaker force at its node and M_s the support law's moment
-// (hb/support_law.h: it acts against θ, EI·y''(L) = −M_s).
+// (hb/support_law.h: it acts against θ, EI·y''(L) = −M_s); with base
+// excitation f_F·e_F is replaced by −M·r·a_b (TimeSimulatorModel).
 //
 // Structural damping is classical. By default it is stiffness proportional,
 // C = (η/ω_ref)·K: a beam vibrating at ω_ref dissipates exactly as the complex
@@ -50,6 +51,14 @@ struct TimeSimulatorModel {
   BeamProperties beam;  // true beam; loss_factor is η of the structural damping
   LinearAttachments attachments;
   double force_position_m = 0.570;
+  // Base excitation: the clamp and the support translate together with the
+  // acceleration a_b(t). The beam is then integrated in coordinates relative
+  // to them (the springs and the support law see relative motion) under the
+  // inertial load −M·r·a_b, r = 1 on every deflection DOF (the beam's ρA and
+  // every point mass); the scalar input of Reset and Advance (the "force")
+  // is then a_b [m/s²], and force_position_m is not used. Outputs and state
+  // are relative to the base.
+  bool base_excitation = false;
   // Where deflection, velocity and acceleration are reported (become nodes).
   std::vector<double> output_positions_m;
 };

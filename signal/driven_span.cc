@@ -34,7 +34,8 @@ DrivenSpan FindDrivenSpan(const Eigen::Ref<const Eigen::VectorXd>& excitation, d
   options.Validate();
   const Eigen::Index n = excitation.size();
   DrivenSpan span{.first_sample = 0, .end_sample = n};
-  const Eigen::Index block = std::max<Eigen::Index>(std::lround(4.0 * sample_rate_hz / frequency_hz), 16);
+  // One period: a record of half a second must show a stop in its last 10 %.
+  const Eigen::Index block = std::max<Eigen::Index>(std::lround(sample_rate_hz / frequency_hz), 16);
   const Eigen::Index num_blocks = n / block;
   if (num_blocks < 4 * options.min_off_blocks) return span;
   std::vector<double> rms(static_cast<std::size_t>(num_blocks));

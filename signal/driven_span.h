@@ -3,7 +3,7 @@
 // ring-down (or rest) that is no steady state of the step: fitted with the
 // driven part it drags every phasor towards zero and the SNR down, without
 // an error. Method: the excitation channel's RMS about its mean in blocks of
-// about four periods; blocks below off_fraction of the median block RMS are
+// one period; blocks below off_fraction of the median block RMS are
 // undriven. Undriven blocks at the end (or start), at least min_off_blocks of
 // them, are cut, and with them the block in which the excitation stops (or
 // starts), which holds the switching transient.

@@ -80,6 +80,7 @@ void PhasorEstimatorOptions::Validate() const {
   RequireInRange("PhasorEstimatorOptions.warn_transient_fraction", warn_transient_fraction, 0.0, 1.0);
   RequireNonNegative("PhasorEstimatorOptions.min_force_snr", min_force_snr);
   RequireNonNegative("PhasorEstimatorOptions.note_drift_relative", note_drift_relative);
+  RequireNonNegative("PhasorEstimatorOptions.min_converter_steps", min_converter_steps);
   driven_span.Validate();
 }
 
@@ -143,6 +144,23 @@ StepPhasors EstimateStepPhasors(const Recording& recording, const Campaign& camp
 
   // 5. Reference and pack.
   std::vector<ChannelPhasors> channels = ReferencePhasors(fit, 0, specs);
+  std::vector<std::pair<std::string, std::string>> coarse;  // channel, what to say
+  for (std::size_t c = 0; c < channels.size(); ++c) {
+    // A channel resolved by a few converter steps errs by a fraction of a
+    // step whatever the record's length: the error is the quantiser's,
+    // locked to the signal, not noise that averages out. Its variance
+    // step²/12 per component is added to what the residual shows.
+    const ConverterResolution resolution = ResolutionOf(recording.samples.col(static_cast<Eigen::Index>(c)));
+    if (resolution.step <= 0.0 || resolution.num_steps >= options.min_converter_steps) continue;
+    const double variance = resolution.step * resolution.step / 12.0;
+    for (auto& harmonic : channels[c].harmonics)
+      harmonic.SetCovariance(harmonic.Covariance() + variance * Eigen::Matrix2d::Identity());
+    coarse.emplace_back(channels[c].channel, "channel '" + channels[c].channel + "' spans only " +
+                     FormatNumber(std::round(resolution.num_steps)) + " converter steps of " +
+                     FormatNumber(resolution.step) + " " + std::string(SiUnit(channels[c].quantity)) +
+                     ": its phasors' uncertainty includes the quantisation error (±" +
+                     FormatNumber(std::sqrt(variance)) + " per component); a smaller input range resolves it");
+  }
   StepPhasors result;
   result.file = step.file;
   result.level = step.level;
@@ -153,6 +171,8 @@ StepPhasors EstimateStepPhasors(const Recording& recording, const Campaign& camp
   result.responses.assign(std::make_move_iterator(channels.begin() + 1), std::make_move_iterator(channels.end()));
 
   StepQuality& quality = result.quality;
+  for (auto& [channel, text] : coarse)
+    (campaign.Use(channel) == ChannelUse::kIgnored ? quality.notes : quality.warnings).push_back(std::move(text));
   quality.settled_after_s = static_cast<double>(span.first_sample + steady.first_sample) / fs;
   if (const std::string stop = span.Describe(fs, recording.NumSamples()); !stop.empty())
     quality.warnings.push_back(stop);

@@ -16,8 +16,9 @@
 //      variance). The time origin of step 4 drops out.
 // Quality: SNR per channel, THD, settling, warnings (low SNR, frequency far
 // from nominal, harmonics cut at Nyquist, long transient, excitation stopping
-// inside the record, drift beyond note_drift_relative) and notes (a small
-// drift).
+// inside the record, drift beyond note_drift_relative, a channel resolved by
+// few converter steps, whose uncertainty then includes the quantisation
+// error) and notes (a small drift).
 #pragma once
 
 #include "signal/campaign.h"
@@ -40,6 +41,9 @@ struct PhasorEstimatorOptions {
   double warn_transient_fraction = 0.5;    // warn when more of the record was dropped
   double min_force_snr = 10.0;             // |F_1|/σ(F_1) below this: no excitation found
   double note_drift_relative = 0.05;       // a steady state with drift up to this is a note, beyond a warning
+  // A channel spanning fewer converter steps gets the quantisation error in
+  // its uncertainty and a warning (signal/recording_validator.h).
+  double min_converter_steps = 64.0;
 
   // Throws InputError naming the field, its value and the allowed range.
   void Validate() const;

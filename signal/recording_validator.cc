@@ -137,29 +137,21 @@ double ValidateTimeColumn(std::span<const double> time_s, double expected_sample
   return expected_sample_rate_hz > 0.0 ? expected_sample_rate_hz : rate_hz;
 }
 
-namespace {
-
-// How many steps of the converter the channel spans: its range over the
-// smallest difference between two of its distinct values, when every value
-// lies on that grid (the resolution it was recorded or printed with);
-// infinite when the values lie on no such grid (a sine sampled in step with
-// its period repeats a few values that are no converter's steps).
-double ConverterSteps(const Eigen::Ref<const Eigen::VectorXd>& x) {
+ConverterResolution ResolutionOf(const Eigen::Ref<const Eigen::VectorXd>& x) {
   std::vector<double> values(x.data(), x.data() + x.size());
   std::sort(values.begin(), values.end());
   values.erase(std::unique(values.begin(), values.end()), values.end());
-  if (values.size() < 2) return 0.0;
+  if (values.size() < 2) return {.step = 0.0, .num_steps = 0.0};
   double step = std::numeric_limits<double>::infinity();
   for (std::size_t i = 1; i < values.size(); ++i) step = std::min(step, values[i] - values[i - 1]);
   // 1e-3 of a step: values printed in decimal sit on the grid to far better.
   for (double v : values) {
     const double steps = (v - values.front()) / step;
-    if (std::abs(steps - std::round(steps)) > 1e-3) return std::numeric_limits<double>::infinity();
+    if (std::abs(steps - std::round(steps)) > 1e-3)
+      return {.step = 0.0, .num_steps = std::numeric_limits<double>::infinity()};
   }
-  return (values.back() - values.front()) / step;
+  return {.step = step, .num_steps = (values.back() - values.front()) / step};
 }
-
-}  // namespace
 
 std::vector<QualityFinding> CheckChannels(const Eigen::MatrixXd& samples, std::span<const std::string> channels,
                                           double sample_rate_hz, double start_time_s, double nominal_frequency_hz,
@@ -215,7 +207,7 @@ std::vector<QualityFinding> CheckChannels(const Eigen::MatrixXd& samples, std::s
     // values for many samples: that is quantisation, not a dropout, and its
     // extremes repeat without clipping. Clipping and dropouts show on a
     // channel that spans many converter steps.
-    if (ConverterSteps(samples.col(c)) < checks.min_converter_steps_for_runs) continue;
+    if (ResolutionOf(samples.col(c)).num_steps < checks.min_converter_steps_for_runs) continue;
     Eigen::Index run_start = 0;
     bool clipped = false, dropout = false;
     for (Eigen::Index i = 1; i <= n; ++i) {

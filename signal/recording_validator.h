@@ -75,6 +75,16 @@ struct PrintedTime {
 double ValidateTimeColumn(std::span<const double> time_s, double expected_sample_rate_hz, const std::string& file,
                           const PrintedTime& printed, const RecordingChecks& checks);
 
+// The grid a channel's values lie on: the converter's step (or the printed
+// resolution) and how many steps the channel spans, range/step. Values that
+// lie on no grid (a 24-bit converter, printed with 9 digits) give step 0 and
+// num_steps ∞; a constant channel step 0 and num_steps 0.
+struct ConverterResolution {
+  double step = 0.0;
+  double num_steps = 0.0;
+};
+ConverterResolution ResolutionOf(const Eigen::Ref<const Eigen::VectorXd>& x);
+
 // Clipping, dropout, spike and constant-channel checks of every column
 // (channel names in column order): every problem found, one per kind and
 // channel, naming the time and the fix, as ungraded findings

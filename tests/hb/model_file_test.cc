@@ -61,5 +61,17 @@ TEST(ModelFile, NamesTheFieldAndTheFixInEveryError) {
   EXPECT_THROW(ReadModelFile("/nonexistent/model.json"), std::invalid_argument);
 }
 
+TEST(ModelFile, AVoltageDrivenScenarioIsAForceAtTheShakerAndABaseExcitedOneIsRefused) {
+  const ModelFile model = ParseModelFile(
+      Replace(kValid, R"("excitation": {"channel": "force", "position_m": 0.57})",
+              R"("excitation": {"channel": "drive", "position_m": 0.57, "quantity": "voltage",
+                                "amplifier_gain_N_per_V": 10, "amplifier_sag": 0.3})"),
+      "model.json");
+  EXPECT_DOUBLE_EQ(model.force_position_m, 0.57);
+  ExpectError(Replace(kValid, R"("excitation": {"channel": "force", "position_m": 0.57})",
+                      R"("excitation": {"channel": "base", "quantity": "base_acceleration"})"),
+              "drives the beam with a force");
+}
+
 }  // namespace
 }  // namespace beamid::hb

@@ -25,6 +25,7 @@ namespace {
 
 using beamid::testing::InputErrorOf;
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 using beamid::testing::TempFile;
 
@@ -57,12 +58,26 @@ Scenario Filled() {
   s.levels = {{.label = "low", .force_amplitude_N = 1.5, .frequencies_hz = {56.0, 55.5, 54.25, 53.1}},
               {.label = "high_2", .force_amplitude_N = 9.75, .frequencies_hz = {50.0, 50.1, 50.3333333333333}}};
   s.timing = {.sample_rate_hz = 6000.0, .max_time_step_s = 2.1e-5, .settle_min_s = 0.35, .settle_max_s = 5.5,
-              .settle_tolerance = 2.5e-5, .transient_s = 0.07, .record_s = 0.6, .restart_each_level = false};
-  s.default_noise = {.relative_rms = 0.003, .absolute = 0.005, .adc_bits = 24, .adc_range = 500.0};
+              .settle_tolerance = 2.5e-5, .transient_s = 0.07, .record_s = 0.6, .restart_each_level = false,
+              .excitation_stop_fraction = 0.8};
+  s.default_noise = {.relative_rms = 0.003, .absolute = 0.005, .adc_bits = 24, .adc_range = 500.0, .pink_rms = 0.0125};
   s.channel_noise["shaker_force"] = {.relative_rms = 0.002, .absolute = 0.0021, .adc_bits = 16, .adc_range = 50.0};
-  s.channel_noise["acc2"] = {.relative_rms = 0.0, .absolute = 0.01, .adc_bits = 0, .adc_range = 0.0};
+  s.channel_noise["acc2"] = {.relative_rms = 0.0, .absolute = 0.01, .adc_bits = 0, .adc_range = 0.0, .pink_rms = 0.03};
   s.clock_offset_ppm = -12.5;
   s.seed = 987654321012ULL;
+  s.amplitude_creep_relative = -0.021;
+  return s;
+}
+
+// Filled() driven through an amplifier: the levels give voltages.
+Scenario FilledVoltage() {
+  Scenario s = Filled();
+  s.excitation_quantity = ExcitationQuantity::kVoltage;
+  s.amplifier = {.gain_N_per_V = 12.5, .sag = 0.35};
+  for (ScenarioLevel& level : s.levels) {
+    level.voltage_amplitude_V = level.force_amplitude_N / 10.0;
+    level.force_amplitude_N = 0.0;
+  }
   return s;
 }
 
@@ -80,6 +95,7 @@ void ExpectSameNoise(const ChannelNoise& a, const ChannelNoise& b) {
   EXPECT_EQ(a.absolute, b.absolute);
   EXPECT_EQ(a.adc_bits, b.adc_bits);
   EXPECT_EQ(a.adc_range, b.adc_range);
+  EXPECT_EQ(a.pink_rms, b.pink_rms);
 }
 
 void ExpectSamePhysics(const Scenario& a, const Scenario& b) {
@@ -123,6 +139,9 @@ void ExpectSame(const Scenario& a, const Scenario& b) {
     EXPECT_EQ(a.force_distortion[i].amplitude_ratio, b.force_distortion[i].amplitude_ratio);
     EXPECT_EQ(a.force_distortion[i].phase_rad, b.force_distortion[i].phase_rad);
   }
+  EXPECT_EQ(a.excitation_quantity, b.excitation_quantity);
+  EXPECT_EQ(a.amplifier.gain_N_per_V, b.amplifier.gain_N_per_V);
+  EXPECT_EQ(a.amplifier.sag, b.amplifier.sag);
   ASSERT_EQ(a.sensors.size(), b.sensors.size());
   for (std::size_t i = 0; i < a.sensors.size(); ++i) {
     SCOPED_TRACE("sensor " + std::to_string(i));
@@ -138,6 +157,8 @@ void ExpectSame(const Scenario& a, const Scenario& b) {
     SCOPED_TRACE("level " + std::to_string(i));
     EXPECT_EQ(a.levels[i].label, b.levels[i].label);
     EXPECT_EQ(a.levels[i].force_amplitude_N, b.levels[i].force_amplitude_N);
+    EXPECT_EQ(a.levels[i].voltage_amplitude_V, b.levels[i].voltage_amplitude_V);
+    EXPECT_EQ(a.levels[i].base_acceleration_amplitude_m_s2, b.levels[i].base_acceleration_amplitude_m_s2);
     EXPECT_EQ(a.levels[i].frequencies_hz, b.levels[i].frequencies_hz);  // exactly, in run order
   }
   EXPECT_EQ(a.timing.sample_rate_hz, b.timing.sample_rate_hz);
@@ -148,6 +169,7 @@ void ExpectSame(const Scenario& a, const Scenario& b) {
   EXPECT_EQ(a.timing.transient_s, b.timing.transient_s);
   EXPECT_EQ(a.timing.record_s, b.timing.record_s);
   EXPECT_EQ(a.timing.restart_each_level, b.timing.restart_each_level);
+  EXPECT_EQ(a.timing.excitation_stop_fraction, b.timing.excitation_stop_fraction);
   {
     SCOPED_TRACE("noise.default");
     ExpectSameNoise(a.default_noise, b.default_noise);
@@ -160,6 +182,7 @@ void ExpectSame(const Scenario& a, const Scenario& b) {
   }
   EXPECT_EQ(a.clock_offset_ppm, b.clock_offset_ppm);
   EXPECT_EQ(a.seed, b.seed);
+  EXPECT_EQ(a.amplitude_creep_relative, b.amplitude_creep_relative);
 }
 
 TEST(ScenarioFile, EveryFieldSurvivesTheTextAndBackAndTheTextIsStable) {
@@ -170,6 +193,18 @@ TEST(ScenarioFile, EveryFieldSurvivesTheTextAndBackAndTheTextIsStable) {
   EXPECT_EQ(ScenarioToJson(read), text);
   EXPECT_THAT(text, HasSubstr("\"format\": \"beamid-scenario/1\""));
   EXPECT_THAT(text, HasSubstr("\"beamid_version\": \"" + std::string(kVersion) + "\""));
+}
+
+// The voltage drive's fields (excitation.quantity, the amplifier, each
+// level's voltage_amplitude_V instead of its force) survive too.
+TEST(ScenarioFile, AVoltageDrivenScenarioSurvivesTheTextAndBack) {
+  const Scenario original = FilledVoltage();
+  const std::string text = ScenarioToJson(original);
+  const Scenario read = ParseScenario(text, "s.json");
+  ExpectSame(original, read);
+  EXPECT_EQ(ScenarioToJson(read), text);
+  EXPECT_THAT(text, HasSubstr("\"quantity\": \"voltage\""));
+  EXPECT_THAT(text, Not(HasSubstr("force_amplitude_N")));
 }
 
 // The defaults the reader fills in (no Jenkins element, rigid attachments,

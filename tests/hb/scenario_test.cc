@@ -92,6 +92,51 @@ TEST(ScenarioTest, RejectsTimingBeyondItsLimits) {
   ExpectRejected(With(levels, levels + R"(, "timing": {"settle_max_s": 1e5})"), "timing.settle_max_s");
 }
 
+// The rig's quirks (docs/simulator.md): each refused outside its range, with
+// the field and the fix named.
+TEST(ScenarioTest, RejectsRigQuirksOutsideTheirRanges) {
+  const std::string levels = R"("direction": "down"}])";
+  const std::string timing = R"("timing": {"transient_s": 0.05, "record_s": 0.45, "excitation_stop_fraction": )";
+  ExpectRejected(With(levels, levels + ", " + timing + "0.05}"), "timing.excitation_stop_fraction must be 0 (never)");
+  ExpectRejected(With(levels, levels + ", " + timing + "1.0}"), "inside the steady record");
+  EXPECT_EQ(ParseScenario(With(levels, levels + ", " + timing + "0.8}"), "my.json").timing.excitation_stop_fraction, 0.8);
+
+  // The creep's scale must stay positive over transient and record.
+  ExpectRejected(With(levels, levels + R"(, "noise": {"amplitude_creep_relative": 2.0})"),
+                 "noise.amplitude_creep_relative must lie within");
+  EXPECT_EQ(ParseScenario(With(levels, levels + R"(, "noise": {"amplitude_creep_relative": -0.02})"), "my.json")
+                .amplitude_creep_relative,
+            -0.02);
+  ExpectRejected(With(levels, levels + R"(, "noise": {"default": {"pink_rms": -1}})"),
+                 "noise.default.pink_rms must not be negative");
+
+  const std::string excitation = R"("excitation": {"position_m": 0.57})";
+  const std::string voltage = R"("excitation": {"position_m": 0.57, "quantity": "voltage", "amplifier_gain_N_per_V": 8)";
+  const std::string volts = R"("voltage_amplitude_V": 0.25)";
+  ExpectRejected(With(excitation, voltage + "}"), "levels[0].force_amplitude_N is not the drive");
+  ExpectRejected(With(excitation, R"("excitation": {"position_m": 0.57, "quantity": "voltage"})"),
+                 "excitation.amplifier_gain_N_per_V is required");
+  ExpectRejected(With(excitation, R"("excitation": {"position_m": 0.57, "quantity": "current"})"),
+                 "excitation.quantity must be");
+  ExpectRejected(With(excitation, R"("excitation": {"position_m": 0.57, "amplifier_sag": 0.2})"),
+                 "excitation.amplifier_sag belongs to a voltage drive");
+  const std::string voltage_levels = With("\"force_amplitude_N\": 2", volts);
+  ExpectRejected(voltage_levels, "levels[0].voltage_amplitude_V is not the drive with excitation.quantity \"force\"");
+  auto with_voltage = [&](const std::string& amplifier_end) {
+    std::string text = voltage_levels;
+    return text.replace(text.find(excitation), excitation.size(), voltage + amplifier_end);
+  };
+  ExpectRejected(with_voltage(R"(, "amplifier_sag": 1.0})"), "excitation.amplifier_sag must lie in [0, 1)");
+  const Scenario s = ParseScenario(with_voltage(R"(, "amplifier_sag": 0.3})"), "my.json");
+  EXPECT_TRUE(s.VoltageDrive());
+  EXPECT_EQ(s.amplifier.gain_N_per_V, 8.0);
+  EXPECT_EQ(s.levels[0].voltage_amplitude_V, 0.25);
+  EXPECT_EQ(s.levels[0].force_amplitude_N, 0.0);
+  // g(f) = g0·(1 − sag/(1 + ((f − f1)/b)²)), b = 2 % of f1.
+  EXPECT_DOUBLE_EQ(s.amplifier.Gain_N_per_V(50.0, 50.0), 8.0 * 0.7);
+  EXPECT_DOUBLE_EQ(s.amplifier.Gain_N_per_V(51.0, 50.0), 8.0 * (1.0 - 0.3 / 2.0));
+}
+
 TEST(ScenarioTest, EveryExampleScenarioLoads) {
   int count = 0;
   for (const auto& entry : std::filesystem::directory_iterator("examples/scenarios")) {
