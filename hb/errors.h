@@ -40,6 +40,15 @@ class NumericalError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Not a failure of the computation: the model was fitted and its result
+// written, but it misses the data by more than their noise
+// (solver/estimation/fit_verdict.h). Its own exit code lets a script tell
+// "fitted, go on" from "fitted, but diagnose first".
+class ModelMissesData : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 class EnvironmentError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
@@ -49,5 +58,6 @@ inline constexpr int kExitInternalError = 1;
 inline constexpr int kExitBadInput = 2;
 inline constexpr int kExitNoConvergence = 3;
 inline constexpr int kExitEnvironment = 4;
+inline constexpr int kExitModelMissesData = 5;
 
 }  // namespace beamid

@@ -18,18 +18,35 @@ std::vector<FirstHarmonicLevel> FirstHarmonicLevels(const PhasorSet& set, std::s
     FirstHarmonicLevel* level = nullptr;
     for (auto& l : levels)
       if (l.label == step.level) level = &l;
+    const bool base = step.force.quantity == Quantity::kBaseAcceleration;
+    if (base && response->quantity != Quantity::kAcceleration)
+      throw InputError(source, response->channel,
+                       "with a base excitation the response must be an acceleration (its motion relative to the base "
+                       "is the mode's)",
+                       "choose an accelerometer's channel");
     if (level == nullptr) {
       levels.push_back({.label = step.level,
                         .source = source,
                         .channel = response->channel,
                         .response_quantity = response->quantity,
+                        .excitation_quantity = step.force.quantity,
                         .response_position_m = response->position_m});
       level = &levels.back();
     }
+    HarmonicPhasor x = response->Harmonic(1);
+    HarmonicPhasor f = step.force.Harmonic(1);
+    if (base) {
+      // Relative to the base (the two channels' noises are independent),
+      // per −A_b: the load on the mode is −m·a_b, so X_rel/(−A_b) has a
+      // receptance's form and sign.
+      x.value -= f.value;
+      x.SetCovariance(x.Covariance() + f.Covariance());
+      f.value = -f.value;
+    }
     level->points.push_back({.frequency_hz = step.frequency_hz,
                              .frequency_std_hz = step.frequency_std_hz,
-                             .force = step.force.Harmonic(1),
-                             .response = response->Harmonic(1)});
+                             .force = f,
+                             .response = x});
   }
   return levels;
 }

@@ -14,7 +14,10 @@ rm -rf "$out"
 mkdir -p "$out"
 time "$beamid" simulate "$here/scenario.json" -o "$out/campaign"
 time "$beamid" extract "$out/campaign" -o "$out/phasors.json"
-time "$beamid" identify "$out/campaign" --phasors "$out/phasors.json" --fit acc1,acc2 --validate acc3 -o "$out/result.json"
+# Exit code 5: fitted and written, but the polynomial misses the data beyond
+# their noise, which is what this example is about.
+time "$beamid" identify "$out/campaign" --phasors "$out/phasors.json" --fit acc1,acc2 --validate acc3 \
+  -o "$out/result.json" || [ $? -eq 5 ]
 time "$beamid" diagnose "$out/campaign" --phasors "$out/phasors.json" --fit acc1,acc2 --validate acc3 \
   -o "$out/diagnosis.json" --curves "$out/frc"
 jq '{selected, verdict, truth: "jenkins_stiffness 50 N*m/rad, jenkins_slip_moment 0.15 N*m"}' "$out/diagnosis.json"

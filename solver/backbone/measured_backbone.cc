@@ -10,13 +10,13 @@
 
 #include <fmt/core.h>
 
-
 #include <Eigen/Cholesky>
 #include <Eigen/QR>
 
 #include "hb/errors.h"
 #include "hb/option_checks.h"
 #include "signal/quantity_conversion.h"
+#include "solver/backbone/phase_convention.h"
 
 namespace beamid::solver {
 namespace {
@@ -24,13 +24,25 @@ namespace {
 constexpr double kTwoPi = 2 * std::numbers::pi;
 constexpr int kInputsPerPoint = 5;  // ω, Re F, Im F, Re X_d, Im X_d
 
+using PointCovariance = Eigen::Matrix<double, kInputsPerPoint, kInputsPerPoint>;
+
 // One level sorted by frequency, the response as displacement. The raw
-// vector holds every point's inputs; its covariance is block diagonal.
+// vector holds every point's inputs, then any extra inputs a computation
+// appends (a modal constant). Their covariance is block diagonal and kept
+// as its blocks: one per point (ω, F and X_d are independent) and one for
+// the extras. (Dense, it was (5n)² doubles: 800 MB for a level of 2000
+// steps.)
 struct LevelData {
   Eigen::VectorXd raw;
-  Eigen::MatrixXd raw_covariance;
+  std::vector<PointCovariance> point_covariance;
+  Eigen::MatrixXd extra_covariance;  // of raw's entries after the points
   int order = 2;  // derivative order of the response quantity
-  int size() const { return static_cast<int>(raw.size() / kInputsPerPoint); }
+  // The frequency-sorted index of each step, in the campaign's (run) order.
+  std::vector<int> sorted_index_of_run;
+  int size() const { return static_cast<int>(point_covariance.size()); }
+  double OmegaVariance(int i) const { return point_covariance[i](0, 0); }
+  Eigen::Matrix2d ForceCovariance(int i) const { return point_covariance[i].block<2, 2>(1, 1); }
+  Eigen::Matrix2d DispCovariance(int i) const { return point_covariance[i].block<2, 2>(3, 3); }
 };
 
 struct PointView {
@@ -46,44 +58,70 @@ PointView At(const Eigen::VectorXd& raw, int i) {
 }
 
 LevelData MakeLevelData(const signal::FirstHarmonicLevel& level) {
-  std::vector<const signal::FirstHarmonicPoint*> sorted;
-  for (const auto& p : level.points) sorted.push_back(&p);
-  std::stable_sort(sorted.begin(), sorted.end(),
-                   [](const auto* a, const auto* b) { return a->frequency_hz < b->frequency_hz; });
-  const int n = static_cast<int>(sorted.size());
+  const int n = static_cast<int>(level.points.size());
+  std::vector<int> run_of_sorted(n);
+  for (int i = 0; i < n; ++i) run_of_sorted[i] = i;
+  std::stable_sort(run_of_sorted.begin(), run_of_sorted.end(), [&](int a, int b) {
+    return level.points[a].frequency_hz < level.points[b].frequency_hz;
+  });
   LevelData data;
+  data.sorted_index_of_run.resize(n);
+  for (int i = 0; i < n; ++i) data.sorted_index_of_run[run_of_sorted[i]] = i;
   data.order = signal::DerivativeOrder(level.response_quantity);
   data.raw.resize(kInputsPerPoint * n);
-  data.raw_covariance = Eigen::MatrixXd::Zero(kInputsPerPoint * n, kInputsPerPoint * n);
+  data.point_covariance.assign(n, PointCovariance::Zero());
   for (int i = 0; i < n; ++i) {
-    const auto& p = *sorted[i];
+    const auto& p = level.points[run_of_sorted[i]];
     const double omega = kTwoPi * p.frequency_hz;
     const signal::HarmonicPhasor disp =
         signal::ConvertHarmonic(p.response, level.response_quantity, signal::Quantity::kDisplacement, omega);
     const int o = kInputsPerPoint * i;
     data.raw.segment(o, kInputsPerPoint) << omega, p.force.value.real(), p.force.value.imag(), disp.value.real(),
         disp.value.imag();
-    data.raw_covariance(o, o) = std::pow(kTwoPi * p.frequency_std_hz, 2);
-    data.raw_covariance.block(o + 1, o + 1, 2, 2) = p.force.Covariance();
-    data.raw_covariance.block(o + 3, o + 3, 2, 2) = disp.Covariance();
+    data.point_covariance[i](0, 0) = std::pow(kTwoPi * p.frequency_std_hz, 2);
+    data.point_covariance[i].block<2, 2>(1, 1) = p.force.Covariance();
+    data.point_covariance[i].block<2, 2>(3, 3) = disp.Covariance();
   }
   return data;
 }
 
-// Values and standard uncertainties of f(raw), linearised about the level's raw inputs.
-std::vector<Estimate> Propagate(const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& f, const LevelData& data) {
+// Values and standard uncertainties of f(raw), linearised about the level's
+// raw inputs (central differences, one input at a time perturbed in place:
+// a copy per input would make a level of n steps cost n² in time). Only
+// the points first…last (all by default) and the extra inputs can change f:
+// the caller says so, since a number from a few steps around the peak does
+// not depend on the other steps.
+std::vector<Estimate> Propagate(const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& f, const LevelData& data,
+                                int first = 0, int last = -1) {
+  if (last < 0) last = data.size() - 1;
   const Eigen::VectorXd value = f(data.raw);
-  Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(value.size(), data.raw.size());
-  for (int j = 0; j < data.raw.size(); ++j) {
-    const double sigma = std::sqrt(data.raw_covariance(j, j));
-    if (sigma == 0.0) continue;  // exact input: no contribution
-    const double h = 1e-3 * sigma;
-    Eigen::VectorXd plus = data.raw, minus = data.raw;
-    plus[j] += h;
-    minus[j] -= h;
-    jacobian.col(j) = (f(plus) - f(minus)) / (2 * h);
+  const int m = static_cast<int>(value.size());
+  Eigen::VectorXd x = data.raw;
+  const auto column = [&](int j, double variance) -> Eigen::VectorXd {
+    const double sigma = std::sqrt(variance);
+    if (sigma == 0.0) return Eigen::VectorXd::Zero(m);  // exact input: no contribution
+    const double h = 1e-3 * sigma, original = x[j];
+    x[j] = original + h;
+    const Eigen::VectorXd plus = f(x);
+    x[j] = original - h;
+    const Eigen::VectorXd minus = f(x);
+    x[j] = original;
+    return (plus - minus) / (2 * h);
+  };
+  Eigen::MatrixXd covariance = Eigen::MatrixXd::Zero(m, m);
+  Eigen::MatrixXd jacobian(m, kInputsPerPoint);
+  for (int i = std::max(0, first); i <= std::min(last, data.size() - 1); ++i) {
+    for (int c = 0; c < kInputsPerPoint; ++c)
+      jacobian.col(c) = column(kInputsPerPoint * i + c, data.point_covariance[i](c, c));
+    covariance += jacobian * data.point_covariance[i] * jacobian.transpose();
   }
-  const Eigen::MatrixXd covariance = jacobian * data.raw_covariance * jacobian.transpose();
+  const int extras = static_cast<int>(data.extra_covariance.rows());
+  if (extras > 0) {
+    Eigen::MatrixXd extra_jacobian(m, extras);
+    for (int c = 0; c < extras; ++c)
+      extra_jacobian.col(c) = column(kInputsPerPoint * data.size() + c, data.extra_covariance(c, c));
+    covariance += extra_jacobian * data.extra_covariance * extra_jacobian.transpose();
+  }
   std::vector<Estimate> out;
   for (int k = 0; k < value.size(); ++k)
     out.push_back({value[k], std::sqrt(std::max(0.0, covariance(k, k))), std::isfinite(value[k])});
@@ -100,9 +138,7 @@ Eigen::Matrix2d InverseReceptanceCovariance(const LevelData& data, int i) {
   };
   const Eigen::Matrix2d d_force = real_matrix(1.0 / p.disp);
   const Eigen::Matrix2d d_disp = real_matrix(-p.force / (p.disp * p.disp));
-  const int o = kInputsPerPoint * i;
-  return d_force * data.raw_covariance.block(o + 1, o + 1, 2, 2) * d_force.transpose() +
-         d_disp * data.raw_covariance.block(o + 3, o + 3, 2, 2) * d_disp.transpose();
+  return d_force * data.ForceCovariance(i) * d_force.transpose() + d_disp * data.DispCovariance(i) * d_disp.transpose();
 }
 
 // Phase-resonance point from the step k nearest quadrature: frequency [Hz],
@@ -138,14 +174,26 @@ Eigen::VectorXd QuadratureFrom(const Eigen::VectorXd& raw, int k) {
   return out;
 }
 
-double PairSlope(const Eigen::VectorXd& raw, int i, int j) {
-  const PointView a = At(raw, i), b = At(raw, j);
-  return (b.omega * b.omega - a.omega * a.omega) / (a.G().real() - b.G().real());
+// The detected jump between frequency-sorted steps i and j, or null.
+const SweepJump* JumpBetween(const LevelData& data, const std::vector<SweepJump>& jumps, int i, int j) {
+  for (const auto& jump : jumps) {
+    const int a = data.sorted_index_of_run[jump.from_step], b = data.sorted_index_of_run[jump.to_step];
+    if ((a == i && b == j) || (a == j && b == i)) return &jump;
+  }
+  return nullptr;
 }
 
 // `modal_fit` gives A(a): the global fit, or the most linear level's local fit.
+// A crossing of quadrature across a jump is no measured phase resonance. When
+// the sweep dropped off the upper branch there (a hardening up-sweep, a
+// softening down-sweep), the upper branch ends at its fold, next to its
+// phase resonance: that last step before the jump is moved to quadrature by
+// the single-mode model at its own amplitude, as any step is. When the sweep
+// jumped up onto the upper branch (a hardening down-sweep), it landed far
+// before resonance (phase short of −90°) and left it the way it came: no
+// phase resonance was measured.
 void FindQuadrature(const LevelData& data, const SingleModeFit& modal_fit, const SingleModeFit& local_fit,
-                    const MeasuredBackboneOptions& options, LevelResonance& out) {
+                    LevelResonance& out) {
   const int n = data.size();
   int best = -1;
   double best_h = 0.0;
@@ -160,32 +208,27 @@ void FindQuadrature(const LevelData& data, const SingleModeFit& modal_fit, const
     out.quadrature_note = "the response never crosses quadrature with the force: widen the sweep";
     return;
   }
-  int i = best, j = best + 1;
-  const PointView a = At(data.raw, i), b = At(data.raw, j);
-  const double ratio = std::max(a.H(), b.H()) / std::min(a.H(), b.H());
-  if (ratio > options.jump_amplitude_ratio) {
-    // A jump between the two steps? Then Re G's slope between them differs
-    // from that along the branch the larger response belongs to.
-    const bool upper_is_first = a.H() > b.H();
-    const int k0 = upper_is_first ? i - 1 : j, k1 = upper_is_first ? i : j + 1;
-    if (k0 >= 0 && k1 < n) {
-      const double branch = PairSlope(data.raw, k0, k1), pair = PairSlope(data.raw, i, j);
-      if (!(std::abs(pair / branch) > 0.5 && std::abs(pair / branch) < 2.0)) {
-        i = k0;
-        j = k1;
-        out.quadrature_after_jump = true;
-        out.quadrature_note = "a jump (fold) between the steps around quadrature: the phase resonance is taken on the branch before it";
-      }
+  const int i = best, j = best + 1;
+  int k = std::abs(At(data.raw, i).G().real()) / std::abs(At(data.raw, i).G()) <
+                  std::abs(At(data.raw, j).G().real()) / std::abs(At(data.raw, j).G())
+              ? i
+              : j;
+  if (const SweepJump* jump = JumpBetween(data, out.jumps, i, j)) {
+    if (jump->receptance_ratio >= 1.0) {
+      out.quadrature_note = "the response crosses quadrature with the force only across a jump up onto the upper "
+                            "branch (fold) of the sweep: the phase resonance was not measured (sweep the other way, or "
+                            "control the response)";
+      return;
     }
+    k = data.sorted_index_of_run[jump->from_step];
+    out.quadrature_note = "the response crosses quadrature across a drop off the upper branch (fold): the phase "
+                          "resonance is taken at the last step before the drop, moved to quadrature by the "
+                          "single-mode model";
   }
   if (!modal_fit.ok) {
     out.quadrature_note = "too few points near the mode for the modal constant";
     return;
   }
-  const int k = std::abs(At(data.raw, i).G().real()) / std::abs(At(data.raw, i).G()) <
-                        std::abs(At(data.raw, j).G().real()) / std::abs(At(data.raw, j).G())
-                    ? i
-                    : j;
   // The modal constant at the step's amplitude as two more inputs, with their
   // covariance: where the step lies far from the amplitudes that pin A(a)
   // down (the top of a folding curve), that is the extrapolation's
@@ -198,9 +241,9 @@ void FindQuadrature(const LevelData& data, const SingleModeFit& modal_fit, const
   const int n_raw = static_cast<int>(data.raw.size());
   with_constant.raw.conservativeResize(n_raw + 3);
   with_constant.raw.tail(3) << modal_constant.real(), modal_constant.imag(), residual;
-  with_constant.raw_covariance.conservativeResizeLike(Eigen::MatrixXd::Zero(n_raw + 3, n_raw + 3));
-  with_constant.raw_covariance.block(n_raw, n_raw, 2, 2) = modal_fit.ModalConstantCovariance(step_amplitude);
-  const auto e = Propagate([&](const Eigen::VectorXd& raw) { return QuadratureFrom(raw, k); }, with_constant);
+  with_constant.extra_covariance = Eigen::MatrixXd::Zero(3, 3);
+  with_constant.extra_covariance.block(0, 0, 2, 2) = modal_fit.ModalConstantCovariance(step_amplitude);
+  const auto e = Propagate([&](const Eigen::VectorXd& raw) { return QuadratureFrom(raw, k); }, with_constant, k, k);
   out.quadrature_frequency_hz = e[0];
   // Beyond the noise: how far this level strays from one nonlinear mode
   // (from the fit across levels when the level has too few points near the
@@ -214,6 +257,18 @@ void FindQuadrature(const LevelData& data, const SingleModeFit& modal_fit, const
   out.quadrature_damping_ratio = e[3];
   const double scale = std::pow(kTwoPi * e[0].value, data.order);
   out.quadrature_response_amplitude = {e[1].value * scale, e[1].std * scale, true};
+}
+
+// The steps as the campaign took them, for the jump detection.
+std::vector<SweepPoint> SweepPointsInRunOrder(const LevelData& data) {
+  std::vector<SweepPoint> points;
+  for (int s : data.sorted_index_of_run) {
+    const PointView p = At(data.raw, s);
+    points.push_back({.frequency_hz = p.omega / kTwoPi,
+                      .inverse_receptance_N_m = p.G(),
+                      .inverse_receptance_std_N_m = std::sqrt(InverseReceptanceCovariance(data, s).trace())});
+  }
+  return points;
 }
 
 int PeakIndex(const Eigen::VectorXd& raw, int n) {
@@ -230,24 +285,51 @@ Eigen::Vector3d Quadratic(const double x[3], const double y[3]) {
   return m.colPivHouseholderQr().solve(Eigen::Vector3d(y[0], y[1], y[2]));
 }
 
-// Peak frequency [Hz], |X_d/F| and |X_d| there, then the half-power ζ (NaN
+// The top of the peak: the steps [first, last] around the largest, m, whose
+// |X_d/F| is at least 1/√2 of it (at least m − 1 … m + 1).
+std::pair<int, int> PeakTop(const Eigen::VectorXd& raw, int n, int m) {
+  const double top = At(raw, m).H() / std::sqrt(2.0);
+  int first = m - 1, last = m + 1;
+  while (first > 0 && At(raw, first - 1).H() >= top) --first;
+  while (last + 1 < n && At(raw, last + 1).H() >= top) ++last;
+  return {first, last};
+}
+
+// Peak frequency [Hz], |X_d/F| and |X_d| there, then the half-power ζ, the
+// half-power frequencies [Hz] and the natural frequency [Hz] they give (NaN
 // if not available). For one mode 1/|H|² is a quadratic in ω² exactly,
 // ((ω_n² − ω²)² + (2ζω_nω)²)/A², so the peak is the vertex of the quadratic
-// through the three highest steps and each half-power crossing is solved on
-// the quadratic through the three steps around it.
-Eigen::VectorXd PeakAndHalfPower(const Eigen::VectorXd& raw, int n, int m) {
+// fitted to the steps of the top (PeakTop) and each half-power crossing is
+// solved on the quadratic through the three steps around it: exact for one
+// linear mode whatever the steps' spacing, and three steps per side are
+// enough. Where the top does not bend like a peak (noise on a flat top, a
+// vertex outside it) there is no peak: all NaN, rather than a number from
+// the highest step that its σ would not describe. From the crossings ω₁²,
+// ω₂² and the vertex ω_p² = ω_n²(1 − 2ζ²), r = (ω₂² − ω₁²)/(4ω_p²) =
+// ζ√(1 − ζ²)/(1 − 2ζ²) exactly, so ζ² = (1 − 1/√(1 + 4r²))/2 (the usual
+// ζ ≈ r is off by 1.5 ζ² relative).
+Eigen::VectorXd PeakAndHalfPower(const Eigen::VectorXd& raw, int n, int m, std::pair<int, int> top) {
   auto x_of = [&](int i) { return At(raw, i).omega * At(raw, i).omega; };
   auto y_of = [&](int i) { return 1.0 / (At(raw, i).H() * At(raw, i).H()); };
-  double x[3], y[3], a[3];
-  for (int k = 0; k < 3; ++k) {
-    x[k] = x_of(m - 1 + k);
-    y[k] = y_of(m - 1 + k);
-    a[k] = std::abs(At(raw, m - 1 + k).disp);
+  // The vertex of the quadratic fitted (relative weights) to every step of
+  // the top: three steps alone, when two lie close together, turn noise into
+  // a vertex anywhere.
+  const int count = top.second - top.first + 1;
+  Eigen::MatrixXd basis(count, 3);
+  Eigen::VectorXd y(count), a(count);
+  for (int k = 0; k < count; ++k) {
+    const int i = top.first + k;
+    const double weight = 1 / y_of(i);
+    basis.row(k) << weight, weight * x_of(i), weight * x_of(i) * x_of(i);
+    y[k] = 1.0;
+    a[k] = weight * std::abs(At(raw, i).disp);
   }
-  const Eigen::Vector3d peak = Quadratic(x, y);
+  const auto qr = basis.colPivHouseholderQr();
+  const Eigen::Vector3d peak = qr.solve(y), amplitude = qr.solve(a);
   const double x_peak = -peak[1] / (2 * peak[2]);
   const double y_peak = peak[0] + peak[1] * x_peak + peak[2] * x_peak * x_peak;
-  const Eigen::Vector3d amplitude = Quadratic(x, a);
+  if (!(peak[2] > 0 && x_peak >= x_of(top.first) && x_peak <= x_of(top.second)))
+    return Eigen::VectorXd::Constant(7, std::numeric_limits<double>::quiet_NaN());
   const double level = 2 * y_peak;
   auto crossing = [&](int from, int step) {
     for (int i = from; i + step >= 0 && i + step < n; i += step) {
@@ -275,9 +357,12 @@ Eigen::VectorXd PeakAndHalfPower(const Eigen::VectorXd& raw, int n, int m) {
     return std::numeric_limits<double>::quiet_NaN();
   };
   const double w1 = crossing(m, -1), w2 = crossing(m, +1);
-  Eigen::VectorXd out(4);
+  const double r = (w2 * w2 - w1 * w1) / (4 * x_peak);
+  const double zeta = std::sqrt(0.5 * (1 - 1 / std::sqrt(1 + 4 * r * r)));
+  Eigen::VectorXd out(7);
   out << std::sqrt(x_peak) / kTwoPi, 1 / std::sqrt(y_peak),
-      amplitude[0] + amplitude[1] * x_peak + amplitude[2] * x_peak * x_peak, (w2 * w2 - w1 * w1) / (4 * x_peak);
+      amplitude[0] + amplitude[1] * x_peak + amplitude[2] * x_peak * x_peak, std::copysign(zeta, r), w1 / kTwoPi,
+      w2 / kTwoPi, std::sqrt(x_peak / (1 - 2 * zeta * zeta)) / kTwoPi;
   return out;
 }
 
@@ -288,16 +373,45 @@ void FindPeakAndHalfPower(const LevelData& data, LevelResonance& out) {
     out.half_power_note = "the largest response is at the end of the sweep: no peak, no half-power points";
     return;
   }
-  const auto e = Propagate([&](const Eigen::VectorXd& raw) { return PeakAndHalfPower(raw, n, m); }, data);
+  const auto top = PeakTop(data.raw, n, m);
+  const auto f = [&](const Eigen::VectorXd& raw) { return PeakAndHalfPower(raw, n, m, top); };
+  // The steps it reads: the top, and three around each crossing (or, without
+  // one, every step to the sweep's end on that side).
+  const Eigen::VectorXd value = f(data.raw);
+  int first = top.first, last = top.second;
+  if (std::isfinite(value[4]))
+    while (first > 0 && At(data.raw, first).omega > kTwoPi * value[4]) --first;
+  else
+    first = 0;
+  if (std::isfinite(value[5]))
+    while (last + 1 < n && At(data.raw, last).omega < kTwoPi * value[5]) ++last;
+  else
+    last = n - 1;
+  const auto e = Propagate(f, data, first - 2, last + 2);
   out.peak_frequency_hz = e[0];
   out.peak_receptance_m_N = e[1];
   out.peak_amplitude_m = e[2];
   out.half_power_damping_ratio = e[3];
-  if (!e[3].valid) out.half_power_note = "the response does not fall to 1/√2 of its peak on both sides";
+  out.half_power_lower_frequency_hz = e[4];
+  out.half_power_upper_frequency_hz = e[5];
+  out.half_power_natural_frequency_hz = e[6];
+  if (!e[0].valid) {
+    out.half_power_note = "the steps at the top of the curve do not bend like one peak (noise on a flat top, or "
+                          "steps too far apart): no peak, no half-power points";
+  } else if (!e[3].valid) {
+    out.half_power_note = fmt::format("the response does not fall to 1/√2 of its peak {} the peak: widen the sweep",
+                                      !e[4].valid && !e[5].valid ? "on either side of"
+                                      : !e[4].valid             ? "below"
+                                                                : "above");
+    out.half_power_natural_frequency_hz = {};
+  }
   if (out.quadrature_after_jump) {
     // One side of the peak lies on the other branch of a fold.
     out.half_power_damping_ratio.valid = false;
-    out.half_power_note = "a jump (fold) next to the peak: no half-power estimate";
+    out.half_power_lower_frequency_hz.valid = out.half_power_upper_frequency_hz.valid = false;
+    out.half_power_natural_frequency_hz.valid = false;
+    out.half_power_note = "the sweep jumped (a folded curve): one side of the peak lies on another branch, no "
+                          "half-power estimate";
   }
 }
 
@@ -324,7 +438,7 @@ std::vector<SingleModePoint> FitPoints(const LevelData& data, double window) {
     const PointView p = At(data.raw, i);
     if (p.H() < window * peak) continue;
     points.push_back({.omega_rad_s = p.omega,
-                      .omega_std_rad_s = std::sqrt(data.raw_covariance(kInputsPerPoint * i, kInputsPerPoint * i)),
+                      .omega_std_rad_s = std::sqrt(data.OmegaVariance(i)),
                       .inverse_receptance_N_m = p.G(),
                       .inverse_receptance_covariance = InverseReceptanceCovariance(data, i),
                       .amplitude_m = std::abs(p.disp)});
@@ -380,34 +494,33 @@ double SolveAmplitude(const SingleModeFit& fit, double omega, double force_ampli
 }
 
 void Regenerate(const SingleModeFit& fit, const LevelData& data, double window, double a_max, LevelResonance& out) {
-  const auto points = FitPoints(data, window);
+  // The fitted points (FitPoints' window).
+  const double peak = At(data.raw, PeakIndex(data.raw, data.size())).H();
   double sum_sq = 0, worst = 0, chi_square = 0, noise_sq = 0;
   int count = 0;
   for (int i = 0; i < data.size(); ++i) {
     const PointView p = At(data.raw, i);
-    if (std::none_of(points.begin(), points.end(), [&](const auto& q) { return q.omega_rad_s == p.omega; })) continue;
+    if (p.H() < window * peak) continue;
     std::complex<double> predicted, measured;
     Eigen::Matrix2d covariance;
-    const int o = kInputsPerPoint * i;
     const double residual = fit.residual_receptance_m_N;
     if (out.control == LevelControl::kResponse) {
       // X_d = F·(A/D + R) at the modal amplitude the measurement shows.
       const double a = std::abs(p.disp - residual * p.force);
       predicted = p.disp / (fit.ModalConstantAt(a) / fit.DynamicTerm(a, p.omega) + residual);
       measured = p.force;
-      covariance = data.raw_covariance.block(o + 1, o + 1, 2, 2);
+      covariance = data.ForceCovariance(i);
     } else {
       const double a = SolveAmplitude(fit, p.omega, std::abs(p.force), 2 * a_max, std::abs(p.disp - residual * p.force));
       predicted = (fit.ModalConstantAt(a) / fit.DynamicTerm(a, p.omega) + residual) * p.force;
       measured = p.disp;
-      covariance = data.raw_covariance.block(o + 3, o + 3, 2, 2);
+      covariance = data.DispCovariance(i);
     }
     const std::complex<double> error = predicted - measured;
     const double relative = std::abs(error) / std::abs(measured);
     sum_sq += relative * relative;
     // The relative error variance the noise of F and X_d alone gives (either way round).
-    noise_sq += data.raw_covariance.block(o + 1, o + 1, 2, 2).trace() / std::norm(p.force) +
-                data.raw_covariance.block(o + 3, o + 3, 2, 2).trace() / std::norm(p.disp);
+    noise_sq += data.ForceCovariance(i).trace() / std::norm(p.force) + data.DispCovariance(i).trace() / std::norm(p.disp);
     worst = std::max(worst, std::isfinite(relative) ? relative : INFINITY);
     if (covariance.trace() > 0) {
       const Eigen::Vector2d e(error.real(), error.imag());
@@ -419,6 +532,40 @@ void Regenerate(const SingleModeFit& fit, const LevelData& data, double window, 
   out.regeneration_max_relative = worst;
   out.regeneration_reduced_chi_square = count ? chi_square / (2 * count) : 0.0;
   out.regeneration_noise_relative_rms = count ? std::sqrt(noise_sq / count) : 0.0;
+}
+
+// LevelResonance::damping_ratio from the three estimators.
+void CombineDampingRatios(LevelResonance& r) {
+  const std::tuple<const Estimate*, const char*> estimators[] = {{&r.quadrature_damping_ratio, "phase resonance"},
+                                                                 {&r.local_damping_ratio, "local fit"},
+                                                                 {&r.half_power_damping_ratio, "half-power"}};
+  const Estimate* primary = nullptr;
+  const char* primary_name = "";
+  for (const auto& [e, name] : estimators)
+    if (e->valid && std::isfinite(e->value) && !primary) primary = e, primary_name = name;
+  if (!primary) return;
+  double spread = 0.0;
+  bool beyond_noise = false;
+  std::string values;
+  for (const auto& [e, name] : estimators) {
+    if (!e->valid || !std::isfinite(e->value)) continue;
+    const double difference = std::abs(e->value - primary->value);
+    spread = std::max(spread, difference);
+    const double noise = std::hypot(e->std, primary->std);
+    if (e != primary && !(difference <= 2 * noise)) beyond_noise = true;
+    values += fmt::format("{}{} {:.3g} % ± {:.2g} %", values.empty() ? "" : ", ", name, 100 * e->value, 100 * e->std);
+  }
+  const double std = std::isfinite(primary->std) ? std::hypot(primary->std, spread) : spread;
+  // hypot rounds: make sure the stated σ covers the spread exactly.
+  r.damping_ratio = {.value = primary->value, .std = std::max(std, spread), .valid = true};
+  if (beyond_noise)
+    r.damping_ratio_note = fmt::format(
+        "the estimators part by more than their noise ({}): the σ covers their spread. Trust the {} one{}", values,
+        primary_name,
+        primary == &r.quadrature_damping_ratio
+            ? " (at the phase resonance, with the modal constant A(a) of the fit across levels); the local fit "
+              "assumes one modal constant along the curve, half-power a constant amplitude (and one mode)"
+            : ": the phase resonance was not available");
 }
 
 std::string Percent(double fraction) { return fmt::format("{:.3g} %", 100 * fraction); }
@@ -452,6 +599,13 @@ void FlagLevel(const LevelData& data, bool regenerated, const MeasuredBackboneOp
       add(LevelFlagKind::kPeakOutsideBand, quantity,
           fmt::format("the {} frequency {:.6g} Hz lies outside the measured band {:.6g} … {:.6g} Hz", name,
                       estimate->value, f_min, f_max));
+  for (const auto& jump : r.jumps)
+    add(LevelFlagKind::kJump, "sweep",
+        fmt::format("the response jumps between the steps at {:.6g} and {:.6g} Hz ({}-sweep): |X/F| × {:.3g}, phase "
+                    "{:+.0f}°; one smooth single-mode curve does not join them (a fold): the peak is the fold's edge, "
+                    "the half-power points lie on two branches",
+                    jump.from_frequency_hz, jump.to_frequency_hz, jump.up_sweep ? "up" : "down", jump.receptance_ratio,
+                    jump.phase_change_rad * 180 / std::numbers::pi));
   if (regenerated) {
     const double allowed =
         std::max(options.max_regeneration_relative_rms, kRegenerationNoiseFactor * r.regeneration_noise_relative_rms);
@@ -510,6 +664,27 @@ void ChooseGlobalFit(const std::vector<SingleModePoint>& points, double referenc
 
 }  // namespace
 
+ExcitationLabels LabelsOf(std::string_view excitation_quantity) {
+  if (excitation_quantity == "force")
+    return {.control = "force", .unit = "N", .column = "force_N", .frf = "receptance [m/N]"};
+  if (excitation_quantity == "voltage")
+    return {.control = "voltage",
+            .unit = "V",
+            .column = "voltage_V",
+            .frf = "displacement per drive voltage [m/V] (the amplifier's and shaker's gain included: not a receptance)",
+            .caveat = "an amplifier whose gain changes near resonance (the shaker's back EMF) biases f_n and ζ; "
+                      "measure the force at the drive point to remove it"};
+  if (excitation_quantity == "base_acceleration")
+    return {.control = "base acceleration",
+            .unit = "m/s^2",
+            .column = "minus_base_acceleration_m_s2",
+            .frf = "displacement relative to the base per base acceleration [s^2] (the response less the base's own "
+                   "motion, per −a_b: a transmissibility's resonant part)",
+            .caveat = "f_n and ζ are the mode's (the base's own motion is taken out)"};
+  throw InputError("excitation quantity '" + std::string(excitation_quantity) +
+                   "' is none of force, voltage, base_acceleration");
+}
+
 std::string_view LevelControlName(LevelControl control) {
   switch (control) {
     case LevelControl::kForce: return "force";
@@ -524,16 +699,20 @@ std::string_view LevelFlagName(LevelFlagKind kind) {
     case LevelFlagKind::kDampingNotPositive: return "damping_not_positive";
     case LevelFlagKind::kPeakOutsideBand: return "peak_outside_band";
     case LevelFlagKind::kRegenerationBeyondNoise: return "regeneration_beyond_noise";
+    case LevelFlagKind::kJump: return "jump";
+    case LevelFlagKind::kPhaseConvention: return "phase_convention";
   }
   return "";
 }
 
 LevelFlagKind LevelFlagKindFromName(std::string_view name) {
   for (LevelFlagKind kind : {LevelFlagKind::kDampingNotPositive, LevelFlagKind::kPeakOutsideBand,
-                             LevelFlagKind::kRegenerationBeyondNoise})
+                             LevelFlagKind::kRegenerationBeyondNoise, LevelFlagKind::kJump,
+                             LevelFlagKind::kPhaseConvention})
     if (name == LevelFlagName(kind)) return kind;
   throw InputError("unknown level flag \"" + std::string(name) +
-                   "\": give damping_not_positive, peak_outside_band or regeneration_beyond_noise");
+                   "\": give damping_not_positive, peak_outside_band, regeneration_beyond_noise, jump or "
+                   "phase_convention");
 }
 
 bool LevelResonance::HasFlag(LevelFlagKind kind) const {
@@ -546,6 +725,8 @@ std::string LevelResonance::FlagNote(std::string_view quantity) const {
     if (f.quantity != quantity) continue;
     const std::string_view what = f.kind == LevelFlagKind::kDampingNotPositive ? "not positive"
                                   : f.kind == LevelFlagKind::kPeakOutsideBand  ? "outside the measured band"
+                                  : f.kind == LevelFlagKind::kJump             ? "jump"
+                                  : f.kind == LevelFlagKind::kPhaseConvention  ? "phase convention"
                                                                                : "beyond the noise";
     note += (note.empty() ? "[FLAG: " : "; ") + std::string(what);
   }
@@ -557,8 +738,7 @@ void MeasuredBackboneOptions::Validate() const {
   if (!(fit_window > 0.0 && fit_window <= 1.0))
     Refuse("MeasuredBackboneOptions.fit_window", FormatValue(fit_window), "above 0 and at most 1");
   RequirePositive("MeasuredBackboneOptions.constant_tolerance", constant_tolerance);
-  // Neighbouring steps always differ by a factor of at least 1.
-  RequireAbove("MeasuredBackboneOptions.jump_amplitude_ratio", jump_amplitude_ratio, 1.0);
+  jumps.Validate();
   RequireAtLeast("MeasuredBackboneOptions.max_frequency_degree", max_frequency_degree, 0);
   RequireAtLeast("MeasuredBackboneOptions.max_damping_degree", max_damping_degree, 0);
   RequirePositive("MeasuredBackboneOptions.trend_significance", trend_significance);
@@ -573,6 +753,7 @@ MeasuredBackbone Analyse(const std::vector<signal::FirstHarmonicLevel>& levels, 
                          const std::vector<bool>& in_fit) {
   MeasuredBackbone result;
   result.response_quantity = signal::QuantityName(levels.front().response_quantity);
+  result.excitation_quantity = signal::QuantityName(levels.front().excitation_quantity);
   std::vector<LevelData> data;
   std::vector<SingleModePoint> all_points;
   std::vector<SingleModeFit> local_fits;
@@ -580,6 +761,11 @@ MeasuredBackbone Analyse(const std::vector<signal::FirstHarmonicLevel>& levels, 
   for (const auto& level : levels) {
     if (level.response_quantity == signal::Quantity::kForce)
       throw std::invalid_argument(level.source + ": level '" + level.label + "': the response is a force");
+    if (level.excitation_quantity != levels.front().excitation_quantity)
+      throw std::invalid_argument(level.source + ": level '" + level.label + "' is driven by a " +
+                                  std::string(signal::QuantityName(level.excitation_quantity)) + ", level '" +
+                                  levels.front().label + "' by a " + result.excitation_quantity +
+                                  ": give the levels of one test");
     if (level.response_quantity != levels.front().response_quantity)
       throw std::invalid_argument(level.source + ": level '" + level.label + "' holds a " +
                                   std::string(signal::QuantityName(level.response_quantity)) + ", level '" +
@@ -642,12 +828,23 @@ MeasuredBackbone Analyse(const std::vector<signal::FirstHarmonicLevel>& levels, 
     r.num_fit_points = static_cast<int>(level_points[l].size());
     r.control = DetectControl(data[l], options.constant_tolerance);
     const SingleModeFit& modal_fit = result.fit.ok ? result.fit : linear_level >= 0 ? local_fits[linear_level] : local_fits[l];
-    FindQuadrature(data[l], modal_fit, local_fits[l], options, r);
+    r.jumps = DetectSweepJumps(SweepPointsInRunOrder(data[l]), options.jumps);
+    r.quadrature_after_jump = !r.jumps.empty();
+    FindQuadrature(data[l], modal_fit, local_fits[l], r);
     FindPeakAndHalfPower(data[l], r);
     EvaluateLocalFit(local_fits[l], r);
     if (!r.quadrature_note.empty()) result.warnings.push_back("level '" + r.label + "': " + r.quadrature_note);
     if (result.fit.ok) Regenerate(result.fit, data[l], options.fit_window, result.max_amplitude_m, r);
+    CombineDampingRatios(r);
     FlagLevel(data[l], result.fit.ok, options, r);
+    std::vector<ReceptancePoint> receptances;
+    for (int i = 0; i < data[l].size(); ++i) {
+      const PointView p = At(data[l].raw, i);
+      receptances.push_back({.omega_rad_s = p.omega, .receptance_m_N = p.disp / p.force});
+    }
+    const PhaseConventionCheck phase = CheckPhaseConvention(receptances, levels[l].response_quantity, options.fit_window);
+    if (!phase.message.empty())
+      r.flags.push_back({.kind = LevelFlagKind::kPhaseConvention, .quantity = "phase", .message = phase.message});
     r.in_global_fit = in_fit[l];
     result.levels.push_back(std::move(r));
   }
@@ -667,9 +864,17 @@ MeasuredBackbone Analyse(const std::vector<signal::FirstHarmonicLevel>& levels, 
     trend.slope_per_m = linear.DampingSlope_per_m(trend.amplitude_m);
     trend.slope_std_per_m = linear.DampingSlopeStd_per_m(trend.amplitude_m);
     trend.z = trend.slope_per_m / trend.slope_std_per_m;
-    trend.verdict = trend.z > options.trend_significance    ? "rises"
-                    : trend.z < -options.trend_significance ? "falls"
-                                                            : "no significant trend";
+    trend.damping_ratio_verdict = trend.z > options.trend_significance    ? "rises"
+                                  : trend.z < -options.trend_significance ? "falls"
+                                                                          : "no significant trend";
+    // ζω_n = q0 + q1·a/a_ref: its slope is q1/a_ref, the last parameter.
+    const int q1 = static_cast<int>(linear.parameters.size()) - 1;
+    trend.damping_rate_slope_per_s_m = linear.parameters[q1] / linear.reference_amplitude_m;
+    trend.damping_rate_slope_std_per_s_m = std::sqrt(linear.covariance(q1, q1)) / linear.reference_amplitude_m;
+    trend.damping_rate_z = trend.damping_rate_slope_per_s_m / trend.damping_rate_slope_std_per_s_m;
+    trend.verdict = trend.damping_rate_z > options.trend_significance    ? "rises beyond a constant damper"
+                    : trend.damping_rate_z < -options.trend_significance ? "falls below a constant damper"
+                                                                         : "consistent with a constant damper";
   }
   return result;
 }

@@ -32,11 +32,17 @@
 //    is at least `fit_window` of its peak; its ω_n is the modal natural
 //    frequency, which differs from the sensor's phase resonance by
 //    (Im A/Re A)·ζω_n (a few mHz for a complex mode);
-//  - half-power: ζ = (ω₂² − ω₁²)/(4ω_p²) where |X_d/F| = peak/√2 on both
-//    sides, each crossing solved on 1/|X_d/F|² as a quadratic in ω² through
-//    the three steps around it (exact for one linear mode up to O(ζ²); biased
-//    when the amplitude changes along a force-controlled curve, the other
-//    two are not).
+//  - half-power: from r = (ω₂² − ω₁²)/(4ω_p²), with |X_d/F| = peak/√2 at
+//    ω₁, ω₂, ζ² = (1 − 1/√(1 + 4r²))/2; the peak ω_p² is the vertex of
+//    1/|X_d/F|², a quadratic in ω², fitted to the steps above 1/√2 of the
+//    largest, and each crossing is solved on the quadratic through the three
+//    steps around it (exact for one linear mode, any spacing; biased when
+//    the amplitude changes along a force-controlled curve, the other two
+//    are not). Not made across a jump, or without a crossing on both sides.
+// The level's reported ζ (LevelResonance::damping_ratio) carries a σ that
+// covers all three. Jumps of the sweep (solver/backbone/sweep_jumps.h) and a
+// phase running against the convention (solver/backbone/phase_convention.h)
+// are flagged.
 // Uncertainties are the phasors' (and the frequency's) standard
 // uncertainties propagated to first order (central-difference Jacobians).
 #pragma once
@@ -47,6 +53,7 @@
 
 #include "signal/first_harmonic_level.h"
 #include "solver/backbone/single_mode_fit.h"
+#include "solver/backbone/sweep_jumps.h"
 
 namespace beamid::solver {
 
@@ -57,10 +64,9 @@ struct MeasuredBackboneOptions {
   // A level whose force amplitude spreads (max/min − 1) by less than this is
   // force-controlled; else one whose response amplitude does is response-controlled.
   double constant_tolerance = 0.05;
-  // Bracketing steps whose amplitudes differ by more than this factor and
-  // whose slope of Re G disagrees with the neighbours' by more than 2× are a
-  // jump (fold): the phase resonance is taken on the branch before it.
-  double jump_amplitude_ratio = 2.0;
+  // Jumps between consecutive steps of the campaign (solver/backbone/sweep_jumps.h):
+  // flagged ("jump"); no phase resonance or half-power point is taken across one.
+  SweepJumpOptions jumps;
   // Model choice for the global fit: polynomial degrees 0..max of ω_n²(a) and ζω_n(a).
   int max_frequency_degree = 3;
   int max_damping_degree = 2;
@@ -101,8 +107,14 @@ enum class LevelControl { kForce, kResponse, kNeither };
 // frequencies, or the largest response at the sweep's end),
 // "regeneration_beyond_noise" (the cross-level single-mode fit misses the
 // level by more than its noise allows, see
-// MeasuredBackboneOptions::max_regeneration_relative_rms).
-enum class LevelFlagKind { kDampingNotPositive, kPeakOutsideBand, kRegenerationBeyondNoise };
+// MeasuredBackboneOptions::max_regeneration_relative_rms), "jump" (the
+// response jumped between two consecutive steps of the sweep, up or down:
+// the curve is folded, its peak is the fold's edge and one side of it lies
+// on another branch; LevelResonance::jumps says where), "phase_convention"
+// (the phase runs through the resonance the other way than beamid's
+// convention gives, or half a turn from a drive point's: another sign
+// convention, a sensor mounted upside down; solver/backbone/phase_convention.h).
+enum class LevelFlagKind { kDampingNotPositive, kPeakOutsideBand, kRegenerationBeyondNoise, kJump, kPhaseConvention };
 
 // Regeneration errors up to this many times what the noise alone explains are not flagged.
 inline constexpr double kRegenerationNoiseFactor = 3.0;
@@ -111,7 +123,8 @@ struct LevelFlag {
   LevelFlagKind kind = LevelFlagKind::kDampingNotPositive;
   // The LevelResonance number it concerns: "quadrature_damping_ratio",
   // "local_damping_ratio", "half_power_damping_ratio", "quadrature_frequency",
-  // "peak_frequency", "local_natural_frequency" or "regeneration_relative_rms".
+  // "peak_frequency", "local_natural_frequency", "regeneration_relative_rms"
+  // "sweep" (a jump) or "phase" (the phase convention).
   std::string quantity;
   std::string message;  // with the numbers
 };
@@ -128,21 +141,43 @@ struct LevelResonance {
   Estimate quadrature_response_amplitude;  // in the level's response quantity, SI
   Estimate quadrature_force_N;
   Estimate quadrature_damping_ratio;
+  // The level's sweep jumped (see `jumps`): no phase resonance is taken
+  // across a jump (a down-sweep's jump onto the upper branch crosses
+  // quadrature without passing through resonance), no half-power points.
   bool quadrature_after_jump = false;
   std::string quadrature_note;
+  // In the campaign's (run) order of the steps.
+  std::vector<SweepJump> jumps;
 
   // Peak of |X_d/F|: vertex of 1/|X_d/F|², a quadratic in ω² for one mode, through the three highest steps.
   Estimate peak_frequency_hz;
   Estimate peak_receptance_m_N;
   Estimate peak_amplitude_m;
 
+  // Half-power: ζ, the two frequencies where |X_d/F| = peak/√2 and the
+  // natural frequency ω_p/√(1 − 2ζ²) (all invalid, with the reason in the
+  // note, unless the curve crosses 1/√2 of its peak on both sides of it
+  // without a jump).
   Estimate half_power_damping_ratio;
+  Estimate half_power_lower_frequency_hz;
+  Estimate half_power_upper_frequency_hz;
+  Estimate half_power_natural_frequency_hz;
   std::string half_power_note;
 
   // Local single-mode fit, evaluated at the quadrature amplitude (ω_n: the modal natural frequency).
   Estimate local_natural_frequency_hz;
   Estimate local_damping_ratio;
   double local_reduced_chi_square = 0.0;
+
+  // The level's damping ratio as reported: the phase-resonance estimate (else
+  // the local fit's, else the half-power one), its σ widened to cover the
+  // other estimators (|ζ_k − ζ| ≤ σ for each valid ζ_k): where the mode's
+  // shape or the amplitude changes along the curve they measure different
+  // things, and the propagated noise alone would claim a precision none has.
+  // The note names the estimators and which to trust when they part by more
+  // than their own noise ("" when they agree).
+  Estimate damping_ratio;
+  std::string damping_ratio_note;
 
   // The global fit regenerating this level's fitted points: the response
   // from the measured force (force-controlled or neither) or the force from
@@ -174,17 +209,33 @@ struct BackboneModelCandidate {
   std::string form;  // SingleModeFit::FormName()
 };
 
-// dζ/da of the global fit with ζω_n linear in a, at `amplitude_m`.
+// How damping changes with amplitude, from the global fit with ζω_n linear
+// in a. Judged on ζω_n (the damping rate, c/2m of one mode), not on ζ: a
+// constant viscous damper keeps ζω_n constant, so its ζ = ζω_n/ω_n rises
+// wherever the frequency falls (a softening support) and falls where it
+// rises; only a rate that changes with amplitude is damping that does.
 struct DampingTrend {
   double amplitude_m = 0.0;
+  // dζ/da at `amplitude_m`, its σ and z = slope/σ.
   double slope_per_m = 0.0;
   double slope_std_per_m = 0.0;
-  double z = 0.0;  // slope/σ
-  std::string verdict;  // "rises", "falls" or "no significant trend"
+  double z = 0.0;
+  // d(ζω_n)/da [1/(s·m)], its σ and z.
+  double damping_rate_slope_per_s_m = 0.0;
+  double damping_rate_slope_std_per_s_m = 0.0;
+  double damping_rate_z = 0.0;
+  // On ζω_n: "rises beyond a constant damper", "falls below a constant
+  // damper" or "consistent with a constant damper".
+  std::string verdict;
+  // On ζ alone: "rises", "falls" or "no significant trend".
+  std::string damping_ratio_verdict;
 };
 
 struct MeasuredBackbone {
   std::string response_quantity;  // of the input levels
+  // What drives them (signal/quantity.h names): "force", "voltage" or
+  // "base_acceleration"; receptances and force amplitudes are per its unit.
+  std::string excitation_quantity = "force";
   std::vector<LevelResonance> levels;
   SingleModeFit fit;  // the chosen global single-nonlinear-mode fit (FormName() says which)
   std::vector<BackboneModelCandidate> candidates;
@@ -199,6 +250,19 @@ MeasuredBackbone AnalyseMeasuredBackbone(const std::vector<signal::FirstHarmonic
                                          const MeasuredBackboneOptions& options = {});
 
 std::string_view LevelControlName(LevelControl control);
+
+// The words that label a backbone's numbers honestly for its excitation:
+// what controls a level ("force", "voltage", "base acceleration"), the
+// excitation's SI unit, the CSV column of its amplitude and what X/F is.
+struct ExcitationLabels {
+  std::string control;  // "force", "voltage", "base acceleration"
+  std::string unit;     // "N", "V", "m/s^2"
+  std::string column;   // "force_N", "voltage_V", "minus_base_acceleration_m_s2"
+  std::string frf;      // "receptance [m/N]", "displacement per drive voltage [m/V]", ...
+  std::string caveat;   // what it means for f_n and ζ ("" for a force)
+};
+// Throws InputError for a name that is no excitation quantity.
+ExcitationLabels LabelsOf(std::string_view excitation_quantity);
 std::string_view LevelFlagName(LevelFlagKind kind);
 // Throws InputError for a name LevelFlagName does not give.
 LevelFlagKind LevelFlagKindFromName(std::string_view name);

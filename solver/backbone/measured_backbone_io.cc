@@ -42,6 +42,16 @@ Json LevelToJson(const LevelResonance& l) {
   Json flags = Json::array();
   for (const auto& f : l.flags)
     flags.push_back({{"kind", std::string(LevelFlagName(f.kind))}, {"quantity", f.quantity}, {"message", f.message}});
+  Json jumps = Json::array();
+  for (const auto& j : l.jumps)
+    jumps.push_back({{"from_step", j.from_step},
+                     {"to_step", j.to_step},
+                     {"from_frequency_Hz", Number(j.from_frequency_hz)},
+                     {"to_frequency_Hz", Number(j.to_frequency_hz)},
+                     {"direction", j.up_sweep ? "up" : "down"},
+                     {"receptance_ratio", Number(j.receptance_ratio)},
+                     {"phase_change_rad", Number(j.phase_change_rad)},
+                     {"miss_over_predicted", Number(j.miss_over_predicted)}});
   return {{"label", l.label},
           {"control", std::string(LevelControlName(l.control))},
           {"num_points", l.num_points},
@@ -58,7 +68,14 @@ Json LevelToJson(const LevelResonance& l) {
            {{"frequency_Hz", EstimateToJson(l.peak_frequency_hz)},
             {"receptance_m_N", EstimateToJson(l.peak_receptance_m_N)},
             {"displacement_amplitude_m", EstimateToJson(l.peak_amplitude_m)}}},
-          {"half_power", {{"damping_ratio", EstimateToJson(l.half_power_damping_ratio)}, {"note", l.half_power_note}}},
+          {"half_power",
+           {{"damping_ratio", EstimateToJson(l.half_power_damping_ratio)},
+            {"lower_frequency_Hz", EstimateToJson(l.half_power_lower_frequency_hz)},
+            {"upper_frequency_Hz", EstimateToJson(l.half_power_upper_frequency_hz)},
+            {"natural_frequency_Hz", EstimateToJson(l.half_power_natural_frequency_hz)},
+            {"note", l.half_power_note}}},
+          {"damping_ratio", EstimateToJson(l.damping_ratio)},
+          {"damping_ratio_note", l.damping_ratio_note},
           {"local_fit",
            {{"natural_frequency_Hz", EstimateToJson(l.local_natural_frequency_hz)},
             {"damping_ratio", EstimateToJson(l.local_damping_ratio)},
@@ -68,6 +85,7 @@ Json LevelToJson(const LevelResonance& l) {
             {"max_relative", Number(l.regeneration_max_relative)},
             {"reduced_chi_square", Number(l.regeneration_reduced_chi_square)},
             {"noise_relative_rms", Number(l.regeneration_noise_relative_rms)}}},
+          {"jumps", jumps},
           {"flags", flags},
           {"in_global_fit", l.in_global_fit}};
 }
@@ -127,8 +145,9 @@ LevelControl ControlFromJson(const Field& f) {
 }
 
 LevelResonance LevelFromJson(const Field& f) {
-  f.OnlyKeys({"label", "control", "num_points", "num_fit_points", "phase_resonance", "peak", "half_power", "local_fit",
-              "regeneration", "flags", "in_global_fit"});
+  f.OnlyKeys({"label", "control", "num_points", "num_fit_points", "phase_resonance", "peak", "half_power",
+              "damping_ratio", "damping_ratio_note", "local_fit",
+              "regeneration", "jumps", "flags", "in_global_fit"});
   LevelResonance l;
   l.label = f.String("label");
   l.control = ControlFromJson(f.At("control"));
@@ -150,9 +169,17 @@ LevelResonance LevelFromJson(const Field& f) {
   l.peak_receptance_m_N = AsEstimate(peak.At("receptance_m_N"));
   l.peak_amplitude_m = AsEstimate(peak.At("displacement_amplitude_m"));
   const Field half = f.At("half_power");
-  half.OnlyKeys({"damping_ratio", "note"});
+  half.OnlyKeys({"damping_ratio", "lower_frequency_Hz", "upper_frequency_Hz", "natural_frequency_Hz", "note"});
   l.half_power_damping_ratio = AsEstimate(half.At("damping_ratio"));
+  // Files written before the half-power frequencies: none.
+  if (half.Has("lower_frequency_Hz")) l.half_power_lower_frequency_hz = AsEstimate(half.At("lower_frequency_Hz"));
+  if (half.Has("upper_frequency_Hz")) l.half_power_upper_frequency_hz = AsEstimate(half.At("upper_frequency_Hz"));
+  if (half.Has("natural_frequency_Hz"))
+    l.half_power_natural_frequency_hz = AsEstimate(half.At("natural_frequency_Hz"));
   l.half_power_note = half.String("note");
+  // Files written before the combined damping ratio: none.
+  if (f.Has("damping_ratio")) l.damping_ratio = AsEstimate(f.At("damping_ratio"));
+  if (f.Has("damping_ratio_note")) l.damping_ratio_note = f.String("damping_ratio_note");
   const Field local = f.At("local_fit");
   local.OnlyKeys({"natural_frequency_Hz", "damping_ratio", "reduced_chi_square"});
   l.local_natural_frequency_hz = AsEstimate(local.At("natural_frequency_Hz"));
@@ -165,6 +192,26 @@ LevelResonance LevelFromJson(const Field& f) {
   l.regeneration_reduced_chi_square = regeneration.Number("reduced_chi_square");
   // Files written before the flags have neither these nor the flags: read as 0, none, in the fit.
   if (regeneration.Has("noise_relative_rms")) l.regeneration_noise_relative_rms = regeneration.Number("noise_relative_rms");
+  // Files written before the jump detection have no jumps.
+  if (f.Has("jumps")) {
+    const Field jumps = f.At("jumps");
+    for (std::size_t i = 0; i < jumps.Size(); ++i) {
+      const Field j = jumps.At(i);
+      j.OnlyKeys({"from_step", "to_step", "from_frequency_Hz", "to_frequency_Hz", "direction", "receptance_ratio",
+                  "phase_change_rad", "miss_over_predicted"});
+      const Field direction = j.At("direction");
+      const std::string d = direction.String();
+      if (d != "up" && d != "down") direction.Fail("is \"" + d + "\"", "give \"up\" or \"down\"");
+      l.jumps.push_back({.from_step = j.Integer("from_step"),
+                         .to_step = j.Integer("to_step"),
+                         .from_frequency_hz = j.Number("from_frequency_Hz"),
+                         .to_frequency_hz = j.Number("to_frequency_Hz"),
+                         .up_sweep = d == "up",
+                         .receptance_ratio = j.Number("receptance_ratio"),
+                         .phase_change_rad = j.Number("phase_change_rad"),
+                         .miss_over_predicted = j.Number("miss_over_predicted")});
+    }
+  }
   if (f.Has("flags")) {
     const Field flags = f.At("flags");
     for (std::size_t i = 0; i < flags.Size(); ++i) {
@@ -176,7 +223,9 @@ LevelResonance LevelFromJson(const Field& f) {
       try {
         parsed.kind = LevelFlagKindFromName(name);
       } catch (const InputError&) {
-        kind.Fail("is \"" + name + "\"", "give \"damping_not_positive\", \"peak_outside_band\" or \"regeneration_beyond_noise\"");
+        kind.Fail("is \"" + name + "\"",
+                  "give \"damping_not_positive\", \"peak_outside_band\", \"regeneration_beyond_noise\", \"jump\" or "
+                  "\"phase_convention\"");
       }
       parsed.quantity = flag.String("quantity");
       parsed.message = flag.String("message");
@@ -245,6 +294,10 @@ std::string MeasuredBackboneFileToJson(const MeasuredBackboneFile& file) {
                      {"inputs", file.inputs},
                      {"channel", file.channel},
                      {"response_quantity", file.response_quantity},
+                     {"excitation",
+                      {{"quantity", file.excitation_quantity},
+                       {"unit", LabelsOf(file.excitation_quantity).unit},
+                       {"frf", LabelsOf(file.excitation_quantity).frf}}},
                      {"amplitude", kAmplitudeDescription},
                      {"levels", levels},
                      {"single_mode_fit", FitToJson(file.single_mode_fit)},
@@ -253,7 +306,11 @@ std::string MeasuredBackboneFileToJson(const MeasuredBackboneFile& file) {
                        {"slope_per_m", Number(trend.slope_per_m)},
                        {"slope_std_per_m", Number(trend.slope_std_per_m)},
                        {"z", Number(trend.z)},
-                       {"verdict", trend.verdict}}},
+                       {"damping_rate_slope_per_s_m", Number(trend.damping_rate_slope_per_s_m)},
+                       {"damping_rate_slope_std_per_s_m", Number(trend.damping_rate_slope_std_per_s_m)},
+                       {"damping_rate_z", Number(trend.damping_rate_z)},
+                       {"verdict", trend.verdict},
+                       {"damping_ratio_verdict", trend.damping_ratio_verdict}}},
                      {"model_backbone", model},
                      {"warnings", file.warnings}};
   return root.dump(1) + "\n";
@@ -268,24 +325,40 @@ MeasuredBackboneFile MeasuredBackboneFileFromJson(const std::string& text, const
     throw InputError(source + ": field \"format\" is \"" + format + "\", not \"" +
                      std::string(kMeasuredBackboneFormat) +
                      "\". Fix: give a .json written by 'beamid backbone --measured'");
-  root.OnlyKeys({"format", "beamid_version", "inputs", "channel", "response_quantity", "amplitude", "levels",
+  root.OnlyKeys({"format", "beamid_version", "inputs", "channel", "response_quantity", "excitation", "amplitude", "levels",
                  "single_mode_fit", "damping_trend", "model_backbone", "warnings"});
   MeasuredBackboneFile file;
   file.beamid_version = root.Has("beamid_version") ? root.String("beamid_version") : "";
   file.inputs = root.At("inputs").Strings();
   file.channel = root.String("channel");
   file.response_quantity = root.String("response_quantity");
+  if (root.Has("excitation")) {
+    const Field excitation = root.At("excitation");
+    file.excitation_quantity = excitation.String("quantity");
+    LabelsOf(file.excitation_quantity);  // refuses an unknown one
+  }
   if (root.Has("amplitude")) root.String("amplitude");
   const Field levels = root.At("levels");
   for (std::size_t i = 0; i < levels.Size(); ++i) file.levels.push_back(LevelFromJson(levels.At(i)));
   file.single_mode_fit = FitFromJson(root.At("single_mode_fit"));
   const Field trend = root.At("damping_trend");
-  trend.OnlyKeys({"amplitude_m", "slope_per_m", "slope_std_per_m", "z", "verdict"});
+  trend.OnlyKeys({"amplitude_m", "slope_per_m", "slope_std_per_m", "z", "damping_rate_slope_per_s_m",
+                  "damping_rate_slope_std_per_s_m", "damping_rate_z", "verdict", "damping_ratio_verdict"});
   file.damping_trend = {.amplitude_m = trend.Number("amplitude_m"),
                         .slope_per_m = trend.Number("slope_per_m"),
                         .slope_std_per_m = trend.Number("slope_std_per_m"),
                         .z = trend.Number("z"),
                         .verdict = trend.String("verdict")};
+  // Files written before the damping rate judged ζ alone: their verdict was on ζ.
+  auto& t = file.damping_trend;
+  if (trend.Has("damping_rate_z")) {
+    t.damping_rate_slope_per_s_m = trend.Number("damping_rate_slope_per_s_m");
+    t.damping_rate_slope_std_per_s_m = trend.Number("damping_rate_slope_std_per_s_m");
+    t.damping_rate_z = trend.Number("damping_rate_z");
+    t.damping_ratio_verdict = trend.String("damping_ratio_verdict");
+  } else {
+    t.damping_ratio_verdict = t.verdict;
+  }
   const Field model = root.At("model_backbone");
   for (std::size_t i = 0; i < model.Size(); ++i) {
     const Field p = model.At(i);

@@ -8,23 +8,33 @@
 // num_points, num_fit_points, phase_resonance {frequency_Hz,
 // displacement_amplitude_m, response_amplitude, force_N, damping_ratio,
 // after_jump, note}, peak {frequency_Hz, receptance_m_N,
-// displacement_amplitude_m}, half_power {damping_ratio, note}, local_fit
+// displacement_amplitude_m}, half_power {damping_ratio,
+// lower_frequency_Hz, upper_frequency_Hz, natural_frequency_Hz, note}, damping_ratio (the
+// reported ζ, its σ covering the three estimators' spread),
+// damping_ratio_note, local_fit
 // {natural_frequency_Hz, damping_ratio, reduced_chi_square}, regeneration
-// {relative_rms, max_relative, reduced_chi_square, noise_relative_rms}, flags
-// [{kind (damping_not_positive, peak_outside_band, regeneration_beyond_noise),
+// {relative_rms, max_relative, reduced_chi_square, noise_relative_rms}, jumps
+// [{from_step, to_step (run order, from 0), from_frequency_Hz,
+// to_frequency_Hz, direction ("up"/"down"), receptance_ratio (after/before),
+// phase_change_rad, miss_over_predicted}], flags [{kind
+// (damping_not_positive, peak_outside_band, regeneration_beyond_noise, jump,
+// phase_convention),
 // quantity, message}], in_global_fit}], single_mode_fit {model
 // (a description), form, frequency_degree, damping_degree,
 // frequency_exponent, damping_exponent, amplitude_dependent_modal_constant,
 // residual_receptance_m_N, parameter_order (a description),
 // reference_amplitude_m, parameters, reduced_chi_square, candidates, curve},
-// damping_trend, model_backbone [{amplitude_m, frequency_Hz}], warnings.
+// damping_trend {amplitude_m, slope_per_m, slope_std_per_m, z (of ζ),
+// damping_rate_slope_per_s_m, damping_rate_slope_std_per_s_m,
+// damping_rate_z (of ζω_n), verdict (on ζω_n: against a constant damper),
+// damping_ratio_verdict (on ζ alone)}, model_backbone [{amplitude_m, frequency_Hz}], warnings.
 // An estimate is {value, std}, or null when it could not be made. JSON has no
 // NaN: a number that is not finite is written as null and read back as NaN.
 // Reading checks every field and throws InputError naming the file, the field
 // (e.g. "levels[2].peak.frequency_Hz") and the fix; a key the format does not
 // have is refused; a file without beamid_version reads (version ""), one
-// without flags, in_global_fit or noise_relative_rms (older files) reads as
-// no flags, in the fit, 0.
+// without jumps, flags, in_global_fit or noise_relative_rms (older files)
+// reads as no jumps, no flags, in the fit, 0.
 #pragma once
 
 #include <filesystem>
@@ -75,6 +85,7 @@ struct MeasuredBackboneFile {
   std::vector<std::string> inputs;        // as given to --measured
   std::string channel;
   std::string response_quantity;
+  std::string excitation_quantity = "force";  // "excitation" in the JSON; files before it: force
   std::vector<LevelResonance> levels;
   MeasuredBackboneFit single_mode_fit;
   DampingTrend damping_trend;

@@ -126,6 +126,10 @@ BEAMID_REGISTER_COMMAND("backbone", [](CLI::App& app, const GlobalOptions& globa
   sub->add_option("--channel", measured->channel, "With --measured: the response channel of a campaign (default: first)");
   sub->add_option("--result", measured->result_file, "With --measured: overlay this identified model's backbone");
   sub->add_option("--position-m", measured->position_m, "With --measured tables and --result: the sensor's position [m]");
+  sub->add_flag("--keep-flagged-levels", measured->keep_flagged_levels,
+                "With --measured: keep flagged levels (a jump, damping not positive, peak outside the band, "
+                "regeneration beyond the noise) in the cross-level fit and the damping trend; by default they are left "
+                "out (the flags are shown either way)");
   sub->add_option("--min-theta-rad", options->min_theta_rad, "Smallest θ amplitude [rad]")->capture_default_str();
   sub->add_option("--max-theta-rad", options->max_theta_rad, "Largest θ amplitude [rad]")->capture_default_str();
   sub->add_option("--points", options->points, "Number of amplitudes")->capture_default_str();
@@ -142,6 +146,8 @@ BEAMID_REGISTER_COMMAND("backbone", [](CLI::App& app, const GlobalOptions& globa
     }
     if (options->model_file.empty())
       throw std::invalid_argument("backbone: give a model file, or --measured INPUT for a test's backbone");
+    if (measured->keep_flagged_levels)
+      throw std::invalid_argument("backbone: --keep-flagged-levels applies to --measured only (a model has no levels)");
     RunBackbone(*options, global);
   });
 });

@@ -99,8 +99,10 @@ void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& glo
                  v.channel, 100.0 * v.worst_h1_relative_error, v.measurable_steps_h1, 100.0 * v.worst_h3_relative_error,
                  v.measurable_steps_h3);
     for (const auto& w : result.warnings) fmt::print("  warning: {}\n", w);
+    fmt::print("  verdict: {}\n", result.verdict.text);
     fmt::print("wrote {}\n", options.output);
   }
+  if (!result.verdict.within_noise) throw ModelMissesData(result.verdict.text + " (the result is in " + options.output + ")");
 }
 
 BEAMID_REGISTER_COMMAND("identify", [](CLI::App& app, const GlobalOptions& global) {

@@ -3,7 +3,8 @@
 // never touches main.cc. Exit codes (hb/errors.h, mapped in main.cc): 0
 // success, 1 internal error, 2 bad input (the user can fix it), 3 a numerical
 // failure (no convergence), 4 the environment (missing program, disk, fork,
-// memory).
+// memory), 5 fitted, but the model misses the data beyond their noise (the
+// result is written).
 #pragma once
 
 #include <functional>

@@ -1,18 +1,22 @@
 // beamid report: one self-contained HTML page (inline SVG plots by gnuplot)
 // of an identification result or a diagnosis: parameters with intervals,
 // frequency response curves, backbone, prediction at the held-out sensor,
-// residual map, diagnosis summary.
+// residual map, diagnosis summary; or of a measured backbone on its own
+// (the .json of `beamid backbone --measured`: levels, flags, fit, trend).
 #include <algorithm>
 #include <chrono>
 
 #include <fmt/core.h>
+#include <nlohmann/json.hpp>
 
+#include "hb/text_file.h"
 #include "signal/campaign.h"
 #include "signal/campaign_extractor.h"
 #include "solver/cli/cli_output.h"
 #include "solver/cli/command_registry.h"
 #include "solver/report/html_report.h"
 #include "solver/report/html_screenshot.h"
+#include "solver/report/measured_backbone_report.h"
 #include "solver/report/report_curves.h"
 #include "solver/report/report_input.h"
 
@@ -26,10 +30,44 @@ struct ReportOptions {
   std::string screenshot;
 };
 
+// Whether the input is the .json of `beamid backbone --measured` (its
+// "format"), which needs no model and no campaign.
+bool IsMeasuredBackboneFile(const std::string& path) {
+  if (std::filesystem::path(path).extension() != ".json" || !std::filesystem::is_regular_file(path)) return false;
+  const nlohmann::json json = nlohmann::json::parse(
+      ReadTextFile(path, "report input", "give a result.json, a diagnosis.json or a measured backbone .json"), nullptr,
+      false);
+  return json.is_object() && json.contains("format") && json["format"] == solver::kMeasuredBackboneFormat;
+}
+
+void Screenshot(const ReportOptions& options, const GlobalOptions& global) {
+  if (options.screenshot.empty()) return;
+  Progress progress("report: screenshot", global);
+  solver::ScreenshotHtml(options.output, options.screenshot);
+  progress.Done();
+  // The path is printed even with --quiet: it was asked for.
+  fmt::print("screenshot: {}\n", options.screenshot);
+}
+
 void RunReport(const ReportOptions& options, const GlobalOptions& global) {
   RequireWritableOutput(options.output, {options.input_file});
   if (!options.screenshot.empty()) RequireWritableOutput(options.screenshot, {options.input_file, options.output});
   const auto start = std::chrono::steady_clock::now();
+  if (IsMeasuredBackboneFile(options.input_file)) {
+    if (!options.campaign_folder.empty())
+      throw std::invalid_argument("report: " + options.input_file +
+                                  " is a measured backbone, which needs no campaign: leave out --campaign");
+    std::string html;
+    {
+      Progress progress("report: plots", global);
+      html = solver::MeasuredBackboneHtmlReport(solver::ReadMeasuredBackboneFile(options.input_file), options.input_file);
+    }
+    WriteTextFile(options.output, html);
+    if (!global.quiet)
+      fmt::print("wrote {} ({:.0f} kB, measured backbone)\n", options.output, html.size() / 1e3);
+    Screenshot(options, global);
+    return;
+  }
   const solver::ReportInput input = solver::LoadReportInput(
       options.input_file,
       options.campaign_folder.empty() ? std::nullopt : std::optional<std::filesystem::path>(options.campaign_folder));
@@ -63,13 +101,7 @@ void RunReport(const ReportOptions& options, const GlobalOptions& global) {
     for (std::size_t at = html.find("<svg"); at != std::string::npos; at = html.find("<svg", at + 1)) ++plots;
     fmt::print("wrote {} ({:.0f} kB, {} plots) in {:.1f} s\n", options.output, html.size() / 1e3, plots, seconds);
   }
-  if (!options.screenshot.empty()) {
-    Progress progress("report: screenshot", global);
-    solver::ScreenshotHtml(options.output, options.screenshot);
-    progress.Done();
-    // The path is printed even with --quiet: it was asked for.
-    fmt::print("screenshot: {}\n", options.screenshot);
-  }
+  Screenshot(options, global);
 }
 
 BEAMID_REGISTER_COMMAND("report", [](CLI::App& app, const GlobalOptions& global) {
@@ -78,8 +110,11 @@ BEAMID_REGISTER_COMMAND("report", [](CLI::App& app, const GlobalOptions& global)
       "report",
       "Write one self-contained HTML page of a result or diagnosis: parameters with intervals, frequency\n"
       "response curves, backbone, prediction at the held-out sensor, residual map (plots by gnuplot).\n"
-      "Example: beamid report result.json -o report.html --screenshot report.png");
-  sub->add_option("input", options->input_file, "result.json of 'beamid identify' or diagnosis.json of 'beamid diagnose'")
+      "Example: beamid report result.json -o report.html --screenshot report.png\n"
+      "Example: beamid report out/measured.json -o measured.html   (a measured backbone on its own)");
+  sub->add_option("input", options->input_file,
+                  "result.json of 'beamid identify', diagnosis.json of 'beamid diagnose', or the .json of "
+                  "'beamid backbone --measured' (rendered on its own: levels, flags, fit, damping trend)")
       ->required();
   sub->add_option("--campaign", options->campaign_folder,
                   "Campaign folder (default: the one recorded in result.json)");

@@ -47,7 +47,8 @@ int main(int argc, char** argv) {
         "  -q,--quiet                  No progress and no summary on the terminal, only errors\n"
         "  --progress text|json        json: one JSON object per line on stderr ({\"event\": \"progress\", ...},\n"
         "                              {\"event\": \"done\", ...}, last {\"event\": \"exit\", \"exit_code\": N, ...})\n"
-        "Exit codes: 0 success, 2 bad input, 3 failure to converge, 4 environment, 1 internal error.");
+        "Exit codes: 0 success, 2 bad input, 3 failure to converge, 4 environment, 5 fitted but the model misses\n"
+        "the data beyond their noise (the result is written; run beamid diagnose), 1 internal error.");
   // With --progress json, stderr holds JSON lines only: the error goes into
   // the last one.
   auto fail = [&](int code, const std::string& prefix, const std::string& message) {
@@ -79,6 +80,8 @@ int main(int argc, char** argv) {
     return fail(kExitBadInput, "error", std::string("a JSON input holds a value beamid cannot use: ") + e.what());
   } catch (const NumericalError& e) {
     return fail(kExitNoConvergence, "failed", e.what());
+  } catch (const ModelMissesData& e) {
+    return fail(kExitModelMissesData, "misfit", e.what());
   } catch (const EnvironmentError& e) {
     return fail(kExitEnvironment, "environment", e.what());
   } catch (const std::filesystem::filesystem_error& e) {

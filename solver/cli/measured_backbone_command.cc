@@ -75,7 +75,8 @@ void RunMeasuredBackbone(const MeasuredBackboneCommandOptions& options, const Gl
   }
   for (const char* suffix : {".csv", "_curves.csv", ".json"}) RequireWritableOutput(options.output + suffix, inputs);
   const auto levels = ReadLevels(options, global.quiet);
-  const solver::MeasuredBackbone measured = solver::AnalyseMeasuredBackbone(levels);
+  const solver::MeasuredBackbone measured =
+      solver::AnalyseMeasuredBackbone(levels, {.keep_flagged_levels_in_fit = options.keep_flagged_levels});
 
   std::vector<solver::SensorBackbonePoint> model;
   if (!options.result_file.empty()) {
@@ -92,12 +93,20 @@ void RunMeasuredBackbone(const MeasuredBackboneCommandOptions& options, const Gl
                                           {.min_theta_amplitude_rad = 1e-5, .max_theta_amplitude_rad = 3e-2, .num_points = 120});
   }
 
-  // Per level.
+  // Per level, labelled for what drives it.
+  const solver::ExcitationLabels excitation = solver::LabelsOf(measured.excitation_quantity);
+  const auto control = [&](const solver::LevelResonance& l) {
+    return l.control == solver::LevelControl::kForce ? excitation.control : std::string(solver::LevelControlName(l.control));
+  };
   std::ostringstream csv;
+  const std::string excitation_std = excitation.column.substr(0, excitation.column.rfind('_')) + "_std" +
+                                     excitation.column.substr(excitation.column.rfind('_'));
   csv << "level,control,quadrature_frequency_Hz,quadrature_frequency_std_Hz,amplitude_m,amplitude_std_m,"
-         "response_amplitude,response_amplitude_std,force_N,force_std_N,zeta_quadrature,zeta_quadrature_std,"
+         "response_amplitude,response_amplitude_std," << excitation.column << "," << excitation_std
+      << ",zeta_quadrature,zeta_quadrature_std,"
          "zeta_local,zeta_local_std,zeta_half_power,zeta_half_power_std,peak_frequency_Hz,peak_frequency_std_Hz,"
-         "local_natural_frequency_Hz,local_natural_frequency_std_Hz,regeneration_relative_rms,in_global_fit,flags\n";
+         "local_natural_frequency_Hz,local_natural_frequency_std_Hz,regeneration_relative_rms,in_global_fit,flags,"
+         "zeta,zeta_std\n";
   for (const auto& l : measured.levels) {
     // The flags' names, ';'-separated (the messages are in the .json).
     std::string flags;
@@ -105,12 +114,12 @@ void RunMeasuredBackbone(const MeasuredBackboneCommandOptions& options, const Gl
       const std::string name(solver::LevelFlagName(f.kind));
       if (flags.find(name) == std::string::npos) flags += (flags.empty() ? "" : ";") + name;
     }
-    csv << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{:.4g},{},{}\n", l.label, solver::LevelControlName(l.control),
+    csv << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{:.4g},{},{},{}\n", l.label, control(l),
                        Cell(l.quadrature_frequency_hz), Cell(l.quadrature_amplitude_m),
                        Cell(l.quadrature_response_amplitude), Cell(l.quadrature_force_N),
                        Cell(l.quadrature_damping_ratio), Cell(l.local_damping_ratio), Cell(l.half_power_damping_ratio),
                        Cell(l.peak_frequency_hz), Cell(l.local_natural_frequency_hz), l.regeneration_relative_rms,
-                       l.in_global_fit ? 1 : 0, flags);
+                       l.in_global_fit ? 1 : 0, flags, Cell(l.damping_ratio));
   }
 
   // The single-mode fit against amplitude, and the model beside it.
@@ -148,6 +157,7 @@ void RunMeasuredBackbone(const MeasuredBackboneCommandOptions& options, const Gl
                                     .inputs = options.inputs,
                                     .channel = levels.front().channel,
                                     .response_quantity = measured.response_quantity,
+                                    .excitation_quantity = measured.excitation_quantity,
                                     .levels = measured.levels,
                                     .single_mode_fit = std::move(fit_file),
                                     .damping_trend = trend,
@@ -165,21 +175,31 @@ void RunMeasuredBackbone(const MeasuredBackboneCommandOptions& options, const Gl
     const std::string text = l.FlagNote(quantity);
     return text.empty() ? text : "  " + text;
   };
+  if (measured.excitation_quantity != "force")
+    fmt::print("  excitation: {} [{}]; X/F is the {}; {}\n", excitation.control, excitation.unit, excitation.frf,
+               excitation.caveat);
   for (const auto& l : measured.levels) {
     if (!l.quadrature_frequency_hz.valid)
       fmt::print("  {:>8} ({}-controlled): no phase resonance ({}), local fit ζ {}{}\n", l.label,
-                 solver::LevelControlName(l.control), l.quadrature_note,
+                 control(l), l.quadrature_note,
                  l.local_damping_ratio.valid ? fmt::format("{:.5f}", l.local_damping_ratio.value) : std::string("not available"),
                  note(l, "local_damping_ratio"));
     else
-      fmt::print("  {:>8} ({}-controlled): {:.4f} ± {:.4f} Hz{} at {:.3e} m, ζ = {:.5f} ± {:.2g}{} (local fit {}{})\n",
-                 l.label, solver::LevelControlName(l.control), l.quadrature_frequency_hz.value,
+      fmt::print("  {:>8} ({}-controlled): {:.4f} ± {:.4f} Hz{} at {:.3e} m, ζ = {} (phase resonance {:.5f} ± {:.2g}{}, "
+                 "local fit {}{}, half-power {}{})\n",
+                 l.label, control(l), l.quadrature_frequency_hz.value,
                  l.quadrature_frequency_hz.std, note(l, "quadrature_frequency"), l.quadrature_amplitude_m.value,
+                 l.damping_ratio.valid ? fmt::format("{:.5f} ± {:.2g}", l.damping_ratio.value, l.damping_ratio.std)
+                                       : std::string("not available"),
                  l.quadrature_damping_ratio.value, l.quadrature_damping_ratio.std,
                  note(l, "quadrature_damping_ratio"),
                  l.local_damping_ratio.valid ? fmt::format("{:.5f}", l.local_damping_ratio.value)
                                              : std::string("not available: too few steps near the mode"),
-                 note(l, "local_damping_ratio"));
+                 note(l, "local_damping_ratio"),
+                 l.half_power_damping_ratio.valid ? fmt::format("{:.5f}", l.half_power_damping_ratio.value)
+                                                  : std::string("not available"),
+                 note(l, "half_power_damping_ratio"));
+    if (!l.damping_ratio_note.empty()) fmt::print("           ζ: {}\n", l.damping_ratio_note);
     if (l.flags.empty()) continue;
     for (const auto& [quantity, what, estimate] :
          {std::tuple{"peak_frequency", "peak", l.peak_frequency_hz},
@@ -191,6 +211,11 @@ void RunMeasuredBackbone(const MeasuredBackboneCommandOptions& options, const Gl
     if (!l.FlagNote("half_power_damping_ratio").empty())
       fmt::print("           ζ (half-power) = {:.3f} %{}\n", 100 * l.half_power_damping_ratio.value,
                  note(l, "half_power_damping_ratio"));
+    for (const auto& f : l.flags)
+      if (f.kind == solver::LevelFlagKind::kJump) fmt::print("           jump: {}  [FLAG: jump]\n", f.message);
+    for (const auto& f : l.flags)
+      if (f.kind == solver::LevelFlagKind::kPhaseConvention)
+        fmt::print("           phase: {}  [FLAG: phase convention]\n", f.message);
     if (!l.FlagNote("regeneration_relative_rms").empty())
       fmt::print("           regeneration RMS = {:.3g} % ({}){}\n", 100 * l.regeneration_relative_rms,
                  l.regeneration_noise_relative_rms > 0
@@ -201,8 +226,10 @@ void RunMeasuredBackbone(const MeasuredBackboneCommandOptions& options, const Gl
                                                    : "flagged: left out of the cross-level fit and the damping trend");
   }
   if (fit.ok) fmt::print("  single-mode fit (AICc): {}, reduced χ² {:.3g}\n", fit.FormName(), fit.ReducedChiSquare());
-  fmt::print("  damping against amplitude: {} (slope {:.3g} ± {:.2g} per m, {:.1f} σ)\n", trend.verdict,
-             trend.slope_per_m, trend.slope_std_per_m, trend.z);
+  fmt::print("  damping against amplitude: {} (ζω_n: slope {:.3g} ± {:.2g} /(s·m), {:+.1f} σ; ζ alone {}: slope "
+             "{:.3g} ± {:.2g} per m, {:+.1f} σ, which a constant damper also gives where the frequency changes)\n",
+             trend.verdict, trend.damping_rate_slope_per_s_m, trend.damping_rate_slope_std_per_s_m, trend.damping_rate_z,
+             trend.damping_ratio_verdict, trend.slope_per_m, trend.slope_std_per_m, trend.z);
   fmt::print("wrote {0}.json, {0}.csv and {0}_curves.csv\n", options.output);
 }
 

@@ -18,6 +18,8 @@ struct MeasuredBackboneCommandOptions {
   std::string channel;              // response channel of a campaign ("" = its first sensor)
   std::string result_file;          // identified model to overlay ("" = none)
   double position_m = -1.0;         // the tables' sensor position, for the overlay
+  // MeasuredBackboneOptions::keep_flagged_levels_in_fit (--keep-flagged-levels).
+  bool keep_flagged_levels = false;
   std::string output = "backbone";
 };
 

@@ -43,6 +43,8 @@ constexpr int kFirstStartMaxIterations = 1000;
 // misfit by more than this (relative) to be worth another run.
 constexpr double kRepairGain = 1e-6;
 constexpr int kMaxBranchRepairs = 3;
+// A start that ran out of iterations may go on for this many more.
+constexpr int kContinuationIterations = 3000;
 
 // One Ipopt run from x0, which `problem` has just scaled at `scaled_at`.
 StartOutcome RunFrom(FitProblem& problem, const IpoptOptions& ipopt, const Eigen::VectorXd& x0,
@@ -194,6 +196,43 @@ IdentifyResult IdentifyFromDirectEstimate(const BoundedProblemFactory& make_prob
   return result;
 }
 
+// When no start converged: the start whose end point has the least misfit
+// goes on from there for kContinuationIterations more. A model that misses
+// the data (physics it lacks) slows Ipopt down near the optimum rather than
+// leaving it without one; the user is owed that fit and its verdict, not
+// "no start converged". Returns the index of the continued start, or throws
+// NumericalError with what was tried.
+int ContinueFromBestEndPoint(const ProblemFactory& make_problem, const IdentifyOptions& options,
+                             IdentifyResult& result, std::vector<Eigen::VectorXd>& finals) {
+  int nearest = -1;
+  for (int i = 0; i < static_cast<int>(result.starts.size()); ++i)
+    if (finals[i].size() > 0 && std::isfinite(result.starts[i].objective) && !result.starts[i].scaled_at.empty() &&
+        (nearest < 0 || result.starts[i].objective < result.starts[nearest].objective))
+      nearest = i;
+  std::string tried = "no start converged (first start: " + result.starts[0].status + ")";
+  if (nearest < 0) throw NumericalError(tried + "; no start reached a point to continue from");
+  const std::unique_ptr<FitProblem> problem = make_problem();
+  StartOutcome& outcome = result.starts[nearest];
+  problem->FeasiblePoint(outcome.scaled_at);
+  IpoptOptions ipopt = options.ipopt;
+  ipopt.max_iterations = kContinuationIterations;
+  Eigen::VectorXd x;
+  StartOutcome continued = RunFrom(*problem, ipopt, finals[nearest], outcome.scaled_at, &x);
+  if (!continued.success)
+    throw NumericalError(tried + "; continuing from the best end point (start " + std::to_string(nearest + 1) +
+                         ", chi-square " + std::to_string(2.0 * outcome.objective) + ") for " +
+                         std::to_string(kContinuationIterations) + " more iterations ended with: " + continued.status);
+  result.warnings.push_back(tried + "; the fit went on from the best end point (start " +
+                            std::to_string(nearest + 1) + ") and converged after " +
+                            std::to_string(continued.iterations) + " more iterations");
+  continued.start = outcome.start;
+  continued.route = outcome.route;
+  continued.iterations += outcome.iterations;
+  outcome = continued;
+  finals[nearest] = x;
+  return nearest;
+}
+
 }  // namespace
 
 void IdentifyOptions::Validate() const {
@@ -280,10 +319,7 @@ IdentifyResult IdentifyWith(const ProblemFactory& make_problem, const ModelStruc
   int best = -1;
   for (int i = 0; i < static_cast<int>(starts.size()); ++i)
     if (result.starts[i].success && (best < 0 || result.starts[i].objective < result.starts[best].objective)) best = i;
-  if (best < 0) {
-    std::string why = result.starts[0].status;
-    throw NumericalError("no start converged (first start: " + why + ")");
-  }
+  if (best < 0) best = ContinueFromBestEndPoint(make_problem, options, result, finals);
   if (options.branch_repair) {
     const std::unique_ptr<FitProblem> problem = make_problem();
     RepairBranches(*problem, options, &result.starts[best], &finals[best]);
@@ -342,9 +378,7 @@ IdentifyResult IdentifyWith(const ProblemFactory& make_problem, const ModelStruc
                               " worse in chi-square (decisive: " + std::to_string(options.decisive_chi_square_gap) +
                               "); the intervals describe the best one alone");
   }
-  if (result.reduced_chi_square > 4.0)
-    result.warnings.push_back("the fit is worse than the phasor uncertainties allow (reduced chi-square " +
-                              std::to_string(result.reduced_chi_square) + "): run 'beamid diagnose'");
+  result.verdict = JudgeFit(result.reduced_chi_square);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   if (progress) progress(1.0, "done");
   return result;

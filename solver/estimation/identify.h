@@ -18,6 +18,7 @@
 
 #include "solver/estimation/fit_data.h"
 #include "solver/estimation/fit_problem.h"
+#include "solver/estimation/fit_verdict.h"
 #include "solver/estimation/ipopt_options.h"
 #include "solver/estimation/model_family.h"
 #include "solver/estimation/model_options.h"
@@ -84,6 +85,7 @@ struct IdentifyResult {
   // whether the data decide between the best two.
   MinimaSummary minima;
   std::vector<std::string> warnings;
+  FitVerdict verdict;                 // within the noise, or "run beamid diagnose"
   Eigen::VectorXd x;                  // optimiser variables at the best fit
   double seconds = 0.0;
 };

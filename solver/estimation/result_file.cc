@@ -133,6 +133,7 @@ ResultFile MakeResultFile(const FitData& fit, const FitData& validation, FitProb
                         .branch_repairs = s.branch_repairs});
   f.best_start = result.best_start;
   f.starts_at_best = result.starts_at_best;
+  f.verdict = result.verdict;
   for (const auto& m : result.minima.minima)
     f.minima.push_back({.parameters = m.parameters, .chi_square = m.chi_square, .num_starts = m.num_starts});
   f.second_minimum_chi_square_gap = result.minima.second_chi_square_gap;

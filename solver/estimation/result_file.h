@@ -18,6 +18,7 @@
 
 #include "hb/beam_properties.h"
 #include "hb/linear_attachments.h"
+#include "solver/estimation/fit_verdict.h"
 #include "solver/estimation/model_family.h"
 #include "solver/estimation/multistart.h"
 
@@ -77,6 +78,7 @@ struct ResultFit {
   double chi_square = 0.0;
   int degrees_of_freedom = 0;
   double reduced_chi_square = 0.0;
+  FitVerdict verdict;  // files written before the verdict: judged from reduced_chi_square on reading
   double seconds = 0.0;
   std::vector<ResultStart> starts;  // [0]: from the direct estimate
   int best_start = 0;

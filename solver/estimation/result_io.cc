@@ -81,6 +81,8 @@ Json FitJson(const ResultFit& f) {
   return {{"chi_square", f.chi_square},
           {"degrees_of_freedom", f.degrees_of_freedom},
           {"reduced_chi_square", f.reduced_chi_square},
+          {"within_noise", f.verdict.within_noise},
+          {"verdict", f.verdict.text},
           {"seconds", f.seconds},
           {"starts", starts},
           {"best_start", f.best_start},
@@ -239,6 +241,8 @@ ResultFit ReadFit(const Field& f) {
   out.chi_square = f.Number("chi_square");
   out.degrees_of_freedom = f.Integer("degrees_of_freedom");
   out.reduced_chi_square = f.Number("reduced_chi_square");
+  out.verdict = JudgeFit(out.reduced_chi_square);
+  if (f.Has("verdict")) out.verdict = {.within_noise = f.Boolean("within_noise"), .text = f.String("verdict")};
   out.seconds = f.At("seconds").NumberNotNull();
   for (const Field& s : f.At("starts").Elements()) {
     const std::string seeded = s.String("states_seeded");

@@ -86,4 +86,13 @@ std::string GnuplotSvg(const std::string& script, const SvgSize& size) {
   return svg.substr(start);
 }
 
+std::string PlotText(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '_' || c == '^' || c == '@' || c == '&' || c == '{' || c == '}') out += "\\\\";
+    out += c;
+  }
+  return out;
+}
+
 }  // namespace beamid::solver

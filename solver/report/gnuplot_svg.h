@@ -25,4 +25,8 @@ std::string Datablock(const std::string& name, const std::vector<std::vector<dou
 // A string quoted for gnuplot ('...' with quotes doubled).
 std::string GnuplotQuote(const std::string& text);
 
+// Text shown literally by gnuplot's enhanced mode, which takes _ ^ @ & { }
+// for markup (a channel named acc_2 would print a subscript).
+std::string PlotText(const std::string& text);
+
 }  // namespace beamid::solver

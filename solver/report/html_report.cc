@@ -1,6 +1,7 @@
 #include "solver/report/html_report.h"
 
 #include "solver/report/html_escape.h"
+#include "solver/report/html_page.h"
 
 #include <algorithm>
 #include <cmath>
@@ -18,16 +19,6 @@ using Rows = std::vector<std::vector<double>>;
 constexpr const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"};
 
 const char* Colour(std::size_t i) { return kColours[i % std::size(kColours)]; }
-
-// gnuplot's enhanced text treats _ ^ @ & { } as markup.
-std::string PlotText(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    if (c == '_' || c == '^' || c == '@' || c == '&' || c == '{' || c == '}') out += "\\\\";
-    out += c;
-  }
-  return out;
-}
 
 std::string Figure(const std::string& id, const std::string& svg, const std::string& caption) {
   return fmt::format("<figure class=\"plot\" id=\"{}\">\n{}\n<figcaption>{}</figcaption>\n</figure>\n", HtmlEscape(id),
@@ -288,18 +279,6 @@ std::string DiagnosisSection(const DiagnosisResult& diagnosis) {
   return html + "</section>\n";
 }
 
-constexpr const char* kStyle = R"(
-body { font-family: Helvetica, Arial, sans-serif; margin: 2em auto; max-width: 1600px; color: #222; }
-h1 { font-size: 1.6em; } h2 { border-bottom: 1px solid #ccc; padding-bottom: 0.2em; margin-top: 1.6em; }
-table { border-collapse: collapse; margin: 0.8em 0; } td, th { border: 1px solid #ccc; padding: 0.3em 0.7em; text-align: right; }
-th { background: #f3f3f3; } td:first-child { text-align: left; }
-figure.plot { display: inline-block; margin: 0.5em; vertical-align: top; }
-figure.plot svg { display: block; }
-figcaption { font-size: 0.9em; color: #555; max-width: 760px; }
-dl { display: grid; grid-template-columns: max-content auto; gap: 0.2em 1em; } dt { font-weight: bold; }
-.warning { color: #a50f15; }
-)";
-
 }  // namespace
 
 std::string HtmlReport(const ReportInput& input, const ReportCurves& curves) {
@@ -309,8 +288,7 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves) {
   std::string fit_channels;
   for (const auto& channel : result.model.fit_channels)
     fit_channels += (fit_channels.empty() ? "" : ", ") + HtmlEscape(channel);
-  std::string html = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" + HtmlEscape(title) +
-                     "</title>\n<style>" + kStyle + "</style>\n</head>\n<body>\n<h1>" + HtmlEscape(title) + "</h1>\n";
+  std::string html = HtmlPageHead(title);
   html += fmt::format("<p>Result <code>{}</code>, campaign <code>{}</code>; support law {}; fitted channels {}, "
                       "harmonics 1..{}; reduced χ² = {} ({} residuals).</p>\n",
                       HtmlEscape(input.result_file.string()), HtmlEscape(input.campaign_folder.string()),

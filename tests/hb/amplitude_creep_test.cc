@@ -6,18 +6,17 @@
 #include <cmath>
 #include <complex>
 #include <filesystem>
-#include <fstream>
 #include <numbers>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
-#include "hb/campaign_writer.h"
 #include "hb/scenario.h"
 #include "hb/stepped_sine.h"
 #include "hb/time_harmonic_fit.h"
+#include "tests/support/csv_text.h"
+#include "tests/support/simulated_campaign.h"
 #include "tests/support/temp_path.h"
 
 namespace beamid::hb {
@@ -38,35 +37,11 @@ const std::string kScenario = R"({
   "noise": {"seed": 5, "amplitude_creep_relative": 0.02}
 })";
 
-std::vector<std::vector<double>> ReadColumns(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  std::string line;
-  std::getline(in, line);
-  const size_t columns = static_cast<size_t>(std::count(line.begin(), line.end(), ',')) + 1;
-  std::vector<std::vector<double>> out(columns);
-  while (std::getline(in, line)) {
-    std::stringstream row(line);
-    std::string cell;
-    for (size_t c = 0; c < columns && std::getline(row, cell, ','); ++c) out[c].push_back(std::stod(cell));
-  }
-  return out;
-}
-
 TEST(AmplitudeCreep, ResponseChannelsCreepLinearlyAboutTheTruthAndTheForceDoesNot) {
   const std::filesystem::path directory = beamid::testing::UniqueTempPath("beamid_creep");
   std::filesystem::remove_all(directory);
-  const Scenario scenario = ParseScenario(kScenario, "creep.json");
-  SteppedSineSimulation simulation(scenario);
-  SimulatedStep clean;
-  {
-    CampaignWriter writer(simulation, directory);
-    simulation.Run([&](const SimulatedStep& step) {
-      writer.Write(step);
-      clean = step;
-    });
-    writer.Finish();
-  }
-  const auto columns = ReadColumns(directory / clean.file);
+  const SimulatedStep clean = beamid::testing::SimulateInto(ParseScenario(kScenario, "creep.json"), directory).back();
+  const auto columns = beamid::testing::ReadCsvColumns(directory / clean.file);
   std::filesystem::remove_all(directory);
   const Eigen::Index rows = clean.recording.rows();
   ASSERT_EQ(static_cast<Eigen::Index>(columns.at(0).size()), rows);

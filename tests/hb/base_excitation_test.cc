@@ -7,7 +7,6 @@
 #include <cmath>
 #include <complex>
 #include <filesystem>
-#include <fstream>
 #include <numbers>
 #include <string>
 
@@ -15,9 +14,10 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "hb/campaign_writer.h"
 #include "hb/scenario.h"
 #include "hb/stepped_sine.h"
+#include "tests/support/json_file.h"
+#include "tests/support/simulated_campaign.h"
 #include "tests/support/temp_path.h"
 
 namespace beamid::hb {
@@ -46,29 +46,20 @@ std::complex<double> Harmonic(const nlohmann::json& phasors, int k) {
   return {h.at(0).get<double>(), h.at(1).get<double>()};
 }
 
-nlohmann::json ReadJson(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  return nlohmann::json::parse(in);
-}
-
 TEST(BaseExcitation, AccelerometersMatchTheExactHarmonicResponseOfTheMovingBase) {
   const std::filesystem::path directory = beamid::testing::UniqueTempPath("beamid_base");
   std::filesystem::remove_all(directory);
   const Scenario scenario = ParseScenario(kScenario, "base.json");
-  SteppedSineSimulation simulation(scenario);
-  {
-    CampaignWriter writer(simulation, directory);
-    simulation.Run([&](const SimulatedStep& step) { writer.Write(step); });
-    writer.Finish();
-  }
-  const nlohmann::json campaign = ReadJson(directory / "campaign.json");
-  const nlohmann::json truth = ReadJson(directory / "truth.json");
+  beamid::testing::SimulateInto(scenario, directory);
+  const nlohmann::json campaign = beamid::testing::ReadJsonFile(directory / "campaign.json");
+  const nlohmann::json truth = beamid::testing::ReadJsonFile(directory / "truth.json");
   std::filesystem::remove_all(directory);
   EXPECT_EQ(campaign.at("excitation"), nlohmann::json::parse(R"({"channel": "base", "position_m": 0.0,
       "quantity": "base_acceleration", "unit": "m/s^2"})"));
 
   // The exact steady state of the same FE model: (K + k1·e_θe_θᵀ − ω²M +
   // iω·c·e_θe_θᵀ)·X = −M·r·A, the accelerometers reading −ω²X + A.
+  const SteppedSineSimulation simulation(scenario);  // not run: the FE model it simulated
   const FeBeam& fe = simulation.simulator().fe_beam();
   const int theta = fe.SupportRotationDof();
   Eigen::VectorXd translation = Eigen::VectorXd::Zero(fe.NumDofs());

@@ -4,17 +4,16 @@
 // and the truth is still the forced steady state (fitted before the stop).
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "hb/campaign_writer.h"
 #include "hb/scenario.h"
-#include "hb/stepped_sine.h"
+#include "tests/support/csv_text.h"
+#include "tests/support/json_file.h"
+#include "tests/support/simulated_campaign.h"
 #include "tests/support/temp_path.h"
 
 namespace beamid::hb {
@@ -38,35 +37,16 @@ std::string ScenarioText(double stop_fraction) {
 })";
 }
 
-// The columns of a written CSV (time_s first), by header name.
-std::vector<std::vector<double>> ReadColumns(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  std::string line;
-  std::getline(in, line);
-  const size_t columns = static_cast<size_t>(std::count(line.begin(), line.end(), ',')) + 1;
-  std::vector<std::vector<double>> out(columns);
-  while (std::getline(in, line)) {
-    std::stringstream row(line);
-    std::string cell;
-    for (size_t c = 0; c < columns && std::getline(row, cell, ','); ++c) out[c].push_back(std::stod(cell));
-  }
-  return out;
-}
-
 double Rms(const std::vector<double>& x, size_t begin, size_t end) {
   double sum = 0.0;
   for (size_t i = begin; i < end; ++i) sum += x[i] * x[i];
   return std::sqrt(sum / static_cast<double>(end - begin));
 }
 
+// Simulates the scenario into `directory` and returns its truth.json.
 nlohmann::json Simulate(const std::string& text, const std::filesystem::path& directory) {
-  const Scenario scenario = ParseScenario(text, "stop.json");
-  SteppedSineSimulation simulation(scenario);
-  CampaignWriter writer(simulation, directory);
-  simulation.Run([&](const SimulatedStep& step) { writer.Write(step); });
-  writer.Finish();
-  std::ifstream truth(directory / "truth.json");
-  return nlohmann::json::parse(truth);
+  beamid::testing::SimulateInto(ParseScenario(text, "stop.json"), directory);
+  return beamid::testing::ReadJsonFile(directory / "truth.json");
 }
 
 class ExcitationStopTest : public ::testing::Test {
@@ -89,7 +69,7 @@ TEST_F(ExcitationStopTest, ForceIsNoiseAfterTheStopAndTheBeamRingsDown) {
   ASSERT_EQ(truth.at("steps").size(), 2u);
   for (const nlohmann::json& step : truth.at("steps")) {
     SCOPED_TRACE(step.at("file").get<std::string>());
-    const auto columns = ReadColumns(stopped_ / step.at("file").get<std::string>());
+    const auto columns = beamid::testing::ReadCsvColumns(stopped_ / step.at("file").get<std::string>());
     const std::vector<double>& force = columns.at(1);
     const std::vector<double>& acc3 = columns.at(2);
     const size_t rows = force.size();

@@ -4,8 +4,6 @@
 // alone, and in a campaign it is in the channel's written unit.
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -13,11 +11,13 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "hb/campaign_writer.h"
 #include "hb/internal/real_fft.h"
 #include "hb/noise.h"
 #include "hb/scenario.h"
 #include "hb/stepped_sine.h"
+#include "tests/support/csv_text.h"
+#include "tests/support/json_file.h"
+#include "tests/support/simulated_campaign.h"
 #include "tests/support/temp_path.h"
 
 namespace beamid::hb {
@@ -91,38 +91,23 @@ TEST(PinkNoise, IsAddedInTheChannelsWrittenUnit) {
 })";
   const std::filesystem::path directory = beamid::testing::UniqueTempPath("beamid_pink");
   std::filesystem::remove_all(directory);
-  const Scenario scenario = ParseScenario(text, "pink.json");
-  SteppedSineSimulation simulation(scenario);
-  SimulatedStep clean;
-  {
-    CampaignWriter writer(simulation, directory);
-    simulation.Run([&](const SimulatedStep& step) {
-      writer.Write(step);
-      clean = step;
-    });
-    writer.Finish();
-  }
-  std::ifstream in(directory / clean.file);
-  std::string line;
-  std::getline(in, line);
-  ASSERT_EQ(line, "time_s,force,acc3");
+  const SimulatedStep clean = beamid::testing::SimulateInto(ParseScenario(text, "pink.json"), directory).back();
+  ASSERT_EQ(beamid::testing::ReadCsvHeader(directory / clean.file), "time_s,force,acc3");
+  const auto columns = beamid::testing::ReadCsvColumns(directory / clean.file);
+  const std::vector<double>& force = columns.at(1);
+  const std::vector<double>& acc3 = columns.at(2);
   double force_error = 0.0, drift_squares = 0.0;
   Eigen::Index n = 0;
-  for (; std::getline(in, line); ++n) {
-    std::stringstream row(line);
-    std::string time, force, acc3;
-    std::getline(row, time, ',');
-    std::getline(row, force, ',');
-    std::getline(row, acc3, ',');
-    force_error = std::max(force_error, std::abs(std::stod(force) - clean.recording(n, 0)));
-    const double drift_g = std::stod(acc3) - clean.recording(n, 1) / 9.80665;
+  for (; n < static_cast<Eigen::Index>(force.size()); ++n) {
+    const size_t i = static_cast<size_t>(n);
+    force_error = std::max(force_error, std::abs(force[i] - clean.recording(n, 0)));
+    const double drift_g = acc3[i] - clean.recording(n, 1) / 9.80665;
     drift_squares += drift_g * drift_g;
   }
   ASSERT_EQ(n, clean.recording.rows());
   EXPECT_LT(force_error, 1e-8);
   EXPECT_NEAR(std::sqrt(drift_squares / static_cast<double>(n)), 0.01, 1e-6);
-  std::ifstream truth_file(directory / "truth.json");
-  const nlohmann::json truth = nlohmann::json::parse(truth_file);
+  const nlohmann::json truth = beamid::testing::ReadJsonFile(directory / "truth.json");
   EXPECT_EQ(truth.at("noise").at("channels").at("acc3").at("pink_rms").get<double>(), 0.01);
   EXPECT_FALSE(truth.at("noise").at("default").contains("pink_rms"));
   std::filesystem::remove_all(directory);

@@ -6,16 +6,17 @@
 #include <cmath>
 #include <complex>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "hb/campaign_writer.h"
 #include "hb/scenario.h"
 #include "hb/stepped_sine.h"
+#include "tests/support/csv_text.h"
+#include "tests/support/json_file.h"
+#include "tests/support/simulated_campaign.h"
 #include "tests/support/temp_path.h"
 
 namespace beamid::hb {
@@ -44,17 +45,8 @@ std::complex<double> Harmonic(const nlohmann::json& phasors, int k) {
   return {h.at(0).get<double>(), h.at(1).get<double>()};
 }
 
-nlohmann::json ReadJson(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  return nlohmann::json::parse(in);
-}
-
-void Simulate(const Scenario& scenario, const std::filesystem::path& directory) {
-  SteppedSineSimulation simulation(scenario);
-  CampaignWriter writer(simulation, directory);
-  simulation.Run([&](const SimulatedStep& step) { writer.Write(step); });
-  writer.Finish();
-}
+using beamid::testing::ReadJsonFile;
+using beamid::testing::SimulateInto;
 
 class VoltageDriveTest : public ::testing::Test {
  protected:
@@ -81,13 +73,13 @@ TEST_F(VoltageDriveTest, RecordsTheVoltageAndDrivesTheSaggedForce) {
   const double off_hz = f1_hz * (1.0 + 5 * kAmplifierSagBandRelative);
   scenario.levels[0].frequencies_hz = {f1_hz};
   scenario.levels[1].frequencies_hz = {off_hz};
-  Simulate(scenario, voltage_);
+  SimulateInto(scenario, voltage_);
 
-  const nlohmann::json campaign = ReadJson(voltage_ / "campaign.json");
+  const nlohmann::json campaign = ReadJsonFile(voltage_ / "campaign.json");
   EXPECT_EQ(campaign.at("excitation"), nlohmann::json::parse(R"({"channel": "drive", "position_m": 0.57,
       "quantity": "voltage", "unit": "V", "sensitivity_N_per_V": 10.0})"));
 
-  const nlohmann::json truth = ReadJson(voltage_ / "truth.json");
+  const nlohmann::json truth = ReadJsonFile(voltage_ / "truth.json");
   EXPECT_DOUBLE_EQ(truth.at("excitation").at("amplifier").at("sag_center_Hz").get<double>(), f1_hz);
   const double expected_gain[2] = {kGain_N_per_V * (1.0 - kSag), kGain_N_per_V * (1.0 - kSag / 26.0)};
   ASSERT_EQ(truth.at("steps").size(), 2u);
@@ -112,18 +104,10 @@ TEST_F(VoltageDriveTest, RecordsTheVoltageAndDrivesTheSaggedForce) {
 
   // The CSV's excitation column holds volts.
   {
-    std::ifstream csv(voltage_ / truth.at("steps").at(0).at("file").get<std::string>());
-    std::string line;
-    std::getline(csv, line);
-    EXPECT_EQ(line, "time_s,drive,acc3");
+    const std::filesystem::path csv = voltage_ / truth.at("steps").at(0).at("file").get<std::string>();
+    EXPECT_EQ(beamid::testing::ReadCsvHeader(csv), "time_s,drive,acc3");
     double peak = 0.0;
-    while (std::getline(csv, line)) {
-      std::stringstream row(line);
-      std::string time, value;
-      std::getline(row, time, ',');
-      std::getline(row, value, ',');
-      peak = std::max(peak, std::abs(std::stod(value)));
-    }
+    for (double value : beamid::testing::ReadCsvColumns(csv).at(1)) peak = std::max(peak, std::abs(value));
     EXPECT_GT(peak, 0.9 * kVoltage_V);
     EXPECT_LT(peak, 1.1 * kVoltage_V);
   }
@@ -141,8 +125,8 @@ TEST_F(VoltageDriveTest, RecordsTheVoltageAndDrivesTheSaggedForce) {
     const std::complex<double> ratio = Harmonic(force_n, 2) / Harmonic(force_n, 1);
     as_force.force_distortion = {{.harmonic = 2, .amplitude_ratio = std::abs(ratio), .phase_rad = std::arg(ratio)}};
     std::filesystem::remove_all(force_);
-    Simulate(as_force, force_);
-    const nlohmann::json reference = ReadJson(force_ / "truth.json").at("steps").at(0);
+    SimulateInto(as_force, force_);
+    const nlohmann::json reference = ReadJsonFile(force_ / "truth.json").at("steps").at(0);
     const nlohmann::json& step = truth.at("steps").at(i);
     for (int k = 1; k <= 3; ++k) {
       const std::complex<double> a = Harmonic(step.at("channels").at("acc3"), k);

@@ -272,4 +272,26 @@ TEST_F(BadInput, SkipBadStepsFitsTheOtherStepsAndNamesTheSkippedOne) {
   EXPECT_EQ(with_flag.exit_code, 0) << with_flag.output;
 }
 
+// Not bad input: a campaign the model cannot fit (acc2 stated 30 mm from where
+// it was glued) is fitted all the same, its result written with the verdict,
+// and the exit code 5 says "fitted, but the model misses the data".
+TEST_F(BadInput, AModelThatMissesTheDataIsWrittenWithItsVerdictAndExitFive) {
+  const fs::path d = root_ / "misfit", m = d / "campaign";
+  fs::create_directories(d);
+  fs::copy(root_ / "clean", m, fs::copy_options::recursive);
+  Replace(m / "campaign.json", "\"position_m\": 0.3,", "\"position_m\": 0.33,");
+  const ProgramRun run = Beamid("identify " + m.string() + " --fit acc1,acc2 -o " + (d / "r.json").string());
+  EXPECT_EQ(run.exit_code, 5) << run.output;
+  EXPECT_THAT(run.output, HasSubstr("verdict: misfits beyond the noise"));
+  EXPECT_THAT(run.output, HasSubstr("run 'beamid diagnose'"));
+  const std::string result = ReadFile(d / "r.json");
+  EXPECT_THAT(result, HasSubstr("\"within_noise\": false"));
+  // The clean campaign fits within the noise, exit 0.
+  const ProgramRun clean = Beamid("identify " + (root_ / "clean").string() + " --fit acc1,acc2 -o " +
+                                  (d / "clean.json").string());
+  EXPECT_EQ(clean.exit_code, 0) << clean.output;
+  EXPECT_THAT(clean.output, HasSubstr("verdict: fits within the noise"));
+  EXPECT_THAT(ReadFile(d / "clean.json"), HasSubstr("\"within_noise\": true"));
+}
+
 }  // namespace

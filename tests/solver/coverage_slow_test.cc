@@ -18,13 +18,13 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "hb/campaign_writer.h"
 #include "hb/noise.h"
 #include "hb/scenario.h"
 #include "hb/stepped_sine.h"
 #include "signal/campaign.h"
 #include "signal/phasor_estimator.h"
 #include "solver/estimation/identify.h"
+#include "tests/support/simulated_campaign.h"
 #include "tests/support/temp_path.h"
 
 namespace beamid::solver {
@@ -76,19 +76,10 @@ signal::PhasorSet Measure(const hb::Scenario& scenario, const std::vector<hb::Si
 TEST(IdentificationCoverage, TruthLiesInThe95PercentIntervalsIn85To100PercentOfNoiseRealisations) {
   const hb::Scenario scenario = LeanPaperBase();
   ASSERT_EQ(scenario.NumSteps(), 45);
-  hb::SteppedSineSimulation simulation(scenario);
   const std::filesystem::path folder = beamid::testing::UniqueTempPath("beamid_coverage_slow_test");
   std::filesystem::remove_all(folder);
-  std::vector<hb::SimulatedStep> steps;
-  {
-    // campaign.json (and truth.json) once; the recordings are re-noised below.
-    hb::CampaignWriter writer(simulation, folder);
-    simulation.Run([&](const hb::SimulatedStep& step) {
-      writer.Write(step);
-      steps.push_back(step);
-    });
-    writer.Finish();
-  }
+  // campaign.json (and truth.json) once; the recordings are re-noised below.
+  const std::vector<hb::SimulatedStep> steps = beamid::testing::SimulateInto(scenario, folder);
   const signal::Campaign campaign = signal::ReadCampaign(folder);
   std::filesystem::remove_all(folder);
 

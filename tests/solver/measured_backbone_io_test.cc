@@ -57,6 +57,14 @@ LevelResonance Level(int k) {
   l.peak_amplitude_m = k == 2 ? Estimate{} : Est(2.4e-4 * s, 3.3e-7 * s);
   l.half_power_damping_ratio = k == 1 ? Estimate{} : Est(7.7e-3 * s, 8.8e-5 * s);
   l.half_power_note = k == 1 ? "too few steps above half power" : "";
+  l.half_power_lower_frequency_hz = k == 1 ? Estimate{} : Est(30.9 * s, 1.5e-3 * s);
+  l.half_power_upper_frequency_hz = k == 1 ? Estimate{} : Est(31.7 * s, 1.6e-3 * s);
+  l.half_power_natural_frequency_hz = k == 1 ? Estimate{} : Est(31.31 * s, 1.7e-3 * s);
+  if (k == 2)
+    l.jumps = {{.from_step = 7, .to_step = 8, .from_frequency_hz = 31.5, .to_frequency_hz = 31.6, .up_sweep = false,
+                .receptance_ratio = 2.25, .phase_change_rad = 1.25, .miss_over_predicted = 17.5}};
+  l.damping_ratio = k == 2 ? Estimate{} : Est(6.8e-3 * s, 9.1e-4 * s);
+  l.damping_ratio_note = k == 1 ? "the estimators part" : "";
   l.local_natural_frequency_hz = Est(31.1 * s, 9.9e-4 * s);
   l.local_damping_ratio = Est(6.6e-3 * s, 6.1e-5 * s);
   l.local_reduced_chi_square = 1.0123 * s;
@@ -67,7 +75,7 @@ LevelResonance Level(int k) {
   l.regeneration_noise_relative_rms = 0.0021 * s;
   if (k != 0)
     l.flags = {{.kind = LevelFlagKind::kDampingNotPositive, .quantity = "half_power_damping_ratio", .message = "ζ -0.14 %"},
-               {.kind = k == 1 ? LevelFlagKind::kPeakOutsideBand : LevelFlagKind::kRegenerationBeyondNoise,
+               {.kind = k == 1 ? LevelFlagKind::kPeakOutsideBand : LevelFlagKind::kJump,
                 .quantity = "peak_frequency",
                 .message = "flag " + std::to_string(k)}};
   l.in_global_fit = k == 0;
@@ -114,7 +122,15 @@ MeasuredBackboneFile Filled() {
                          .frequency_std_hz = 1e-3 * (k + 2),
                          .damping_ratio = 6e-3 + 1e-4 * k,
                          .damping_ratio_std = 5e-5 * (k + 3)});
-  f.damping_trend = {.amplitude_m = 3.3e-4, .slope_per_m = 4.4, .slope_std_per_m = 0.55, .z = 8.0, .verdict = "rises"};
+  f.damping_trend = {.amplitude_m = 3.3e-4,
+                     .slope_per_m = 4.4,
+                     .slope_std_per_m = 0.55,
+                     .z = 8.0,
+                     .damping_rate_slope_per_s_m = 1.5e3,
+                     .damping_rate_slope_std_per_s_m = 7.5e2,
+                     .damping_rate_z = 2.0,
+                     .verdict = "consistent with a constant damper",
+                     .damping_ratio_verdict = "rises"};
   f.model_backbone = {{.amplitude_m = 1e-5, .frequency_hz = 31.5}, {.amplitude_m = 2e-5, .frequency_hz = kNaN}};
   f.warnings = {"first warning", "second warning"};
   return f;
@@ -153,6 +169,22 @@ void ExpectSame(const MeasuredBackboneFile& a, const MeasuredBackboneFile& b) {
     ExpectSameEstimate(x.peak_amplitude_m, y.peak_amplitude_m, "peak_amplitude_m");
     ExpectSameEstimate(x.half_power_damping_ratio, y.half_power_damping_ratio, "half_power_damping_ratio");
     EXPECT_EQ(x.half_power_note, y.half_power_note);
+    ExpectSameEstimate(x.half_power_lower_frequency_hz, y.half_power_lower_frequency_hz, "half_power_lower");
+    ExpectSameEstimate(x.half_power_upper_frequency_hz, y.half_power_upper_frequency_hz, "half_power_upper");
+    ExpectSameEstimate(x.half_power_natural_frequency_hz, y.half_power_natural_frequency_hz, "half_power_natural");
+    ASSERT_EQ(x.jumps.size(), y.jumps.size());
+    for (std::size_t k = 0; k < x.jumps.size(); ++k) {
+      EXPECT_EQ(x.jumps[k].from_step, y.jumps[k].from_step);
+      EXPECT_EQ(x.jumps[k].to_step, y.jumps[k].to_step);
+      EXPECT_TRUE(Same(x.jumps[k].from_frequency_hz, y.jumps[k].from_frequency_hz));
+      EXPECT_TRUE(Same(x.jumps[k].to_frequency_hz, y.jumps[k].to_frequency_hz));
+      EXPECT_EQ(x.jumps[k].up_sweep, y.jumps[k].up_sweep);
+      EXPECT_TRUE(Same(x.jumps[k].receptance_ratio, y.jumps[k].receptance_ratio));
+      EXPECT_TRUE(Same(x.jumps[k].phase_change_rad, y.jumps[k].phase_change_rad));
+      EXPECT_TRUE(Same(x.jumps[k].miss_over_predicted, y.jumps[k].miss_over_predicted));
+    }
+    ExpectSameEstimate(x.damping_ratio, y.damping_ratio, "damping_ratio");
+    EXPECT_EQ(x.damping_ratio_note, y.damping_ratio_note);
     ExpectSameEstimate(x.local_natural_frequency_hz, y.local_natural_frequency_hz, "local_natural_frequency_hz");
     ExpectSameEstimate(x.local_damping_ratio, y.local_damping_ratio, "local_damping_ratio");
     EXPECT_TRUE(Same(x.local_reduced_chi_square, y.local_reduced_chi_square));
@@ -207,6 +239,10 @@ void ExpectSame(const MeasuredBackboneFile& a, const MeasuredBackboneFile& b) {
   EXPECT_TRUE(Same(a.damping_trend.slope_std_per_m, b.damping_trend.slope_std_per_m));
   EXPECT_TRUE(Same(a.damping_trend.z, b.damping_trend.z));
   EXPECT_EQ(a.damping_trend.verdict, b.damping_trend.verdict);
+  EXPECT_TRUE(Same(a.damping_trend.damping_rate_slope_per_s_m, b.damping_trend.damping_rate_slope_per_s_m));
+  EXPECT_TRUE(Same(a.damping_trend.damping_rate_slope_std_per_s_m, b.damping_trend.damping_rate_slope_std_per_s_m));
+  EXPECT_TRUE(Same(a.damping_trend.damping_rate_z, b.damping_trend.damping_rate_z));
+  EXPECT_EQ(a.damping_trend.damping_ratio_verdict, b.damping_trend.damping_ratio_verdict);
   ASSERT_EQ(a.model_backbone.size(), b.model_backbone.size());
   for (std::size_t i = 0; i < a.model_backbone.size(); ++i) {
     EXPECT_TRUE(Same(a.model_backbone[i].amplitude_m, b.model_backbone[i].amplitude_m));

@@ -122,9 +122,16 @@ void Print(const char* name, const MeasuredBackbone& m) {
         l.quadrature_damping_ratio.value, l.quadrature_damping_ratio.std, l.local_damping_ratio.value,
         l.local_damping_ratio.std, l.local_reduced_chi_square, l.half_power_damping_ratio.value, l.half_power_damping_ratio.std,
         100 * l.regeneration_relative_rms);
-  std::printf("%s global fit: %s, reduced chi-square %.3g; damping slope %.4g ± %.3g /m (z = %.2f, %s)\n", name,
-              m.fit.FormName().c_str(), m.fit.ReducedChiSquare(), m.damping_trend.slope_per_m,
-              m.damping_trend.slope_std_per_m, m.damping_trend.z, m.damping_trend.verdict.c_str());
+  for (const auto& l : m.levels)
+    for (const auto& f : l.flags)
+      std::printf("%s %-4s flag %s: %s%s\n", name, l.label.c_str(), std::string(LevelFlagName(f.kind)).c_str(),
+                  f.message.c_str(), l.in_global_fit ? "" : " (left out of the fit)");
+  std::printf("%s global fit: %s, reduced chi-square %.3g; damping slope %.4g ± %.3g /m (z = %.2f, %s); damping "
+              "rate slope %.4g ± %.3g /(s m) (z = %.2f): %s\n",
+              name, m.fit.FormName().c_str(), m.fit.ReducedChiSquare(), m.damping_trend.slope_per_m,
+              m.damping_trend.slope_std_per_m, m.damping_trend.z, m.damping_trend.damping_ratio_verdict.c_str(),
+              m.damping_trend.damping_rate_slope_per_s_m, m.damping_trend.damping_rate_slope_std_per_s_m,
+              m.damping_trend.damping_rate_z, m.damping_trend.verdict.c_str());
   // The best candidate of the other family, to see how close the choice was.
   const BackboneModelCandidate* other = nullptr;
   const bool chosen_power = m.fit.frequency_exponent > 0 || m.fit.damping_exponent > 0;
@@ -163,9 +170,9 @@ TEST_F(MeasuredBackboneOnSimulatedCampaigns, FrictionBackboneAgreesWithTheTrueMo
 
 TEST_F(MeasuredBackboneOnSimulatedCampaigns, FrictionDampingRisesWithAmplitudeBaseDampingDoesNot) {
   EXPECT_GT(friction_->measured.damping_trend.z, kTrendSigmas);
-  EXPECT_EQ(friction_->measured.damping_trend.verdict, "rises");
+  EXPECT_EQ(friction_->measured.damping_trend.verdict, "rises beyond a constant damper");
   EXPECT_LT(base_->measured.damping_trend.z, kTrendSigmas);
-  EXPECT_NE(base_->measured.damping_trend.verdict, "rises");
+  EXPECT_NE(base_->measured.damping_trend.verdict, "rises beyond a constant damper");
 }
 
 // A level written as an acquisition system's table: response converted to

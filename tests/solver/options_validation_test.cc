@@ -103,7 +103,7 @@ TEST(OptionsValidation, MeasuredBackboneRefusesEachFieldOutOfRange) {
   refused({.fit_window = 0.0}, "fit_window");
   refused({.fit_window = 1.5}, "fit_window");
   refused({.constant_tolerance = 0.0}, "constant_tolerance");
-  refused({.jump_amplitude_ratio = 1.0}, "jump_amplitude_ratio");
+  refused({.jumps = {.slope_factor = 0.0}}, "slope_factor");
   refused({.max_frequency_degree = -1}, "max_frequency_degree");
   refused({.max_damping_degree = -1}, "max_damping_degree");
   refused({.trend_significance = std::nan("")}, "trend_significance");

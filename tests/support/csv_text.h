@@ -4,6 +4,9 @@
 // it (9 significant digits).
 #pragma once
 
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -28,5 +31,29 @@ inline std::vector<std::string> Cells(const std::string& line) {
 }
 
 inline std::string G9(double v) { return fmt::format("{:.9g}", v); }
+
+// The numbers of a written CSV file by column (time_s first), its header
+// line skipped: as many columns as the header has cells.
+inline std::vector<std::vector<double>> ReadCsvColumns(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::string line;
+  std::getline(in, line);
+  const size_t columns = static_cast<size_t>(std::count(line.begin(), line.end(), ',')) + 1;
+  std::vector<std::vector<double>> out(columns);
+  while (std::getline(in, line)) {
+    std::istringstream row(line);
+    std::string cell;
+    for (size_t c = 0; c < columns && std::getline(row, cell, ','); ++c) out[c].push_back(std::stod(cell));
+  }
+  return out;
+}
+
+// The header line of a written CSV file.
+inline std::string ReadCsvHeader(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::string line;
+  std::getline(in, line);
+  return line;
+}
 
 }  // namespace beamid::testing

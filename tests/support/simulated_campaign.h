@@ -1,17 +1,14 @@
-// A campaign simulated once per test binary by the independent time-domain
-// simulator (hb/stepped_sine), written in the campaign format, read back and
-// extracted (harmonics 1..5), with its truth file: what the identification
-// tests fit (never data from the model being fitted).
+// Test support: campaigns from the independent time-domain simulator
+// (hb/stepped_sine), written in the campaign format to a temporary folder,
+// read back and extracted (harmonics 1..5), with their truth: what the
+// identification tests fit (never data from the model being fitted); and
+// re-noised copies of one noise-free simulation (the simulation is the slow
+// part, the noise is drawn when the campaign is written).
 #pragma once
 
 #include <filesystem>
 #include <fstream>
 #include <string>
-// Test support: a campaign from the independent time-domain simulator
-// (hb/stepped_sine), written to a temporary folder and extracted, ready to
-// fit; and re-noised copies of one noise-free simulation (the simulation is
-// the slow part, the noise is drawn when the campaign is written).
-#pragma once
 
 #include <filesystem>
 #include <string>
@@ -78,6 +75,21 @@ inline std::vector<hb::SimulatedStep> SimulateSteps(const hb::Scenario& scenario
   hb::SteppedSineSimulation simulation(scenario);
   std::vector<hb::SimulatedStep> steps;
   simulation.Run([&](const hb::SimulatedStep& step) { steps.push_back(step); });
+  return steps;
+}
+
+// Simulates the scenario and writes its campaign (CSV files, campaign.json,
+// truth.json, noise drawn from the scenario's seed) into `folder`; returns the
+// noise-free steps, in the order simulated.
+inline std::vector<hb::SimulatedStep> SimulateInto(const hb::Scenario& scenario, const std::filesystem::path& folder) {
+  hb::SteppedSineSimulation simulation(scenario);
+  std::vector<hb::SimulatedStep> steps;
+  hb::CampaignWriter writer(simulation, folder);
+  simulation.Run([&](const hb::SimulatedStep& step) {
+    writer.Write(step);
+    steps.push_back(step);
+  });
+  writer.Finish();
   return steps;
 }
 

@@ -1,0 +1,13 @@
+// The opening of every HTML page beamid writes (the identification report
+// and the measured-backbone report): doctype, title, one style sheet, the
+// heading. One style, so the two reports look alike and a change reaches both.
+#pragma once
+
+#include <string>
+
+namespace beamid::solver {
+
+// Up to and including <body><h1>title</h1>; the title is escaped.
+std::string HtmlPageHead(const std::string& title);
+
+}  // namespace beamid::solver

@@ -1,0 +1,162 @@
+#include "solver/report/measured_backbone_report.h"
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <fmt/core.h>
+
+#include "solver/report/gnuplot_svg.h"
+#include "solver/report/html_escape.h"
+#include "solver/report/html_page.h"
+
+namespace beamid::solver {
+namespace {
+
+using Rows = std::vector<std::vector<double>>;
+
+std::string Cell(const Estimate& e, double scale, const char* format) {
+  if (!e.valid || !std::isfinite(e.value)) return "—";
+  return fmt::format(fmt::runtime(format), scale * e.value, scale * e.std);
+}
+
+// A level's flags on one quantity, in red next to its number.
+std::string FlagCell(const LevelResonance& l, const std::string& quantity) {
+  const std::string note = l.FlagNote(quantity);
+  return note.empty() ? "" : " <span class=\"flag\">" + HtmlEscape(note) + "</span>";
+}
+
+std::string Figure(const std::string& svg, const std::string& caption) {
+  return "<figure class=\"plot\">\n" + svg + "\n<figcaption>" + caption + "</figcaption>\n</figure>\n";
+}
+
+// One quantity against amplitude [mm]: the fit's curve ±1σ and each level's
+// point, the levels in the cross-level fit apart from those left out.
+std::string PlotAgainstAmplitude(const MeasuredBackboneFile& file, bool frequency) {
+  Rows band, in_fit, left_out;
+  for (const auto& p : file.single_mode_fit.curve) {
+    const double value = frequency ? p.frequency_hz : p.damping_ratio;
+    const double std = frequency ? p.frequency_std_hz : p.damping_ratio_std;
+    band.push_back({1e3 * p.amplitude_m, value - std, value + std, value});
+  }
+  for (const auto& l : file.levels) {
+    const Estimate& y = frequency ? l.quadrature_frequency_hz : l.damping_ratio;
+    if (!y.valid || !l.quadrature_amplitude_m.valid) continue;
+    (l.in_global_fit ? in_fit : left_out).push_back({1e3 * l.quadrature_amplitude_m.value, y.value, y.std});
+  }
+  std::string script = fmt::format(
+      "set xlabel 'displacement amplitude at the sensor [mm]'\nset ylabel {}\nset grid\nset key top left box opaque\n",
+      GnuplotQuote(frequency ? "phase-resonance frequency [Hz]" : "damping ratio ζ"));
+  script += Datablock("band", band) + Datablock("fit", in_fit) + Datablock("out", left_out);
+  std::vector<std::string> plots;
+  if (!band.empty())
+    plots.push_back("$band using 1:2:3 with filledcurves lc rgb '#c8d8f0' title 'single-mode fit ±1σ', "
+                    "$band using 1:4 with lines lw 2 lc rgb '#2050a0' title 'single-mode fit'");
+  if (!in_fit.empty())
+    plots.push_back("$fit using 1:2:3 with yerrorbars pt 7 ps 1.2 lc rgb '#c03020' title 'levels in the fit'");
+  if (!left_out.empty())
+    plots.push_back("$out using 1:2:3 with yerrorbars pt 6 ps 1.4 lc rgb '#a50f15' title " +
+                    GnuplotQuote(PlotText("flagged levels, left out of the fit")));
+  if (plots.empty()) return "";
+  std::string plot = "plot ";
+  for (std::size_t i = 0; i < plots.size(); ++i) plot += (i ? ", " : "") + plots[i];
+  return script + plot + "\n";
+}
+
+std::string LevelTable(const MeasuredBackboneFile& file) {
+  std::string html =
+      "<table>\n<tr><th>level</th><th>control</th><th>phase resonance [Hz]</th><th>amplitude [mm]</th>"
+      "<th>ζ [%] (σ covers the estimators)</th><th>ζ phase resonance [%]</th><th>ζ local fit [%]</th>"
+      "<th>ζ half-power [%]</th><th>peak [Hz]</th><th>regeneration RMS</th><th>in the fit</th><th>flags</th></tr>\n";
+  for (const auto& l : file.levels) {
+    std::string kinds;
+    for (const auto& f : l.flags) {
+      const std::string name(LevelFlagName(f.kind));
+      if (kinds.find(name) == std::string::npos) kinds += (kinds.empty() ? "" : ", ") + name;
+    }
+    html += fmt::format(
+        "<tr><td>{}</td><td>{}</td><td>{}{}</td><td>{}</td><td>{}</td><td>{}{}</td><td>{}{}</td><td>{}{}</td>"
+        "<td>{}{}</td><td>{:.3g} %{}</td><td>{}</td><td class=\"flag\">{}</td></tr>\n",
+        HtmlEscape(l.label),
+        l.control == LevelControl::kForce ? LabelsOf(file.excitation_quantity).control
+                                          : std::string(LevelControlName(l.control)),
+        Cell(l.quadrature_frequency_hz, 1, "{:.4f} ± {:.2g}"),
+        FlagCell(l, "quadrature_frequency"), Cell(l.quadrature_amplitude_m, 1e3, "{:.4g} ± {:.2g}"),
+        Cell(l.damping_ratio, 100, "{:.4f} ± {:.2g}"), Cell(l.quadrature_damping_ratio, 100, "{:.4f} ± {:.2g}"),
+        FlagCell(l, "quadrature_damping_ratio"), Cell(l.local_damping_ratio, 100, "{:.4f} ± {:.2g}"),
+        FlagCell(l, "local_damping_ratio"), Cell(l.half_power_damping_ratio, 100, "{:.4f} ± {:.2g}"),
+        FlagCell(l, "half_power_damping_ratio"), Cell(l.peak_frequency_hz, 1, "{:.4f} ± {:.2g}"),
+        FlagCell(l, "peak_frequency"), 100 * l.regeneration_relative_rms, FlagCell(l, "regeneration_relative_rms"),
+        l.in_global_fit ? "yes" : "<span class=\"flag\">no</span>", HtmlEscape(kinds));
+  }
+  return html + "</table>\n";
+}
+
+std::string LevelNotes(const MeasuredBackboneFile& file) {
+  std::string html;
+  for (const auto& l : file.levels) {
+    std::string items;
+    for (const auto& f : l.flags)
+      items += fmt::format("<li class=\"flag\">[FLAG: {}] {}</li>\n", HtmlEscape(std::string(LevelFlagName(f.kind))),
+                           HtmlEscape(f.message));
+    for (const auto& j : l.jumps)
+      items += fmt::format("<li>jump ({}-sweep) between steps {} and {}: {:.6g} → {:.6g} Hz, |X/F| × {:.3g}, phase "
+                           "{:+.0f}°</li>\n",
+                           j.up_sweep ? "up" : "down", j.from_step, j.to_step, j.from_frequency_hz, j.to_frequency_hz,
+                           j.receptance_ratio, j.phase_change_rad * 180 / 3.141592653589793);
+    for (const std::string* note : {&l.quadrature_note, &l.half_power_note, &l.damping_ratio_note})
+      if (!note->empty()) items += "<li>" + HtmlEscape(*note) + "</li>\n";
+    if (!items.empty()) html += "<h3>" + HtmlEscape(l.label) + "</h3>\n<ul>\n" + items + "</ul>\n";
+  }
+  return html;
+}
+
+}  // namespace
+
+std::string MeasuredBackboneHtmlReport(const MeasuredBackboneFile& file, const std::string& source) {
+  const std::string title = "Measured backbone";
+  std::string html = HtmlPageHead(title);
+  std::string inputs;
+  for (const auto& i : file.inputs) inputs += (inputs.empty() ? "" : ", ") + ("<code>" + HtmlEscape(i) + "</code>");
+  const ExcitationLabels excitation = LabelsOf(file.excitation_quantity);
+  html += fmt::format("<p>File <code>{}</code> (beamid {}), inputs {}; channel {}, response {}; excitation {} [{}]: "
+                      "X/F is the {}{}.</p>\n",
+                      HtmlEscape(source), HtmlEscape(file.beamid_version.empty() ? "?" : file.beamid_version), inputs,
+                      HtmlEscape(file.channel.empty() ? "?" : file.channel), HtmlEscape(file.response_quantity),
+                      HtmlEscape(excitation.control), HtmlEscape(excitation.unit), HtmlEscape(excitation.frf),
+                      excitation.caveat.empty() ? "" : "; " + HtmlEscape(excitation.caveat));
+  int flagged = 0, left_out = 0;
+  for (const auto& l : file.levels) flagged += !l.flags.empty(), left_out += !l.in_global_fit;
+  html += fmt::format("<section id=\"levels\"><h2>Levels</h2>\n<p>{} levels, {} flagged, {} left out of the "
+                      "cross-level fit.</p>\n",
+                      file.levels.size(), flagged, left_out);
+  html += LevelTable(file) + LevelNotes(file) + "</section>\n";
+  const auto& t = file.damping_trend;
+  html += "<section id=\"fit\"><h2>Cross-level single-mode fit and damping trend</h2>\n";
+  html += fmt::format("<p>Form: {}; reduced χ² {:.3g}.</p>\n", HtmlEscape(file.single_mode_fit.form),
+                      file.single_mode_fit.reduced_chi_square);
+  html += fmt::format("<p>Damping against amplitude: <strong>{}</strong> (ζω_n: slope {:.3g} ± {:.2g} /(s·m), "
+                      "{:+.1f} σ); ζ alone {} (slope {:.3g} ± {:.2g} per m, {:+.1f} σ), which a constant damper "
+                      "also gives where the frequency changes.</p>\n",
+                      HtmlEscape(t.verdict.empty() ? "not available" : t.verdict), t.damping_rate_slope_per_s_m,
+                      t.damping_rate_slope_std_per_s_m, t.damping_rate_z, HtmlEscape(t.damping_ratio_verdict),
+                      t.slope_per_m, t.slope_std_per_m, t.z);
+  for (bool frequency : {true, false}) {
+    const std::string script = PlotAgainstAmplitude(file, frequency);
+    if (script.empty()) continue;
+    html += Figure(GnuplotSvg(script), frequency ? "Backbone: each level's phase resonance (±1σ) and the "
+                                                   "single-mode fit across levels; open circles: flagged levels, "
+                                                   "left out of the fit."
+                                                 : "Damping ratio against amplitude: each level's ζ (its σ covers "
+                                                   "the three estimators) and the fit's ζ(a).");
+  }
+  html += "</section>\n";
+  if (!file.warnings.empty()) {
+    html += "<section id=\"warnings\"><h2>Warnings</h2>\n<ul>\n";
+    for (const auto& w : file.warnings) html += "<li class=\"warning\">" + HtmlEscape(w) + "</li>\n";
+    html += "</ul>\n</section>\n";
+  }
+  return html + "</body>\n</html>\n";
+}
+
+}  // namespace beamid::solver
