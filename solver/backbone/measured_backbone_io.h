@@ -4,7 +4,10 @@
 // candidates and its curve against amplitude, the damping trend, and the
 // identified model's backbone at the sensor when --result was given.
 // Keys, as earlier files have them: format, beamid_version, inputs, channel,
-// response_quantity, amplitude (a description), levels [{label, control,
+// response_quantity, excitation {quantity (force, voltage,
+// base_acceleration), unit (its SI unit: force_N and receptance_m_N are then
+// per this unit), frf (what X/F is)}, amplitude (a description), levels
+// [{label, control,
 // num_points, num_fit_points, phase_resonance {frequency_Hz,
 // displacement_amplitude_m, response_amplitude, force_N, damping_ratio,
 // after_jump, note}, peak {frequency_Hz, receptance_m_N,
@@ -33,8 +36,8 @@
 // Reading checks every field and throws InputError naming the file, the field
 // (e.g. "levels[2].peak.frequency_Hz") and the fix; a key the format does not
 // have is refused; a file without beamid_version reads (version ""), one
-// without jumps, flags, in_global_fit or noise_relative_rms (older files)
-// reads as no jumps, no flags, in the fit, 0.
+// without jumps, flags, in_global_fit, noise_relative_rms or excitation
+// (older files) reads as no jumps, no flags, in the fit, 0, a force.
 #pragma once
 
 #include <filesystem>

@@ -107,7 +107,8 @@ TEST_F(VoltageDriveTest, RecordsTheVoltageAndDrivesTheSaggedForce) {
     const std::filesystem::path csv = voltage_ / truth.at("steps").at(0).at("file").get<std::string>();
     EXPECT_EQ(beamid::testing::ReadCsvHeader(csv), "time_s,drive,acc3");
     double peak = 0.0;
-    for (double value : beamid::testing::ReadCsvColumns(csv).at(1)) peak = std::max(peak, std::abs(value));
+    const auto columns = beamid::testing::ReadCsvColumns(csv);
+    for (double value : columns.at(1)) peak = std::max(peak, std::abs(value));
     EXPECT_GT(peak, 0.9 * kVoltage_V);
     EXPECT_LT(peak, 1.1 * kVoltage_V);
   }
