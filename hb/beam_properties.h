@@ -1,7 +1,11 @@
 // The uniform Euler–Bernoulli beam of the test: geometry and material, SI.
 // The beam obeys EI·y'''' + ρA·ÿ = f(x, t) (seed Eq. 1, with the load added);
 // an optional structural loss factor η makes the modulus E(1 + iη) in the
-// frequency domain (light material damping, η ≈ 1e-4…1e-3 for steel).
+// frequency domain (light material damping, η ≈ 1e-4…1e-3 for steel), and
+// optional Rayleigh damping C = α·M + β·K of the beam (and of the point
+// masses on it), in the frequency domain ρA·(ω² − iαω) for ρA·ω² and
+// EI·(1 + iη + iβω) for EI: the other damping law a real beam may follow
+// (air and joint losses grow with velocity, not with strain).
 #pragma once
 
 #include <stdexcept>
@@ -17,6 +21,9 @@ struct BeamProperties {
   double density_kg_m3 = 7850.0;
   // η: hysteretic (structural) loss factor of the material; 0 = undamped.
   double loss_factor = 0.0;
+  // α [1/s] and β [s] of the Rayleigh damping; 0 = none.
+  double rayleigh_mass_1_s = 0.0;
+  double rayleigh_stiffness_s = 0.0;
 
   double Area_m2() const { return width_m * thickness_m; }
   double SecondMomentOfArea_m4() const { return width_m * thickness_m * thickness_m * thickness_m / 12.0; }
@@ -41,6 +48,8 @@ struct BeamProperties {
     within(density_kg_m3, 1.0, 1e5, "density_kg_m3", "1 to 1e5 kg/m³");
     if (!(loss_factor >= 0.0 && loss_factor < 1.0))
       throw std::invalid_argument("beam: loss_factor must lie in [0, 1)");
+    within(rayleigh_mass_1_s, 0.0, 1e4, "rayleigh_mass_1_s", "0 to 1e4 1/s");
+    within(rayleigh_stiffness_s, 0.0, 1.0, "rayleigh_stiffness_s", "0 to 1 s");
   }
 };
 

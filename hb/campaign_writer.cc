@@ -246,6 +246,10 @@ void CampaignWriter::Finish() {
                   {"beta_s", sim.stiffness_proportional_damping_s()}}
            : Json{{"model", "hysteretic at each step: modal c_j = eta*w_j^2/(k_j*w), k_j*w the harmonic nearest w_j"},
                   {"loss_factor", s.beam.loss_factor}}},
+      {"viscous_damping",
+       {{"rayleigh_mass_1_s", s.beam.rayleigh_mass_1_s},
+        {"rayleigh_stiffness_s", s.beam.rayleigh_stiffness_s},
+        {"modal_damping_ratios", s.modal_damping_ratios}}},
       {"excitation", excitation},
       {"generator_clock_offset_ppm", s.clock_offset_ppm},
       {"sample_rate_Hz", s.timing.sample_rate_hz},

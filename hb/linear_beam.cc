@@ -51,6 +51,8 @@ std::shared_ptr<const BeamMesh> MakeMesh(const LinearBeamModel& model, double fo
   mesh->node_positions_m = std::move(refined);
   mesh->bending_stiffness_Nm2 = model.beam.BendingStiffness_Nm2();
   mesh->loss_factor = model.beam.loss_factor;
+  mesh->rayleigh_mass_1_s = model.beam.rayleigh_mass_1_s;
+  mesh->rayleigh_stiffness_s = model.beam.rayleigh_stiffness_s;
   mesh->mass_per_length_kg_m = model.beam.MassPerLength_kg_m();
   return mesh;
 }
@@ -63,16 +65,21 @@ int NodeAt(const BeamMesh& mesh, double position_m) {
 
 struct SupportTerms {
   bool support_spring = true;  // add k1 + iωc at θ(L)
-  bool undamped = false;       // drop c and the loss factor (natural frequencies)
+  bool undamped = false;       // drop c and the beam's damping (natural frequencies)
 };
 
 // Global dynamic stiffness [y_0, θ_0, y_1, θ_1, …] with the attachments, before constraints.
 Eigen::MatrixXcd Assemble(const BeamMesh& mesh, const LinearBeamModel& model, double omega, SupportTerms terms) {
   const int n = mesh.num_nodes();
   Eigen::MatrixXcd k = Eigen::MatrixXcd::Zero(2 * n, 2 * n);
-  const double loss = terms.undamped ? 0.0 : mesh.loss_factor;
-  const Complex ei(mesh.bending_stiffness_Nm2, mesh.bending_stiffness_Nm2 * loss);
-  const Complex mu = mesh.mass_per_length_kg_m * omega * omega / ei;
+  BeamMesh undamped_mesh;
+  if (terms.undamped) {
+    undamped_mesh.bending_stiffness_Nm2 = mesh.bending_stiffness_Nm2;
+    undamped_mesh.mass_per_length_kg_m = mesh.mass_per_length_kg_m;
+  }
+  const BeamMesh& material = terms.undamped ? undamped_mesh : mesh;
+  const Complex ei = material.ComplexBendingStiffness(omega);
+  const Complex mu = material.Lambda4(omega);
   for (int e = 0; e + 1 < n; ++e) {
     const double length = mesh.node_positions_m[e + 1] - mesh.node_positions_m[e];
     k.block<4, 4>(2 * e, 2 * e) += SegmentDynamicStiffness(mu, ei, length);
@@ -83,7 +90,7 @@ Eigen::MatrixXcd Assemble(const BeamMesh& mesh, const LinearBeamModel& model, do
     k(2 * (n - 1), 2 * (n - 1)) += a.support_translational_stiffness_N_m;
   for (const auto& mass : a.point_masses) {
     const int node = NodeAt(mesh, mass.position_m);
-    k(2 * node, 2 * node) -= mass.mass_kg * omega * omega;
+    k(2 * node, 2 * node) -= material.Inertia(mass.mass_kg, omega);
   }
   if (terms.support_spring) {
     const double damping = terms.undamped ? 0.0 : model.support_damping_Nms_rad;

@@ -83,6 +83,10 @@ MultipleScalesModel::MultipleScalesModel(const BeamProperties& beam,
   if (!(force_position_m >= 0.0 && force_position_m <= beam.length_m))
     throw std::invalid_argument("multiple-scales model: the force position " + std::to_string(force_position_m) +
                                 " m lies outside the beam [0, " + std::to_string(beam.length_m) + "] m");
+  if (beam.rayleigh_mass_1_s != 0.0 || beam.rayleigh_stiffness_s != 0.0)
+    throw std::invalid_argument(
+        "multiple-scales model: the beam's Rayleigh damping is not modelled (its loss factor is); use the "
+        "harmonic-balance model");
   mode_ = closed_form_.ModeShape(0);
   omega0_rad_s_ = closed_form_.NaturalFrequencies_rad_s(1).front();
   modal_mass_kg_ = beam.MassPerLength_kg_m() * mode_.SquareIntegral(0);

@@ -153,6 +153,8 @@ void ReadBeams(ObjectReader& top, Scenario& s) {
   }
   s.nominal_beam = s.beam;
   s.nominal_beam.loss_factor = 0.0;
+  s.nominal_beam.rayleigh_mass_1_s = 0.0;
+  s.nominal_beam.rayleigh_stiffness_s = 0.0;
   if (top.Has("nominal_beam")) {
     ObjectReader nominal(top.Raw("nominal_beam"), top.source(), "nominal_beam");
     ReadBeam(nominal, s.nominal_beam, false);
@@ -163,6 +165,15 @@ void ReadDampingAndMesh(ObjectReader& top, Scenario& s) {
   if (top.Has("damping")) {
     ObjectReader d(top.Raw("damping"), top.source(), "damping");
     s.damping_reference_frequency_hz = d.NonNegative("reference_frequency_Hz", 0.0);
+    if (d.Has("modal_damping_ratios")) {
+      const Json& ratios = d.Array("modal_damping_ratios");
+      for (std::size_t j = 0; j < ratios.size(); ++j) {
+        const std::string key = "modal_damping_ratios[" + std::to_string(j) + "]";
+        if (!ratios[j].is_number() || !(ratios[j].get<double>() >= 0.0 && ratios[j].get<double>() < 1.0))
+          d.FailField(key, "must be a damping ratio in [0, 1)");
+        s.modal_damping_ratios.push_back(ratios[j].get<double>());
+      }
+    }
   }
   if (top.Has("mesh")) {
     ObjectReader m(top.Raw("mesh"), top.source(), "mesh");
@@ -545,6 +556,7 @@ std::string ScenarioToJson(const Scenario& s) {
   root["support"] = internal::SupportToJson(s.polynomial, s.jenkins, s.one_sided_stiffness_Nm_rad);
   root["attachments"] = internal::AttachmentsToJson(s.attachments);
   root["damping"] = {{"reference_frequency_Hz", s.damping_reference_frequency_hz}};
+  if (!s.modal_damping_ratios.empty()) root["damping"]["modal_damping_ratios"] = s.modal_damping_ratios;
   root["mesh"] = {{"min_elements", s.mesh_min_elements}};
   root["excitation"] = ExcitationToJson(s);
   root["sensors"] = SensorsToJson(s.sensors);

@@ -128,6 +128,9 @@ struct Scenario {
   LinearAttachments attachments;  // concealed attachments (sensor masses not included)
   // ω_ref/2π of the stiffness-proportional damping (0 = first natural frequency).
   double damping_reference_frequency_hz = 0.0;
+  // ζ_j of modal damping of the beam's modes (hb/time_simulator.h), mode 1
+  // first, beside beam's loss factor and Rayleigh damping; empty = none.
+  std::vector<double> modal_damping_ratios;
   int mesh_min_elements = 40;
 
   std::string force_channel = "force";

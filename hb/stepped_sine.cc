@@ -53,6 +53,7 @@ SteppedSineSimulation::SteppedSineSimulation(const Scenario& scenario)
   model.attachments = scenario_.TrueAttachments();
   model.force_position_m = scenario_.force_position_m;
   model.base_excitation = scenario_.BaseExcitation();
+  model.modal_damping_ratios = scenario_.modal_damping_ratios;
   for (const ScenarioSensor& s : scenario_.sensors) model.output_positions_m.push_back(s.position_m);
   for (double x : scenario_.hidden_positions_m) model.output_positions_m.push_back(x);
   TimeSimulatorOptions options;

@@ -118,7 +118,14 @@ TimeSimulator::TimeSimulator(const TimeSimulatorModel& model, const SupportLaw& 
   }
   loss_factor_ = model.beam.loss_factor;
   beta_damping_s_ = loss_factor_ / damping_reference_rad_s_;
-  modal_damping_ = beta_damping_s_ * modal_stiffness_;
+  viscous_damping_ = model.beam.rayleigh_mass_1_s + model.beam.rayleigh_stiffness_s * modal_stiffness_;
+  const auto& ratios = model.modal_damping_ratios;
+  for (double zeta : ratios)
+    if (!(zeta >= 0.0 && zeta < 1.0))
+      throw std::invalid_argument("time simulator: a modal damping ratio must lie in [0, 1), not " + std::to_string(zeta));
+  for (Eigen::Index j = 0; j < omega_.size() && !ratios.empty(); ++j)
+    viscous_damping_(j) += 2.0 * ratios[std::min<std::size_t>(j, ratios.size() - 1)] * omega_(j);
+  modal_damping_ = beta_damping_s_ * modal_stiffness_ + viscous_damping_;
 
   if (model.base_excitation) {
     // The modal load per unit of a_b: −Φᵀ·M·r, r the base's rigid translation.
@@ -158,7 +165,7 @@ void TimeSimulator::MatchLossFactorAt(double omega_rad_s) {
   beta_damping_s_ = 0.0;
   for (Eigen::Index j = 0; j < omega_.size(); ++j) {
     const double harmonic = std::max(1.0, std::round(omega_(j) / omega_rad_s));
-    modal_damping_(j) = loss_factor_ * modal_stiffness_(j) / (harmonic * omega_rad_s);
+    modal_damping_(j) = loss_factor_ * modal_stiffness_(j) / (harmonic * omega_rad_s) + viscous_damping_(j);
   }
   UpdateStepMaps();
 }

@@ -15,6 +15,12 @@
 // and dissipates exactly like E(1 + iη) at the harmonic that drives it (the
 // fundamental for mode 1, the 3rd for mode 2 of the paper's beam, its own
 // frequency for a high mode): the real beam's frequency-independent loss.
+// Two other laws add to it, to test fits that assume the loss factor: the
+// beam's Rayleigh damping (BeamProperties' α, β: c_j += α + β·ω_j², the same
+// C = α·M + β·K as the exact beam's ρA(ω² − iαω), EI(1 + iβω)) and modal
+// damping ratios (c_j += 2ζ_j·ω_j; the last ratio given holds for the higher
+// modes). The modes are those of the beam without the support law (whose
+// moment acts as a load), so mode 1 here has a free rotation at x = L.
 //
 // K, M, C are linear and C is classical, so the beam is integrated in its
 // mass-normalised modes of (K, M), every mode kept. Each mode with ωΔt ≤ 1
@@ -59,6 +65,8 @@ struct TimeSimulatorModel {
   // is then a_b [m/s²], and force_position_m is not used. Outputs and state
   // are relative to the base.
   bool base_excitation = false;
+  // ζ_j of modal damping, mode 1 first; empty = none.
+  std::vector<double> modal_damping_ratios;
   // Where deflection, velocity and acceleration are reported (become nodes).
   std::vector<double> output_positions_m;
 };
@@ -138,6 +146,7 @@ class TimeSimulator {
 
   Eigen::ArrayXd omega_;           // ω_j
   Eigen::ArrayXd modal_damping_;   // c_j (mass-normalised) [1/s]
+  Eigen::ArrayXd viscous_damping_; // its Rayleigh and modal part [1/s]
   Eigen::ArrayXd modal_stiffness_; // ω_j²
   // Exact one-step map of each mode: q' = uu·q + uv·q̇ + u0·p_n + u1·p_n+1,
   // q̇' = vu·q + vv·q̇ + v0·p_n + v1·p_n+1 (p the modal load).

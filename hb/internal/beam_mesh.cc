@@ -14,7 +14,7 @@ int BeamMesh::SegmentOf(double position_m) const {
 }
 
 Complex BeamMesh::Lambda4(double omega_rad_s) const {
-  return mass_per_length_kg_m * omega_rad_s * omega_rad_s / ComplexBendingStiffness();
+  return Inertia(mass_per_length_kg_m, omega_rad_s) / ComplexBendingStiffness(omega_rad_s);
 }
 
 std::array<Complex, 4> KrylovFunctions(Complex mu, double length_m) {

@@ -23,13 +23,22 @@ struct BeamMesh {
   double bending_stiffness_Nm2 = 0.0;    // EI (real part)
   double loss_factor = 0.0;              // η: EI(1 + iη) in the frequency domain
   double mass_per_length_kg_m = 0.0;     // ρA
+  double rayleigh_mass_1_s = 0.0;        // α: ρA·ω² becomes ρA·(ω² − iαω)
+  double rayleigh_stiffness_s = 0.0;     // β: EI becomes EI·(1 + iη + iβω)
 
   int num_nodes() const { return static_cast<int>(node_positions_m.size()); }
   // Index of the segment that holds x (the last one for x = L).
   int SegmentOf(double position_m) const;
-  // μ = λ⁴ = ρAω² / (EI(1 + iη)) [1/m⁴]
+  // μ = λ⁴ = ρA(ω² − iαω) / (EI(1 + iη + iβω)) [1/m⁴]
   Complex Lambda4(double omega_rad_s) const;
-  Complex ComplexBendingStiffness() const { return Complex(bending_stiffness_Nm2, bending_stiffness_Nm2 * loss_factor); }
+  // EI(1 + iη + iβω) [N·m²]
+  Complex ComplexBendingStiffness(double omega_rad_s) const {
+    return {bending_stiffness_Nm2, bending_stiffness_Nm2 * (loss_factor + rayleigh_stiffness_s * omega_rad_s)};
+  }
+  // m·(ω² − iαω): a mass's (or ρA's) share of the dynamic stiffness, with sign reversed
+  Complex Inertia(double mass, double omega_rad_s) const {
+    return {mass * omega_rad_s * omega_rad_s, -mass * rayleigh_mass_1_s * omega_rad_s};
+  }
 };
 
 // φ0..φ3 at length ℓ for μ.

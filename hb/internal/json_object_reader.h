@@ -111,6 +111,8 @@ inline void ReadBeam(ObjectReader& r, BeamProperties& beam, bool all_required) {
   field("youngs_modulus_Pa", beam.youngs_modulus_Pa);
   field("density_kg_m3", beam.density_kg_m3);
   beam.loss_factor = r.NonNegative("loss_factor", beam.loss_factor);
+  beam.rayleigh_mass_1_s = r.NonNegative("rayleigh_mass_1_s", beam.rayleigh_mass_1_s);
+  beam.rayleigh_stiffness_s = r.NonNegative("rayleigh_stiffness_s", beam.rayleigh_stiffness_s);
 }
 
 

@@ -29,6 +29,9 @@ inline OrderedJson BeamToJson(const BeamProperties& beam) {
   out["youngs_modulus_Pa"] = beam.youngs_modulus_Pa;
   out["density_kg_m3"] = beam.density_kg_m3;
   out["loss_factor"] = beam.loss_factor;
+  // Rayleigh damping only when there is some: the files of a beam without it read as before.
+  if (beam.rayleigh_mass_1_s != 0.0) out["rayleigh_mass_1_s"] = beam.rayleigh_mass_1_s;
+  if (beam.rayleigh_stiffness_s != 0.0) out["rayleigh_stiffness_s"] = beam.rayleigh_stiffness_s;
   return out;
 }
 

@@ -152,8 +152,9 @@ BEAMID_REGISTER_COMMAND("diagnose", [](CLI::App& app, const GlobalOptions& globa
   CLI::App* sub = app.add_subcommand(
       "diagnose",
       "Locate where the identified model misses the recordings, name the left-out physics (friction, clamp "
-      "compliance, added mass, modulus error, support asymmetry, harmonic truncation) by refitting each, and show "
-      "the fit with it.\n"
+      "compliance, added mass, masses at the instruments, modulus error, support asymmetry, harmonic truncation) by "
+      "refitting each and validating on the held-out channels, try pairs when one cause leaves a misfit, say where "
+      "to measure when two causes tie, and show the fit.\n"
       "Example: beamid diagnose campaign/ --fit acc1,acc2 --validate acc3 -o diagnosis.json --curves frc");
   sub->add_option("campaign", options->campaign_folder, "Campaign folder (holds campaign.json)")->required();
   sub->add_option("--fit", options->fit_channels, "Response channels to fit (default: all)")->delimiter(',');

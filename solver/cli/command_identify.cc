@@ -12,6 +12,7 @@
 #include "signal/phasor_set_io.h"
 #include "solver/cli/cli_output.h"
 #include "solver/cli/command_registry.h"
+#include "solver/estimation/damping_laws.h"
 #include "solver/estimation/identify.h"
 #include "solver/estimation/model_family.h"
 #include "solver/estimation/result_file.h"
@@ -32,9 +33,28 @@ struct IdentifyCommandOptions {
   int workers = 0;
   bool fit_ei_scale = false;
   bool fix_loss_factor = false;
+  bool damping_envelope = true;
   double beam_loss_factor = 0.0;
   std::string output = "result.json";
 };
+
+// Each law's misfit, then every shared parameter's interval over the accepted laws.
+void PrintDampingLaws(const solver::DampingLawEnvelope& envelope) {
+  if (envelope.laws.empty()) return;
+  fmt::print("  beam damping laws (the fit assumes loss_factor):\n");
+  for (const auto& law : envelope.laws)
+    if (law.converged)
+      fmt::print("    {:<23} reduced chi-square {:.3g}  {}\n", law.law, law.reduced_chi_square,
+                 law.accepted ? "fits: accepted" : "rejected by the data");
+    else
+      fmt::print("    {:<23} {}\n", law.law, law.status);
+  fmt::print("  model-form 95 % intervals (envelope over the accepted damping laws):\n");
+  for (const auto& i : envelope.intervals)
+    fmt::print("    {:<10} {:.6g} … {:.6g} {}{}\n", i.name, i.lower_95, i.upper_95, i.unit,
+               i.depends_on_damping_law ? "   [DEPENDS ON THE DAMPING LAW: another law that fits puts it outside the "
+                                          "statistical interval]"
+                                        : "");
+}
 
 void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& global) {
   RequireWritableOutput(options.output, {std::filesystem::path(options.campaign_folder) / "campaign.json", options.phasor_input.phasors_file});
@@ -65,19 +85,27 @@ void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& glo
   Progress progress("identify", global);
   const auto report_progress = [&](double fraction, const std::string& what) { progress.Update(fraction, what); };
   const solver::IdentifyResult result = solver::Identify(fit, structure, identify, report_progress);
+  // The beam's damping law is assumed, never known: the other laws' refits
+  // give the parameters' model-form intervals (solver/estimation/damping_laws.h).
+  solver::DampingLawEnvelope damping_laws;
+  if (options.damping_envelope && family.Name() == "hb") {
+    progress.Update(0.95, "refitting under the other beam damping laws");
+    damping_laws = solver::FitDampingLaws(fit, structure, result, identify);
+  }
   progress.Done();
 
   const std::unique_ptr<solver::FitProblem> problem = family.MakeProblem(fit, structure, identify.model);
   problem->FeasiblePoint(result.starts[result.best_start].scaled_at);  // the winning run's scales
   solver::FitData fit_with_loss = fit;
   fit_with_loss.beam.loss_factor = options.beam_loss_factor;
-  const solver::ResultFile result_file = solver::MakeResultFile(
+  solver::ResultFile result_file = solver::MakeResultFile(
       fit_with_loss, validation, *problem, result,
       {.campaign_folder = options.campaign_folder,
        .campaign_name = campaign.name,
        // `beamid report` finds the campaign from anywhere on this machine.
        .campaign_absolute_folder = std::filesystem::absolute(options.campaign_folder).lexically_normal().string(),
        .family = &family});
+  result_file.damping_laws = damping_laws;
   solver::WriteResultFile(options.output, result_file);
 
   if (!global.quiet) {
@@ -89,6 +117,7 @@ void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& glo
       fmt::print("  {:<10} = {:>12.6g} ± {:<10.3g} {}   (95 %: {:.6g} … {:.6g})\n", p.name, p.value, p.std, p.unit,
                  p.lower_95, p.upper_95);
     fmt::print("  reduced chi-square {:.3g} ({} residuals)\n", result.reduced_chi_square, result.degrees_of_freedom);
+    PrintDampingLaws(damping_laws);
     if (result.minima.minima.size() > 1)
       fmt::print("  the starts reached {} distinct minima; the second is {:.3g} worse in chi-square ({})\n",
                  result.minima.minima.size(), result.minima.second_chi_square_gap,
@@ -136,6 +165,9 @@ BEAMID_REGISTER_COMMAND("identify", [](CLI::App& app, const GlobalOptions& globa
   sub->add_flag("--fit-ei-scale", options->fit_ei_scale, "Also fit a scale of the nominal bending stiffness EI");
   sub->add_flag("--fix-loss-factor", options->fix_loss_factor,
                 "Do not fit the beam's structural loss factor η; hold it at --beam-loss-factor");
+  sub->add_flag("!--no-damping-laws", options->damping_envelope,
+                "Do not refit under the other beam damping laws (Rayleigh, mass- and stiffness-proportional): faster, "
+                "but no model-form intervals");
   sub->add_option("--beam-loss-factor", options->beam_loss_factor,
                   "The beam's structural loss factor: the start of its fit, or its value with --fix-loss-factor")
       ->capture_default_str();

@@ -199,6 +199,38 @@ CandidatePhysics AddedMass() {
   };
 }
 
+CandidatePhysics InstrumentMasses() {
+  return {
+      .name = "instrument_masses",
+      .description = "masses at the instruments heavier than stated: the shaker's moving part and the force transducer "
+                     "at the drive point, each fitted accelerometer and its cable at its position",
+      .extend =
+          [](const ModelStructure& base, const BaseFitContext& context) {
+            // The sites: the drive point, then every fitted sensor not within a
+            // millimetre of one already taken.
+            std::vector<std::pair<std::string, double>> sites;
+            if (context.data->force_position_m > 0.0) sites.push_back({"drive", context.data->force_position_m});
+            for (const FitChannel& c : context.data->channels)
+              if (std::none_of(sites.begin(), sites.end(),
+                               [&](const auto& site) { return std::abs(site.second - c.position_m) < 1e-3; }))
+                sites.push_back({c.channel, c.position_m});
+            std::vector<LinearParameter> masses;
+            for (const auto& [name, position] : sites)
+              masses.push_back({.name = "mass_at_" + name,
+                                .unit = "kg",
+                                .initial = 0.0,
+                                .bounds = {.lower = 0.0, .upper = 1.0, .typical = 0.01},
+                                .apply = [at = position](hb::LinearBeamModel& model, double value) {
+                                  model.attachments.point_masses.push_back({at, std::max(value, 0.0)});
+                                }});
+            return WithLinear(base, masses,
+                              {std::vector<double>(sites.size(), 0.002), std::vector<double>(sites.size(), 0.01)},
+                              context);
+          },
+      .signature = LinearStiffnessSignature,
+  };
+}
+
 CandidatePhysics ModulusError() {
   return {
       .name = "modulus_error",
@@ -277,7 +309,8 @@ CandidatePhysics HarmonicTruncation() {
 }
 
 std::vector<CandidatePhysics> CandidateLibrary() {
-  return {SupportFriction(), ClampCompliance(), AddedMass(), ModulusError(), SupportAsymmetry(), HarmonicTruncation()};
+  return {SupportFriction(), ClampCompliance(), AddedMass(), InstrumentMasses(), ModulusError(), SupportAsymmetry(),
+          HarmonicTruncation()};
 }
 
 std::vector<std::string> CandidateNames() {

@@ -69,6 +69,12 @@ CandidatePhysics ClampCompliance();
 // An unreported point mass (a cable clamp, a sensor or the shaker's moving
 // part heavier than stated) of unknown mass and position.
 CandidatePhysics AddedMass();
+// Masses at the instruments heavier than campaign.json states, one unknown
+// mass per site at fixed positions: the drive point (the shaker's moving
+// part, the force transducer) and every fitted accelerometer (the sensor, its
+// cable and glue) — the usual suspects, which one mass of free position
+// cannot represent when several sites are off.
+CandidatePhysics InstrumentMasses();
 // A bending stiffness EI different from the nominal one (modulus, thickness).
 CandidatePhysics ModulusError();
 // A support stiffer for one sense of rotation than for the other:
@@ -82,7 +88,7 @@ CandidatePhysics SupportAsymmetry();
 // the balance (2H + 1, at least 9; no new parameter).
 CandidatePhysics HarmonicTruncation();
 
-// All of the above, in the order of issue 7.
+// All of the above, in the order of issue 7 (instrument_masses, of issue 16, after added_mass).
 std::vector<CandidatePhysics> CandidateLibrary();
 
 // Names accepted by diagnose: "none" and the library's.

@@ -62,7 +62,37 @@ std::string WriteSummary(const DiagnosisResult& r) {
                      r.base.reduced_chi_square, r.base.num_residuals);
   if (r.location)
     for (const auto& f : r.location->findings) out << f << (f.empty() || f.back() == '.' ? " " : ". ");
-  if (r.verdict == "cause named") {
+  if (r.verdict == "causes indistinguishable") {
+    const CandidateOutcome &a = r.candidates[0], &b = r.candidates[1];
+    out << fmt::format(
+        "Missing physics: {} or {}; these data cannot tell them apart (chi-square {:.4g} and {:.4g}{}). Both explain "
+        "the misfit significantly (chi-square {:.4g} before); the results show the first. ",
+        a.name, b.name, a.fit.chi_square, b.fit.chi_square,
+        std::isfinite(a.fit.held_out_chi_square)
+            ? fmt::format(", held-out {:.4g} and {:.4g}", a.fit.held_out_chi_square, b.fit.held_out_chi_square)
+            : std::string(),
+        r.base.chi_square);
+    out << "Identified with " << a.name << ": " << DescribeParameters(r.final_fit, r.final_extra_parameters) << ".";
+    if (r.suggestion) out << " " << r.suggestion->text;
+  } else if (r.verdict == "combination named") {
+    const CandidateOutcome& first = r.candidates.front();
+    const auto pair = std::find_if(r.combinations.begin(), r.combinations.end(), [&](const CandidateOutcome& c) {
+      return c.name == r.selected[0] + " + " + r.selected[1];
+    });
+    out << fmt::format(
+        "Missing physics: {} and {} together. {} alone removes most of the misfit (chi-square {:.4g} -> {:.4g}) but "
+        "leaves a reduced chi-square of {:.3g}, beyond the noise; with {} as well it drops to {:.4g} "
+        "(likelihood-ratio p = {:.2g} against {} alone){}. ",
+        r.selected[0], r.selected[1], r.selected[0], r.base.chi_square, first.fit.chi_square,
+        first.fit.reduced_chi_square, r.selected[1], r.final_fit.chi_square,
+        pair == r.combinations.end() ? 1.0 : pair->p_value, r.selected[0],
+        std::isfinite(r.final_fit.held_out_h1_relative_error)
+            ? fmt::format("; held-out first-harmonic error {:.3g} % -> {:.3g} % -> {:.3g} %",
+                          100.0 * r.base.held_out_h1_relative_error, 100.0 * first.fit.held_out_h1_relative_error,
+                          100.0 * r.final_fit.held_out_h1_relative_error)
+            : std::string());
+    out << "Identified: " << DescribeParameters(r.final_fit, r.final_extra_parameters) << ".";
+  } else if (r.verdict == "cause named") {
     const CandidateOutcome& best = r.candidates.front();
     out << fmt::format(
         "Missing physics: {} ({}). Refitted with it, the weighted residual drops {:.3g}x (chi-square {:.4g} -> {:.4g}, "
@@ -74,6 +104,12 @@ std::string WriteSummary(const DiagnosisResult& r) {
                          "the model predicts {:.4g} -> {:.4g}. ",
                          100.0 * r.base.held_out_h1_relative_error, 100.0 * r.final_fit.held_out_h1_relative_error,
                          r.base.held_out_chi_square, r.final_fit.held_out_chi_square);
+    if (r.ranked_by == "held-out channels" && r.candidates.size() > 1 && r.candidates[1].significant &&
+        r.candidates[1].fit.bic < best.fit.bic)
+      out << fmt::format("The held-out channels decide: {} fits the fitted channels better (BIC {:.5g}) but predicts "
+                         "the held-out ones worse (chi-square {:.4g} against {:.4g}). ",
+                         r.candidates[1].name, r.candidates[1].fit.bic, r.candidates[1].fit.held_out_chi_square,
+                         best.fit.held_out_chi_square);
     out << "Identified: " << DescribeParameters(r.final_fit, r.final_extra_parameters) << ".";
   } else if (r.verdict == "unexplained") {
     out << "No candidate explains the misfit significantly: unexplained";
@@ -83,6 +119,13 @@ std::string WriteSummary(const DiagnosisResult& r) {
     out << "No significant discrepancy: the base model fits within the noise and no candidate improves it "
            "significantly.";
   }
+  if (r.verdict == "cause named" || r.verdict == "causes indistinguishable" || r.verdict == "combination named")
+    out << (r.rest_within_noise
+                ? fmt::format(" The rest of the misfit lies within the noise (reduced chi-square {:.3g}).",
+                              r.final_fit.reduced_chi_square)
+                : fmt::format(" This explains only part of the misfit: the reduced chi-square is still {:.3g}, beyond "
+                              "the noise; another effect remains.",
+                              r.final_fit.reduced_chi_square));
   return out.str();
 }
 
@@ -123,6 +166,7 @@ IdentifyResult FitPolynomialThenLossFactor(const FitData& fit, const DiagnosisOp
 void ApplyHeldOut(const HeldOutCheck& check, FitSummary* summary) {
   summary->held_out_chi_square = check.chi_square;
   summary->held_out_h1_relative_error = check.h1_relative_error;
+  summary->held_out_num_residuals = check.num_residuals;
 }
 
 // ---- RefitCandidates' steps ----
@@ -149,26 +193,62 @@ struct RefitRun {
 };
 
 // What the candidates see of the base fit: the rotation amplitude of every step.
-BaseFitContext ContextOf(const FitData& fit, const BaseFit& base) {
-  BaseFitContext context{.data = &fit, .model_harmonics = base.model.model_harmonics};
-  for (int i = 0; i < base.model.problem->num_steps(); ++i) {
-    const Eigen::VectorXcd theta = base.model.family->SupportRotation_rad(base.model.problem->StepState(base.model.x, i));
+BaseFitContext ContextOf(const FitData& fit, const FittedModel& model) {
+  BaseFitContext context{.data = &fit, .model_harmonics = model.model_harmonics};
+  for (int i = 0; i < model.problem->num_steps(); ++i) {
+    const Eigen::VectorXcd theta = model.family->SupportRotation_rad(model.problem->StepState(model.x, i));
     context.theta_amplitude_rad.push_back(theta.size() > 1 ? std::abs(theta[1]) : 0.0);
   }
   return context;
 }
 
-// The selected candidates extended from the base optimum, and one job per start.
-RefitRun PlanRefits(const FitData& fit, const BaseFit& base, const DiagnosisOptions& options) {
-  const BaseFitContext context = ContextOf(fit, base);
-  RefitRun run;
+// The library's candidates that options.candidates selects (all when empty).
+std::vector<CandidatePhysics> SelectedCandidates(const DiagnosisOptions& options) {
+  std::vector<CandidatePhysics> selected;
   for (auto& c : CandidateLibrary())
     if (options.candidates.empty() ||
         std::find(options.candidates.begin(), options.candidates.end(), c.name) != options.candidates.end())
-      run.library.push_back(std::move(c));
+      selected.push_back(std::move(c));
+  return selected;
+}
+
+// The selected candidates extended from the base optimum, and one job per start.
+RefitRun PlanRefits(const FitData& fit, const BaseFit& base, const DiagnosisOptions& options) {
+  const BaseFitContext context = ContextOf(fit, base.model);
+  RefitRun run;
+  run.library = SelectedCandidates(options);
   for (int c = 0; c < static_cast<int>(run.library.size()); ++c) {
     run.extensions.push_back(run.library[c].extend(base.model.structure, context));
     for (const auto& start : run.extensions.back().starts) run.jobs.push_back({c, start});
+  }
+  return run;
+}
+
+// Pairs: the named cause's refit extended by each partner, from its optimum
+// (a partner that cannot extend it, e.g. a second change of the support law,
+// is left out). The pairs' names are "first + partner".
+RefitRun PlanPairs(const FitData& fit, const FittedModel& first, const CandidateOutcome& first_outcome,
+                   const std::vector<std::string>& partners, const DiagnosisOptions& options) {
+  const BaseFitContext context = ContextOf(fit, first);
+  RefitRun run;
+  for (const CandidatePhysics& partner : SelectedCandidates(options)) {
+    if (std::find(partners.begin(), partners.end(), partner.name) == partners.end()) continue;
+    CandidateExtension extension;
+    try {
+      extension = partner.extend(first.structure, context);
+    } catch (const std::invalid_argument&) {
+      continue;
+    }
+    extension.model_harmonics = std::max(extension.model_harmonics, first.model_harmonics);
+    extension.extra_parameters.insert(extension.extra_parameters.begin(), first_outcome.extra_parameters.begin(),
+                                      first_outcome.extra_parameters.end());
+    CandidatePhysics pair = partner;
+    pair.name = first_outcome.name + " + " + partner.name;
+    pair.description = first_outcome.description + "; and " + partner.description;
+    run.library.push_back(std::move(pair));
+    run.extensions.push_back(std::move(extension));
+    for (const auto& start : run.extensions.back().starts)
+      run.jobs.push_back({static_cast<int>(run.library.size()) - 1, start});
   }
   return run;
 }
@@ -180,6 +260,7 @@ std::string RunRefitJob(const FitData& fit, const CandidateExtension& extension,
   refit.model.num_harmonics = extension.model_harmonics;
   refit.ipopt.max_iterations = options.refit_max_iterations;
   refit.ipopt.max_cpu_seconds = options.refit_max_cpu_seconds;
+  refit.continuation_iterations = 0;  // a refit that wanders is cut short on purpose
   // A refit starts from the base fit, whose states already lie on the
   // measured branch; seeded states converge slowly with the
   // candidates' non-smooth laws (measured: 3x the diagnosis's time).
@@ -345,21 +426,9 @@ void DiagnosisOptions::Validate() const {
   if (family == nullptr) Refuse("DiagnosisOptions.family", "null", "a model family (solver/estimation/model_family.h)");
   ipopt.Validate();
   RequireAtLeast("DiagnosisOptions.refit_max_iterations", refit_max_iterations, 1);
+  RequireInRange("DiagnosisOptions.max_pair_partners", max_pair_partners, 0, 16);
   RequireNonNegative("DiagnosisOptions.refit_max_cpu_seconds", refit_max_cpu_seconds);
 }
-
-FittedModel::FittedModel(const FitData& fit, const ModelFamily& model_family, const ModelStructure& s, int harmonics,
-                         const std::vector<double>& scaled_at, Eigen::VectorXd variables,
-                         const std::vector<double>& values)
-    : family(&model_family), structure(s), x(std::move(variables)), model_harmonics(harmonics) {
-  problem = model_family.MakeProblem(fit, structure, ModelOptions{.num_harmonics = harmonics});
-  problem->FeasiblePoint(scaled_at);
-  // After the problem: its internal scales are those of the structure the
-  // optimiser started from.
-  structure.SetValues(values);
-}
-
-std::vector<Eigen::MatrixXcd> FittedModel::Phasors(const FitData& data) const { return ModelPhasors(data, *problem, x); }
 
 BaseFit FitBase(const FitData& fit, const DiagnosisOptions& options) {
   ModelStructure structure;
@@ -391,6 +460,8 @@ HeldOutCheck ValidateOnHeldOut(const FittedModel& model, const FitData& validati
   }
   check.chi_square = chi2;
   check.h1_relative_error = std::sqrt(error2 / std::max(norm2, 1e-300));
+  check.num_residuals =
+      2 * static_cast<int>(validation.steps.size() * validation.channels.size()) * validation.num_fit_harmonics;
   return check;
 }
 
@@ -424,6 +495,64 @@ CandidateRefits RefitCandidates(const FitData& fit, const BaseFit& base, const s
   return refits;
 }
 
+bool SeparatedInSample(const FitSummary& a, const FitSummary& b) {
+  const FitSummary& better = a.chi_square <= b.chi_square ? a : b;
+  const double scale = std::max(1.0, better.reduced_chi_square);
+  return std::abs(a.chi_square - b.chi_square) / scale > kDecisiveChiSquare;
+}
+
+bool SeparatedHeldOut(const FitSummary& a, const FitSummary& b) {
+  if (!std::isfinite(a.held_out_chi_square) || !std::isfinite(b.held_out_chi_square)) return false;
+  const FitSummary& better = a.held_out_chi_square <= b.held_out_chi_square ? a : b;
+  const double scale =
+      std::max(1.0, better.held_out_num_residuals > 0 ? better.held_out_chi_square / better.held_out_num_residuals : 1.0);
+  return std::abs(a.held_out_chi_square - b.held_out_chi_square) / scale > kDecisiveChiSquare;
+}
+
+CandidateRefits RefitPairs(const FitData& fit, const FittedModel& first, const CandidateOutcome& first_outcome,
+                           const std::vector<std::string>& partners, const DiagnosisOptions& options,
+                           const RefitProgress& progress) {
+  RefitRun run = PlanPairs(fit, first, first_outcome, partners, options);
+  CandidateRefits pairs;
+  if (run.jobs.empty()) return pairs;
+  RunRefits(fit, options, progress, &run);
+  pairs.models.resize(run.library.size());
+  for (int c = 0; c < static_cast<int>(run.library.size()); ++c) {
+    CandidateOutcome outcome = DescribeCandidate(run, c, std::nullopt);
+    if (run.best_job[c] >= 0) pairs.models[c] = TestCandidate(fit, first_outcome.fit, run, c, options, &outcome);
+    pairs.outcomes.push_back(std::move(outcome));
+  }
+  return pairs;
+}
+
+std::vector<std::string> PairPartners(const std::vector<CandidateOutcome>& ranked, const std::string& cause,
+                                      const DiagnosisOptions& options) {
+  // Only those that helped alone: a partner whose refit failed from the base
+  // was seen to fail from the cause's optimum too, at its CPU cap each time.
+  std::vector<std::string> partners;
+  for (const CandidateOutcome& c : ranked)
+    if (c.name != cause && c.converged && !c.extra_parameters.empty() &&
+        c.residual_drop >= 1.0 / (1.0 - options.min_relative_improvement) &&
+        static_cast<int>(partners.size()) < options.max_pair_partners)
+      partners.push_back(c.name);
+  return partners;
+}
+
+int ChoosePair(const std::vector<CandidateOutcome>& pairs, const FitSummary& first) {
+  int chosen = -1;
+  for (int p = 0; p < static_cast<int>(pairs.size()); ++p) {
+    const CandidateOutcome& pair = pairs[p];
+    // Validates: predicts the held-out channels at least as well as the
+    // first cause alone (when there are any).
+    const bool validates = !std::isfinite(first.held_out_chi_square) ||
+                           (std::isfinite(pair.fit.held_out_chi_square) &&
+                            pair.fit.held_out_chi_square <= first.held_out_chi_square);
+    if (!pair.significant || !validates) continue;
+    if (chosen < 0 || pair.fit.bic < pairs[chosen].fit.bic) chosen = p;
+  }
+  return chosen;
+}
+
 Verdict DecideVerdict(const FitSummary& base, const std::optional<MisfitLocation>& location,
                       const std::vector<CandidateOutcome>& candidates, const DiagnosisOptions& options) {
   Verdict v;
@@ -436,10 +565,35 @@ Verdict DecideVerdict(const FitSummary& base, const std::optional<MisfitLocation
     if (x.converged && x.fit.bic != y.fit.bic) return x.fit.bic < y.fit.bic;
     return x.signature_score > y.signature_score;
   });
-  if (!v.ranking.empty() && candidates[v.ranking.front()].significant) {
+  int num_significant = 0;
+  while (num_significant < static_cast<int>(v.ranking.size()) && candidates[v.ranking[num_significant]].significant)
+    ++num_significant;
+  const bool held_out = num_significant > 0 && std::isfinite(candidates[v.ranking.front()].fit.held_out_chi_square);
+  // Validation: the significant candidate that predicts the held-out
+  // channels best goes first when it does so decisively.
+  if (held_out) {
+    int best = 0;
+    for (int r = 1; r < num_significant; ++r) {
+      const FitSummary& f = candidates[v.ranking[r]].fit;
+      if (std::isfinite(f.held_out_chi_square) && f.held_out_chi_square < candidates[v.ranking[best]].fit.held_out_chi_square)
+        best = r;
+    }
+    if (best > 0 && SeparatedHeldOut(candidates[v.ranking[best]].fit, candidates[v.ranking.front()].fit))
+      std::rotate(v.ranking.begin(), v.ranking.begin() + best, v.ranking.begin() + best + 1);
+  }
+  if (num_significant > 0) {
     v.cause = v.ranking.front();
     v.verdict = "cause named";
+    v.ranked_by = held_out ? "held-out channels" : "in-sample BIC";
     v.selected = {candidates[v.cause].name};
+    if (num_significant > 1) {
+      const FitSummary &a = candidates[v.cause].fit, &b = candidates[v.ranking[1]].fit;
+      if (!SeparatedInSample(a, b) && !SeparatedHeldOut(a, b)) {
+        v.tied_with = v.ranking[1];
+        v.verdict = "causes indistinguishable";
+        v.selected.push_back(candidates[v.tied_with].name);
+      }
+    }
   } else {
     const bool misfit =
         base.reduced_chi_square > options.acceptable_reduced_chi_square && (!location || location->significant);
@@ -478,13 +632,43 @@ DiagnosisResult Diagnose(const FitData& fit, const FitData& validation, const Fi
   const Verdict verdict = DecideVerdict(result.base, result.location, refits.outcomes, options);
   for (int c : verdict.ranking) result.candidates.push_back(refits.outcomes[c]);
   result.verdict = verdict.verdict;
+  result.ranked_by = verdict.ranked_by;
   result.selected = verdict.selected;
   const bool named = verdict.cause >= 0;
   result.final_fit = named ? refits.outcomes[verdict.cause].fit : result.base;
+  result.rest_within_noise = result.final_fit.reduced_chi_square <= options.acceptable_reduced_chi_square;
   if (named) result.final_extra_parameters = refits.outcomes[verdict.cause].extra_parameters;
 
+  // A cause that leaves a misfit beyond the noise: a second cause beside it.
+  const FittedModel* final_model = named ? refits.models[verdict.cause].get() : &base.model;
+  CandidateRefits pairs;
+  if (named && verdict.tied_with < 0 && !result.rest_within_noise && refits.models[verdict.cause]) {
+    const std::vector<std::string> partners =
+        PairPartners(result.candidates, refits.outcomes[verdict.cause].name, options);
+    report(0.85, "pairs with " + refits.outcomes[verdict.cause].name);
+    pairs = RefitPairs(fit, *refits.models[verdict.cause], refits.outcomes[verdict.cause], partners, options);
+    for (std::size_t c = 0; c < pairs.models.size(); ++c)
+      if (pairs.models[c]) ApplyHeldOut(ValidateOnHeldOut(*pairs.models[c], validation), &pairs.outcomes[c].fit);
+    const int chosen = ChoosePair(pairs.outcomes, refits.outcomes[verdict.cause].fit);
+    if (chosen >= 0) {
+      const CandidateOutcome& pair = pairs.outcomes[chosen];
+      result.verdict = "combination named";
+      result.selected = {refits.outcomes[verdict.cause].name,
+                         pair.name.substr(refits.outcomes[verdict.cause].name.size() + 3)};
+      result.final_fit = pair.fit;
+      result.final_extra_parameters = pair.extra_parameters;
+      result.rest_within_noise = result.final_fit.reduced_chi_square <= options.acceptable_reduced_chi_square;
+      final_model = pairs.models[chosen].get();
+    }
+    result.combinations = pairs.outcomes;
+  }
+  if (verdict.tied_with >= 0 && refits.models[verdict.cause] && refits.models[verdict.tied_with]) {
+    report(0.92, "where to measure next");
+    result.suggestion = SuggestMeasurement(fit, *refits.models[verdict.cause], refits.outcomes[verdict.cause].name,
+                                           *refits.models[verdict.tied_with], refits.outcomes[verdict.tied_with].name);
+  }
   report(0.95, "response curves");
-  result.response = ResponseCurves(fit, validation, base.model, named ? *refits.models[verdict.cause] : base.model);
+  result.response = ResponseCurves(fit, validation, base.model, *final_model);
   result.summary = WriteSummary(result);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   report(1.0, "done");

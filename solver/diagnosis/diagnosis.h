@@ -13,10 +13,17 @@
 //   χ²_base, when that fits better; and the base misfit
 //   exceeds acceptable_reduced_chi_square (a base within the model's own
 //   errors has nothing to explain);
-// ranked by BIC = χ² + P·ln(n) (AIC = χ² + 2P also reported) and checked on
-// the held-out channels. Without a significant candidate the verdict is "no
-// significant discrepancy" when the base fits within the noise, else
-// "unexplained" with the location's findings.
+// ranked by BIC = χ² + P·ln(n) (AIC = χ² + 2P also reported) and VALIDATED
+// on the held-out channels: a significant candidate that predicts them
+// decisively better than the in-sample winner is named instead (a refit can
+// bend itself to the fitted channels; only a real cause predicts the others),
+//   decisive: Δχ²/s² > kDecisiveChiSquare (6.63, χ²₁ at 99 %), s² the
+//   better model's reduced χ² (at least 1), in sample and held out alike;
+// when neither in sample nor held out separates the two best, the verdict is
+// "causes indistinguishable" and names both. After the cause, the summary
+// says whether the rest of the misfit lies within the noise. Without a
+// significant candidate the verdict is "no significant discrepancy" when the
+// base fits within the noise, else "unexplained" with the location's findings.
 //
 // Diagnose runs it as named stages, each a function returning a struct and
 // usable on its own (a robust base fit or a measurement-artefact check can
@@ -36,6 +43,9 @@
 #include <Eigen/Core>
 
 #include "solver/diagnosis/candidate_physics.h"
+#include "solver/diagnosis/fitted_model.h"
+#include "solver/diagnosis/measurement_suggestion.h"
+#include "solver/estimation/chi_square.h"
 #include "solver/estimation/fit_data.h"
 #include "solver/estimation/fit_problem.h"
 #include "solver/estimation/model_family.h"
@@ -65,6 +75,12 @@ struct DiagnosisOptions {
   // iterations when the candidate fits; a start that wanders is cut short.
   int refit_max_iterations = 80;
   double refit_max_cpu_seconds = 10.0;
+  // When the named cause leaves a misfit beyond acceptable_reduced_chi_square,
+  // it is refitted together with each of this many other candidates (those
+  // that removed at least min_relative_improvement of the base χ² alone, best
+  // BIC first); a pair is named when it is significant against the cause
+  // alone and predicts the held-out channels at least as well. 0: no pairs.
+  int max_pair_partners = 3;
 
   // Throws beamid::InputError naming the first field out of its range, its
   // value and the range, so that a bad option fails before minutes of fits.
@@ -85,6 +101,7 @@ struct FitSummary {
   // RMS error of the first harmonic over all steps, sqrt(Σ|ΔY₁|²/Σ|Y₁|²).
   double held_out_chi_square = std::numeric_limits<double>::quiet_NaN();
   double held_out_h1_relative_error = std::numeric_limits<double>::quiet_NaN();
+  int held_out_num_residuals = 0;  // of held_out_chi_square (0: unknown)
 };
 
 struct CandidateOutcome {
@@ -120,8 +137,21 @@ struct DiagnosisResult {
   std::optional<MisfitLocation> location;  // empty if locating failed
   std::string location_error;
   std::vector<CandidateOutcome> candidates;  // ranked: significant first, by BIC
-  std::vector<std::string> selected;         // {"none"} when no cause is named
-  std::string verdict;  // "cause named" | "no significant discrepancy" | "unexplained"
+  std::vector<std::string> selected;         // {"none"} when no cause is named; two for a pair or a tie
+  // "cause named" | "combination named" | "causes indistinguishable" |
+  // "no significant discrepancy" | "unexplained"
+  std::string verdict;
+  // How the named cause was chosen: "held-out channels" (they decided, or
+  // confirmed the in-sample ranking) or "in-sample BIC" (no held-out channel).
+  std::string ranked_by;
+  // After the selected model, the rest of the misfit lies within the noise
+  // (reduced χ² ≤ acceptable_reduced_chi_square); false: only part explained.
+  bool rest_within_noise = true;
+  // The pairs tried after the named cause (empty when it explained the
+  // misfit): "cause + partner", tested against the cause alone.
+  std::vector<CandidateOutcome> combinations;
+  // With "causes indistinguishable": where to measure to tell the two apart.
+  std::optional<MeasurementSuggestion> suggestion;
   FitSummary final_fit;                      // the selected model (the base when none)
   std::vector<std::string> final_extra_parameters;
   std::vector<ResponsePoint> response;
@@ -140,27 +170,6 @@ DiagnosisResult Diagnose(const FitData& fit, const FitData& validation, const Fi
 
 // ---- The stages of Diagnose ----
 
-// A fitted model rebuilt in this process: its problem with the internal
-// scales of the winning start and the optimiser's variables there, so that
-// its phasors at any channel are the fit's own (not a re-solve that could
-// land on another branch).
-struct FittedModel {
-  const ModelFamily* family;
-  ModelStructure structure;  // values: the optimum
-  std::unique_ptr<FitProblem> problem;
-  Eigen::VectorXd x;
-  int model_harmonics = 5;
-
-  // structure: the fitted one (its values are replaced by `values`);
-  // scaled_at: the parameters whose FeasiblePoint set x's scales.
-  FittedModel(const FitData& fit, const ModelFamily& family, const ModelStructure& structure, int model_harmonics,
-              const std::vector<double>& scaled_at, Eigen::VectorXd variables, const std::vector<double>& values);
-
-  // Per step, channels × K phasors of `data`'s channels in its units
-  // (harmonics the model lacks are 0).
-  std::vector<Eigen::MatrixXcd> Phasors(const FitData& data) const;
-};
-
 // Stage 1, the base model: the polynomial support alone from the direct
 // estimate (robust even when the misfit is large), then with the beam's loss
 // factor from there, kept only when it fits better (a large misfit can run
@@ -178,6 +187,7 @@ struct HeldOutCheck {
   // over all steps, sqrt(Σ|ΔY₁|²/Σ|Y₁|²); NaN without held-out channels.
   double chi_square = std::numeric_limits<double>::quiet_NaN();
   double h1_relative_error = std::numeric_limits<double>::quiet_NaN();
+  int num_residuals = 0;
 };
 HeldOutCheck ValidateOnHeldOut(const FittedModel& model, const FitData& validation);
 
@@ -205,17 +215,39 @@ using RefitProgress = std::function<void(int done, int num_jobs, const std::stri
 CandidateRefits RefitCandidates(const FitData& fit, const BaseFit& base, const std::optional<MisfitLocation>& location,
                                 const DiagnosisOptions& options, const RefitProgress& progress = {});
 
+// After the verdict, when the named cause leaves a misfit beyond the noise:
+// the cause's refit extended by each partner from its optimum (parallel
+// workers), each pair tested against the cause alone (its fit as "base").
+CandidateRefits RefitPairs(const FitData& fit, const FittedModel& first, const CandidateOutcome& first_outcome,
+                           const std::vector<std::string>& partners, const DiagnosisOptions& options,
+                           const RefitProgress& progress = {});
+// The partners of the cause (options.max_pair_partners of the ranked others
+// that removed min_relative_improvement of the base χ² on their own).
+std::vector<std::string> PairPartners(const std::vector<CandidateOutcome>& ranked, const std::string& cause,
+                                      const DiagnosisOptions& options);
+// The pair to name: significant against the cause alone, predicting the
+// held-out channels no worse, best BIC; -1 when none.
+int ChoosePair(const std::vector<CandidateOutcome>& pairs, const FitSummary& first);
+
 // Stage 4, the verdict: candidates ranked (significant first, converged by
-// BIC, then by signature score); the best named as the cause when
-// significant, else "unexplained" when the base misfit exceeds
+// BIC, then by signature score), the significant one that predicts the
+// held-out channels decisively better moved to the front (header); the best
+// named as the cause when significant — with the runner-up as "causes
+// indistinguishable" when neither in sample nor held out separates them —
+// else "unexplained" when the base misfit exceeds
 // acceptable_reduced_chi_square and the location (when there is one) finds
 // it significant, else "no significant discrepancy".
 struct Verdict {
   std::vector<int> ranking;  // indices into the candidates, best first
   int cause = -1;            // index of the named cause; -1 when none
+  int tied_with = -1;        // index of the candidate the data cannot tell from it; -1 when none
   std::string verdict;       // as DiagnosisResult::verdict
+  std::string ranked_by;     // as DiagnosisResult::ranked_by
   std::vector<std::string> selected;
 };
+// Whether the data separate two fits (header), in sample or on the held-out channels.
+bool SeparatedInSample(const FitSummary& a, const FitSummary& b);
+bool SeparatedHeldOut(const FitSummary& a, const FitSummary& b);
 Verdict DecideVerdict(const FitSummary& base, const std::optional<MisfitLocation>& location,
                       const std::vector<CandidateOutcome>& candidates, const DiagnosisOptions& options);
 

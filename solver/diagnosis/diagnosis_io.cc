@@ -54,7 +54,8 @@ Json FitToJson(const FitSummary& s) {
           {"aic", Number(s.aic)},
           {"bic", Number(s.bic)},
           {"held_out_chi_square", Number(s.held_out_chi_square)},
-          {"held_out_h1_relative_error", Number(s.held_out_h1_relative_error)}};
+          {"held_out_h1_relative_error", Number(s.held_out_h1_relative_error)},
+          {"held_out_num_residuals", s.held_out_num_residuals}};
 }
 
 Json LoopsToJson(const LoopEvidence& loops) {
@@ -176,6 +177,21 @@ Json ResponseToJson(const ResponsePoint& p) {
           {"final_model", Phasor(p.final_model)}};
 }
 
+Json SuggestionToJson(const MeasurementSuggestion& m) {
+  Json positions = Json::array();
+  for (const auto& p : m.positions) positions.push_back({Number(p.position_m), Number(p.expected_chi_square_difference)});
+  Json levels = Json::array();
+  for (const auto& l : m.levels) levels.push_back({{"level", l.level}, {"share", Number(l.share)}});
+  return {{"candidates", {m.first, m.second}},
+          {"best_position_m", Number(m.best.position_m)},
+          {"best_expected_chi_square_difference", Number(m.best.expected_chi_square_difference)},
+          {"current_expected_chi_square_difference", Number(m.current_expected)},
+          {"positions", positions},
+          {"levels", levels},
+          {"focus_hz", {Number(m.focus_low_hz), Number(m.focus_high_hz)}},
+          {"text", m.text}};
+}
+
 // ---------------------------------------------------------------- reading
 
 using Field = JsonField;
@@ -194,7 +210,8 @@ ParameterEstimate ParameterFromJson(const Field& f, const std::string& name) {
 
 FitSummary FitFromJson(const Field& f) {
   f.OnlyKeys({"parameters", "model_harmonics", "chi_square", "degrees_of_freedom", "num_residuals",
-              "reduced_chi_square", "aic", "bic", "held_out_chi_square", "held_out_h1_relative_error"});
+              "reduced_chi_square", "aic", "bic", "held_out_chi_square", "held_out_h1_relative_error",
+              "held_out_num_residuals"});
   FitSummary s;
   const Field parameters = f.At("parameters").Object();
   for (const auto& [name, value] : parameters.json().items())
@@ -208,6 +225,7 @@ FitSummary FitFromJson(const Field& f) {
   s.bic = f.Number("bic");
   s.held_out_chi_square = f.Number("held_out_chi_square");
   s.held_out_h1_relative_error = f.Number("held_out_h1_relative_error");
+  if (f.Has("held_out_num_residuals")) s.held_out_num_residuals = f.Integer("held_out_num_residuals");
   return s;
 }
 
@@ -350,12 +368,48 @@ ResponsePoint ResponseFromJson(const Field& f) {
           .final_model = f.At("final_model").Phasor()};
 }
 
+MeasurementSuggestion SuggestionFromJson(const Field& f) {
+  f.OnlyKeys({"candidates", "best_position_m", "best_expected_chi_square_difference",
+              "current_expected_chi_square_difference", "positions", "levels", "focus_hz", "text"});
+  MeasurementSuggestion m;
+  const std::vector<std::string> names = f.At("candidates").Strings();
+  if (names.size() != 2) f.At("candidates").Fail("must name the two candidates");
+  m.first = names[0];
+  m.second = names[1];
+  m.best = {.position_m = f.Number("best_position_m"),
+            .expected_chi_square_difference = f.Number("best_expected_chi_square_difference")};
+  m.current_expected = f.Number("current_expected_chi_square_difference");
+  const Field positions = f.At("positions");
+  for (std::size_t i = 0; i < positions.Size(); ++i) {
+    const std::vector<double> p = positions.At(i).Numbers();
+    if (p.size() != 2) positions.At(i).Fail("must be [position_m, expected chi-square difference]");
+    m.positions.push_back({.position_m = p[0], .expected_chi_square_difference = p[1]});
+  }
+  const Field levels = f.At("levels");
+  for (std::size_t i = 0; i < levels.Size(); ++i)
+    m.levels.push_back({.level = levels.At(i).String("level"), .share = levels.At(i).Number("share")});
+  const std::vector<double> focus = f.At("focus_hz").Numbers();
+  if (focus.size() != 2) f.At("focus_hz").Fail("must be [low, high]");
+  m.focus_low_hz = focus[0];
+  m.focus_high_hz = focus[1];
+  m.text = f.String("text");
+  return m;
+}
+
 DiagnosisResult ResultFromJson(const Field& root) {
-  root.OnlyKeys({"format", "beamid_version", "campaign", "result", "result_file", "selected", "verdict", "summary",
-                 "base", "final", "candidates", "location", "response", "seconds"});
+  root.OnlyKeys({"format", "beamid_version", "campaign", "result", "result_file", "selected", "verdict", "ranked_by",
+                 "rest_within_noise", "suggestion", "combinations", "summary", "base", "final", "candidates", "location", "response", "seconds"});
   DiagnosisResult r;
   r.selected = root.At("selected").Strings();
   r.verdict = root.String("verdict");
+  if (root.Has("ranked_by")) r.ranked_by = root.String("ranked_by");
+  if (root.Has("rest_within_noise")) r.rest_within_noise = root.Boolean("rest_within_noise");
+  if (root.Has("suggestion")) r.suggestion = SuggestionFromJson(root.At("suggestion"));
+  if (root.Has("combinations")) {
+    const Field combinations = root.At("combinations");
+    for (std::size_t i = 0; i < combinations.Size(); ++i)
+      r.combinations.push_back(CandidateFromJson(combinations.At(i)));
+  }
   r.summary = root.String("summary");
   r.base = FitFromJson(root.At("base"));
   const Field candidates = root.At("candidates");
@@ -402,6 +456,16 @@ std::string DiagnosisFileToJson(const DiagnosisFile& file) {
   }
   root["selected"] = r.selected;
   root["verdict"] = r.verdict;
+  root["ranked_by"] = r.ranked_by;
+  root["rest_within_noise"] = r.rest_within_noise;
+  if (r.suggestion) root["suggestion"] = SuggestionToJson(*r.suggestion);
+  if (!r.combinations.empty()) {
+    // Each pair's residual_before is the first cause's (what it is tested against).
+    const double before = r.candidates.empty() ? r.base.chi_square : r.candidates.front().fit.chi_square;
+    Json combinations = Json::array();
+    for (const auto& c : r.combinations) combinations.push_back(CandidateToJson(c, before));
+    root["combinations"] = combinations;
+  }
   root["summary"] = r.summary;
   root["base"] = FitToJson(r.base);
   root["final"] = {{"extension", r.selected},

@@ -6,6 +6,10 @@
 
 namespace beamid::solver {
 
+// χ²(1) at 99 %: the gap in χ² (in units of the reduced χ² when that
+// exceeds 1) beyond which the data decide between two fits.
+inline constexpr double kDecisiveChiSquare = 6.635;
+
 // Q(a, x) = Γ(a, x)/Γ(a), a > 0, x ≥ 0. Throws std::invalid_argument otherwise.
 double RegularizedUpperGamma(double a, double x);
 

@@ -44,7 +44,6 @@ constexpr int kFirstStartMaxIterations = 1000;
 constexpr double kRepairGain = 1e-6;
 constexpr int kMaxBranchRepairs = 3;
 // A start that ran out of iterations may go on for this many more.
-constexpr int kContinuationIterations = 3000;
 
 // One Ipopt run from x0, which `problem` has just scaled at `scaled_at`.
 StartOutcome RunFrom(FitProblem& problem, const IpoptOptions& ipopt, const Eigen::VectorXd& x0,
@@ -197,7 +196,7 @@ IdentifyResult IdentifyFromDirectEstimate(const BoundedProblemFactory& make_prob
 }
 
 // When no start converged: the start whose end point has the least misfit
-// goes on from there for kContinuationIterations more. A model that misses
+// goes on from there for options.continuation_iterations more. A model that misses
 // the data (physics it lacks) slows Ipopt down near the optimum rather than
 // leaving it without one; the user is owed that fit and its verdict, not
 // "no start converged". Returns the index of the continued start, or throws
@@ -210,18 +209,19 @@ int ContinueFromBestEndPoint(const ProblemFactory& make_problem, const IdentifyO
         (nearest < 0 || result.starts[i].objective < result.starts[nearest].objective))
       nearest = i;
   std::string tried = "no start converged (first start: " + result.starts[0].status + ")";
+  if (options.continuation_iterations == 0) throw NumericalError(tried);
   if (nearest < 0) throw NumericalError(tried + "; no start reached a point to continue from");
   const std::unique_ptr<FitProblem> problem = make_problem();
   StartOutcome& outcome = result.starts[nearest];
   problem->FeasiblePoint(outcome.scaled_at);
   IpoptOptions ipopt = options.ipopt;
-  ipopt.max_iterations = kContinuationIterations;
+  ipopt.max_iterations = options.continuation_iterations;
   Eigen::VectorXd x;
   StartOutcome continued = RunFrom(*problem, ipopt, finals[nearest], outcome.scaled_at, &x);
   if (!continued.success)
     throw NumericalError(tried + "; continuing from the best end point (start " + std::to_string(nearest + 1) +
                          ", chi-square " + std::to_string(2.0 * outcome.objective) + ") for " +
-                         std::to_string(kContinuationIterations) + " more iterations ended with: " + continued.status);
+                         std::to_string(options.continuation_iterations) + " more iterations ended with: " + continued.status);
   result.warnings.push_back(tried + "; the fit went on from the best end point (start " +
                             std::to_string(nearest + 1) + ") and converged after " +
                             std::to_string(continued.iterations) + " more iterations");
@@ -245,6 +245,7 @@ void IdentifyOptions::Validate() const {
   RequireAbove("IdentifyOptions.start_spread", start_spread, 1.0);
   if (family == nullptr) Refuse("IdentifyOptions.family", "null", "a model family (solver/estimation/model_family.h)");
   RequireInRange("IdentifyOptions.num_workers (worker processes, 0: one per core)", num_workers, 0, 256);
+  RequireInRange("IdentifyOptions.continuation_iterations", continuation_iterations, 0, 100000);
   RequirePositive("IdentifyOptions.decisive_chi_square_gap", decisive_chi_square_gap);
 }
 

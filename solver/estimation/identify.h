@@ -55,6 +55,10 @@ struct IdentifyOptions {
   // the fit if that lowers the misfit (a step converged on the other branch
   // of a fold).
   bool branch_repair = true;
+  // When no start converged, the best end point goes on for this many more
+  // iterations (a model that misses the data slows Ipopt near the optimum);
+  // 0: fail at once (the diagnosis's refits, which a cap cuts on purpose).
+  int continuation_iterations = 3000;
 
   // Throws InputError naming the field, its value and the allowed range
   // (model and ipopt included).

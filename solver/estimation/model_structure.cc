@@ -88,13 +88,29 @@ LinearParameter LossFactor(double initial) {
           .apply = [](hb::LinearBeamModel& model, double eta) { model.beam.loss_factor = std::max(eta, 0.0); }};
 }
 
+LinearParameter RayleighMassDamping(double initial) {
+  return {.name = "rayleigh_mass_1_s",
+          .unit = "1/s",
+          .initial = initial,
+          .bounds = {.lower = 0.0, .upper = 100.0, .typical = 0.1},
+          .apply = [](hb::LinearBeamModel& model, double alpha) { model.beam.rayleigh_mass_1_s = std::max(alpha, 0.0); }};
+}
+
+LinearParameter RayleighStiffnessDamping(double initial) {
+  return {.name = "rayleigh_stiffness_s",
+          .unit = "s",
+          .initial = initial,
+          .bounds = {.lower = 0.0, .upper = 1e-3, .typical = 1e-6},
+          .apply = [](hb::LinearBeamModel& model, double beta) { model.beam.rayleigh_stiffness_s = std::max(beta, 0.0); }};
+}
+
 LinearParameter LinearParameterByName(const std::string& name, double value) {
-  for (LinearParameter p : {BendingStiffnessScale(), LossFactor()})
+  for (LinearParameter p : {BendingStiffnessScale(), LossFactor(), RayleighMassDamping(), RayleighStiffnessDamping()})
     if (p.name == name) {
       p.initial = value;
       return p;
     }
-  throw std::invalid_argument("unknown linear parameter '" + name + "' (known: EI_scale, loss_factor)");
+  throw std::invalid_argument("unknown linear parameter '" + name + "' (known: EI_scale, loss_factor, rayleigh_mass_1_s, rayleigh_stiffness_s)");
 }
 
 }  // namespace beamid::solver

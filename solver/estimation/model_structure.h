@@ -65,7 +65,13 @@ LinearParameter BendingStiffnessScale();
 // keeps c from absorbing the beam's own damping.
 LinearParameter LossFactor(double initial = 1e-3);
 
-// The linear parameter of that name ("EI_scale", "loss_factor"), to rebuild
+// The beam's Rayleigh damping C = α·M + β·K (hb/beam_properties.h): α [1/s]
+// and β [s], the damping laws a loss factor cannot represent (mode j's ratio
+// α/(2ω_j) + β·ω_j/2 against η/2 for every mode).
+LinearParameter RayleighMassDamping(double initial = 0.0);
+LinearParameter RayleighStiffnessDamping(double initial = 0.0);
+
+// The linear parameter of that name ("EI_scale", "loss_factor", "rayleigh_…"), to rebuild
 // a fitted model from a result file; throws std::invalid_argument otherwise.
 LinearParameter LinearParameterByName(const std::string& name, double value);
 

@@ -18,6 +18,7 @@
 
 #include "hb/beam_properties.h"
 #include "hb/linear_attachments.h"
+#include "solver/estimation/damping_laws.h"
 #include "solver/estimation/fit_verdict.h"
 #include "solver/estimation/model_family.h"
 #include "solver/estimation/multistart.h"
@@ -148,6 +149,9 @@ struct ResultFile {
   Eigen::MatrixXd covariance;   // parameter order
   Eigen::MatrixXd correlation;
   ResultFit fit;
+  // The fit refitted under the beam's other damping laws, and the model-form
+  // intervals (solver/estimation/damping_laws.h); empty when not computed.
+  DampingLawEnvelope damping_laws;
   std::vector<std::string> warnings;
   std::vector<ChannelQuality> quality;     // fitted channels, in fit order
   std::vector<HeldOutChannel> validation;  // empty: no held-out channel

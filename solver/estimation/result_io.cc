@@ -236,6 +236,57 @@ std::vector<ResultParameter> ReadParameters(const Field& root) {
   return out;
 }
 
+Json EstimateJson(const ParameterEstimate& p) {
+  return {{"name", p.name}, {"unit", p.unit}, {"value", p.value}, {"std", p.std}, {"ci95", {p.lower_95, p.upper_95}}};
+}
+
+Json DampingLawsJson(const DampingLawEnvelope& envelope) {
+  Json laws = Json::array();
+  for (const auto& law : envelope.laws) {
+    Json parameters = Json::array();
+    for (const auto& p : law.parameters) parameters.push_back(EstimateJson(p));
+    laws.push_back({{"law", law.law},
+                    {"converged", law.converged},
+                    {"status", law.status},
+                    {"chi_square", law.chi_square},
+                    {"reduced_chi_square", law.reduced_chi_square},
+                    {"accepted", law.accepted},
+                    {"parameters", parameters}});
+  }
+  Json intervals = Json::array();
+  for (const auto& i : envelope.intervals)
+    intervals.push_back({{"name", i.name},
+                         {"unit", i.unit},
+                         {"ci95", {i.lower_95, i.upper_95}},
+                         {"depends_on_damping_law", i.depends_on_damping_law}});
+  return {{"laws", laws}, {"model_form_intervals", intervals}};
+}
+
+// The laws as written; acceptance and intervals judged again from them (one rule).
+DampingLawEnvelope ReadDampingLaws(const Field& f) {
+  DampingLawEnvelope out;
+  for (const Field& law : f.At("laws").Elements()) {
+    DampingLawFit fit{.law = law.String("law"),
+                      .converged = law.Boolean("converged"),
+                      .status = law.String("status"),
+                      .chi_square = law.Number("chi_square"),
+                      .reduced_chi_square = law.Number("reduced_chi_square")};
+    for (const Field& p : law.At("parameters").Elements()) {
+      const std::vector<double> ci95 = p.At("ci95").Numbers();
+      if (ci95.size() != 2) p.At("ci95").Fail("must be [low, high]");
+      fit.parameters.push_back({.name = p.String("name"),
+                                .unit = p.String("unit"),
+                                .value = p.Number("value"),
+                                .std = p.Number("std"),
+                                .lower_95 = ci95[0],
+                                .upper_95 = ci95[1]});
+    }
+    out.laws.push_back(std::move(fit));
+  }
+  JudgeDampingLaws(&out);
+  return out;
+}
+
 ResultFit ReadFit(const Field& f) {
   ResultFit out;
   out.chi_square = f.Number("chi_square");
@@ -357,6 +408,7 @@ ResultFile ReadResult(const Json& root, const std::string& source) {
   out.correlation = SquareMatrix(r.At("correlation"), out.parameters.size());
   out.fit = ReadFit(r.At("fit"));
   out.warnings = r.At("warnings").Strings();
+  if (r.Has("damping_laws")) out.damping_laws = ReadDampingLaws(r.At("damping_laws"));
   out.quality = ReadQuality(r.At("quality"), out.model.num_fit_harmonics);
   if (r.Has("validation")) out.validation = ReadValidation(r.At("validation"), out.model.num_fit_harmonics);
   out.steps = ReadSteps(r.At("steps"), out.model);
@@ -384,6 +436,7 @@ std::string ResultFileToJson(const ResultFile& result) {
   root["covariance"] = MatrixJson(result.covariance);
   root["correlation"] = MatrixJson(result.correlation);
   root["fit"] = FitJson(result.fit);
+  if (!result.damping_laws.laws.empty()) root["damping_laws"] = DampingLawsJson(result.damping_laws);
   root["warnings"] = Json(result.warnings);
   root["quality"] = QualityJson(result.quality);
   if (!result.validation.empty()) root["validation"] = ValidationJson(result.validation);

@@ -35,7 +35,8 @@ Scenario Filled() {
   Scenario s;
   s.name = "every field set";
   s.beam = {.length_m = 0.55, .width_m = 0.035, .thickness_m = 0.0045, .youngs_modulus_Pa = 1.95e11,
-            .density_kg_m3 = 7810.0, .loss_factor = 0.0031};
+            .density_kg_m3 = 7810.0, .loss_factor = 0.0031, .rayleigh_mass_1_s = 0.125,
+            .rayleigh_stiffness_s = 3.5e-7};
   s.nominal_beam = {.length_m = 0.551, .width_m = 0.036, .thickness_m = 0.0046, .youngs_modulus_Pa = 2.05e11,
                     .density_kg_m3 = 7790.0, .loss_factor = 0.0007};
   s.polynomial = {.k1_Nm_rad = 151.25, .k2_Nm_rad2 = -1234.5, .k3_Nm_rad3 = 3.1e5, .c_Nms_rad = 0.043};
@@ -45,6 +46,7 @@ Scenario Filled() {
   s.attachments.support_translational_stiffness_N_m = 7.25e5;
   s.attachments.point_masses = {{0.41, 0.021}, {0.0, 0.5}};
   s.damping_reference_frequency_hz = 53.5;
+  s.modal_damping_ratios = {1.5e-4, 4e-5, 2.5e-4};
   s.mesh_min_elements = 37;
   s.force_channel = "shaker_force";
   s.force_position_m = 0.53;
@@ -88,6 +90,8 @@ void ExpectSameBeam(const BeamProperties& a, const BeamProperties& b) {
   EXPECT_EQ(a.youngs_modulus_Pa, b.youngs_modulus_Pa);
   EXPECT_EQ(a.density_kg_m3, b.density_kg_m3);
   EXPECT_EQ(a.loss_factor, b.loss_factor);
+  EXPECT_EQ(a.rayleigh_mass_1_s, b.rayleigh_mass_1_s);
+  EXPECT_EQ(a.rayleigh_stiffness_s, b.rayleigh_stiffness_s);
 }
 
 void ExpectSameNoise(const ChannelNoise& a, const ChannelNoise& b) {
@@ -108,6 +112,7 @@ void ExpectSamePhysics(const Scenario& a, const Scenario& b) {
     SCOPED_TRACE("nominal_beam");
     ExpectSameBeam(a.nominal_beam, b.nominal_beam);
   }
+  EXPECT_EQ(a.modal_damping_ratios, b.modal_damping_ratios);
   EXPECT_EQ(a.polynomial.k1_Nm_rad, b.polynomial.k1_Nm_rad);
   EXPECT_EQ(a.polynomial.k2_Nm_rad2, b.polynomial.k2_Nm_rad2);
   EXPECT_EQ(a.polynomial.k3_Nm_rad3, b.polynomial.k3_Nm_rad3);

@@ -144,6 +144,66 @@ TEST(TimeSimulatorTest, LinearSteadyStateWithAttachmentsMatchesExactReceptance) 
   }
 }
 
+TEST(TimeSimulatorTest, RayleighDampedSteadyStateMatchesExactReceptance) {
+  // C = α·M + β·K on the beam and its point masses against the exact beam's
+  // ρA(ω² − iαω), m(ω² − iαω) and EI(1 + iβω); heavy enough damping that
+  // leaving it out of the exact beam misses by far more than the tolerance.
+  TimeSimulatorModel model = PaperModel(0.0);
+  model.beam.rayleigh_mass_1_s = 2.0;
+  model.beam.rayleigh_stiffness_s = 2e-6;
+  model.attachments.point_masses = {{0.570, 0.025}, {0.300, 0.012}};
+  const double k1 = 150.0, c = 0.02;
+  const PolynomialSupportLaw law({.k1_Nm_rad = k1, .c_Nms_rad = c});
+  LinearBeamModel exact_model{
+      .beam = model.beam, .attachments = model.attachments, .support_stiffness_Nm_rad = k1, .support_damping_Nms_rad = c};
+  const LinearBeam exact(exact_model, 0.570);
+  exact_model.beam.rayleigh_mass_1_s = exact_model.beam.rayleigh_stiffness_s = 0.0;
+  const LinearBeam without_rayleigh(exact_model, 0.570);
+  const double f1_hz = exact.NaturalFrequencies_rad_s(1)[0] / (2 * kPi);
+  for (double frequency_hz : {0.8 * f1_hz, f1_hz, 1.5 * f1_hz, 260.0}) {
+    SCOPED_TRACE(frequency_hz);
+    TimeSimulator sim(model, law);
+    const SteadyState simulated = Simulate(sim, 1.0, frequency_hz, 3.0);
+    ExpectMatchesExactReceptance(simulated, exact, frequency_hz, 1.0);
+    if (frequency_hz == f1_hz) {
+      const double omega = 2 * kPi * frequency_hz;
+      EXPECT_GT(RelativeError(simulated.theta(1), without_rayleigh.RespondToForce(omega).SupportRotation_rad()),
+                10 * kReceptanceTolerance);
+    }
+  }
+}
+
+TEST(TimeSimulatorTest, ModalDampingRatiosOfTwoModesActAsTheRayleighDampingThatGivesThem) {
+  // ζ₁, ζ₂ given per mode; the Rayleigh α, β with the same ratios at ω₁, ω₂
+  // (ζ_j = α/(2ω_j) + β·ω_j/2) in the exact beam. The modes are the beam's
+  // without the support law, which here has no stiffness (a pinned end), so
+  // they are the exact beam's; the third and higher modes differ (ζ₂ against
+  // Rayleigh's), which near mode 1 is far below the tolerance.
+  TimeSimulatorModel model = PaperModel(0.0);
+  model.modal_damping_ratios = {1e-2, 5e-3};  // heavy: settled within the 3 s
+  const PolynomialSupportLaw law({.k1_Nm_rad = 0.0});
+  LinearBeamModel exact_model{.beam = model.beam};
+  const std::vector<double> w = LinearBeam(exact_model, 0.570).NaturalFrequencies_rad_s(2);
+  const double z1 = model.modal_damping_ratios[0], z2 = model.modal_damping_ratios[1];
+  exact_model.beam.rayleigh_stiffness_s = 2.0 * (z2 * w[1] - z1 * w[0]) / (w[1] * w[1] - w[0] * w[0]);
+  exact_model.beam.rayleigh_mass_1_s = 2.0 * z1 * w[0] - exact_model.beam.rayleigh_stiffness_s * w[0] * w[0];
+  ASSERT_GT(exact_model.beam.rayleigh_mass_1_s, 0.0);
+  ASSERT_GT(exact_model.beam.rayleigh_stiffness_s, 0.0);
+  const LinearBeam exact(exact_model, 0.570);
+  const double f1_hz = w[0] / (2 * kPi);
+  for (double frequency_hz : {0.9 * f1_hz, f1_hz, 1.1 * f1_hz}) {
+    SCOPED_TRACE(frequency_hz);
+    TimeSimulator sim(model, law);
+    ExpectMatchesExactReceptance(Simulate(sim, 1.0, frequency_hz, 3.0), exact, frequency_hz, 1.0);
+  }
+}
+
+TEST(TimeSimulatorTest, RejectsAModalDampingRatioOutsideZeroToOne) {
+  TimeSimulatorModel model = PaperModel(0.0);
+  model.modal_damping_ratios = {1e-3, 1.5};
+  EXPECT_THROW(TimeSimulator(model, PolynomialSupportLaw({.k1_Nm_rad = 150.0})), std::invalid_argument);
+}
+
 TEST(TimeSimulatorTest, HalvingTheTimeStepChangesHarmonicsLessThanTolerance) {
   // A strongly nonlinear polynomial support with even and odd terms, driven
   // below resonance (a single stable branch).

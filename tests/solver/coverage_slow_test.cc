@@ -54,25 +54,6 @@ constexpr double kMinCoverage = 0.85;  // the issue's 85–100 %
 const std::vector<std::string> kNames = {"k1", "k2", "k3", "c", "loss_factor"};
 const std::vector<double> kTruth = {150.0, 0.0, 3e5, 0.05, 2e-4};
 
-// One realisation of the measurement on the clean recordings, extracted as
-// `beamid extract` does (the CSV's 9 significant digits aside).
-signal::PhasorSet Measure(const hb::Scenario& scenario, const std::vector<hb::SimulatedStep>& steps,
-                          const signal::Campaign& campaign, std::uint64_t seed) {
-  hb::MeasurementNoise noise(seed);
-  signal::PhasorSet set{.campaign = campaign.name, .num_harmonics = 5, .steps = {}};
-  const std::vector<const signal::ChannelSpec*> channels = campaign.Channels();
-  for (std::size_t i = 0; i < steps.size(); ++i) {
-    signal::Recording recording{.file = steps[i].file, .channels = {}, .sample_rate_hz = scenario.timing.sample_rate_hz,
-                                .start_time_s = 0.0, .samples = noise.Measure(scenario, steps[i].recording, nullptr)};
-    for (std::size_t c = 0; c < channels.size(); ++c) {
-      recording.channels.push_back(channels[c]->channel);
-      recording.samples.col(static_cast<Eigen::Index>(c)) *= channels[c]->to_si_factor;
-    }
-    set.steps.push_back(signal::EstimateStepPhasors(recording, campaign, campaign.steps[i], {.num_harmonics = 5}));
-  }
-  return set;
-}
-
 TEST(IdentificationCoverage, TruthLiesInThe95PercentIntervalsIn85To100PercentOfNoiseRealisations) {
   const hb::Scenario scenario = LeanPaperBase();
   ASSERT_EQ(scenario.NumSteps(), 45);
@@ -88,7 +69,7 @@ TEST(IdentificationCoverage, TruthLiesInThe95PercentIntervalsIn85To100PercentOfN
   std::vector<int> covered(kNames.size(), 0);
   std::vector<double> sum_z(kNames.size(), 0.0), sum_z2(kNames.size(), 0.0);
   for (int r = 0; r < kRealisations; ++r) {
-    const signal::PhasorSet phasors = Measure(scenario, steps, campaign, 1000 + r);
+    const signal::PhasorSet phasors = beamid::testing::MeasureAgain(scenario, steps, campaign, 1000 + r);
     const FitData fit = MakeFitData(campaign, phasors, {.channels = {"acc1", "acc2"}});
     const IdentifyResult result = Identify(fit, structure, {});
     ASSERT_EQ(result.parameters.size(), kNames.size());

@@ -50,6 +50,7 @@ FitSummary Fit(double seed, const std::vector<std::string>& names) {
   s.bic = s.chi_square + std::log(161.0) / 3.0;
   s.held_out_chi_square = seed * 9.87654321e3;
   s.held_out_h1_relative_error = 1.0 / (seed + 11.0);
+  s.held_out_num_residuals = 90 + static_cast<int>(seed);
   return s;
 }
 
@@ -171,8 +172,24 @@ DiagnosisFile FullFile(bool with_location) {
                               .significant = false,
                               .seconds = 3.0 / 7.0};
   r.candidates = {friction, failed, truncation};
+  CandidateOutcome pair = truncation;
+  pair.name = "support_friction + harmonic_truncation";
+  pair.extra_parameters = {"jenkins_stiffness", "jenkins_slip_moment"};
+  r.combinations = {pair};
   r.selected = {"support_friction"};
   r.verdict = "cause named";
+  r.ranked_by = "held-out channels";
+  r.rest_within_noise = false;  // not the default
+  r.suggestion = MeasurementSuggestion{.first = "added_mass",
+                                       .second = "modulus_error",
+                                       .positions = {{.position_m = 0.015, .expected_chi_square_difference = 1.0 / 3.0},
+                                                     {.position_m = 0.45, .expected_chi_square_difference = 47.0 / 3.0}},
+                                       .best = {.position_m = 0.45, .expected_chi_square_difference = 47.0 / 3.0},
+                                       .current_expected = 2.0 / 7.0,
+                                       .levels = {{.level = "low", .share = 0.25}, {.level = "high", .share = 0.75}},
+                                       .focus_low_hz = 53.25,
+                                       .focus_high_hz = 54.75,
+                                       .text = "add an accelerometer at x = 0.450 m"};
   r.final_fit = friction.fit;
   r.final_extra_parameters = friction.extra_parameters;
   r.response.push_back({.level = "low", .frequency_hz = 51.75, .channel = "acc1", .held_out = false,
@@ -214,6 +231,7 @@ void ExpectSameFit(const FitSummary& a, const FitSummary& b, const std::string& 
   EXPECT_TRUE(Same(a.bic, b.bic));
   EXPECT_TRUE(Same(a.held_out_chi_square, b.held_out_chi_square));
   EXPECT_TRUE(Same(a.held_out_h1_relative_error, b.held_out_h1_relative_error));
+  EXPECT_EQ(a.held_out_num_residuals, b.held_out_num_residuals);
 }
 
 void ExpectSameNumbers(const std::vector<double>& a, const std::vector<double>& b) {
@@ -301,20 +319,10 @@ void ExpectSameLocation(const MisfitLocation& a, const MisfitLocation& b) {
   EXPECT_EQ(a.findings, b.findings);
 }
 
-void ExpectSameFile(const DiagnosisFile& a, const DiagnosisFile& b) {
-  EXPECT_EQ(a.campaign_folder, b.campaign_folder);
-  EXPECT_EQ(a.campaign_name, b.campaign_name);
-  EXPECT_EQ(a.result_file, b.result_file);
-  EXPECT_EQ(a.embedded_result_json, b.embedded_result_json);
-  EXPECT_EQ(a.beamid_version, b.beamid_version);
-  const DiagnosisResult &x = a.diagnosis, &y = b.diagnosis;
-  ExpectSameFit(x.base, y.base, "base");
-  ASSERT_EQ(x.location.has_value(), y.location.has_value());
-  if (x.location) ExpectSameLocation(*x.location, *y.location);
-  EXPECT_EQ(x.location_error, y.location_error);
-  ASSERT_EQ(x.candidates.size(), y.candidates.size());
-  for (std::size_t i = 0; i < x.candidates.size(); ++i) {
-    const CandidateOutcome &c = x.candidates[i], &d = y.candidates[i];
+void ExpectSameCandidates(const std::vector<CandidateOutcome>& xs, const std::vector<CandidateOutcome>& ys) {
+  ASSERT_EQ(xs.size(), ys.size());
+  for (std::size_t i = 0; i < xs.size(); ++i) {
+    const CandidateOutcome &c = xs[i], &d = ys[i];
     SCOPED_TRACE(c.name);
     EXPECT_EQ(c.name, d.name);
     EXPECT_EQ(c.description, d.description);
@@ -330,8 +338,47 @@ void ExpectSameFile(const DiagnosisFile& a, const DiagnosisFile& b) {
     EXPECT_EQ(c.significant, d.significant);
     EXPECT_TRUE(Same(c.seconds, d.seconds));
   }
+}
+
+void ExpectSameFile(const DiagnosisFile& a, const DiagnosisFile& b) {
+  EXPECT_EQ(a.campaign_folder, b.campaign_folder);
+  EXPECT_EQ(a.campaign_name, b.campaign_name);
+  EXPECT_EQ(a.result_file, b.result_file);
+  EXPECT_EQ(a.embedded_result_json, b.embedded_result_json);
+  EXPECT_EQ(a.beamid_version, b.beamid_version);
+  const DiagnosisResult &x = a.diagnosis, &y = b.diagnosis;
+  ExpectSameFit(x.base, y.base, "base");
+  ASSERT_EQ(x.location.has_value(), y.location.has_value());
+  if (x.location) ExpectSameLocation(*x.location, *y.location);
+  EXPECT_EQ(x.location_error, y.location_error);
+  ExpectSameCandidates(x.candidates, y.candidates);
+  ExpectSameCandidates(x.combinations, y.combinations);
   EXPECT_EQ(x.selected, y.selected);
   EXPECT_EQ(x.verdict, y.verdict);
+  EXPECT_EQ(x.ranked_by, y.ranked_by);
+  EXPECT_EQ(x.rest_within_noise, y.rest_within_noise);
+  ASSERT_EQ(x.suggestion.has_value(), y.suggestion.has_value());
+  if (x.suggestion) {
+    const MeasurementSuggestion &m = *x.suggestion, &n = *y.suggestion;
+    EXPECT_EQ(m.first, n.first);
+    EXPECT_EQ(m.second, n.second);
+    ASSERT_EQ(m.positions.size(), n.positions.size());
+    for (std::size_t i = 0; i < m.positions.size(); ++i) {
+      EXPECT_TRUE(Same(m.positions[i].position_m, n.positions[i].position_m));
+      EXPECT_TRUE(Same(m.positions[i].expected_chi_square_difference, n.positions[i].expected_chi_square_difference));
+    }
+    EXPECT_TRUE(Same(m.best.position_m, n.best.position_m));
+    EXPECT_TRUE(Same(m.best.expected_chi_square_difference, n.best.expected_chi_square_difference));
+    EXPECT_TRUE(Same(m.current_expected, n.current_expected));
+    ASSERT_EQ(m.levels.size(), n.levels.size());
+    for (std::size_t i = 0; i < m.levels.size(); ++i) {
+      EXPECT_EQ(m.levels[i].level, n.levels[i].level);
+      EXPECT_TRUE(Same(m.levels[i].share, n.levels[i].share));
+    }
+    EXPECT_TRUE(Same(m.focus_low_hz, n.focus_low_hz));
+    EXPECT_TRUE(Same(m.focus_high_hz, n.focus_high_hz));
+    EXPECT_EQ(m.text, n.text);
+  }
   ExpectSameFit(x.final_fit, y.final_fit, "final");
   EXPECT_EQ(x.final_extra_parameters, y.final_extra_parameters);
   ASSERT_EQ(x.response.size(), y.response.size());

@@ -145,6 +145,15 @@ ResultFile HarmonicBalanceResult() {
     r.validation.push_back(v);
   }
   r.validation[1].steps[1].harmonics[2].predicted = Complex(kNaN, 0.5);  // a step the model did not solve
+  r.damping_laws.laws = {
+      DampingLawFitOf("loss_factor", {{.name = "k1", .unit = "N*m/rad", .value = 150.5, .std = 0.25, .lower_95 = 150.0,
+                                       .upper_95 = 151.0}},
+                      40.0, 20),
+      DampingLawFitOf("rayleigh", {{.name = "k1", .unit = "N*m/rad", .value = 151.5, .std = 0.5, .lower_95 = 150.5,
+                                    .upper_95 = 152.5}},
+                      41.0, 19),
+      {.law = "mass_proportional", .status = "failed: restoration phase failed"}};
+  JudgeDampingLaws(&r.damping_laws);
   for (int i = 0; i < 3; ++i)
     r.steps.push_back({.level = levels[i % 2],
                        .file = "level " + std::to_string(i) + "/step.csv",
@@ -227,6 +236,29 @@ void ExpectSame(const ResultFile& a, const ResultFile& b) {
     EXPECT_TRUE(Same(a.parameters[i].upper_95, b.parameters[i].upper_95));
   }
   EXPECT_EQ(a.linear_parameters, b.linear_parameters);
+  ASSERT_EQ(a.damping_laws.laws.size(), b.damping_laws.laws.size());
+  for (std::size_t i = 0; i < a.damping_laws.laws.size(); ++i) {
+    const DampingLawFit &x = a.damping_laws.laws[i], &y = b.damping_laws.laws[i];
+    EXPECT_EQ(x.law, y.law);
+    EXPECT_EQ(x.converged, y.converged);
+    EXPECT_EQ(x.status, y.status);
+    EXPECT_TRUE(Same(x.chi_square, y.chi_square));
+    EXPECT_TRUE(Same(x.reduced_chi_square, y.reduced_chi_square));
+    EXPECT_EQ(x.accepted, y.accepted);
+    ASSERT_EQ(x.parameters.size(), y.parameters.size());
+    for (std::size_t j = 0; j < x.parameters.size(); ++j) {
+      EXPECT_EQ(x.parameters[j].name, y.parameters[j].name);
+      EXPECT_TRUE(Same(x.parameters[j].value, y.parameters[j].value));
+      EXPECT_TRUE(Same(x.parameters[j].upper_95, y.parameters[j].upper_95));
+    }
+  }
+  ASSERT_EQ(a.damping_laws.intervals.size(), b.damping_laws.intervals.size());
+  for (std::size_t i = 0; i < a.damping_laws.intervals.size(); ++i) {
+    EXPECT_EQ(a.damping_laws.intervals[i].name, b.damping_laws.intervals[i].name);
+    EXPECT_TRUE(Same(a.damping_laws.intervals[i].lower_95, b.damping_laws.intervals[i].lower_95));
+    EXPECT_TRUE(Same(a.damping_laws.intervals[i].upper_95, b.damping_laws.intervals[i].upper_95));
+    EXPECT_EQ(a.damping_laws.intervals[i].depends_on_damping_law, b.damping_laws.intervals[i].depends_on_damping_law);
+  }
   EXPECT_TRUE(Same(a.covariance, b.covariance));
   EXPECT_TRUE(Same(a.correlation, b.correlation));
 

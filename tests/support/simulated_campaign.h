@@ -17,10 +17,12 @@
 #include <nlohmann/json.hpp>
 
 #include "hb/campaign_writer.h"
+#include "hb/noise.h"
 #include "hb/scenario.h"
 #include "hb/stepped_sine.h"
 #include "signal/campaign.h"
 #include "signal/campaign_extractor.h"
+#include "signal/phasor_estimator.h"
 #include "solver/estimation/fit_data.h"
 #include "tests/support/paper_scenario.h"
 #include "tests/support/temp_path.h"
@@ -105,6 +107,25 @@ inline ExtractedCampaign WriteAndExtract(const hb::Scenario& scenario, const std
   for (const auto& step : steps) writer.Write(step);
   writer.Finish();
   return ExtractFolder(folder);
+}
+
+// One realisation of the measurement on the clean recordings, extracted as
+// `beamid extract` does (the CSV's 9 significant digits aside).
+inline signal::PhasorSet MeasureAgain(const hb::Scenario& scenario, const std::vector<hb::SimulatedStep>& steps,
+                          const signal::Campaign& campaign, std::uint64_t seed) {
+  hb::MeasurementNoise noise(seed);
+  signal::PhasorSet set{.campaign = campaign.name, .num_harmonics = 5, .steps = {}};
+  const std::vector<const signal::ChannelSpec*> channels = campaign.Channels();
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    signal::Recording recording{.file = steps[i].file, .channels = {}, .sample_rate_hz = scenario.timing.sample_rate_hz,
+                                .start_time_s = 0.0, .samples = noise.Measure(scenario, steps[i].recording, nullptr)};
+    for (std::size_t c = 0; c < channels.size(); ++c) {
+      recording.channels.push_back(channels[c]->channel);
+      recording.samples.col(static_cast<Eigen::Index>(c)) *= channels[c]->to_si_factor;
+    }
+    set.steps.push_back(signal::EstimateStepPhasors(recording, campaign, campaign.steps[i], {.num_harmonics = 5}));
+  }
+  return set;
 }
 
 // The paper's set-up with base physics (polynomial support), three levels

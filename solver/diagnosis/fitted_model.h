@@ -1,0 +1,39 @@
+// A fitted model of the diagnosis (the base fit or a candidate's refit from
+// a worker's record) rebuilt in the diagnosing process, to predict any
+// channel: fitted, held out, or a probe position for the next measurement.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "solver/estimation/fit_data.h"
+#include "solver/estimation/fit_problem.h"
+#include "solver/estimation/model_family.h"
+#include "solver/estimation/model_structure.h"
+
+namespace beamid::solver {
+
+// A fitted model rebuilt in this process: its problem with the internal
+// scales of the winning start and the optimiser's variables there, so that
+// its phasors at any channel are the fit's own (not a re-solve that could
+// land on another branch).
+struct FittedModel {
+  const ModelFamily* family;
+  ModelStructure structure;  // values: the optimum
+  std::unique_ptr<FitProblem> problem;
+  Eigen::VectorXd x;
+  int model_harmonics = 5;
+
+  // structure: the fitted one (its values are replaced by `values`);
+  // scaled_at: the parameters whose FeasiblePoint set x's scales.
+  FittedModel(const FitData& fit, const ModelFamily& family, const ModelStructure& structure, int model_harmonics,
+              const std::vector<double>& scaled_at, Eigen::VectorXd variables, const std::vector<double>& values);
+
+  // Per step, channels × K phasors of `data`'s channels in its units
+  // (harmonics the model lacks are 0).
+  std::vector<Eigen::MatrixXcd> Phasors(const FitData& data) const;
+};
+
+}  // namespace beamid::solver

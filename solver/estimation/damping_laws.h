@@ -1,0 +1,75 @@
+// Model-form uncertainty from the beam's damping law. The fit assumes the
+// beam dissipates like a loss factor, EI(1 + iη); a real beam may follow
+// Rayleigh damping C = α·M + β·K (air, joints) or any modal damping. Near
+// one resonance the laws are alike, but they split the dissipation between
+// the beam and the support's c differently at the harmonics, so a fit within
+// the noise can still put c and k1 outside their statistical intervals when
+// the law is wrong. The laws refitted here, from the fitted optimum:
+//     loss_factor              η                       (the fit itself)
+//     rayleigh                 α, β   ζ_j = α/(2ω_j) + β·ω_j/2
+//     mass_proportional        α
+//     stiffness_proportional   β
+// (modal damping of the first two modes is Rayleigh damping: α, β follow from
+// ζ₁, ζ₂ exactly). A law is accepted when it is not significantly worse
+// than the best law, (χ²_law − χ²_best)/s² ≤ χ²₁(0.99) = 6.63 with
+// s² = max(1, χ²_best/ν) — not merely when it fits within the noise: stated
+// uncertainties are often conservative (χ²/ν ≪ 1), and a law 30 units of χ²
+// worse than another is ruled out by the data even then.
+// Every parameter the laws share gets a model-form interval: the envelope of
+// the accepted laws' 95 % intervals; it depends on the damping law when an
+// accepted law's value lies outside the fitted law's 95 % interval.
+#pragma once
+
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "solver/estimation/chi_square.h"
+#include "solver/estimation/fit_data.h"
+#include "solver/estimation/identify.h"
+#include "solver/estimation/model_structure.h"
+
+namespace beamid::solver {
+
+struct DampingLawFit {
+  std::string law;  // loss_factor, rayleigh, mass_proportional, stiffness_proportional
+  bool converged = false;
+  std::string status;  // "solved" or why the refit failed
+  std::vector<ParameterEstimate> parameters;
+  double chi_square = std::numeric_limits<double>::quiet_NaN();
+  double reduced_chi_square = std::numeric_limits<double>::quiet_NaN();
+  bool accepted = false;
+};
+
+struct ModelFormInterval {
+  std::string name;
+  std::string unit;
+  double lower_95 = 0.0;  // envelope of the accepted laws' 95 % intervals
+  double upper_95 = 0.0;
+  bool depends_on_damping_law = false;
+};
+
+struct DampingLawEnvelope {
+  std::vector<DampingLawFit> laws;           // [0]: the fitted law (loss_factor); empty: not computed
+  std::vector<ModelFormInterval> intervals;  // the parameters every law shares, in the fit's order
+};
+
+// The laws a damping-law envelope refits.
+std::vector<std::string> DampingLawNames();
+
+// Refits `fitted` (which must hold a "loss_factor" linear parameter; else the
+// envelope is empty) under the other laws from `result`'s optimum, with
+// `options`' family and model, one start each, and judges them as above.
+// A refit that fails is listed with its status and never accepted.
+DampingLawEnvelope FitDampingLaws(const FitData& data, const ModelStructure& fitted, const IdentifyResult& result,
+                                  const IdentifyOptions& options);
+
+// One law's fit from a parameter list (as the identify result's), NaN-free.
+DampingLawFit DampingLawFitOf(const std::string& law, const std::vector<ParameterEstimate>& parameters,
+                              double chi_square, int degrees_of_freedom);
+
+// The acceptance and the intervals, from the laws' fits (laws[0] the fitted
+// law); exposed for tests and for reading a result file back.
+void JudgeDampingLaws(DampingLawEnvelope* envelope);
+
+}  // namespace beamid::solver

@@ -1,0 +1,76 @@
+// The judgement of the damping laws (solver/estimation/damping_laws.h) on
+// hand-made fits: which laws the data accept (the likelihood-ratio margin,
+// scaled by a misfit beyond the noise), the model-form envelope over the
+// accepted ones, and the flag of a parameter that depends on the law.
+#include "solver/estimation/damping_laws.h"
+
+#include <gtest/gtest.h>
+
+namespace beamid::solver {
+namespace {
+
+ParameterEstimate Estimate(const std::string& name, double value, double std) {
+  return {.name = name, .unit = "u", .value = value, .std = std, .lower_95 = value - 1.96 * std,
+          .upper_95 = value + 1.96 * std};
+}
+
+DampingLawFit Law(const std::string& law, double c, double chi_square, int dof, const std::string& damping) {
+  return DampingLawFitOf(law, {Estimate("k1", 150.0, 0.01), Estimate("c", c, 0.001), Estimate(damping, 1e-3, 1e-4)},
+                         chi_square, dof);
+}
+
+const ModelFormInterval& IntervalOf(const DampingLawEnvelope& e, const std::string& name) {
+  for (const auto& i : e.intervals)
+    if (i.name == name) return i;
+  throw std::runtime_error("no interval " + name);
+}
+
+TEST(DampingLaws, ALawTheDataRuleOutLeavesTheEnvelopeAndItsParametersAreFlagged) {
+  DampingLawEnvelope e{.laws = {Law("loss_factor", 0.046, 160.0, 100, "loss_factor"),
+                                Law("rayleigh", 0.050, 100.0, 99, "rayleigh_mass_1_s")}};
+  JudgeDampingLaws(&e);
+  EXPECT_FALSE(e.laws[0].accepted);  // 60 worse in χ², at χ²/ν ≈ 1
+  EXPECT_TRUE(e.laws[1].accepted);
+  ASSERT_EQ(e.intervals.size(), 2u);  // k1 and c; no damping parameter
+  const ModelFormInterval& c = IntervalOf(e, "c");
+  EXPECT_DOUBLE_EQ(c.lower_95, 0.050 - 1.96 * 0.001);  // the accepted law's alone
+  EXPECT_DOUBLE_EQ(c.upper_95, 0.050 + 1.96 * 0.001);
+  EXPECT_TRUE(c.depends_on_damping_law);  // 0.050 lies outside 0.046 ± 0.00196
+  EXPECT_FALSE(IntervalOf(e, "k1").depends_on_damping_law);
+}
+
+TEST(DampingLaws, LawsWithinTheMarginAreAllAcceptedAndTheEnvelopeSpansThem) {
+  DampingLawEnvelope e{.laws = {Law("loss_factor", 0.0500, 100.0, 100, "loss_factor"),
+                                Law("rayleigh", 0.0505, 95.0, 99, "rayleigh_mass_1_s")}};
+  JudgeDampingLaws(&e);
+  EXPECT_TRUE(e.laws[0].accepted);  // 5 < 6.63 worse
+  EXPECT_TRUE(e.laws[1].accepted);
+  const ModelFormInterval& c = IntervalOf(e, "c");
+  EXPECT_DOUBLE_EQ(c.lower_95, 0.0500 - 1.96 * 0.001);
+  EXPECT_DOUBLE_EQ(c.upper_95, 0.0505 + 1.96 * 0.001);
+  EXPECT_FALSE(c.depends_on_damping_law);  // 0.0505 inside 0.05 ± 0.00196
+}
+
+TEST(DampingLaws, AMisfitBeyondTheNoiseWidensTheMarginByTheReducedChiSquare) {
+  // Best χ²/ν = 4: a law 20 worse is 5 in units of the scatter, accepted;
+  // 40 worse (10) is not.
+  DampingLawEnvelope e{.laws = {Law("loss_factor", 0.05, 420.0, 100, "loss_factor"),
+                                Law("rayleigh", 0.05, 400.0, 100, "rayleigh_mass_1_s"),
+                                Law("stiffness_proportional", 0.05, 440.0, 100, "rayleigh_stiffness_s")}};
+  JudgeDampingLaws(&e);
+  EXPECT_TRUE(e.laws[0].accepted);
+  EXPECT_TRUE(e.laws[1].accepted);
+  EXPECT_FALSE(e.laws[2].accepted);
+}
+
+TEST(DampingLaws, AFailedRefitIsNeverAcceptedNorInTheEnvelope) {
+  DampingLawEnvelope e{.laws = {Law("loss_factor", 0.05, 100.0, 100, "loss_factor"),
+                                {.law = "rayleigh", .status = "failed: restoration phase failed"}}};
+  JudgeDampingLaws(&e);
+  EXPECT_TRUE(e.laws[0].accepted);
+  EXPECT_FALSE(e.laws[1].accepted);
+  EXPECT_DOUBLE_EQ(IntervalOf(e, "c").upper_95, 0.05 + 1.96 * 0.001);
+}
+
+}  // namespace
+}  // namespace beamid::solver
