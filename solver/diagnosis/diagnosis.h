@@ -77,9 +77,10 @@ struct DiagnosisOptions {
   double refit_max_cpu_seconds = 10.0;
   // When the named cause leaves a misfit beyond acceptable_reduced_chi_square,
   // it is refitted together with each of this many other candidates (those
-  // that removed at least min_relative_improvement of the base χ² alone, best
-  // BIC first); a pair is named when it is significant against the cause
-  // alone and predicts the held-out channels at least as well. 0: no pairs.
+  // whose own refit converged, best BIC first, then those whose refit from the
+  // base failed, by signature score); a pair is named when it is
+  // significant against the cause alone and predicts the held-out channels
+  // at least as well. 0: no pairs.
   int max_pair_partners = 3;
 
   // Throws beamid::InputError naming the first field out of its range, its
@@ -221,8 +222,8 @@ CandidateRefits RefitCandidates(const FitData& fit, const BaseFit& base, const s
 CandidateRefits RefitPairs(const FitData& fit, const FittedModel& first, const CandidateOutcome& first_outcome,
                            const std::vector<std::string>& partners, const DiagnosisOptions& options,
                            const RefitProgress& progress = {});
-// The partners of the cause (options.max_pair_partners of the ranked others
-// that removed min_relative_improvement of the base χ² on their own).
+// The partners of the cause: options.max_pair_partners of the others with
+// parameters of their own, converged ones first (by BIC), then failed ones.
 std::vector<std::string> PairPartners(const std::vector<CandidateOutcome>& ranked, const std::string& cause,
                                       const DiagnosisOptions& options);
 // The pair to name: significant against the cause alone, predicting the
