@@ -138,7 +138,8 @@ void RunDiagnose(const DiagnoseCommandOptions& options, const GlobalOptions& glo
                result.base.bic, "", held_out(result.base));
     for (const auto& c : result.candidates)
       if (!c.converged)
-        fmt::print("  {:<20} {:>6.2f}  refit failed ({})\n", c.name, c.signature_score, c.status);
+        fmt::print("  {:<20} {:>6.2f}  {}\n", c.name, c.signature_score,
+                   c.status.starts_with("not refitted") ? c.status : "refit failed (" + c.status + ")");
       else
         fmt::print("  {:<20} {:>6.2f} {:>12.5g} {:>8.3g}x {:>11.5g} {:>10.2g}  {}  ({:.1f} s){}\n", c.name,
                    c.signature_score, c.fit.chi_square, c.residual_drop, c.fit.bic, c.p_value, held_out(c.fit),

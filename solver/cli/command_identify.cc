@@ -48,6 +48,9 @@ void PrintDampingLaws(const solver::DampingLawEnvelope& envelope) {
                  law.accepted ? "fits: accepted" : "rejected by the data");
     else
       fmt::print("    {:<23} {}\n", law.law, law.status);
+  if (!envelope.laws.front().accepted)
+    fmt::print("  warning: the data rule out the loss factor this fit assumes: quote the model-form intervals below, "
+               "not the statistical ones above\n");
   fmt::print("  model-form 95 % intervals (envelope over the accepted damping laws):\n");
   for (const auto& i : envelope.intervals)
     fmt::print("    {:<10} {:.6g} … {:.6g} {}{}\n", i.name, i.lower_95, i.upper_95, i.unit,
@@ -88,7 +91,10 @@ void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& glo
   // The beam's damping law is assumed, never known: the other laws' refits
   // give the parameters' model-form intervals (solver/estimation/damping_laws.h).
   solver::DampingLawEnvelope damping_laws;
-  if (options.damping_envelope && family.Name() == "hb") {
+  // Only for a fit within the noise: the parameters of a model that misses
+  // the data are not to be quoted with any interval (diagnose first), and
+  // refits of it under other laws ran for minutes.
+  if (options.damping_envelope && family.Name() == "hb" && result.verdict.within_noise) {
     progress.Update(0.95, "refitting under the other beam damping laws");
     damping_laws = solver::FitDampingLaws(fit, structure, result, identify);
   }

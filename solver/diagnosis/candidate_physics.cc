@@ -106,6 +106,8 @@ CandidatePhysics SupportFriction() {
       .name = "support_friction",
       .description = "friction at the support: a Jenkins element (spring in series with a Coulomb slider) in parallel "
                      "with the contact's spring and damper; it softens and damps more as the amplitude grows",
+      .rig_check = "inspect the rod contact (wear, debris, lubrication) and its preload; a contact that slips will not "
+                   "hold its parameters from test to test, so repeat one level at the end of the campaign",
       .extend =
           [](const ModelStructure& base, const BaseFitContext& context) {
             // The base's k1 is shared between the spring and the Jenkins element
@@ -143,6 +145,8 @@ CandidatePhysics ClampCompliance() {
   return {
       .name = "clamp_compliance",
       .description = "a clamp that is not rigid: a rotational spring at x = 0 (its compliance 1/k_clamp)",
+      .rig_check = "re-torque the clamp and check its seating (paint, burrs, a soft base); measure the slope at the "
+                   "clamp with a pair of accelerometers or a laser to confirm",
       .extend =
           [](const ModelStructure& base, const BaseFitContext& context) {
             LinearParameter compliance{
@@ -165,6 +169,8 @@ CandidatePhysics AddedMass() {
       .name = "added_mass",
       .description = "a mass on the beam that the campaign does not report (a cable clamp, a sensor or the shaker's "
                      "moving part heavier than stated), of unknown size and position",
+      .rig_check = "look for an unreported mass near the identified position (a cable clamp, tape, a sensor base) and "
+                   "weigh it; or enter it in campaign.json",
       .extend =
           [](const ModelStructure& base, const BaseFitContext& context) {
             const double length = context.data->beam.length_m;
@@ -204,6 +210,8 @@ CandidatePhysics InstrumentMasses() {
       .name = "instrument_masses",
       .description = "masses at the instruments heavier than stated: the shaker's moving part and the force transducer "
                      "at the drive point, each fitted accelerometer and its cable at its position",
+      .rig_check = "weigh the shaker's moving part with the stinger and transducer, and each accelerometer with its "
+                   "cable's hanging part and glue; state them in campaign.json's sensor masses",
       .extend =
           [](const ModelStructure& base, const BaseFitContext& context) {
             // The sites: the drive point, then every fitted sensor not within a
@@ -235,6 +243,8 @@ CandidatePhysics ModulusError() {
   return {
       .name = "modulus_error",
       .description = "a bending stiffness EI different from the nominal one (Young's modulus or thickness)",
+      .rig_check = "measure the thickness at several points (EI grows with its cube: 1.6 % thickness is 4.8 % EI) and "
+                   "take the modulus from the material's certificate",
       .extend = [](const ModelStructure& base,
                    const BaseFitContext& context) { return WithLinear(base, {BendingStiffnessScale()}, {{1.0}}, context); },
       .signature = LinearStiffnessSignature,
@@ -245,6 +255,8 @@ CandidatePhysics SupportAsymmetry() {
   return {
       .name = "support_asymmetry",
       .description = "a support stiffer for one sense of rotation than for the other (one-sided stiffness k_a·max(θ, 0))",
+      .rig_check = "check the rod's alignment and the contact on both sides of the beam; a gap or a one-sided seat gives "
+                   "this",
       .extend =
           [](const ModelStructure& base, const BaseFitContext& context) {
             const double k1 = PolynomialK1(base, "support_asymmetry");
@@ -280,6 +292,7 @@ CandidatePhysics HarmonicTruncation() {
   return {
       .name = "harmonic_truncation",
       .description = "response content beyond the harmonics the model balances: the same support with more harmonics",
+      .rig_check = "not a rig fault: analyse with more harmonics (beamid identify -H 9 or more)",
       .extend =
           [](const ModelStructure& base, const BaseFitContext& context) {
             CandidateExtension extension;

@@ -51,6 +51,7 @@ struct CandidateExtension {
 struct CandidatePhysics {
   std::string name;         // one of the names of issue 7 (support_friction, …)
   std::string description;  // what it is, in a test engineer's words
+  std::string rig_check;    // what to check or do on the rig when it is named
   // Extends the base structure (its values are the base optimum).
   std::function<CandidateExtension(const ModelStructure& base, const BaseFitContext& context)> extend;
   // How well the located misfit matches the candidate's signature, 0..1.

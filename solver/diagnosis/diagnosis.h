@@ -74,14 +74,14 @@ struct DiagnosisOptions {
   // Each candidate refit starts at the base optimum and needs < 40
   // iterations when the candidate fits; a start that wanders is cut short.
   int refit_max_iterations = 80;
-  double refit_max_cpu_seconds = 10.0;
+  double refit_max_cpu_seconds = 4.0;
   // When the named cause leaves a misfit beyond acceptable_reduced_chi_square,
   // it is refitted together with each of this many other candidates (those
   // whose own refit converged, best BIC first, then those whose refit from the
   // base failed, by signature score); a pair is named when it is
   // significant against the cause alone and predicts the held-out channels
   // at least as well. 0: no pairs.
-  int max_pair_partners = 3;
+  int max_pair_partners = 2;
 
   // Throws beamid::InputError naming the first field out of its range, its
   // value and the range, so that a bad option fails before minutes of fits.
@@ -108,6 +108,7 @@ struct FitSummary {
 struct CandidateOutcome {
   std::string name;
   std::string description;
+  std::string rig_check;            // what to check on the rig when it is named
   double signature_score = 0.0;     // match with the located misfit, 0..1
   std::vector<std::string> extra_parameters;
   bool converged = false;
@@ -203,7 +204,10 @@ struct LocationStage {
 LocationStage Locate(const FitData& fit, const BaseFit& base, const FitData& located);
 
 // Stage 3, every candidate refitted from the base optimum (all candidates
-// and starts in parallel worker processes), its best start, and its
+// and starts in parallel worker processes; the linear ones first, and the
+// costlier ones — more harmonics, a changed support law — only when no
+// significant linear one brings the misfit within the noise, nor the base
+// fits within it: the others then say "not refitted"), its best start, and its
 // likelihood-ratio test against the base (or, for one balanced with more
 // harmonics, against the refit with those harmonics alone). Held-out fields
 // NaN (ValidateOnHeldOut of `models`).

@@ -149,6 +149,7 @@ Json CandidateToJson(const CandidateOutcome& c, double residual_before) {
       extra[p.name] = ParameterToJson(p);
   return {{"name", c.name},
           {"description", c.description},
+          {"rig_check", c.rig_check},
           {"score", Number(c.signature_score)},
           {"converged", c.converged},
           {"status", c.status},
@@ -332,12 +333,13 @@ MisfitLocation LocationFromJson(const Field& f) {
 }
 
 CandidateOutcome CandidateFromJson(const Field& f) {
-  f.OnlyKeys({"name", "description", "score", "converged", "status", "significant", "extra_parameters",
+  f.OnlyKeys({"name", "description", "rig_check", "score", "converged", "status", "significant", "extra_parameters",
               "extra_parameter_names", "residual_before", "residual_after", "residual_drop", "likelihood_ratio",
               "test_dof", "p_value", "seconds", "fit"});
   CandidateOutcome c;
   c.name = f.String("name");
   c.description = f.String("description");
+  if (f.Has("rig_check")) c.rig_check = f.String("rig_check");
   c.signature_score = f.Number("score");
   c.converged = f.Boolean("converged");
   c.status = f.String("status");

@@ -88,6 +88,7 @@ DampingLawEnvelope FitDampingLaws(const FitData& data, const ModelStructure& fit
   IdentifyOptions refit = options;
   refit.num_starts = 0;
   refit.num_workers = 1;
+  refit.continuation_iterations = 0;  // a law that does not converge from the optimum is listed as failed
   for (const std::string& law : DampingLawNames()) {
     if (law == kLossFactor) continue;
     ModelStructure structure = fitted;

@@ -207,6 +207,41 @@ TEST_F(CommandLine, IdentifyWithTheMultipleScalesModelAndPredictWithIt) {
   EXPECT_THAT(run.output, HasSubstr("these phasors are not the campaign's (2 steps against the campaign's 3"));
 }
 
+TEST_F(CommandLine, IdentifyRefitsTheDampingLawsAndWritesTheirModelFormIntervals) {
+  std::ofstream(folder_ / "scenario.json") << beamid::testing::PaperScenarioJson("cli test: damping laws", R"([
+    {"label": "low", "force_amplitude_N": 1.0, "frequencies_Hz": {"start": 52.5, "stop": 55.5, "step": 1.0}},
+    {"label": "high", "force_amplitude_N": 9.0, "frequencies_Hz": {"start": 52.5, "stop": 55.5, "step": 1.0}}])", 5);
+  const std::string campaign = (folder_ / "campaign").string();
+  ASSERT_EQ(Beamid("-q simulate " + (folder_ / "scenario.json").string() + " -o " + campaign).exit_code, 0);
+  const std::string result = (folder_ / "result.json").string();
+  ProgramRun run = Beamid("identify " + campaign + " --fit acc1,acc2 -o " + result);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_THAT(run.output, HasSubstr("beam damping laws (the fit assumes loss_factor):"));
+  EXPECT_THAT(run.output, HasSubstr("model-form 95 % intervals (envelope over the accepted damping laws):"));
+  const nlohmann::json written = nlohmann::json::parse(ReadFile(result));
+  ASSERT_TRUE(written.contains("damping_laws"));
+  std::vector<std::string> laws;
+  for (const auto& law : written["damping_laws"]["laws"]) laws.push_back(law["law"]);
+  EXPECT_EQ(laws, (std::vector<std::string>{"loss_factor", "rayleigh", "mass_proportional", "stiffness_proportional"}));
+  std::vector<std::string> shared;
+  for (const auto& interval : written["damping_laws"]["model_form_intervals"]) {
+    shared.push_back(interval["name"]);
+    // The envelope holds the accepted laws' intervals: never narrower than
+    // the fitted law's when that law is accepted.
+    if (written["damping_laws"]["laws"][0]["accepted"]) {
+      const auto& p = written["parameters"][interval["name"].get<std::string>()];
+      EXPECT_LE(interval["ci95"][0].get<double>(), p["ci95"][0].get<double>());
+      EXPECT_GE(interval["ci95"][1].get<double>(), p["ci95"][1].get<double>());
+    }
+  }
+  EXPECT_EQ(shared, (std::vector<std::string>{"k1", "k2", "k3", "c"}));
+
+  run = Beamid("identify " + campaign + " --fit acc1,acc2 --no-damping-laws -o " + result);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_THAT(run.output, ::testing::Not(HasSubstr("beam damping laws")));
+  EXPECT_FALSE(nlohmann::json::parse(ReadFile(result)).contains("damping_laws"));
+}
+
 TEST_F(CommandLine, MeasuredBackboneRejectsABadTableNamingFileAndColumn) {
   std::ofstream(folder_ / "high.csv") << "frequency_Hz;force_N;acceleration [m/s^2];phase\n54;1;2;10\n55;1;3;80\n56;1;2;150\n";
   ProgramRun run = Beamid("backbone --measured " + (folder_ / "high.csv").string() + " -o " + (folder_ / "bb").string());

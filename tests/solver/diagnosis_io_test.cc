@@ -174,6 +174,7 @@ DiagnosisFile FullFile(bool with_location) {
   r.candidates = {friction, failed, truncation};
   CandidateOutcome pair = truncation;
   pair.name = "support_friction + harmonic_truncation";
+  pair.rig_check = "inspect the rod contact; and analyse with more harmonics";
   pair.extra_parameters = {"jenkins_stiffness", "jenkins_slip_moment"};
   r.combinations = {pair};
   r.selected = {"support_friction"};
@@ -326,6 +327,7 @@ void ExpectSameCandidates(const std::vector<CandidateOutcome>& xs, const std::ve
     SCOPED_TRACE(c.name);
     EXPECT_EQ(c.name, d.name);
     EXPECT_EQ(c.description, d.description);
+    EXPECT_EQ(c.rig_check, d.rig_check);
     EXPECT_TRUE(Same(c.signature_score, d.signature_score));
     EXPECT_EQ(c.extra_parameters, d.extra_parameters);
     EXPECT_EQ(c.converged, d.converged);
