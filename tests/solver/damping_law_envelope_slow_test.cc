@@ -35,13 +35,16 @@ constexpr int kRealisations = 8;
 constexpr double kMinCoverage = 0.85;
 
 // An example scenario with 15 steps per level over the resonance (as the
-// coverage test's), its own damping kept.
+// coverage test's), its own damping kept, and a distorted force (2 % second,
+// 1 % third harmonic).
 hb::Scenario LeanScenario(const std::string& file_name) {
   std::ifstream file("examples/scenarios/" + file_name);
   nlohmann::json scenario = nlohmann::json::parse(file);
   for (auto& level : scenario["levels"]) level["frequencies_Hz"] = {{"start", 51.0}, {"stop", 57.3}, {"step", 0.45}};
   scenario.erase("hidden_positions_m");
-  return hb::ParseScenario(scenario.dump(), file_name + ", 15 steps per level");
+  scenario["excitation"]["distortion"] = {{{"harmonic", 2}, {"amplitude_ratio", 0.02}, {"phase_rad", 0.4}},
+                                          {{"harmonic", 3}, {"amplitude_ratio", 0.01}, {"phase_rad", -1.1}}};
+  return hb::ParseScenario(scenario.dump(), file_name + ", 15 steps per level, distorted force");
 }
 
 struct Tally {
