@@ -208,14 +208,31 @@ std::string ResidualPlot(const ResidualMap& map) {
          Datablock("r", data) + "plot $r using 1:2:3 with image pixels notitle\n";
 }
 
+// With the damping laws refitted: a column of the model-form interval (the
+// envelope over the laws the data accept), flagged where it depends on the law.
 std::string ParameterTable(const ResultFile& result) {
+  const auto& intervals = result.damping_laws.intervals;
   std::string html =
       "<table class=\"parameters\"><tr><th>parameter</th><th>value</th><th>standard uncertainty</th>"
-      "<th>95 % interval</th><th>unit</th></tr>\n";
-  for (const auto& p : result.parameters)
-    html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{} … {}</td><td>{}</td></tr>\n", HtmlEscape(p.name),
-                        Number(p.value), Number(p.std), Number(p.lower_95), Number(p.upper_95), HtmlEscape(p.unit));
-  return html + "</table>\n";
+      "<th>95 % interval</th>" +
+      std::string(intervals.empty() ? "" : "<th>95 % over the beam's damping laws</th>") + "<th>unit</th></tr>\n";
+  for (const auto& p : result.parameters) {
+    std::string model_form;
+    if (!intervals.empty()) {
+      const auto i = std::find_if(intervals.begin(), intervals.end(), [&](const auto& m) { return m.name == p.name; });
+      model_form = i == intervals.end()
+                       ? "<td>(a damping parameter)</td>"
+                       : fmt::format("<td>{} … {}{}</td>", Number(i->lower_95), Number(i->upper_95),
+                                     i->depends_on_damping_law ? " <b>[depends on the damping law]</b>" : "");
+    }
+    html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{} … {}</td>{}<td>{}</td></tr>\n", HtmlEscape(p.name),
+                        Number(p.value), Number(p.std), Number(p.lower_95), Number(p.upper_95), model_form,
+                        HtmlEscape(p.unit));
+  }
+  html += "</table>\n";
+  if (!result.damping_laws.laws.empty() && !result.damping_laws.laws.front().accepted)
+    html += "<p><b>The data rule out the loss factor this fit assumes</b>: quote the intervals over the damping laws.</p>\n";
+  return html;
 }
 
 // What a test engineer reads of a diagnosis (diagnosis.json of `beamid
