@@ -324,29 +324,35 @@ JobOutcome ReadRefitRecord(const std::string& record, const std::string& error, 
 }
 
 // Every job in parallel worker processes; then each candidate's best start.
-// The jobs `which` (all when empty) in parallel worker processes; then each
-// candidate's best start over every job run so far. done_before: jobs run
-// before this batch, for the progress.
+std::vector<int> AllJobs(const RefitRun& run) {
+  std::vector<int> all(run.jobs.size());
+  for (std::size_t j = 0; j < all.size(); ++j) all[j] = static_cast<int>(j);
+  return all;
+}
+
+// The jobs `which` in parallel worker processes; then each candidate's best
+// start over every job run so far. done_before: jobs run before this batch,
+// for the progress.
 void RunRefits(const FitData& fit, const DiagnosisOptions& options, const RefitProgress& progress, RefitRun* run,
-               std::vector<int> which = {}, int done_before = 0) {
+               const std::vector<int>& which, int done_before = 0) {
   const int num_jobs = static_cast<int>(run->jobs.size());
   if (run->outcomes.size() != run->jobs.size()) run->outcomes.assign(run->jobs.size(), {});
-  if (which.empty())
-    for (int j = 0; j < num_jobs; ++j) which.push_back(j);
   const int workers = options.num_workers > 0 ? options.num_workers
                                               : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   const int batch = static_cast<int>(which.size());
-  internal::RunTextJobsInWorkers(
-      batch, std::min<int>(workers, batch),
-      [&](int b) {
-        const Job& job = run->jobs[which[b]];
-        return RunRefitJob(fit, run->extensions[job.candidate], job.start, options);
-      },
-      [&](int b, const std::string& record, const std::string& error, int done) {
-        const int c = run->jobs[which[b]].candidate;
-        run->outcomes[which[b]] = ReadRefitRecord(record, error, run->extensions[c].structure.NumParameters());
-        if (progress) progress(done_before + done, num_jobs, run->library[c].name);
-      });
+  if (batch > 0) {
+    internal::RunTextJobsInWorkers(
+        batch, std::min<int>(workers, batch),
+        [&](int b) {
+          const Job& job = run->jobs[which[b]];
+          return RunRefitJob(fit, run->extensions[job.candidate], job.start, options);
+        },
+        [&](int b, const std::string& record, const std::string& error, int done) {
+          const int c = run->jobs[which[b]].candidate;
+          run->outcomes[which[b]] = ReadRefitRecord(record, error, run->extensions[c].structure.NumParameters());
+          if (progress) progress(done_before + done, num_jobs, run->library[c].name);
+        });
+  }
   run->best_job.assign(run->library.size(), -1);
   for (int j = 0; j < num_jobs; ++j) {
     const int c = run->jobs[j].candidate;
@@ -590,7 +596,7 @@ CandidateRefits RefitPairs(const FitData& fit, const FittedModel& first, const C
   RefitRun run = PlanPairs(fit, first, first_outcome, partners, options);
   CandidateRefits pairs;
   if (run.jobs.empty()) return pairs;
-  RunRefits(fit, options, progress, &run);
+  RunRefits(fit, options, progress, &run, AllJobs(run));
   pairs.models.resize(run.library.size());
   for (int c = 0; c < static_cast<int>(run.library.size()); ++c) {
     CandidateOutcome outcome = DescribeCandidate(run, c, std::nullopt);
