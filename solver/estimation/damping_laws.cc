@@ -50,8 +50,7 @@ void JudgeDampingLaws(DampingLawEnvelope* envelope) {
   for (const auto& law : laws)
     if (law.converged && (best == nullptr || law.chi_square < best->chi_square)) best = &law;
   if (best == nullptr) return;
-  const double dof = best->chi_square / best->reduced_chi_square;
-  const double scale = std::max(1.0, std::isfinite(dof) && dof > 0.0 ? best->chi_square / dof : 1.0);
+  const double scale = std::max(1.0, best->reduced_chi_square);  // s² = max(1, χ²_best/ν)
   for (auto& law : laws)
     law.accepted = law.converged && (law.chi_square - best->chi_square) / scale <= kDecisiveChiSquare;
   const DampingLawFit& fitted = laws.front();
