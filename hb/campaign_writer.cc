@@ -83,7 +83,8 @@ CampaignWriter::CampaignWriter(const SteppedSineSimulation& simulation, const st
       directory_(directory),
       noise_(simulation.scenario().seed),
       campaign_steps_(std::make_unique<Json>(Json::array())),
-      truth_steps_(std::make_unique<Json>(Json::array())) {
+      truth_steps_(std::make_unique<Json>(Json::array())),
+      early_records_(std::make_unique<Json>(Json::array())) {
   const Scenario& s = simulation_.scenario();
   std::error_code error;
   std::filesystem::create_directories(directory_, error);
@@ -163,6 +164,13 @@ void CampaignWriter::Write(const SimulatedStep& step) {
     truth_step["force_N"] = PhasorsJson(step.force_phasors);  // the true force: channel 0 holds the voltage
   }
   if (step.excitation_stop_s) truth_step["excitation_stop_s"] = *step.excitation_stop_s;
+  if (step.early_record_settle_s) {
+    truth_step["early_record_settle_s"] = *step.early_record_settle_s;
+    early_records_->push_back({{"file", step.file},
+                               {"level", step.level},
+                               {"nominal_frequency_Hz", step.nominal_frequency_hz},
+                               {"settle_s", *step.early_record_settle_s}});
+  }
   truth_steps_->push_back(std::move(truth_step));
 }
 
@@ -172,8 +180,9 @@ void CampaignWriter::Finish() {
 
   Json sensors = Json::array();
   for (const ScenarioSensor& sensor : s.sensors) {
+    // Where the test plan says the sensor is, which need not be where it is.
     Json j = {{"channel", sensor.channel},
-              {"position_m", sensor.position_m},
+              {"position_m", sensor.StatedPosition_m()},
               {"quantity", sensor.quantity},
               {"unit", sensor.unit}};
     if (sensor.mass_kg > 0.0) j["mass_kg"] = sensor.mass_kg;
@@ -215,7 +224,21 @@ void CampaignWriter::Finish() {
   }
   if (s.timing.excitation_stop_fraction > 0.0) excitation["stop_fraction"] = s.timing.excitation_stop_fraction;
 
-  const Json truth = {
+  // The measurement artefacts, only when the scenario has one (a campaign
+  // without them is byte for byte what it was before they existed). Every
+  // sensor is listed, so that a test reads any one's true and stated position.
+  bool any_artefact = !s.timing.early_records.empty();
+  Json artefact_sensors = Json::array();
+  for (const ScenarioSensor& sensor : s.sensors) {
+    any_artefact = any_artefact || sensor.HasArtefact();
+    artefact_sensors.push_back({{"channel", sensor.channel},
+                                {"position_m", sensor.position_m},
+                                {"stated_position_m", sensor.StatedPosition_m()},
+                                {"gain_error_relative", sensor.gain_error_relative},
+                                {"delay_s", sensor.delay_s}});
+  }
+
+  Json truth = {
       {"format", "beamid-simulation-truth/1"},
       {"beamid_version", kVersion},
       {"scenario", s.name},
@@ -260,6 +283,8 @@ void CampaignWriter::Finish() {
       {"noise", noise},
       {"clipped_samples", clipped_samples_},
       {"steps", *truth_steps_}};
+  if (any_artefact)
+    truth["measurement_artefacts"] = {{"sensors", artefact_sensors}, {"early_records", *early_records_}};
   WriteFile(directory_ / "truth.json", truth.dump(1) + "\n", bytes_written_);
   // Last: a folder with campaign.json is a complete campaign.
   WriteFile(directory_ / "campaign.json", campaign.dump(2) + "\n", bytes_written_);

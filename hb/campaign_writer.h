@@ -47,6 +47,7 @@ class CampaignWriter {
   MeasurementNoise noise_;
   std::unique_ptr<nlohmann::json> campaign_steps_;
   std::unique_ptr<nlohmann::json> truth_steps_;
+  std::unique_ptr<nlohmann::json> early_records_;  // truth.json's measurement_artefacts.early_records
   std::uintmax_t bytes_written_ = 0;
   int clipped_samples_ = 0;
 };

@@ -69,7 +69,9 @@ ModelFile ParseModelFile(const std::string& json_text, const std::string& source
     const Json& sensors = top.Array("sensors");
     for (size_t i = 0; i < sensors.size(); ++i) {
       ObjectReader r(sensors[i], source, "sensors[" + std::to_string(i) + "]", kDoc);
-      for (const char* unused : {"quantity", "unit"}) r.Ignore(unused);
+      // The recording's faults are not the beam's: a model predicts the true motion where the sensor is.
+      for (const char* unused : {"quantity", "unit", "gain_error_relative", "delay_s", "stated_position_m"})
+        r.Ignore(unused);
       ModelSensor sensor{r.String("channel", "x" + std::to_string(i + 1)), r.Positive("position_m", 0.0)};
       const double mass = r.NonNegative("mass_kg", 0.0);
       if (mass > 0.0) model.attachments.point_masses.push_back({sensor.position_m, mass});

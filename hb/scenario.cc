@@ -115,6 +115,20 @@ const ChannelNoise& Scenario::NoiseOf(const std::string& channel) const {
   return it == channel_noise.end() ? default_noise : it->second;
 }
 
+namespace {
+
+// An early record names its step by the nominal frequency, which a JSON
+// writer may round in its last digits.
+bool SameNominalFrequency(double a_hz, double b_hz) { return std::abs(a_hz - b_hz) <= 1e-9 * std::abs(b_hz); }
+
+}  // namespace
+
+const EarlyRecord* Scenario::EarlyRecordOf(const std::string& level, double nominal_frequency_hz) const {
+  for (const EarlyRecord& early : timing.early_records)
+    if (early.level == level && SameNominalFrequency(early.frequency_hz, nominal_frequency_hz)) return &early;
+  return nullptr;
+}
+
 int Scenario::NumSteps() const {
   int n = 0;
   for (const ScenarioLevel& level : levels) n += static_cast<int>(level.frequencies_hz.size());
@@ -239,6 +253,17 @@ ScenarioSensor ReadSensor(ObjectReader& r) {
       sensor.quantity == "velocity" ? "m/s" : sensor.quantity == "displacement" ? "m" : "m/s^2";
   sensor.unit = r.String("unit", default_unit);
   sensor.mass_kg = r.NonNegative("mass_kg", 0.0);
+  // The measurement artefacts (the position is checked against the beam in
+  // CheckPositionsAndChannels).
+  sensor.gain_error_relative = r.Number("gain_error_relative", 0.0);
+  if (!(sensor.gain_error_relative > -1.0))
+    r.FailField("gain_error_relative", "must be above -1: the channel records (1 + gain_error_relative)·signal "
+                                       "(0.05 reads 5 % high)");
+  sensor.delay_s = r.NonNegative("delay_s", 0.0);
+  if (sensor.delay_s > kMaxSensorDelay_s)
+    r.FailField("delay_s", "must not exceed " + std::to_string(kMaxSensorDelay_s) +
+                               " s (an anti-alias filter's delay, a few samples)");
+  if (r.Has("stated_position_m")) sensor.stated_position_m = r.Number("stated_position_m");
   if (sensor.quantity != "acceleration" && sensor.quantity != "velocity" && sensor.quantity != "displacement")
     r.FailField("quantity", "must be acceleration, velocity or displacement");
   if (UnitToSi(sensor.quantity, sensor.unit) == 0.0)
@@ -303,7 +328,46 @@ void ReadLevels(ObjectReader& top, Scenario& s) {
   }
 }
 
-void ReadTiming(ObjectReader& top, ScenarioTiming& timing) {
+// timing.early_records: each names one step of a level that the scenario runs.
+void ReadEarlyRecords(ObjectReader& t, const std::vector<ScenarioLevel>& levels, std::vector<EarlyRecord>& out) {
+  if (!t.Has("early_records")) return;
+  const Json& list = t.Array("early_records");
+  for (size_t i = 0; i < list.size(); ++i) {
+    ObjectReader r(list[i], t.source(), "timing.early_records[" + std::to_string(i) + "]");
+    EarlyRecord early;
+    if (!r.Has("level")) r.FailField("level", "is required (the label of the level whose step is recorded early)");
+    early.level = r.String("level", "");
+    early.frequency_hz = r.Number("frequency_Hz");
+    early.settle_s = r.Number("settle_s");
+    if (!(early.settle_s > 0.0 && early.settle_s <= 3600.0))
+      r.FailField("settle_s", "must lie in (0, 3600] s: the time integrated after the frequency change before the "
+                              "recording starts");
+    const auto level = std::find_if(levels.begin(), levels.end(), [&](const ScenarioLevel& l) { return l.label == early.level; });
+    if (level == levels.end()) {
+      std::string labels;
+      for (const ScenarioLevel& l : levels) labels += (labels.empty() ? "" : ", ") + l.label;
+      r.FailField("level", "'" + early.level + "' is not a level of the scenario; give one of: " + labels);
+    }
+    const auto steps = std::count_if(level->frequencies_hz.begin(), level->frequencies_hz.end(),
+                                     [&](double f) { return SameNominalFrequency(early.frequency_hz, f); });
+    if (steps == 0) {
+      const auto [lowest, highest] = std::minmax_element(level->frequencies_hz.begin(), level->frequencies_hz.end());
+      r.FailField("frequency_Hz", "= " + std::to_string(early.frequency_hz) + " Hz is not a step of level '" +
+                                      early.level + "' (its " + std::to_string(level->frequencies_hz.size()) +
+                                      " steps run from " + std::to_string(*lowest) + " to " + std::to_string(*highest) +
+                                      " Hz); give one step's nominal frequency (to 1e-9 relative)");
+    }
+    if (steps > 1)
+      r.FailField("frequency_Hz", "= " + std::to_string(early.frequency_hz) + " Hz is run " + std::to_string(steps) +
+                                      " times by level '" + early.level + "'; an early record must name one step");
+    for (size_t j = 0; j < out.size(); ++j)
+      if (out[j].level == early.level && SameNominalFrequency(early.frequency_hz, out[j].frequency_hz))
+        r.FailField("frequency_Hz", "names the step of timing.early_records[" + std::to_string(j) + "] again");
+    out.push_back(std::move(early));
+  }
+}
+
+void ReadTiming(ObjectReader& top, const std::vector<ScenarioLevel>& levels, ScenarioTiming& timing) {
   if (!top.Has("timing")) return;
   ObjectReader t(top.Raw("timing"), top.source(), "timing");
   timing.sample_rate_hz = t.Positive("sample_rate_Hz", timing.sample_rate_hz);
@@ -331,6 +395,7 @@ void ReadTiming(ObjectReader& top, ScenarioTiming& timing) {
     t.FailField("record_s", "times sample_rate_Hz gives more than 16777216 samples per record; record shorter");
   if (timing.max_time_step_s < 1e-7) t.FailField("max_time_step_s", "must be at least 1e-7 s");
   if (timing.settle_max_s > 3600.0) t.FailField("settle_max_s", "must not exceed 3600 s");
+  ReadEarlyRecords(t, levels, timing.early_records);
 }
 
 void ReadNoiseSection(ObjectReader& top, Scenario& s) {
@@ -384,8 +449,15 @@ void CheckPositionsAndChannels(const Scenario& s, const std::string& source) {
   std::set<std::string> channels{s.force_channel};
   if (s.force_channel.empty() || s.force_channel == "time_s")
     throw std::invalid_argument(source + ": excitation.channel must be a name other than time_s");
-  for (const ScenarioSensor& sensor : s.sensors) {
+  for (size_t i = 0; i < s.sensors.size(); ++i) {
+    const ScenarioSensor& sensor = s.sensors[i];
     inside(sensor.position_m, "sensor " + sensor.channel + " position_m", false);
+    // The test plan may place a sensor at the support's end (x = L), not at the clamp.
+    if (sensor.stated_position_m && !(*sensor.stated_position_m > 0.0 && *sensor.stated_position_m <= length))
+      throw std::invalid_argument(source + ": sensors[" + std::to_string(i) + "].stated_position_m = " +
+                                  std::to_string(*sensor.stated_position_m) + " m lies outside the beam (0, " +
+                                  std::to_string(length) + "] m; give where the test plan says sensor " +
+                                  sensor.channel + " is");
     // Absolute velocity and displacement would need the base's integrated
     // motion, whose constants a real rig does not define.
     if (s.BaseExcitation() && sensor.quantity != "acceleration")
@@ -470,6 +542,11 @@ OrderedJson SensorsToJson(const std::vector<ScenarioSensor>& sensors) {
     j["quantity"] = sensor.quantity;
     j["unit"] = sensor.unit;
     j["mass_kg"] = sensor.mass_kg;
+    // The artefacts only when set: a scenario without them stays a model
+    // file (hb/model_file.h), whose sensors know no such fields.
+    if (sensor.gain_error_relative != 0.0) j["gain_error_relative"] = sensor.gain_error_relative;
+    if (sensor.delay_s != 0.0) j["delay_s"] = sensor.delay_s;
+    if (sensor.stated_position_m) j["stated_position_m"] = *sensor.stated_position_m;
     out.push_back(j);
   }
   return out;
@@ -503,6 +580,17 @@ OrderedJson TimingToJson(const ScenarioTiming& t) {
   out["record_s"] = t.record_s;
   out["restart_each_level"] = t.restart_each_level;
   out["excitation_stop_fraction"] = t.excitation_stop_fraction;
+  if (!t.early_records.empty()) {
+    OrderedJson early = OrderedJson::array();
+    for (const EarlyRecord& e : t.early_records) {
+      OrderedJson j = OrderedJson::object();
+      j["level"] = e.level;
+      j["frequency_Hz"] = e.frequency_hz;
+      j["settle_s"] = e.settle_s;
+      early.push_back(j);
+    }
+    out["early_records"] = early;
+  }
   return out;
 }
 
@@ -534,7 +622,7 @@ Scenario ParseScenario(const std::string& json_text, const std::string& source) 
   ReadExcitation(top, s);
   ReadSensorsAndHiddenPositions(top, s);
   ReadLevels(top, s);
-  ReadTiming(top, s.timing);
+  ReadTiming(top, s.levels, s.timing);
   ReadNoiseSection(top, s);
   ValidateBeams(s, source);
   CheckPositionsAndChannels(s, source);

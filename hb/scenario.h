@@ -32,6 +32,34 @@ struct ScenarioSensor {
   // The sensor's mass: a point mass of the true beam, and written to
   // campaign.json (the engineer knows it). 0 = massless, not written.
   double mass_kg = 0.0;
+
+  // Measurement artefacts, concealed from campaign.json and listed in
+  // truth.json; the defaults record the beam as it is (docs/simulator.md).
+  // A calibration off by this fraction: the channel records (1 + g)·signal,
+  // before its noise. > −1.
+  double gain_error_relative = 0.0;
+  // The channel records the signal at t − delay_s (another anti-alias
+  // filter than the other channels'). 0 ≤ delay_s ≤ kMaxSensorDelay_s.
+  double delay_s = 0.0;
+  // Where the test plan says the sensor is: the position written to
+  // campaign.json. The beam is measured at position_m. Empty = position_m.
+  std::optional<double> stated_position_m;
+
+  double StatedPosition_m() const { return stated_position_m.value_or(position_m); }
+  bool HasArtefact() const { return gain_error_relative != 0.0 || delay_s != 0.0 || stated_position_m.has_value(); }
+};
+
+// A delay is a filter's group delay, a few samples at most.
+inline constexpr double kMaxSensorDelay_s = 0.01;
+
+// A step recorded before it settled (timing.early_records): the step of
+// `level` whose nominal frequency is frequency_hz is recorded after
+// settle_s of integration from its frequency change instead of the settling
+// rule, so its recording holds a transient that has not decayed.
+struct EarlyRecord {
+  std::string level;          // a level's label
+  double frequency_hz = 0.0;  // nominal; one of that level's steps
+  double settle_s = 0.0;      // > 0: from the frequency change to the recording's first sample
 };
 
 // Harmonic k of the force relative to its fundamental:
@@ -87,6 +115,8 @@ struct ScenarioTiming {
   // rings down and the excitation channel records only its noise. 0 = never.
   // It must fall inside the steady part: > transient_s/(transient_s + record_s), < 1.
   double excitation_stop_fraction = 0.0;
+  // Steps recorded before they settled; empty = every step settles.
+  std::vector<EarlyRecord> early_records;
 };
 
 // What the excitation channel records and the level's amplitude sets
@@ -163,6 +193,9 @@ struct Scenario {
   bool VoltageDrive() const { return excitation_quantity == ExcitationQuantity::kVoltage; }
   bool BaseExcitation() const { return excitation_quantity == ExcitationQuantity::kBaseAcceleration; }
   int NumSteps() const;
+  // The early record of the level's step at this nominal frequency (the
+  // reader matched it to 1e-9 relative), or null.
+  const EarlyRecord* EarlyRecordOf(const std::string& level, double nominal_frequency_hz) const;
 };
 
 // Size of a written unit in SI for a quantity (docs/campaign-format.md): 9.80665

@@ -15,9 +15,14 @@
 // Recordings are noise-free and in SI here (hb/noise.h adds noise); the truth
 // of each step is the least-squares fit (hb/time_harmonic_fit.h) of harmonics
 // 0..5 over its steady part, referenced to the force fundamental
-// (docs/fourier-convention.md).
+// (docs/fourier-convention.md). A sensor's measurement artefacts (its gain
+// error and delay, hb/scenario.h ScenarioSensor) are in its recorded
+// channel only: the truth, and the settling test, see the beam's true motion
+// at the sensor's true position. A step named by timing.early_records is
+// recorded after its own settle time instead of the settling rule.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -46,7 +51,10 @@ struct SimulatedStep {
   double base_acceleration_amplitude_m_s2 = 0.0;  // base excitation only: the level's a_b
 
   double settle_s = 0.0;      // integrated before the steady record
-  bool settled = false;       // false: settle_max_s reached first
+  bool settled = false;       // false: settle_max_s reached first, or an early record
+  // timing.early_records: the scenario's settle_s of this step (integrated
+  // after the frequency change before the recording's first sample).
+  std::optional<double> early_record_settle_s;
   double settle_change = 0.0; // last relative change between windows
   int transient_samples = 0;  // leading samples of the recording before the steady part
   // timing.excitation_stop_fraction: the time in the recording [s] after
@@ -57,11 +65,14 @@ struct SimulatedStep {
   // Samples × channels (the excitation, then the sensors in scenario order),
   // SI (N, or V with a voltage drive, or the base's m/s²; m/s², m/s or m;
   // absolute acceleration with base excitation), noise-free, at the nominal
-  // sample rate.
+  // sample rate; each sensor's gain error and delay applied.
   Eigen::MatrixXd recording;
 
   // Truth, X_0..X_5 each, phase referenced to the force fundamental:
-  std::vector<Eigen::VectorXcd> channel_phasors;              // per channel, SI
+  // per channel, SI: the true motion at the sensor's true position, before
+  // its gain error and delay (its recording's phasors are
+  // (1 + g)·X_k·e^{−ikωτ}).
+  std::vector<Eigen::VectorXcd> channel_phasors;
   Eigen::VectorXcd force_phasors;  // the true force [N] (channel 0 itself with a force drive; 0 with base excitation)
   std::vector<Eigen::VectorXcd> hidden_displacement_phasors;  // per hidden position [m]
   Eigen::VectorXcd support_rotation_phasors;                  // θ = y'(L) [rad]
@@ -102,6 +113,30 @@ class SteppedSineSimulation {
   double Force_N(const Drive& drive, double phase_rad) const;
   void ChannelValues(Eigen::Ref<Eigen::VectorXd> values) const;
 
+  // A sensor's delay τ (ScenarioSensor::delay_s): its true signal at every
+  // integration step of the last few, and the weights that interpolate it at
+  // τ before the newest (see stepped_sine.cc).
+  struct DelayLine {
+    int channel = 0;                // column of the recording
+    // The sensor's signal from the modal state: row · (modal displacement,
+    // velocity or acceleration, by the sensor's quantity), plus a_b for an
+    // accelerometer on a moving base.
+    Eigen::RowVectorXd modal_row;
+    int derivative = 0;             // 0 displacement, 1 velocity, 2 acceleration
+    int newest_offset = 0;          // the stencil's first point, in steps back from the newest
+    std::array<double, 4> weights{};  // Lagrange weights of the 4 points newest_offset..newest_offset + 3
+    std::vector<double> history;    // ring of the last newest_offset + 4 values
+    int next = 0;                   // where the next value goes
+    void Fill(double value);
+    void Push(double value);
+    double Delayed() const;
+  };
+  // The delayed sensor's true signal now.
+  double SignalOf(const DelayLine& line) const;
+  // The channels' recorded values (gain errors and delays applied) from their
+  // true values `channels`.
+  void RecordedValues(const Eigen::VectorXd& channels, Eigen::Ref<Eigen::VectorXd> recorded) const;
+
   Scenario scenario_;
   std::unique_ptr<SupportLaw> law_;
   std::unique_ptr<TimeSimulator> simulator_;
@@ -109,6 +144,8 @@ class SteppedSineSimulation {
   double first_natural_hz_ = 0.0;
   bool base_excitation_ = false;
   double excitation_signal_ = 0.0;  // the excitation channel's value now (force, voltage or a_b)
+  std::vector<DelayLine> delay_lines_;  // one per delayed sensor
+  Eigen::VectorXd recorded_gain_;       // per channel: 1 + its gain error
   // Scratch for the simulator's outputs (sensors, then hidden positions).
   mutable Eigen::VectorXd displacement_, velocity_, acceleration_;
 };

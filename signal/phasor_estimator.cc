@@ -6,6 +6,7 @@
 #include "hb/option_checks.h"
 #include "signal/input_error.h"
 #include "signal/internal/text.h"
+#include "signal/settling_uncertainty.h"
 
 namespace beamid::signal {
 namespace {
@@ -198,11 +199,31 @@ StepPhasors EstimateStepPhasors(const Recording& recording, const Campaign& camp
   if (fit.num_harmonics < options.num_harmonics)
     quality.warnings.push_back("only harmonics 1.." + std::to_string(fit.num_harmonics) +
                                " lie below the Nyquist frequency " + FormatNumber(0.5 * fs) + " Hz");
-  if (static_cast<double>(steady.first_sample) > options.warn_transient_fraction * static_cast<double>(n))
-    quality.warnings.push_back("the transient took " +
-                               FormatNumber(std::round(100.0 * static_cast<double>(steady.first_sample) / n)) +
-                               " % of the " + (span.stops_early || span.starts_late ? "driven part" : "record") +
-                               "; record longer");
+  if (static_cast<double>(steady.first_sample) > options.warn_transient_fraction * static_cast<double>(n)) {
+    std::string text = "the transient took " +
+                       FormatNumber(std::round(100.0 * static_cast<double>(steady.first_sample) / n)) + " % of the " +
+                       (span.stops_early || span.starts_late ? "driven part" : "record") + "; record longer";
+    // What is left of the transient is an error of the phasors, which the
+    // fit must weigh (a drift-model steady state is not raised: its centre
+    // value is right for a linear drift).
+    std::vector<ChannelPhasors> all_channels{result.force};
+    all_channels.insert(all_channels.end(), result.responses.begin(), result.responses.end());
+    std::vector<bool> used;
+    for (const auto* spec : specs) used.push_back(campaign.Use(spec->channel) == ChannelUse::kUsed);
+    const SettlingUncertainty unsettled = AddSettlingUncertainty(steady_samples, fs, frequency.frequency_hz,
+                                                                 fit.num_harmonics, specs, used, all_channels);
+    if (unsettled.raised) {
+      result.force = std::move(all_channels.front());
+      std::move(all_channels.begin() + 1, all_channels.end(), result.responses.begin());
+      quality.unsettled = true;
+      quality.unsettled_change_relative = unsettled.change_relative;
+      quality.unsettled_channel = unsettled.channel;
+      text += "; what is left of it changes '" + unsettled.channel + "' by " +
+              FormatNumber(std::round(unsettled.change_relative * 1e4) / 100.0) +
+              " % between the halves of the analysed part, which its phasors' uncertainty now includes";
+    }
+    quality.warnings.push_back(std::move(text));
+  }
   return result;
 }
 

@@ -60,6 +60,12 @@ struct StepQuality {
   std::string settling;              // why that much was dropped (or "no transient detected")
   std::vector<std::string> warnings;  // the result stands; the engineer should look
   std::vector<std::string> notes;     // recorded, nothing to do
+  // A record cut before it settled (signal/settling_uncertainty.h): its
+  // phasors' uncertainty includes the change between the analysed part's
+  // halves, |ΔX_1|/|X_1| of the worst channel. 0: not raised.
+  bool unsettled = false;
+  double unsettled_change_relative = 0.0;
+  std::string unsettled_channel;
 };
 
 struct StepPhasors {

@@ -84,6 +84,9 @@ std::string PhasorSetToJson(const PhasorSet& set) {
                     {"settling", step.quality.settling},
                     {"warnings", step.quality.warnings}};
     if (!step.quality.notes.empty()) quality["notes"] = step.quality.notes;
+    if (step.quality.unsettled)
+      quality["unsettled"] = {{"change_relative", step.quality.unsettled_change_relative},
+                              {"channel", step.quality.unsettled_channel}};
     steps.push_back({{"file", step.file},
                      {"level", step.level},
                      {"nominal_frequency_Hz", step.nominal_frequency_hz},
@@ -133,6 +136,11 @@ PhasorSet PhasorSetFromJson(std::string_view json_text, const std::string& sourc
       step.quality.settling = q.at("settling").get<std::string>();
       step.quality.warnings = q.at("warnings").get<std::vector<std::string>>();
       if (q.contains("notes")) step.quality.notes = q.at("notes").get<std::vector<std::string>>();
+      if (q.contains("unsettled")) {
+        step.quality.unsettled = true;
+        step.quality.unsettled_change_relative = q.at("unsettled").at("change_relative").get<double>();
+        step.quality.unsettled_channel = q.at("unsettled").at("channel").get<std::string>();
+      }
       const json& channels = s.at("channels");
       if (channels.empty() || channels.front().at("role") != "excitation")
         throw std::invalid_argument("step '" + step.file + "' does not start with its excitation channel");

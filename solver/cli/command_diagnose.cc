@@ -27,6 +27,7 @@ struct DiagnoseCommandOptions {
   int fit_harmonics = 3;
   int workers = 0;
   double significance = 0.01;
+  bool recording_check = true;
   std::string output = "diagnosis.json";
   std::string curves;  // CSV prefix of the response curves (and its plot)
   std::string result_file;  // identify's result.json, named in the diagnosis for `beamid report`
@@ -100,6 +101,7 @@ void RunDiagnose(const DiagnoseCommandOptions& options, const GlobalOptions& glo
   diagnosis.candidates = options.candidates;
   diagnosis.num_workers = options.workers;
   diagnosis.significance = options.significance;
+  diagnosis.measurement_artefacts = options.recording_check;
   Progress progress("diagnose", global);
   const solver::DiagnosisResult result = solver::Diagnose(
       fit, validation, located, diagnosis, [&](double fraction, const std::string&) { progress.Update(fraction); });
@@ -126,22 +128,23 @@ void RunDiagnose(const DiagnoseCommandOptions& options, const GlobalOptions& glo
       fmt::print(stderr, "gnuplot failed or is missing: {} not drawn ({} is there)\n", png, csv);
   }
   if (!global.quiet) {
-    fmt::print("diagnosed {} steps in {:.2f} s: {}\n", fit.steps.size(), result.seconds, result.verdict);
-    fmt::print("  {:<20} {:>6} {:>12} {:>9} {:>11} {:>10}  {} / {}\n", "candidate", "score", "chi-square", "drop",
+    fmt::print("diagnosed {} steps in {:.2f} s: {}{}\n", fit.steps.size(), result.seconds, result.verdict,
+               result.blame.empty() ? "" : " (to blame: " + result.blame + ")");
+    fmt::print("  {:<30} {:>6} {:>12} {:>9} {:>11} {:>10}  {} / {}\n", "candidate", "score", "chi-square", "drop",
                "BIC", "p", "held-out h1", "chi-square");
     // Without a held-out channel there is no held-out error: say so, not "nan %".
     const auto held_out = [](const solver::FitSummary& summary) {
       if (!std::isfinite(summary.held_out_h1_relative_error)) return std::string("(no held-out channel)");
       return fmt::format("{:.3g} % / {:.4g}", 100.0 * summary.held_out_h1_relative_error, summary.held_out_chi_square);
     };
-    fmt::print("  {:<20} {:>6} {:>12.5g} {:>9} {:>11.5g} {:>10}  {}\n", "(base)", "", result.base.chi_square, "",
+    fmt::print("  {:<30} {:>6} {:>12.5g} {:>9} {:>11.5g} {:>10}  {}\n", "(base)", "", result.base.chi_square, "",
                result.base.bic, "", held_out(result.base));
     for (const auto& c : result.candidates)
       if (!c.converged)
-        fmt::print("  {:<20} {:>6.2f}  {}\n", c.name, c.signature_score,
+        fmt::print("  {:<30} {:>6.2f}  {}\n", c.name, c.signature_score,
                    c.status.starts_with("not refitted") ? c.status : "refit failed (" + c.status + ")");
       else
-        fmt::print("  {:<20} {:>6.2f} {:>12.5g} {:>8.3g}x {:>11.5g} {:>10.2g}  {}  ({:.1f} s){}\n", c.name,
+        fmt::print("  {:<30} {:>6.2f} {:>12.5g} {:>8.3g}x {:>11.5g} {:>10.2g}  {}  ({:.1f} s){}\n", c.name,
                    c.signature_score, c.fit.chi_square, c.residual_drop, c.fit.bic, c.p_value, held_out(c.fit),
                    c.seconds, c.significant ? "  significant" : "");
     fmt::print("{}\nwrote {}\n", result.summary, options.output);
@@ -161,7 +164,10 @@ BEAMID_REGISTER_COMMAND("diagnose", [](CLI::App& app, const GlobalOptions& globa
   sub->add_option("--fit", options->fit_channels, "Response channels to fit (default: all)")->delimiter(',');
   sub->add_option("--validate", options->validate_channels, "Held-out channels to predict and compare")
       ->delimiter(',');
-  sub->add_option("--candidates", options->candidates, "Candidates to try (default: all)")->delimiter(',');
+  sub->add_option("--candidates", options->candidates, "Physics candidates to try (default: all)")->delimiter(',');
+  sub->add_flag("!--no-recording-check", options->recording_check,
+                "Do not try the measurement artefacts (sensor gain, phase delay and position per fitted channel, "
+                "outlying steps) before the physics");
   AddPhasorInputOptions(sub, &options->phasor_input);
   AddModelHarmonicsOptions(sub, &options->harmonics, &options->fit_harmonics, "Harmonics of the base model");
   sub->add_option("--workers", options->workers, "Parallel refits (0: one per core)")

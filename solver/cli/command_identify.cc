@@ -17,6 +17,7 @@
 #include "solver/estimation/model_family.h"
 #include "solver/estimation/result_file.h"
 #include "solver/estimation/result_io.h"
+#include "solver/estimation/robust_fit.h"
 
 namespace beamid::cli {
 namespace {
@@ -34,9 +35,22 @@ struct IdentifyCommandOptions {
   bool fit_ei_scale = false;
   bool fix_loss_factor = false;
   bool damping_envelope = true;
+  bool robust = true;
   double beam_loss_factor = 0.0;
   std::string output = "result.json";
 };
+
+// The steps the robust fit found outlying, and every parameter with and without them.
+void PrintRobustFit(const solver::RobustFitResult& robust, const solver::IdentifyResult& ordinary) {
+  if (robust.outliers.empty()) return;
+  fmt::print("  robust fit: {}\n", robust.note);
+  if (!robust.applied) return;
+  fmt::print("    {:<10} {:>14} {:>14}   (ordinary fit: reduced chi-square {:.3g}; robust: {:.3g})\n", "parameter",
+             "without them", "with them", ordinary.reduced_chi_square, robust.fit.reduced_chi_square);
+  for (std::size_t j = 0; j < robust.fit.parameters.size(); ++j)
+    fmt::print("    {:<10} {:>14.6g} {:>14.6g} {}\n", robust.fit.parameters[j].name, robust.fit.parameters[j].value,
+               ordinary.parameters[j].value, robust.fit.parameters[j].unit);
+}
 
 // Each law's misfit, then every shared parameter's interval over the accepted laws.
 void PrintDampingLaws(const solver::DampingLawEnvelope& envelope) {
@@ -86,8 +100,17 @@ void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& glo
   identify.num_starts = options.starts;
   identify.num_workers = options.workers;
   Progress progress("identify", global);
-  const auto report_progress = [&](double fraction, const std::string& what) { progress.Update(fraction, what); };
-  const solver::IdentifyResult result = solver::Identify(fit, structure, identify, report_progress);
+  const auto report_progress = [&](double fraction, const std::string& what) { progress.Update(0.9 * fraction, what); };
+  const solver::IdentifyResult ordinary = solver::Identify(fit, structure, identify, report_progress);
+  // A faulty step (a record cut before it settled, a glitch) must not pull
+  // the parameters by its whole chi-square: the outlier test leaves out a few
+  // such steps, never a misfit spread over many (solver/estimation/robust_fit.h).
+  solver::RobustFitResult robust{.data = fit, .fit = ordinary};
+  if (options.robust) {
+    progress.Update(0.92, "testing the steps for outliers");
+    robust = solver::RobustRefit(fit, structure, ordinary, identify);
+  }
+  const solver::IdentifyResult& result = robust.fit;
   // The beam's damping law is assumed, never known: the other laws' refits
   // give the parameters' model-form intervals (solver/estimation/damping_laws.h).
   solver::DampingLawEnvelope damping_laws;
@@ -96,13 +119,13 @@ void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& glo
   // refits of it under other laws ran for minutes.
   if (options.damping_envelope && family.Name() == "hb" && result.verdict.within_noise) {
     progress.Update(0.95, "refitting under the other beam damping laws");
-    damping_laws = solver::FitDampingLaws(fit, structure, result, identify);
+    damping_laws = solver::FitDampingLaws(robust.data, structure, result, identify);
   }
   progress.Done();
 
-  const std::unique_ptr<solver::FitProblem> problem = family.MakeProblem(fit, structure, identify.model);
+  const std::unique_ptr<solver::FitProblem> problem = family.MakeProblem(robust.data, structure, identify.model);
   problem->FeasiblePoint(result.starts[result.best_start].scaled_at);  // the winning run's scales
-  solver::FitData fit_with_loss = fit;
+  solver::FitData fit_with_loss = robust.data;
   fit_with_loss.beam.loss_factor = options.beam_loss_factor;
   solver::ResultFile result_file = solver::MakeResultFile(
       fit_with_loss, validation, *problem, result,
@@ -112,6 +135,19 @@ void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& glo
        .campaign_absolute_folder = std::filesystem::absolute(options.campaign_folder).lexically_normal().string(),
        .family = &family});
   result_file.damping_laws = damping_laws;
+  if (!robust.outliers.empty())
+    result_file.robust_fit = solver::ResultRobustFit{.applied = robust.applied,
+                                                     .note = robust.note,
+                                                     .outliers = robust.outliers,
+                                                     .ordinary_parameters = ordinary.parameters,
+                                                     .ordinary_chi_square = ordinary.chi_square,
+                                                     .ordinary_degrees_of_freedom = ordinary.degrees_of_freedom};
+  for (const auto& s : fit.steps)
+    if (s.unsettled)
+      result_file.unsettled_steps.push_back({.level = s.level,
+                                             .file = s.file,
+                                             .frequency_hz = s.omega_rad_s / (2.0 * M_PI),
+                                             .change_relative = s.unsettled_change_relative});
   solver::WriteResultFile(options.output, result_file);
 
   if (!global.quiet) {
@@ -123,6 +159,11 @@ void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& glo
       fmt::print("  {:<10} = {:>12.6g} ± {:<10.3g} {}   (95 %: {:.6g} … {:.6g})\n", p.name, p.value, p.std, p.unit,
                  p.lower_95, p.upper_95);
     fmt::print("  reduced chi-square {:.3g} ({} residuals)\n", result.reduced_chi_square, result.degrees_of_freedom);
+    for (const auto& s : result_file.unsettled_steps)
+      fmt::print("  step {} {:.4g} Hz ({}) was recorded before it settled: its uncertainty includes a {:.2f} % change "
+                 "between the halves of its analysed part; re-record it with a longer settle\n",
+                 s.level, s.frequency_hz, s.file, 100.0 * s.change_relative);
+    PrintRobustFit(robust, ordinary);
     PrintDampingLaws(damping_laws);
     if (result.minima.minima.size() > 1)
       fmt::print("  the starts reached {} distinct minima; the second is {:.3g} worse in chi-square ({})\n",
@@ -174,6 +215,8 @@ BEAMID_REGISTER_COMMAND("identify", [](CLI::App& app, const GlobalOptions& globa
   sub->add_flag("!--no-damping-laws", options->damping_envelope,
                 "Do not refit under the other beam damping laws (Rayleigh, mass- and stiffness-proportional): faster, "
                 "but no model-form intervals");
+  sub->add_flag("!--no-robust", options->robust,
+                "Do not test the steps for outliers: fit every step with its full weight, even a faulty one");
   sub->add_option("--beam-loss-factor", options->beam_loss_factor,
                   "The beam's structural loss factor: the start of its fit, or its value with --fix-loss-factor")
       ->capture_default_str();

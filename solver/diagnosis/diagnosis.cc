@@ -1,4 +1,5 @@
 #include "solver/diagnosis/diagnosis.h"
+#include "solver/diagnosis/measurement_artefacts.h"
 
 #include "hb/option_checks.h"
 
@@ -27,8 +28,10 @@ ModelStructure BaseStructure(const DiagnosisOptions& options) {
   return structure;
 }
 
-FitSummary Summarize(const ModelStructure& structure, int harmonics, double chi2, int num_residuals,
-                     const std::vector<double>& values, const std::vector<double>& std) {
+}  // namespace
+
+FitSummary SummarizeFit(const ModelStructure& structure, int harmonics, double chi2, int num_residuals,
+                        const std::vector<double>& values, const std::vector<double>& std, int extra_parameters) {
   FitSummary s;
   s.model_harmonics = harmonics;
   const auto names = structure.Names();
@@ -36,7 +39,7 @@ FitSummary Summarize(const ModelStructure& structure, int harmonics, double chi2
   for (std::size_t j = 0; j < values.size(); ++j)
     s.parameters.push_back({.name = names[j], .unit = units[j], .value = values[j], .std = std[j],
                             .lower_95 = values[j] - 1.96 * std[j], .upper_95 = values[j] + 1.96 * std[j]});
-  const int p = static_cast<int>(values.size());
+  const int p = static_cast<int>(values.size()) + extra_parameters;
   s.chi_square = chi2;
   s.num_residuals = num_residuals;
   s.degrees_of_freedom = std::max(1, num_residuals - p);
@@ -45,6 +48,42 @@ FitSummary Summarize(const ModelStructure& structure, int harmonics, double chi2
   s.bic = chi2 + p * std::log(static_cast<double>(std::max(num_residuals, 1)));
   return s;
 }
+
+IdentifyOptions CandidateRefitOptions(const DiagnosisOptions& options, int model_harmonics) {
+  IdentifyOptions refit;
+  refit.model.num_harmonics = model_harmonics;
+  refit.ipopt = options.ipopt;
+  refit.family = options.family;
+  refit.num_workers = 1;
+  refit.ipopt.max_iterations = options.refit_max_iterations;
+  refit.ipopt.max_cpu_seconds = options.refit_max_cpu_seconds;
+  refit.continuation_iterations = 0;  // a refit that wanders is cut short on purpose
+  // A refit starts from the base fit, whose states already lie on the
+  // measured branch; seeded states converge slowly with the
+  // candidates' non-smooth laws (measured: 3x the diagnosis's time).
+  // Branch repair stays on.
+  refit.seed_states_from_measurements = false;
+  return refit;
+}
+
+void TestAgainstReference(double reference, const FitSummary& base, int num_candidates, const DiagnosisOptions& options,
+                          CandidateOutcome* outcome) {
+  const double chi_square = outcome->fit.chi_square;
+  const double per_candidate_significance = options.significance / std::max(1, num_candidates);
+  const double scale = std::max(1.0, outcome->fit.reduced_chi_square);
+  outcome->likelihood_ratio = (reference - chi_square) / scale;
+  outcome->p_value = ChiSquareUpperTail(outcome->likelihood_ratio, outcome->test_dof);
+  outcome->residual_drop = base.chi_square / std::max(chi_square, 1e-300);
+  // A base that already fits within the model's own errors has nothing
+  // to explain: a flexible candidate can still shave a share of its χ²
+  // (measured: a Jenkins element took 38 % off one of ten base-physics
+  // noise realisations), which is not a cause.
+  outcome->significant = outcome->p_value < per_candidate_significance &&
+                         reference - chi_square >= options.min_relative_improvement * reference &&
+                         base.reduced_chi_square > options.acceptable_reduced_chi_square;
+}
+
+namespace {
 
 std::string DescribeParameters(const FitSummary& fit, const std::vector<std::string>& names) {
   std::string text;
@@ -60,13 +99,17 @@ std::string WriteSummary(const DiagnosisResult& r) {
   std::ostringstream out;
   out << fmt::format("Base model (polynomial support on the nominal beam): reduced chi-square {:.3g} over {} residuals. ",
                      r.base.reduced_chi_square, r.base.num_residuals);
+  for (const auto& f : r.recording_findings) out << "The extraction flagged: " << f << ". ";
   if (r.location)
     for (const auto& f : r.location->findings) out << f << (f.empty() || f.back() == '.' ? " " : ". ");
   if (r.verdict == "causes indistinguishable") {
     const CandidateOutcome &a = r.candidates[0], &b = r.candidates[1];
     out << fmt::format(
-        "Missing physics: {} or {}; these data cannot tell them apart (chi-square {:.4g} and {:.4g}{}). Both explain "
+        "{}: {} or {}; these data cannot tell them apart (chi-square {:.4g} and {:.4g}{}). Both explain "
         "the misfit significantly (chi-square {:.4g} before); the results show the first. ",
+        a.measurement && b.measurement   ? "A fault of the recording"
+        : a.measurement || b.measurement ? "A fault of the recording or missing physics"
+                                         : "Missing physics",
         a.name, b.name, a.fit.chi_square, b.fit.chi_square,
         std::isfinite(a.fit.held_out_chi_square)
             ? fmt::format(", held-out {:.4g} and {:.4g}", a.fit.held_out_chi_square, b.fit.held_out_chi_square)
@@ -95,9 +138,10 @@ std::string WriteSummary(const DiagnosisResult& r) {
   } else if (r.verdict == "cause named") {
     const CandidateOutcome& best = r.candidates.front();
     out << fmt::format(
-        "Missing physics: {} ({}). Refitted with it, the weighted residual drops {:.3g}x (chi-square {:.4g} -> {:.4g}, "
+        "{}: {} ({}). Refitted with it, the weighted residual drops {:.3g}x (chi-square {:.4g} -> {:.4g}, "
         "BIC {:.4g} -> {:.4g}, likelihood-ratio p = {:.2g}). ",
-        best.name, best.description, best.residual_drop, r.base.chi_square, best.fit.chi_square, r.base.bic,
+        best.measurement ? "A fault of the recording, not of the model" : "Missing physics", best.name,
+        best.description, best.residual_drop, r.base.chi_square, best.fit.chi_square, r.base.bic,
         best.fit.bic, best.p_value);
     if (std::isfinite(r.base.held_out_h1_relative_error))
       out << fmt::format("Held-out channels: first-harmonic error {:.3g} % -> {:.3g} %, chi-square of the harmonics "
@@ -281,16 +325,7 @@ RefitRun PlanPairs(const FitData& fit, const FittedModel& first, const Candidate
 // One job, in a worker process: the refit as exact text.
 std::string RunRefitJob(const FitData& fit, const CandidateExtension& extension, const std::vector<double>& start,
                         const DiagnosisOptions& options) {
-  IdentifyOptions refit = BaseIdentifyOptions(options);
-  refit.model.num_harmonics = extension.model_harmonics;
-  refit.ipopt.max_iterations = options.refit_max_iterations;
-  refit.ipopt.max_cpu_seconds = options.refit_max_cpu_seconds;
-  refit.continuation_iterations = 0;  // a refit that wanders is cut short on purpose
-  // A refit starts from the base fit, whose states already lie on the
-  // measured branch; seeded states converge slowly with the
-  // candidates' non-smooth laws (measured: 3x the diagnosis's time).
-  // Branch repair stays on.
-  refit.seed_states_from_measurements = false;
+  const IdentifyOptions refit = CandidateRefitOptions(options, extension.model_harmonics);
   const IdentifyResult r = IdentifyWith(
       [&] { return refit.family->MakeProblem(fit, extension.structure, refit.model); },
       extension.structure, start, refit);
@@ -399,29 +434,19 @@ CandidateOutcome DescribeCandidate(const RefitRun& run, int c, const std::option
 
 // Candidate c's best refit, its model, and its likelihood-ratio test (header).
 std::unique_ptr<FittedModel> TestCandidate(const FitData& fit, const FitSummary& base, const RefitRun& run, int c,
-                                           const DiagnosisOptions& options, CandidateOutcome* outcome) {
+                                           const DiagnosisOptions& options, int num_candidates,
+                                           CandidateOutcome* outcome) {
   const CandidateRefit& o = run.outcomes[run.best_job[c]].refit;
   const CandidateExtension& extension = run.extensions[c];
   outcome->converged = true;
   outcome->status = "solved";
   outcome->fit =
-      Summarize(extension.structure, extension.model_harmonics, o.chi_square, fit.NumResiduals(), o.values, o.std);
+      SummarizeFit(extension.structure, extension.model_harmonics, o.chi_square, fit.NumResiduals(), o.values, o.std);
   auto model = std::make_unique<FittedModel>(
       fit, *options.family, extension.structure, extension.model_harmonics, o.scaled_at,
       Eigen::Map<const Eigen::VectorXd>(o.x.data(), static_cast<Eigen::Index>(o.x.size())), o.values);
-  const double per_candidate_significance = options.significance / std::max<std::size_t>(1, run.library.size());
-  const double scale = std::max(1.0, outcome->fit.reduced_chi_square);
-  const double reference = ReferenceChiSquare(run, c, base.chi_square, options.model_harmonics);
-  outcome->likelihood_ratio = (reference - o.chi_square) / scale;
-  outcome->p_value = ChiSquareUpperTail(outcome->likelihood_ratio, outcome->test_dof);
-  outcome->residual_drop = base.chi_square / std::max(o.chi_square, 1e-300);
-  // A base that already fits within the model's own errors has nothing
-  // to explain: a flexible candidate can still shave a share of its χ²
-  // (measured: a Jenkins element took 38 % off one of ten base-physics
-  // noise realisations), which is not a cause.
-  outcome->significant = outcome->p_value < per_candidate_significance &&
-                         reference - o.chi_square >= options.min_relative_improvement * reference &&
-                         base.reduced_chi_square > options.acceptable_reduced_chi_square;
+  TestAgainstReference(ReferenceChiSquare(run, c, base.chi_square, options.model_harmonics), base,
+                       num_candidates > 0 ? num_candidates : static_cast<int>(run.library.size()), options, outcome);
   return model;
 }
 
@@ -481,7 +506,7 @@ BaseFit FitBase(const FitData& fit, const DiagnosisOptions& options) {
     std.push_back(p.std);
   }
   return {.model = FittedModel(fit, *options.family, structure, options.model_harmonics, r.starts[r.best_start].scaled_at, r.x, values),
-          .summary = Summarize(structure, options.model_harmonics, r.chi_square, fit.NumResiduals(), values, std)};
+          .summary = SummarizeFit(structure, options.model_harmonics, r.chi_square, fit.NumResiduals(), values, std)};
 }
 
 HeldOutCheck ValidateOnHeldOut(const FittedModel& model, const FitData& validation) {
@@ -524,7 +549,8 @@ LocationStage Locate(const FitData& fit, const BaseFit& base, const FitData& loc
 }
 
 CandidateRefits RefitCandidates(const FitData& fit, const BaseFit& base, const std::optional<MisfitLocation>& location,
-                                const DiagnosisOptions& options, const RefitProgress& progress) {
+                                const DiagnosisOptions& options, const RefitProgress& progress,
+                                const std::string& explained_by_recording, int num_candidates) {
   RefitRun run = PlanRefits(fit, base, options);
   // The linear candidates first (cheap: the base's law and harmonics). When
   // one of them is significant and brings the misfit within the noise, no
@@ -534,6 +560,8 @@ CandidateRefits RefitCandidates(const FitData& fit, const BaseFit& base, const s
   std::vector<int> cheap, costly;
   for (int j = 0; j < static_cast<int>(run.jobs.size()); ++j)
     (Cost(run.extensions[run.jobs[j].candidate]) > base_cost ? costly : cheap).push_back(j);
+  // The recording first: when a fault of it explains the misfit, no physics is refitted.
+  if (!explained_by_recording.empty()) cheap.clear();
   RunRefits(fit, options, progress, &run, cheap);
   CandidateRefits refits;
   refits.models.resize(run.library.size());
@@ -542,11 +570,14 @@ CandidateRefits RefitCandidates(const FitData& fit, const BaseFit& base, const s
   // base itself when it fits within the noise (then no candidate can be a
   // cause: each needs a base misfit beyond it).
   std::string explained_by =
-      base.summary.reduced_chi_square <= options.acceptable_reduced_chi_square ? "the base model" : "";
+      !explained_by_recording.empty() ? explained_by_recording
+      : base.summary.reduced_chi_square <= options.acceptable_reduced_chi_square ? "the base model"
+                                                                                 : "";
   double explained_chi_square = base.summary.chi_square;
   auto test = [&](int c) {
     CandidateOutcome outcome = DescribeCandidate(run, c, location);
-    if (run.best_job[c] >= 0) refits.models[c] = TestCandidate(fit, base.summary, run, c, options, &outcome);
+    if (run.best_job[c] >= 0)
+      refits.models[c] = TestCandidate(fit, base.summary, run, c, options, num_candidates, &outcome);
     refits.outcomes[c] = std::move(outcome);
   };
   std::vector<bool> tested(run.library.size(), false);
@@ -600,7 +631,7 @@ CandidateRefits RefitPairs(const FitData& fit, const FittedModel& first, const C
   pairs.models.resize(run.library.size());
   for (int c = 0; c < static_cast<int>(run.library.size()); ++c) {
     CandidateOutcome outcome = DescribeCandidate(run, c, std::nullopt);
-    if (run.best_job[c] >= 0) pairs.models[c] = TestCandidate(fit, first_outcome.fit, run, c, options, &outcome);
+    if (run.best_job[c] >= 0) pairs.models[c] = TestCandidate(fit, first_outcome.fit, run, c, options, 0, &outcome);
     pairs.outcomes.push_back(std::move(outcome));
   }
   return pairs;
@@ -712,11 +743,45 @@ DiagnosisResult Diagnose(const FitData& fit, const FitData& validation, const Fi
   result.location = std::move(location.location);
   result.location_error = std::move(location.error);
 
-  CandidateRefits refits =
-      RefitCandidates(fit, base, result.location, options, [&](int done, int num_jobs, const std::string& name) {
-        report(0.2 + 0.7 * done / static_cast<double>(num_jobs),
+  for (const FitStep& s : fit.steps)
+    if (s.unsettled)
+      result.recording_findings.push_back(fmt::format(
+          "step {} {:.4g} Hz ({}) was recorded before it settled (its analysed part changes by {:.2f} % between "
+          "halves); its uncertainty includes that change",
+          s.level, s.omega_rad_s / (2.0 * 3.141592653589793), s.file, 100.0 * s.unsettled_change_relative));
+
+  // The recording first (an engineer whose fit fails checks the recording
+  // before the model): its artefacts are cheap refits of the base physics.
+  const int num_physics = static_cast<int>(SelectedCandidates(options).size());
+  CandidateRefits artefacts;
+  if (options.measurement_artefacts) {
+    report(0.2, "checking the recording");
+    artefacts = RefitMeasurementArtefacts(fit, base, options, num_physics,
+                                          [&](int done, int num, const std::string& name) {
+                                            report(0.2 + 0.2 * done / static_cast<double>(num),
+                                                   "recording check " + std::to_string(done) + "/" +
+                                                       std::to_string(num) + " (" + name + ")");
+                                          });
+  }
+  std::string explained_by;
+  double explained_chi_square = base.summary.chi_square;
+  for (const CandidateOutcome& o : artefacts.outcomes)
+    if (o.significant && o.fit.reduced_chi_square <= options.acceptable_reduced_chi_square &&
+        o.fit.chi_square < explained_chi_square) {
+      explained_by = o.name;
+      explained_chi_square = o.fit.chi_square;
+    }
+  CandidateRefits refits = RefitCandidates(
+      fit, base, result.location, options,
+      [&](int done, int num_jobs, const std::string& name) {
+        report(0.4 + 0.5 * done / static_cast<double>(num_jobs),
                "refit " + std::to_string(done) + "/" + std::to_string(num_jobs) + " (" + name + ")");
-      });
+      },
+      explained_by, num_physics + static_cast<int>(artefacts.outcomes.size()));
+  refits.outcomes.insert(refits.outcomes.begin(), std::make_move_iterator(artefacts.outcomes.begin()),
+                         std::make_move_iterator(artefacts.outcomes.end()));
+  refits.models.insert(refits.models.begin(), std::make_move_iterator(artefacts.models.begin()),
+                       std::make_move_iterator(artefacts.models.end()));
   for (std::size_t c = 0; c < refits.models.size(); ++c)
     if (refits.models[c]) ApplyHeldOut(ValidateOnHeldOut(*refits.models[c], validation), &refits.outcomes[c].fit);
 
@@ -726,6 +791,7 @@ DiagnosisResult Diagnose(const FitData& fit, const FitData& validation, const Fi
   result.ranked_by = verdict.ranked_by;
   result.selected = verdict.selected;
   const bool named = verdict.cause >= 0;
+  if (named) result.blame = refits.outcomes[verdict.cause].measurement ? "the recording" : "the model";
   result.final_fit = named ? refits.outcomes[verdict.cause].fit : result.base;
   result.rest_within_noise = result.final_fit.reduced_chi_square <= options.acceptable_reduced_chi_square;
   if (named) result.final_extra_parameters = refits.outcomes[verdict.cause].extra_parameters;
@@ -733,7 +799,9 @@ DiagnosisResult Diagnose(const FitData& fit, const FitData& validation, const Fi
   // A cause that leaves a misfit beyond the noise: a second cause beside it.
   const FittedModel* final_model = named ? refits.models[verdict.cause].get() : &base.model;
   CandidateRefits pairs;
-  if (named && verdict.tied_with < 0 && !result.rest_within_noise && refits.models[verdict.cause]) {
+  // (Not after a fault of the recording: its refit fitted corrected data, which the pairs' refits would not.)
+  if (named && verdict.tied_with < 0 && !result.rest_within_noise && refits.models[verdict.cause] &&
+      !refits.outcomes[verdict.cause].measurement) {
     const std::vector<std::string> partners =
         PairPartners(result.candidates, refits.outcomes[verdict.cause].name, options);
     report(0.85, "pairs with " + refits.outcomes[verdict.cause].name);

@@ -82,6 +82,9 @@ struct DiagnosisOptions {
   // significant against the cause alone and predicts the held-out channels
   // at least as well. 0: no pairs.
   int max_pair_partners = 2;
+  // Check the recording first: the measurement artefacts of
+  // solver/diagnosis/measurement_artefacts.h beside the physics candidates.
+  bool measurement_artefacts = true;
 
   // Throws beamid::InputError naming the first field out of its range, its
   // value and the range, so that a bad option fails before minutes of fits.
@@ -120,6 +123,8 @@ struct CandidateOutcome {
   double residual_drop = 1.0;       // χ²_base / χ²_candidate
   bool significant = false;
   double seconds = 0.0;             // Ipopt time of its refits (all starts)
+  // A fault of the recording (solver/diagnosis/measurement_artefacts.h), not physics.
+  bool measurement = false;
 };
 
 // Measured and modelled first harmonics of one channel at one step (the
@@ -140,6 +145,12 @@ struct DiagnosisResult {
   std::string location_error;
   std::vector<CandidateOutcome> candidates;  // ranked: significant first, by BIC
   std::vector<std::string> selected;         // {"none"} when no cause is named; two for a pair or a tie
+  // Who is to blame for the named cause: "the recording" (a measurement
+  // artefact), "the model" (missing physics), or "" when none is named.
+  std::string blame;
+  // What the extraction flagged in the fitted steps (records cut before they
+  // settled), whatever the verdict: the recording to check first.
+  std::vector<std::string> recording_findings;
   // "cause named" | "combination named" | "causes indistinguishable" |
   // "no significant discrepancy" | "unexplained"
   std::string verdict;
@@ -171,6 +182,20 @@ DiagnosisResult Diagnose(const FitData& fit, const FitData& validation, const Fi
                          const DiagnosisOptions& options = {}, const DiagnosisProgress& progress = {});
 
 // ---- The stages of Diagnose ----
+
+// A fit's summary: χ², its degrees of freedom and information criteria for
+// the structure's parameters plus extra_parameters more (a measurement
+// artefact's, which the structure does not hold).
+FitSummary SummarizeFit(const ModelStructure& structure, int harmonics, double chi_square, int num_residuals,
+                        const std::vector<double>& values, const std::vector<double>& std, int extra_parameters = 0);
+// The options of a candidate's refit from the base optimum (Ipopt capped at
+// refit_max_iterations and refit_max_cpu_seconds, no continuation).
+IdentifyOptions CandidateRefitOptions(const DiagnosisOptions& options, int model_harmonics);
+// The likelihood-ratio test of a refit (outcome->fit, test_dof) against
+// reference_chi_square (header), Bonferroni over num_candidates; fills
+// likelihood_ratio, p_value, residual_drop and significant.
+void TestAgainstReference(double reference_chi_square, const FitSummary& base, int num_candidates,
+                          const DiagnosisOptions& options, CandidateOutcome* outcome);
 
 // Stage 1, the base model: the polynomial support alone from the direct
 // estimate (robust even when the misfit is large), then with the beam's loss
@@ -217,8 +242,12 @@ struct CandidateRefits {
 };
 // done of num_jobs refits have returned, the latest of candidate `name`.
 using RefitProgress = std::function<void(int done, int num_jobs, const std::string& name)>;
+// explained_by: a measurement artefact that already brings the misfit within
+// the noise ("" when none): then no candidate is refitted (each says so).
+// num_candidates: of the whole diagnosis, for the Bonferroni correction (0: these).
 CandidateRefits RefitCandidates(const FitData& fit, const BaseFit& base, const std::optional<MisfitLocation>& location,
-                                const DiagnosisOptions& options, const RefitProgress& progress = {});
+                                const DiagnosisOptions& options, const RefitProgress& progress = {},
+                                const std::string& explained_by = "", int num_candidates = 0);
 
 // After the verdict, when the named cause leaves a misfit beyond the noise:
 // the cause's refit extended by each partner from its optimum (parallel

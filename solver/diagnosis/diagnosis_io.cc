@@ -150,6 +150,7 @@ Json CandidateToJson(const CandidateOutcome& c, double residual_before) {
   return {{"name", c.name},
           {"description", c.description},
           {"rig_check", c.rig_check},
+          {"measurement", c.measurement},
           {"score", Number(c.signature_score)},
           {"converged", c.converged},
           {"status", c.status},
@@ -333,13 +334,14 @@ MisfitLocation LocationFromJson(const Field& f) {
 }
 
 CandidateOutcome CandidateFromJson(const Field& f) {
-  f.OnlyKeys({"name", "description", "rig_check", "score", "converged", "status", "significant", "extra_parameters",
+  f.OnlyKeys({"name", "description", "rig_check", "measurement", "score", "converged", "status", "significant", "extra_parameters",
               "extra_parameter_names", "residual_before", "residual_after", "residual_drop", "likelihood_ratio",
               "test_dof", "p_value", "seconds", "fit"});
   CandidateOutcome c;
   c.name = f.String("name");
   c.description = f.String("description");
   if (f.Has("rig_check")) c.rig_check = f.String("rig_check");
+  if (f.Has("measurement")) c.measurement = f.Boolean("measurement");
   c.signature_score = f.Number("score");
   c.converged = f.Boolean("converged");
   c.status = f.String("status");
@@ -400,12 +402,14 @@ MeasurementSuggestion SuggestionFromJson(const Field& f) {
 
 DiagnosisResult ResultFromJson(const Field& root) {
   root.OnlyKeys({"format", "beamid_version", "campaign", "result", "result_file", "selected", "verdict", "ranked_by",
-                 "rest_within_noise", "suggestion", "combinations", "summary", "base", "final", "candidates", "location", "response", "seconds"});
+                 "rest_within_noise", "blame", "recording_findings", "suggestion", "combinations", "summary", "base", "final", "candidates", "location", "response", "seconds"});
   DiagnosisResult r;
   r.selected = root.At("selected").Strings();
   r.verdict = root.String("verdict");
   if (root.Has("ranked_by")) r.ranked_by = root.String("ranked_by");
   if (root.Has("rest_within_noise")) r.rest_within_noise = root.Boolean("rest_within_noise");
+  if (root.Has("blame")) r.blame = root.String("blame");
+  if (root.Has("recording_findings")) r.recording_findings = root.At("recording_findings").Strings();
   if (root.Has("suggestion")) r.suggestion = SuggestionFromJson(root.At("suggestion"));
   if (root.Has("combinations")) {
     const Field combinations = root.At("combinations");
@@ -460,6 +464,8 @@ std::string DiagnosisFileToJson(const DiagnosisFile& file) {
   root["verdict"] = r.verdict;
   root["ranked_by"] = r.ranked_by;
   root["rest_within_noise"] = r.rest_within_noise;
+  root["blame"] = r.blame;
+  root["recording_findings"] = r.recording_findings;
   if (r.suggestion) root["suggestion"] = SuggestionToJson(*r.suggestion);
   if (!r.combinations.empty()) {
     // Each pair's residual_before is the first cause's (what it is tested against).

@@ -43,6 +43,12 @@ struct FitStep {
   Eigen::MatrixXcd measured;             // channels × harmonics 1..K, SI of each channel's quantity
   std::vector<std::vector<Eigen::Matrix2d>> whitening;  // [channel][k-1]: L⁻¹
   Eigen::MatrixXd std_amplitude;         // channels × K: σ of the real/imag parts (rms of the two)
+  // The extraction found the record cut before it settled and raised its
+  // phasors' uncertainty by what is left of the transient (the change
+  // between the analysed part's halves, |ΔX_1|/|X_1| of the worst channel;
+  // signal/settling_uncertainty.h). 0: settled.
+  double unsettled_change_relative = 0.0;
+  bool unsettled = false;
 };
 
 struct FitData {

@@ -10,6 +10,7 @@
 
 #include <complex>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -22,6 +23,7 @@
 #include "solver/estimation/fit_verdict.h"
 #include "solver/estimation/model_family.h"
 #include "solver/estimation/multistart.h"
+#include "solver/estimation/robust_fit.h"
 
 namespace beamid::solver {
 
@@ -140,6 +142,28 @@ struct ResultStep {
   Eigen::VectorXcd state;               // the family's (ModelFamily::StateName: Θ_0..Θ_H, U, …)
 };
 
+// The robust fit (solver/estimation/robust_fit.h): the outlying steps it
+// found (left out when applied) and the ordinary fit's parameters, with
+// them; written only when it found outliers.
+struct ResultRobustFit {
+  bool applied = false;
+  std::string note;
+  std::vector<OutlyingStep> outliers;
+  std::vector<ParameterEstimate> ordinary_parameters;
+  double ordinary_chi_square = 0.0;
+  int ordinary_degrees_of_freedom = 0;
+};
+
+// A step whose record was cut before it settled: its phasors' uncertainty
+// includes the change between the halves of the analysed part
+// (signal/settling_uncertainty.h).
+struct ResultUnsettledStep {
+  std::string level;
+  std::string file;
+  double frequency_hz = 0.0;
+  double change_relative = 0.0;
+};
+
 struct ResultFile {
   std::string beamid_version;  // of the writer; empty in files written before it was recorded
   ResultCampaign campaign;
@@ -152,6 +176,8 @@ struct ResultFile {
   // The fit refitted under the beam's other damping laws, and the model-form
   // intervals (solver/estimation/damping_laws.h); empty when not computed.
   DampingLawEnvelope damping_laws;
+  std::optional<ResultRobustFit> robust_fit;
+  std::vector<ResultUnsettledStep> unsettled_steps;  // of the fit's data (left-out steps included)
   std::vector<std::string> warnings;
   std::vector<ChannelQuality> quality;     // fitted channels, in fit order
   std::vector<HeldOutChannel> validation;  // empty: no held-out channel

@@ -262,6 +262,74 @@ Json DampingLawsJson(const DampingLawEnvelope& envelope) {
   return {{"laws", laws}, {"model_form_intervals", intervals}};
 }
 
+// EstimateJson's inverse.
+ParameterEstimate ReadEstimate(const Field& p) {
+  const std::vector<double> ci95 = p.At("ci95").Numbers();
+  if (ci95.size() != 2) p.At("ci95").Fail("must be [low, high]");
+  return {.name = p.String("name"),
+          .unit = p.String("unit"),
+          .value = p.Number("value"),
+          .std = p.Number("std"),
+          .lower_95 = ci95[0],
+          .upper_95 = ci95[1]};
+}
+
+Json RobustFitJson(const ResultRobustFit& robust) {
+  Json outliers = Json::array();
+  for (const auto& s : robust.outliers)
+    outliers.push_back({{"level", s.level},
+                        {"file", s.file},
+                        {"frequency_Hz", s.frequency_hz},
+                        {"chi_square", s.chi_square},
+                        {"num_residuals", s.num_residuals},
+                        {"tail_probability", s.tail_probability},
+                        {"unsettled", s.unsettled}});
+  Json parameters = Json::array();
+  for (const auto& p : robust.ordinary_parameters) parameters.push_back(EstimateJson(p));
+  return {{"applied", robust.applied},
+          {"note", robust.note},
+          {"outliers", outliers},
+          {"ordinary_fit",
+           {{"chi_square", robust.ordinary_chi_square},
+            {"degrees_of_freedom", robust.ordinary_degrees_of_freedom},
+            {"parameters", parameters}}}};
+}
+
+ResultRobustFit ReadRobustFit(const Field& f) {
+  ResultRobustFit out{.applied = f.Boolean("applied"), .note = f.String("note")};
+  for (const Field& s : f.At("outliers").Elements())
+    out.outliers.push_back({.step = -1,
+                            .level = s.String("level"),
+                            .file = s.String("file"),
+                            .frequency_hz = s.Number("frequency_Hz"),
+                            .chi_square = s.Number("chi_square"),
+                            .num_residuals = s.Integer("num_residuals"),
+                            .tail_probability = s.Number("tail_probability"),
+                            .unsettled = s.Boolean("unsettled")});
+  const Field ordinary = f.At("ordinary_fit");
+  out.ordinary_chi_square = ordinary.Number("chi_square");
+  out.ordinary_degrees_of_freedom = ordinary.Integer("degrees_of_freedom");
+  for (const Field& p : ordinary.At("parameters").Elements()) out.ordinary_parameters.push_back(ReadEstimate(p));
+  return out;
+}
+
+Json UnsettledStepsJson(const std::vector<ResultUnsettledStep>& steps) {
+  Json out = Json::array();
+  for (const auto& s : steps)
+    out.push_back({{"level", s.level}, {"file", s.file}, {"frequency_Hz", s.frequency_hz}, {"change_relative", s.change_relative}});
+  return out;
+}
+
+std::vector<ResultUnsettledStep> ReadUnsettledSteps(const Field& f) {
+  std::vector<ResultUnsettledStep> out;
+  for (const Field& s : f.Elements())
+    out.push_back({.level = s.String("level"),
+                   .file = s.String("file"),
+                   .frequency_hz = s.Number("frequency_Hz"),
+                   .change_relative = s.Number("change_relative")});
+  return out;
+}
+
 // The laws as written; acceptance and intervals judged again from them (one rule).
 DampingLawEnvelope ReadDampingLaws(const Field& f) {
   DampingLawEnvelope out;
@@ -271,16 +339,7 @@ DampingLawEnvelope ReadDampingLaws(const Field& f) {
                       .status = law.String("status"),
                       .chi_square = law.Number("chi_square"),
                       .reduced_chi_square = law.Number("reduced_chi_square")};
-    for (const Field& p : law.At("parameters").Elements()) {
-      const std::vector<double> ci95 = p.At("ci95").Numbers();
-      if (ci95.size() != 2) p.At("ci95").Fail("must be [low, high]");
-      fit.parameters.push_back({.name = p.String("name"),
-                                .unit = p.String("unit"),
-                                .value = p.Number("value"),
-                                .std = p.Number("std"),
-                                .lower_95 = ci95[0],
-                                .upper_95 = ci95[1]});
-    }
+    for (const Field& p : law.At("parameters").Elements()) fit.parameters.push_back(ReadEstimate(p));
     out.laws.push_back(std::move(fit));
   }
   JudgeDampingLaws(&out);
@@ -409,6 +468,8 @@ ResultFile ReadResult(const Json& root, const std::string& source) {
   out.fit = ReadFit(r.At("fit"));
   out.warnings = r.At("warnings").Strings();
   if (r.Has("damping_laws")) out.damping_laws = ReadDampingLaws(r.At("damping_laws"));
+  if (r.Has("robust_fit")) out.robust_fit = ReadRobustFit(r.At("robust_fit"));
+  if (r.Has("unsettled_steps")) out.unsettled_steps = ReadUnsettledSteps(r.At("unsettled_steps"));
   out.quality = ReadQuality(r.At("quality"), out.model.num_fit_harmonics);
   if (r.Has("validation")) out.validation = ReadValidation(r.At("validation"), out.model.num_fit_harmonics);
   out.steps = ReadSteps(r.At("steps"), out.model);
@@ -437,6 +498,8 @@ std::string ResultFileToJson(const ResultFile& result) {
   root["correlation"] = MatrixJson(result.correlation);
   root["fit"] = FitJson(result.fit);
   if (!result.damping_laws.laws.empty()) root["damping_laws"] = DampingLawsJson(result.damping_laws);
+  if (result.robust_fit) root["robust_fit"] = RobustFitJson(*result.robust_fit);
+  if (!result.unsettled_steps.empty()) root["unsettled_steps"] = UnsettledStepsJson(result.unsettled_steps);
   root["warnings"] = Json(result.warnings);
   root["quality"] = QualityJson(result.quality);
   if (!result.validation.empty()) root["validation"] = ValidationJson(result.validation);

@@ -53,11 +53,15 @@ std::string FrcPlot(const ReportCurves& curves, std::size_t channel) {
                                         ch.fitted ? "fitted" : "held out"))),
       GnuplotQuote(PlotText(fmt::format("|X_1| [{}]", ch.si_unit))));
   std::string plot = "plot ";
+  Rows flagged;  // steps not to be trusted as the others (MeasuredPoint::flag)
   for (std::size_t l = 0; l < curves.levels.size(); ++l) {
     const LevelCurves& level = curves.levels[l];
     Rows stable, unstable, measured;
     SplitByStability(level, channel, stable, unstable);
-    for (const auto& m : level.measured) measured.push_back({m.frequency_hz, m.amplitude[channel]});
+    for (const auto& m : level.measured) {
+      measured.push_back({m.frequency_hz, m.amplitude[channel]});
+      if (!m.flag.empty()) flagged.push_back({m.frequency_hz, m.amplitude[channel]});
+    }
     script += Datablock(fmt::format("s{}", l), stable) + Datablock(fmt::format("u{}", l), unstable) +
               Datablock(fmt::format("m{}", l), measured);
     const std::string label = PlotText(fmt::format("{} ({:.3g} N)", level.level, level.force_amplitude_N));
@@ -67,7 +71,36 @@ std::string FrcPlot(const ReportCurves& curves, std::size_t channel) {
         l ? ", " : "", l, Colour(l), GnuplotQuote("model " + label), l, Colour(l), l, Colour(l),
         GnuplotQuote("measured " + label));
   }
+  if (!flagged.empty()) {
+    script += Datablock("flagged", flagged);
+    plot += ", $flagged with points pt 6 ps 2.2 lw 2 lc rgb 'black' title 'flagged step (see the recording section)'";
+  }
   return script + plot + "\n";
+}
+
+// The steps the recording makes doubtful: cut before they settled (the
+// extraction's flag) or left out by the robust fit; empty when none.
+std::string RecordingSection(const ReportCurves& curves, const ResultFile& result) {
+  std::string items;
+  for (const auto& level : curves.levels)
+    for (const auto& m : level.measured)
+      if (!m.flag.empty())
+        items += fmt::format("<li>{} {:.4g} Hz (<code>{}</code>): {}</li>", HtmlEscape(level.level), m.frequency_hz,
+                             HtmlEscape(m.file), HtmlEscape(m.flag));
+  std::string html;
+  if (!items.empty())
+    html += "<p>Flagged steps (circled on the response curves):</p><ul>" + items + "</ul>\n";
+  if (result.robust_fit) {
+    html += "<p>Robust fit: " + HtmlEscape(result.robust_fit->note) + "</p>\n";
+    if (result.robust_fit->applied) {
+      html += "<table><tr><th>parameter</th><th>without the outliers (reported)</th><th>with them</th></tr>\n";
+      for (std::size_t j = 0; j < result.parameters.size() && j < result.robust_fit->ordinary_parameters.size(); ++j)
+        html += "<tr><td>" + HtmlEscape(result.parameters[j].name) + "</td><td>" + Number(result.parameters[j].value) +
+                "</td><td>" + Number(result.robust_fit->ordinary_parameters[j].value) + "</td></tr>\n";
+      html += "</table>\n";
+    }
+  }
+  return html.empty() ? html : "<section id=\"recording\"><h2>The recording</h2>\n" + html + "</section>\n";
 }
 
 std::string BackbonePlot(const ReportCurves& curves) {
@@ -243,7 +276,15 @@ std::string DiagnosisSection(const DiagnosisResult& diagnosis) {
   std::string html = "<section id=\"diagnosis\"><h2>Diagnosis</h2>\n";
   std::string selected;
   for (const auto& name : diagnosis.selected) selected += (selected.empty() ? "" : ", ") + HtmlEscape(name);
-  html += "<p><b>Verdict:</b> " + HtmlEscape(diagnosis.verdict) + "</p>\n";
+  html += "<p><b>Verdict:</b> " + HtmlEscape(diagnosis.verdict) +
+          (diagnosis.blame.empty() ? "" : " — to blame: <b>" + HtmlEscape(diagnosis.blame) + "</b>") + "</p>\n";
+  // An engineer checks the recording before the model: its findings first.
+  std::string recording;
+  for (const auto& c : diagnosis.candidates)
+    if (c.measurement && diagnosis.blame == "the recording" && c.name == diagnosis.selected.front())
+      recording += "<li>" + HtmlEscape(c.name) + ": " + HtmlEscape(c.rig_check) + "</li>";
+  for (const auto& f : diagnosis.recording_findings) recording += "<li>" + HtmlEscape(f) + "</li>";
+  if (!recording.empty()) html += "<h3>The recording</h3>\n<ul class=\"warning\">" + recording + "</ul>\n";
   html += "<p><b>Selected:</b> " + selected + "</p>\n";
   html += "<p class=\"diagnosis-summary\">" + HtmlEscape(diagnosis.summary) + "</p>\n";
   if (!diagnosis.location) {
@@ -271,7 +312,7 @@ std::string DiagnosisSection(const DiagnosisResult& diagnosis) {
       html += "<table><tr><th>channel</th><th>harmonic</th><th>level</th><th>part</th><th>band</th><th>χ²</th>"
               "<th>dof</th><th>adjusted p</th></tr>\n" + rows + "</table>\n";
   }
-  html += "<h3>Candidate physics, each refitted</h3>\n<table><tr><th>candidate</th><th>signature score</th>"
+  html += "<h3>Candidates, each refitted: faults of the recording and missing physics, best first</h3>\n<table><tr><th>candidate</th><th>kind</th><th>signature score</th>"
           "<th>χ² before</th><th>χ² after</th><th>drop</th><th>p</th><th>significant</th>"
           "<th>extra parameters ± standard uncertainty</th></tr>\n";
   for (const auto& c : diagnosis.candidates) {
@@ -286,7 +327,8 @@ std::string DiagnosisSection(const DiagnosisResult& diagnosis) {
                            determined ? Number(p.value) + " ± " + Number(p.std) + unit
                                       : Number(p.value) + unit + " (not determined by these data)");
     }
-    html += "<tr><td>" + HtmlEscape(c.name) + "</td><td>" + Number(c.signature_score) + "</td><td>" +
+    html += "<tr><td>" + HtmlEscape(c.name) + "</td><td>" + (c.measurement ? "recording" : "physics") + "</td><td>" +
+            Number(c.signature_score) + "</td><td>" +
             Number(diagnosis.base.chi_square) + "</td><td>" +
             (c.converged ? Number(c.fit.chi_square) : "refit failed: " + HtmlEscape(c.status)) + "</td><td>" +
             Number(c.residual_drop) + "</td><td>" + Number(c.p_value) + "</td><td>" +
@@ -319,6 +361,7 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves) {
                         "third.</p>\n",
                         HtmlEscape(v.channel), 100 * v.worst_h1_relative_error, 100 * v.worst_h3_relative_error);
   html += Warnings(result.warnings) + "</section>\n";
+  html += RecordingSection(curves, result);
 
   html += "<section id=\"frc\"><h2>Frequency response curves</h2>\n";
   for (std::size_t c = 0; c < curves.channels.size(); ++c)

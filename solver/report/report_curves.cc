@@ -165,7 +165,8 @@ LevelCurves MeasuredLevel(const signal::PhasorSet& phasors, const std::vector<Re
   double force_sum = 0.0;
   for (const auto& step : phasors.steps) {
     if (step.level != level.level) continue;
-    MeasuredPoint point{.frequency_hz = step.frequency_hz};
+    MeasuredPoint point{.frequency_hz = step.frequency_hz, .amplitude = {}, .file = step.file};
+    if (step.quality.unsettled) point.flag = "recorded before it settled";
     for (const auto& channel : channels) {
       const signal::ChannelPhasors* p = step.Find(channel.channel);
       point.amplitude.push_back(p ? p->Harmonic(1).Amplitude() : std::nan(""));
@@ -362,6 +363,12 @@ ReportCurves ComputeReportCurves(const ResultFile& result, const signal::Campaig
   curves.reference_channel = ReferenceChannel(curves.channels);
   const std::vector<std::string> level_names = LevelNames(phasors);
   curves.levels = FrequencyResponses(balance, phasors, curves.channels, level_names, options, progress);
+  if (result.robust_fit && result.robust_fit->applied)
+    for (auto& level : curves.levels)
+      for (auto& point : level.measured)
+        for (const auto& outlier : result.robust_fit->outliers)
+          if (outlier.file == point.file)
+            point.flag += std::string(point.flag.empty() ? "" : "; ") + "left out by the robust fit";
 
   Report(progress, 0.5, "backbone");
   const ReportChannel& reference = curves.channels[static_cast<std::size_t>(curves.reference_channel)];

@@ -51,6 +51,11 @@ struct ModelCurvePoint {
 struct MeasuredPoint {
   double frequency_hz = 0.0;
   std::vector<double> amplitude;  // per channel
+  std::string file;
+  // Why the step is not to be trusted as the others ("" when it is): the
+  // extraction found its record cut before it settled, the robust fit left
+  // it out as an outlier (result.json robust_fit), or both.
+  std::string flag;
 };
 
 struct LevelCurves {

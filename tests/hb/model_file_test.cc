@@ -1,4 +1,5 @@
 #include "hb/model_file.h"
+#include "hb/scenario.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -71,6 +72,27 @@ TEST(ModelFile, AVoltageDrivenScenarioIsAForceAtTheShakerAndABaseExcitedOneIsRef
   ExpectError(Replace(kValid, R"("excitation": {"channel": "force", "position_m": 0.57})",
                       R"("excitation": {"channel": "base", "quantity": "base_acceleration"})"),
               "drives the beam with a force");
+}
+
+}  // namespace
+}  // namespace beamid::hb
+
+namespace beamid::hb {
+namespace {
+
+// A scenario with faults of its recording is still its beam: the model
+// predicts the true motion where each sensor truly is.
+TEST(ModelFile, AScenarioWithFaultyRecordingsIsItsBeamWithTheSensorsWhereTheyAre) {
+  for (const char* file : {"examples/scenarios/paper_sensor_gain.json", "examples/scenarios/paper_sensor_delay.json",
+                           "examples/scenarios/paper_sensor_position.json",
+                           "examples/scenarios/paper_unsettled_step.json"}) {
+    const Scenario scenario = ReadScenario(file);
+    const ModelFile model = ReadModelFile(file);
+    ASSERT_EQ(model.sensors.size(), scenario.sensors.size()) << file;
+    for (std::size_t s = 0; s < model.sensors.size(); ++s)
+      EXPECT_EQ(model.sensors[s].position_m, scenario.sensors[s].position_m) << file;
+    EXPECT_EQ(model.polynomial.k3_Nm_rad3, scenario.polynomial.k3_Nm_rad3) << file;
+  }
 }
 
 }  // namespace

@@ -83,6 +83,21 @@ Scenario FilledVoltage() {
   return s;
 }
 
+// Filled() with every measurement artefact: each sensor's gain error, delay
+// and stated position, and early records of both levels.
+Scenario FilledArtefacts() {
+  Scenario s = Filled();
+  s.sensors[0].gain_error_relative = 0.05;
+  s.sensors[0].delay_s = 1.25e-4;
+  s.sensors[1].gain_error_relative = -0.0375;
+  s.sensors[2].delay_s = 2e-4;
+  s.sensors[2].stated_position_m = 0.54;
+  s.sensors[1].stated_position_m = 0.55;  // the beam's end: the test plan may say so
+  s.timing.early_records = {{.level = "high_2", .frequency_hz = 50.3333333333333, .settle_s = 0.0125},
+                            {.level = "low", .frequency_hz = 54.25, .settle_s = 0.3}};
+  return s;
+}
+
 void ExpectSameBeam(const BeamProperties& a, const BeamProperties& b) {
   EXPECT_EQ(a.length_m, b.length_m);
   EXPECT_EQ(a.width_m, b.width_m);
@@ -155,6 +170,9 @@ void ExpectSame(const Scenario& a, const Scenario& b) {
     EXPECT_EQ(a.sensors[i].quantity, b.sensors[i].quantity);
     EXPECT_EQ(a.sensors[i].unit, b.sensors[i].unit);
     EXPECT_EQ(a.sensors[i].mass_kg, b.sensors[i].mass_kg);
+    EXPECT_EQ(a.sensors[i].gain_error_relative, b.sensors[i].gain_error_relative);
+    EXPECT_EQ(a.sensors[i].delay_s, b.sensors[i].delay_s);
+    EXPECT_EQ(a.sensors[i].stated_position_m, b.sensors[i].stated_position_m);
   }
   EXPECT_EQ(a.hidden_positions_m, b.hidden_positions_m);
   ASSERT_EQ(a.levels.size(), b.levels.size());
@@ -175,6 +193,13 @@ void ExpectSame(const Scenario& a, const Scenario& b) {
   EXPECT_EQ(a.timing.record_s, b.timing.record_s);
   EXPECT_EQ(a.timing.restart_each_level, b.timing.restart_each_level);
   EXPECT_EQ(a.timing.excitation_stop_fraction, b.timing.excitation_stop_fraction);
+  ASSERT_EQ(a.timing.early_records.size(), b.timing.early_records.size());
+  for (std::size_t i = 0; i < a.timing.early_records.size(); ++i) {
+    SCOPED_TRACE("early record " + std::to_string(i));
+    EXPECT_EQ(a.timing.early_records[i].level, b.timing.early_records[i].level);
+    EXPECT_EQ(a.timing.early_records[i].frequency_hz, b.timing.early_records[i].frequency_hz);
+    EXPECT_EQ(a.timing.early_records[i].settle_s, b.timing.early_records[i].settle_s);
+  }
   {
     SCOPED_TRACE("noise.default");
     ExpectSameNoise(a.default_noise, b.default_noise);
@@ -210,6 +235,26 @@ TEST(ScenarioFile, AVoltageDrivenScenarioSurvivesTheTextAndBack) {
   EXPECT_EQ(ScenarioToJson(read), text);
   EXPECT_THAT(text, HasSubstr("\"quantity\": \"voltage\""));
   EXPECT_THAT(text, Not(HasSubstr("force_amplitude_N")));
+}
+
+// The measurement artefacts survive too; a scenario without them writes none
+// of their fields (and stays a model file, see below).
+TEST(ScenarioFile, TheMeasurementArtefactsSurviveTheTextAndBack) {
+  const Scenario original = FilledArtefacts();
+  const std::string text = ScenarioToJson(original);
+  const Scenario read = ParseScenario(text, "s.json");
+  ExpectSame(original, read);
+  EXPECT_EQ(ScenarioToJson(read), text);
+  EXPECT_EQ(read.sensors[0].StatedPosition_m(), 0.1);  // none stated: the true position
+  EXPECT_EQ(read.sensors[2].StatedPosition_m(), 0.54);
+  ASSERT_NE(read.EarlyRecordOf("low", 54.25), nullptr);
+  EXPECT_EQ(read.EarlyRecordOf("low", 54.25)->settle_s, 0.3);
+  EXPECT_EQ(read.EarlyRecordOf("low", 55.5), nullptr);
+  EXPECT_EQ(read.EarlyRecordOf("high_2", 54.25), nullptr);
+  for (const char* field : {"gain_error_relative", "delay_s", "stated_position_m", "early_records"}) {
+    EXPECT_THAT(text, HasSubstr(std::string("\"") + field + "\""));
+    EXPECT_THAT(ScenarioToJson(Filled()), Not(HasSubstr(field)));
+  }
 }
 
 // The defaults the reader fills in (no Jenkins element, rigid attachments,

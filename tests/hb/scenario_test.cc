@@ -137,6 +137,56 @@ TEST(ScenarioTest, RejectsRigQuirksOutsideTheirRanges) {
   EXPECT_DOUBLE_EQ(s.amplifier.Gain_N_per_V(51.0, 50.0), 8.0 * (1.0 - 0.3 / 2.0));
 }
 
+// The measurement artefacts (docs/simulator.md): each refused outside its
+// range naming the field; the early record's step must exist.
+TEST(ScenarioTest, RejectsMeasurementArtefactsOutsideTheirRanges) {
+  const std::string sensor = R"("mass_kg": 0.005)";
+  ExpectRejected(With(sensor, sensor + R"(, "gain_error_relative": -1)"), "sensors[0].gain_error_relative must be above -1");
+  ExpectRejected(With(sensor, sensor + R"(, "gain_error_relative": "5 %")"), "sensors[0].gain_error_relative must be a finite number");
+  ExpectRejected(With(sensor, sensor + R"(, "delay_s": -1e-4)"), "sensors[0].delay_s must not be negative");
+  ExpectRejected(With(sensor, sensor + R"(, "delay_s": 0.05)"), "sensors[0].delay_s must not exceed");
+  ExpectRejected(With(sensor, sensor + R"(, "stated_position_m": 0.61)"), "sensors[0].stated_position_m = 0.61");
+  ExpectRejected(With(sensor, sensor + R"(, "stated_position_m": 0)"), "lies outside the beam (0, 0.6");
+  ExpectRejected(With(sensor, sensor + R"(, "stated_position": 0.5)"), "unknown field 'stated_position'");
+  const Scenario s = ParseScenario(
+      With(sensor, sensor + R"(, "gain_error_relative": -0.02, "delay_s": 2e-4, "stated_position_m": 0.6)"), "my.json");
+  EXPECT_EQ(s.sensors[0].gain_error_relative, -0.02);
+  EXPECT_EQ(s.sensors[0].delay_s, 2e-4);
+  EXPECT_EQ(s.sensors[0].StatedPosition_m(), 0.6);
+  EXPECT_EQ(s.sensors[0].position_m, 0.57);
+
+  // The level runs 51, 50.75, 50.5, 50.25, 50 Hz.
+  const std::string levels = R"("direction": "down"}])";
+  auto with_early = [&](const std::string& entry) {
+    return With(levels, levels + R"(, "timing": {"early_records": [)" + entry + "]}");
+  };
+  ExpectRejected(with_early(R"({"level": "low", "frequency_Hz": 50.5, "settle_s": 0.1})"),
+                 "timing.early_records[0].level 'low' is not a level of the scenario; give one of: high");
+  ExpectRejected(with_early(R"({"frequency_Hz": 50.5, "settle_s": 0.1})"), "timing.early_records[0].level is required");
+  ExpectRejected(with_early(R"({"level": "high", "frequency_Hz": 50.6, "settle_s": 0.1})"),
+                 "timing.early_records[0].frequency_Hz = 50.6");
+  ExpectRejected(with_early(R"({"level": "high", "frequency_Hz": 50.5000001, "settle_s": 0.1})"),
+                 "is not a step of level 'high'");
+  ExpectRejected(with_early(R"({"level": "high", "settle_s": 0.1})"), "timing.early_records[0] needs the field 'frequency_Hz'");
+  ExpectRejected(with_early(R"({"level": "high", "frequency_Hz": 50.5, "settle_s": 0})"),
+                 "timing.early_records[0].settle_s must lie in (0, 3600]");
+  ExpectRejected(with_early(R"({"level": "high", "frequency_Hz": 50.5, "settle_s": 0.1, "record_s": 1})"),
+                 "timing.early_records[0] has an unknown field 'record_s'");
+  ExpectRejected(with_early(R"({"level": "high", "frequency_Hz": 50.5, "settle_s": 0.1},
+                               {"level": "high", "frequency_Hz": 50.5, "settle_s": 0.2})"),
+                 "timing.early_records[1].frequency_Hz names the step of timing.early_records[0] again");
+  ExpectRejected(With(R"("frequencies_Hz": {"start": 50, "stop": 51, "step": 0.25},
+              "direction": "down"}])",
+                      R"("frequencies_Hz": [50, 51, 50]}], "timing": {"early_records": [)"
+                      R"({"level": "high", "frequency_Hz": 50, "settle_s": 0.1}]})"),
+                 "is run 2 times by level 'high'");
+  // Within 1e-9 relative, as a writer may round the last digits.
+  const Scenario early = ParseScenario(with_early(R"({"level": "high", "frequency_Hz": 50.50000000001, "settle_s": 0.1})"), "my.json");
+  ASSERT_EQ(early.timing.early_records.size(), 1u);
+  EXPECT_NE(early.EarlyRecordOf("high", 50.5), nullptr);
+  EXPECT_EQ(early.EarlyRecordOf("high", 50.75), nullptr);
+}
+
 TEST(ScenarioTest, EveryExampleScenarioLoads) {
   int count = 0;
   for (const auto& entry : std::filesystem::directory_iterator("examples/scenarios")) {

@@ -23,6 +23,11 @@ PhasorSet Example() {
     step.frequency_hz = step.nominal_frequency_hz * (1.0 + 2.5e-5) + 1e-13;
     step.frequency_std_hz = 3.3e-6;
     step.quality = {41.25, 0.125, 0.875, "transient dropped: ...", {"a warning", "another"}};
+    if (s == 1) {
+      step.quality.unsettled = true;
+      step.quality.unsettled_change_relative = 0.016 / 3.0;
+      step.quality.unsettled_channel = "acc2";
+    }
     for (int c = 0; c < 3; ++c) {
       ChannelPhasors channel;
       channel.channel = c == 0 ? "force" : "acc" + std::to_string(c);
@@ -91,6 +96,9 @@ TEST(PhasorSetIoTest, JsonRoundTripIsExact) {
     EXPECT_EQ(a.quality.analysed_duration_s, b.quality.analysed_duration_s);
     EXPECT_EQ(a.quality.settling, b.quality.settling);
     EXPECT_EQ(a.quality.warnings, b.quality.warnings);
+    EXPECT_EQ(a.quality.unsettled, b.quality.unsettled);
+    EXPECT_EQ(a.quality.unsettled_change_relative, b.quality.unsettled_change_relative);
+    EXPECT_EQ(a.quality.unsettled_channel, b.quality.unsettled_channel);
     ExpectSameChannel(a.force, b.force);
     ASSERT_EQ(b.responses.size(), 2u);
     for (std::size_t c = 0; c < 2; ++c) ExpectSameChannel(a.responses[c], b.responses[c]);
