@@ -210,8 +210,10 @@ StepPhasors EstimateStepPhasors(const Recording& recording, const Campaign& camp
     all_channels.insert(all_channels.end(), result.responses.begin(), result.responses.end());
     std::vector<bool> used;
     for (const auto* spec : specs) used.push_back(campaign.Use(spec->channel) == ChannelUse::kUsed);
-    const SettlingUncertainty unsettled = AddSettlingUncertainty(steady_samples, fs, frequency.frequency_hz,
-                                                                 fit.num_harmonics, specs, used, all_channels);
+    const SettlingUncertainty unsettled =
+        options.settling_uncertainty ? AddSettlingUncertainty(steady_samples, fs, frequency.frequency_hz,
+                                                              fit.num_harmonics, specs, used, all_channels)
+                                     : SettlingUncertainty{};
     if (unsettled.raised) {
       result.force = std::move(all_channels.front());
       std::move(all_channels.begin() + 1, all_channels.end(), result.responses.begin());

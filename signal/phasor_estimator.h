@@ -44,6 +44,10 @@ struct PhasorEstimatorOptions {
   // A channel spanning fewer converter steps gets the quantisation error in
   // its uncertainty and a warning (signal/recording_validator.h).
   double min_converter_steps = 64.0;
+  // A record cut before it settled gets the change between its analysed
+  // part's halves in its phasors' uncertainty (signal/settling_uncertainty.h);
+  // off: only the warning (to see what the fit makes of it unweighed).
+  bool settling_uncertainty = true;
 
   // Throws InputError naming the field, its value and the allowed range.
   void Validate() const;

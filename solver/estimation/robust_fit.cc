@@ -93,17 +93,24 @@ RobustFitResult RobustRefit(const FitData& data, const ModelStructure& structure
     problem->FeasiblePoint(fit.starts[static_cast<std::size_t>(fit.best_start)].scaled_at);
     std::vector<OutlyingStep> found = FindOutlyingSteps(current, StepChiSquares(*problem, fit.x), robust);
     if (found.empty()) break;
-    for (auto& s : found) s.step = kept[static_cast<std::size_t>(s.step)];
-    out.outliers.insert(out.outliers.end(), found.begin(), found.end());
-    if (static_cast<int>(out.outliers.size()) > allowed) {
+    if (static_cast<int>(out.outliers.size() + found.size()) > allowed) {
+      for (auto& s : found) s.step = kept[static_cast<std::size_t>(s.step)];
+      out.outliers.insert(out.outliers.end(), found.begin(), found.end());
       out.note = fmt::format(
-          "{} of {} steps miss beyond the noise: a misfit spread over that many steps is the model's, not a "
-          "recording fault; no step was left out (run 'beamid diagnose')",
+          "{} of {} steps miss beyond the noise: a misfit spread over that many steps is no faulty step but the "
+          "model's or a whole channel's (a sensor's calibration, position or delay); no step was left out (run "
+          "'beamid diagnose', which checks both)",
           out.outliers.size(), data.steps.size());
       out.data = data;
       out.fit = ordinary;
       return out;
     }
+    // Only the worst: its pull can make its neighbours look outlying too.
+    OutlyingStep worst = *std::max_element(found.begin(), found.end(), [](const OutlyingStep& a, const OutlyingStep& b) {
+      return a.chi_square < b.chi_square;
+    });
+    worst.step = kept[static_cast<std::size_t>(worst.step)];
+    out.outliers.push_back(worst);
     std::vector<int> left_out;
     for (const auto& s : out.outliers) left_out.push_back(s.step);
     std::sort(left_out.begin(), left_out.end());

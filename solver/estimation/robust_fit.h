@@ -5,8 +5,9 @@
 // residuals is an outlier when
 //     P(χ²(d_i) ≥ χ²_i / s²) < α / N          (Bonferroni over the N steps),
 //     s² = max(1, median_i χ²_i / median χ²(d))  (a robust scale),
-// the outliers are left out, the fit is repeated from the optimum and the
-// test again on what is left (at most max_rounds times). The pull is bounded
+// the worst outlier is left out (its pull can make its neighbours look
+// outlying too), the fit is repeated from the optimum and the test again on
+// what is left (at most max_rounds steps). The pull is bounded
 // only when the outliers are few (at most max_outlier_fraction of the steps,
 // at least one): a misfit spread over many steps is the model's, and leaving
 // those steps out would hide the physics `beamid diagnose` is to find — the
@@ -26,7 +27,7 @@ namespace beamid::solver {
 struct RobustFitOptions {
   double outlier_probability = 1e-3;  // α: family-wise false-alarm probability over the steps
   double max_outlier_fraction = 0.1;  // more outliers than this (and than one): the model's misfit
-  int max_rounds = 3;
+  int max_rounds = 5;
 
   // Throws InputError naming the field, its value and the allowed range.
   void Validate() const;

@@ -8,6 +8,8 @@
 // 3 levels × 33 steps (examples/scenarios/paper_*.json: a modulus error,
 // masses at the instruments, friction and a compliant clamp, Rayleigh beam
 // damping, and the base physics), each simulated once before its timing.
+// Issue 18: faults of the recording (below).
+#include <chrono>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -20,6 +22,8 @@
 #include "signal/campaign.h"
 #include "signal/campaign_extractor.h"
 #include "solver/diagnosis/diagnosis.h"
+#include "solver/estimation/identify.h"
+#include "solver/estimation/robust_fit.h"
 
 namespace {
 
@@ -89,3 +93,46 @@ void BM_DiagnoseIncompleteModel(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_DiagnoseIncompleteModel)->DenseRange(0, 4)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
+
+// Issue 18: identify (ordinary fit, then the robust fit) and diagnose on the
+// example campaigns with a fault of the recording, beside a physics one
+// (friction) and the clean base. Counters: χ² of the base and of the named
+// model, and k1, k3, c of the named model (the robust fit's when nothing is
+// named) in standard uncertainties from the truth.
+const std::vector<std::string> kRecordingFaults = {
+    "examples/scenarios/paper_unsettled_step.json", "examples/scenarios/paper_sensor_gain.json",
+    "examples/scenarios/paper_sensor_position.json", "examples/scenarios/paper_sensor_delay.json",
+    "examples/scenarios/paper_friction.json", "examples/scenarios/paper_base.json"};
+
+void BM_DiagnoseRecordingFault(benchmark::State& state) {
+  const std::string& file = kRecordingFaults.at(static_cast<std::size_t>(state.range(0)));
+  const Data data = Simulate(file);
+  const hb::Scenario scenario = hb::ReadScenario(std::filesystem::path(BEAMID_SOURCE_DIR) / file);
+  solver::ModelStructure structure = solver::PolynomialModel({.k1_Nm_rad = 100.0});
+  structure.linear.push_back(solver::LossFactor(1e-4));
+  for (auto _ : state) {
+    const auto started = std::chrono::steady_clock::now();
+    const solver::IdentifyResult ordinary = solver::Identify(data.fit, structure, {});
+    const solver::RobustFitResult robust = solver::RobustRefit(data.fit, structure, ordinary, {});
+    const double identify_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    const auto result = solver::Diagnose(data.fit, data.validation, data.located, {});
+    std::string named;
+    for (const auto& s : result.selected) named += (named.empty() ? "" : " + ") + s;
+    state.SetLabel(file.substr(file.rfind('/') + 1) + ": " + result.verdict + ": " + named +
+                   (result.blame.empty() ? "" : " (" + result.blame + ")"));
+    state.counters["identify_s"] = identify_s;
+    state.counters["diagnose_s"] = result.seconds;
+    state.counters["chi2_base"] = result.base.chi_square;
+    state.counters["chi2_final"] = result.final_fit.chi_square;
+    state.counters["chi2_robust"] = robust.fit.chi_square;
+    state.counters["left_out"] = robust.applied ? static_cast<double>(robust.outliers.size()) : 0.0;
+    const auto& parameters = result.selected.front() == "none" ? robust.fit.parameters : result.final_fit.parameters;
+    const std::pair<const char*, double> truths[] = {{"k1", scenario.polynomial.k1_Nm_rad},
+                                                     {"k3", scenario.polynomial.k3_Nm_rad3},
+                                                     {"c", scenario.polynomial.c_Nms_rad}};
+    for (const auto& [name, truth] : truths)
+      for (const auto& p : parameters)
+        if (p.name == name) state.counters[std::string(name) + "_sigma_from_truth"] = (p.value - truth) / p.std;
+  }
+}
+BENCHMARK(BM_DiagnoseRecordingFault)->DenseRange(0, 5)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);

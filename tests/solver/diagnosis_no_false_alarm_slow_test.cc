@@ -1,6 +1,7 @@
 // No false alarm: on campaigns whose physics IS the base model (polynomial
 // support, nominal beam), the diagnosis names no cause. One noise-free
 // simulation of the time-domain simulator, written with ten noise seeds.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
@@ -34,6 +35,10 @@ TEST(DiagnosisOnBasePhysics, RaisesNoFalseAlarmOverTenNoiseRealisations) {
                 best.p_value, result.seconds);
     EXPECT_EQ(result.verdict, "no significant discrepancy") << result.summary;
     EXPECT_EQ(result.selected, std::vector<std::string>{"none"});
+    EXPECT_EQ(result.blame, "") << "a clean recording blamed";
+    EXPECT_TRUE(std::any_of(result.candidates.begin(), result.candidates.end(),
+                            [](const CandidateOutcome& c) { return c.measurement && c.converged; }))
+        << "the recording's faults were not tried";
     if (result.selected.front() != "none") ++alarms;
   }
   EXPECT_EQ(alarms, 0);

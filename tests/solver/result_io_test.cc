@@ -154,6 +154,18 @@ ResultFile HarmonicBalanceResult() {
                       41.0, 19),
       {.law = "mass_proportional", .status = "failed: restoration phase failed"}};
   JudgeDampingLaws(&r.damping_laws);
+  r.robust_fit = ResultRobustFit{
+      .applied = true,
+      .note = "left out 1 outlying step(s) and refitted",
+      .outliers = {{.step = -1, .level = "high", .file = "high/step_020.csv", .frequency_hz = 55.0 + 1.0 / 3.0,
+                    .chi_square = 1234.5 / 7.0, .num_residuals = 12, .tail_probability = 1e-300 / 3.0,
+                    .unsettled = true}},
+      .ordinary_parameters = {{.name = "k1", .unit = "N*m/rad", .value = 150.0 / 7.0, .std = 0.25 / 3.0,
+                               .lower_95 = 149.0, .upper_95 = 151.0}},
+      .ordinary_chi_square = 9876.5 / 3.0,
+      .ordinary_degrees_of_freedom = 1183};
+  r.unsettled_steps = {{.level = "high", .file = "high/step_020.csv", .frequency_hz = 55.0 / 3.0,
+                        .change_relative = 0.0151 / 7.0}};
   for (int i = 0; i < 3; ++i)
     r.steps.push_back({.level = levels[i % 2],
                        .file = "level " + std::to_string(i) + "/step.csv",
@@ -258,6 +270,37 @@ void ExpectSame(const ResultFile& a, const ResultFile& b) {
     EXPECT_TRUE(Same(a.damping_laws.intervals[i].lower_95, b.damping_laws.intervals[i].lower_95));
     EXPECT_TRUE(Same(a.damping_laws.intervals[i].upper_95, b.damping_laws.intervals[i].upper_95));
     EXPECT_EQ(a.damping_laws.intervals[i].depends_on_damping_law, b.damping_laws.intervals[i].depends_on_damping_law);
+  }
+  ASSERT_EQ(a.robust_fit.has_value(), b.robust_fit.has_value());
+  if (a.robust_fit) {
+    const ResultRobustFit &x = *a.robust_fit, &y = *b.robust_fit;
+    EXPECT_EQ(x.applied, y.applied);
+    EXPECT_EQ(x.note, y.note);
+    ASSERT_EQ(x.outliers.size(), y.outliers.size());
+    for (std::size_t i = 0; i < x.outliers.size(); ++i) {
+      EXPECT_EQ(x.outliers[i].level, y.outliers[i].level);
+      EXPECT_EQ(x.outliers[i].file, y.outliers[i].file);
+      EXPECT_TRUE(Same(x.outliers[i].frequency_hz, y.outliers[i].frequency_hz));
+      EXPECT_TRUE(Same(x.outliers[i].chi_square, y.outliers[i].chi_square));
+      EXPECT_EQ(x.outliers[i].num_residuals, y.outliers[i].num_residuals);
+      EXPECT_TRUE(Same(x.outliers[i].tail_probability, y.outliers[i].tail_probability));
+      EXPECT_EQ(x.outliers[i].unsettled, y.outliers[i].unsettled);
+    }
+    ASSERT_EQ(x.ordinary_parameters.size(), y.ordinary_parameters.size());
+    for (std::size_t j = 0; j < x.ordinary_parameters.size(); ++j) {
+      EXPECT_EQ(x.ordinary_parameters[j].name, y.ordinary_parameters[j].name);
+      EXPECT_TRUE(Same(x.ordinary_parameters[j].value, y.ordinary_parameters[j].value));
+      EXPECT_TRUE(Same(x.ordinary_parameters[j].std, y.ordinary_parameters[j].std));
+    }
+    EXPECT_TRUE(Same(x.ordinary_chi_square, y.ordinary_chi_square));
+    EXPECT_EQ(x.ordinary_degrees_of_freedom, y.ordinary_degrees_of_freedom);
+  }
+  ASSERT_EQ(a.unsettled_steps.size(), b.unsettled_steps.size());
+  for (std::size_t i = 0; i < a.unsettled_steps.size(); ++i) {
+    EXPECT_EQ(a.unsettled_steps[i].file, b.unsettled_steps[i].file);
+    EXPECT_EQ(a.unsettled_steps[i].level, b.unsettled_steps[i].level);
+    EXPECT_TRUE(Same(a.unsettled_steps[i].frequency_hz, b.unsettled_steps[i].frequency_hz));
+    EXPECT_TRUE(Same(a.unsettled_steps[i].change_relative, b.unsettled_steps[i].change_relative));
   }
   EXPECT_TRUE(Same(a.covariance, b.covariance));
   EXPECT_TRUE(Same(a.correlation, b.correlation));

@@ -48,9 +48,12 @@ inline solver::DiagnosisResult DiagnoseScenario(const nlohmann::json& scenario, 
 // moves the first).
 enum class HeldOut { kFirstHarmonic, kHarmonicsChiSquare };
 
+// blame: "the model" for missing physics (never taken for a fault of the
+// recording), "the recording" for a measurement artefact.
 inline void ExpectNamed(const solver::DiagnosisResult& result, const std::string& cause,
-                        HeldOut held_out = HeldOut::kFirstHarmonic) {
+                        HeldOut held_out = HeldOut::kFirstHarmonic, const std::string& blame = "the model") {
   ASSERT_EQ(result.verdict, "cause named");
+  EXPECT_EQ(result.blame, blame);
   ASSERT_FALSE(result.selected.empty());
   EXPECT_EQ(result.selected.front(), cause);
   EXPECT_EQ(result.candidates.front().name, cause);
