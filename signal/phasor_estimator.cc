@@ -204,8 +204,11 @@ StepPhasors EstimateStepPhasors(const Recording& recording, const Campaign& camp
                        FormatNumber(std::round(100.0 * static_cast<double>(steady.first_sample) / n)) + " % of the " +
                        (span.stops_early || span.starts_late ? "driven part" : "record") + "; record longer";
     // What is left of the transient is an error of the phasors, which the
-    // fit must weigh (a drift-model steady state is not raised: its centre
-    // value is right for a linear drift).
+    // fit must weigh. A steady state with the drift model is raised too: the
+    // transient that made the periodic model drop so much is still there (the
+    // drift model bends to part of it), and where a channel only drifts
+    // linearly its halves differ by the drift, which makes the raise
+    // conservative there, never overconfident.
     std::vector<ChannelPhasors> all_channels{result.force};
     all_channels.insert(all_channels.end(), result.responses.begin(), result.responses.end());
     std::vector<bool> used;

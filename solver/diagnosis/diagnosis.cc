@@ -85,12 +85,15 @@ void TestAgainstReference(double reference, const FitSummary& base, int num_cand
 
 namespace {
 
-std::string DescribeParameters(const FitSummary& fit, const std::vector<std::string>& names) {
+// The named parameters' values; a cause without parameters of its own (an
+// outlying step, more harmonics) shows the support's instead.
+std::string DescribeParameters(const FitSummary& fit, const std::vector<std::string>& extra) {
+  const std::vector<std::string> names = extra.empty() ? std::vector<std::string>{"k1", "k3", "c"} : extra;
   std::string text;
   for (const auto& p : fit.parameters)
     if (std::find(names.begin(), names.end(), p.name) != names.end())
       text += (text.empty() ? "" : ", ") +
-              fmt::format("{} = {:.4g} ± {:.2g} {} (95 %: {:.4g} … {:.4g})", p.name, p.value, 1.96 * p.std, p.unit,
+              fmt::format("{} = {:.6g} ± {:.2g} {} (95 %: {:.6g} … {:.6g})", p.name, p.value, 1.96 * p.std, p.unit,
                           p.lower_95, p.upper_95);
   return text;
 }
@@ -509,12 +512,15 @@ BaseFit FitBase(const FitData& fit, const DiagnosisOptions& options) {
           .summary = SummarizeFit(structure, options.model_harmonics, r.chi_square, fit.NumResiduals(), values, std)};
 }
 
-HeldOutCheck ValidateOnHeldOut(const FittedModel& model, const FitData& validation) {
+HeldOutCheck ValidateOnHeldOut(const FittedModel& model, const FitData& validation, int skip_step) {
   HeldOutCheck check;
   if (validation.channels.empty()) return check;
   const std::vector<Eigen::MatrixXcd> predicted = model.Phasors(validation);
   double chi2 = 0.0, error2 = 0.0, norm2 = 0.0;
+  int steps = 0;
   for (std::size_t i = 0; i < validation.steps.size(); ++i) {
+    if (static_cast<int>(i) == skip_step) continue;
+    ++steps;
     const FitStep& s = validation.steps[i];
     for (int c = 0; c < static_cast<int>(validation.channels.size()); ++c) {
       for (int k = 1; k <= validation.num_fit_harmonics; ++k) {
@@ -527,8 +533,7 @@ HeldOutCheck ValidateOnHeldOut(const FittedModel& model, const FitData& validati
   }
   check.chi_square = chi2;
   check.h1_relative_error = std::sqrt(error2 / std::max(norm2, 1e-300));
-  check.num_residuals =
-      2 * static_cast<int>(validation.steps.size() * validation.channels.size()) * validation.num_fit_harmonics;
+  check.num_residuals = 2 * steps * static_cast<int>(validation.channels.size()) * validation.num_fit_harmonics;
   return check;
 }
 
@@ -756,7 +761,7 @@ DiagnosisResult Diagnose(const FitData& fit, const FitData& validation, const Fi
   CandidateRefits artefacts;
   if (options.measurement_artefacts) {
     report(0.2, "checking the recording");
-    artefacts = RefitMeasurementArtefacts(fit, base, options, num_physics,
+    artefacts = RefitMeasurementArtefacts(fit, validation, base, options, num_physics,
                                           [&](int done, int num, const std::string& name) {
                                             report(0.2 + 0.2 * done / static_cast<double>(num),
                                                    "recording check " + std::to_string(done) + "/" +
@@ -782,8 +787,9 @@ DiagnosisResult Diagnose(const FitData& fit, const FitData& validation, const Fi
                          std::make_move_iterator(artefacts.outcomes.end()));
   refits.models.insert(refits.models.begin(), std::make_move_iterator(artefacts.models.begin()),
                        std::make_move_iterator(artefacts.models.end()));
-  for (std::size_t c = 0; c < refits.models.size(); ++c)
-    if (refits.models[c]) ApplyHeldOut(ValidateOnHeldOut(*refits.models[c], validation), &refits.outcomes[c].fit);
+  for (std::size_t c = 0; c < refits.models.size(); ++c)  // (the recording's checked their own)
+    if (refits.models[c] && !refits.outcomes[c].measurement)
+      ApplyHeldOut(ValidateOnHeldOut(*refits.models[c], validation), &refits.outcomes[c].fit);
 
   const Verdict verdict = DecideVerdict(result.base, result.location, refits.outcomes, options);
   for (int c : verdict.ranking) result.candidates.push_back(refits.outcomes[c]);

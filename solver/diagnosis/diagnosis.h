@@ -216,7 +216,9 @@ struct HeldOutCheck {
   double h1_relative_error = std::numeric_limits<double>::quiet_NaN();
   int num_residuals = 0;
 };
-HeldOutCheck ValidateOnHeldOut(const FittedModel& model, const FitData& validation);
+// skip_step: a step left out of the check (-1: none), e.g. an outlying
+// step whose held-out channels share its faulty record.
+HeldOutCheck ValidateOnHeldOut(const FittedModel& model, const FitData& validation, int skip_step = -1);
 
 // Stage 2, where the base misses: LocateMisfit of its residuals on the
 // located channels (harmonics beyond the fitted ones included) against the

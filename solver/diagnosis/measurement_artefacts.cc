@@ -288,8 +288,9 @@ std::pair<std::string, std::string> Parameter(const FitData& fit, const Measurem
 
 }  // namespace
 
-CandidateRefits RefitMeasurementArtefacts(const FitData& fit, const BaseFit& base, const DiagnosisOptions& options,
-                                          int num_physics_candidates, const RefitProgress& progress) {
+CandidateRefits RefitMeasurementArtefacts(const FitData& fit, const FitData& validation, const BaseFit& base,
+                                          const DiagnosisOptions& options, int num_physics_candidates,
+                                          const RefitProgress& progress) {
   std::vector<MeasurementArtefact> artefacts;
   for (int c = 0; c < static_cast<int>(fit.channels.size()); ++c)
     for (ArtefactKind kind : {ArtefactKind::kSensorGain, ArtefactKind::kSensorPhaseDelay, ArtefactKind::kSensorPosition})
@@ -340,6 +341,10 @@ CandidateRefits RefitMeasurementArtefacts(const FitData& fit, const BaseFit& bas
       outcome.status = "solved";
       TestAgainstReference(base.summary.chi_square, base.summary, num_candidates, options, &outcome);
       model = std::move(f.model);
+      const HeldOutCheck held_out = ValidateOnHeldOut(*model, validation, artefact.step);
+      outcome.fit.held_out_chi_square = held_out.chi_square;
+      outcome.fit.held_out_h1_relative_error = held_out.h1_relative_error;
+      outcome.fit.held_out_num_residuals = held_out.num_residuals;
     } catch (const std::exception& e) {
       outcome.status = std::string("failed: ") + e.what();
     }

@@ -70,8 +70,12 @@ std::vector<int> SuspectSteps(const FitData& fit, const FittedModel& base, int m
 std::string ArtefactRigCheck(const FitData& fit, const MeasurementArtefact& artefact);
 
 // Every artefact of every fitted channel and every suspect step, fitted and
-// tested against the base, Bonferroni over these and num_physics_candidates.
-CandidateRefits RefitMeasurementArtefacts(const FitData& fit, const BaseFit& base, const DiagnosisOptions& options,
-                                          int num_physics_candidates, const RefitProgress& progress = {});
+// tested against the base, Bonferroni over these and num_physics_candidates,
+// and validated on the held-out channels (`validation`): an outlying step's
+// held-out channels were recorded in the same faulty record, so that step
+// weighs nothing there either.
+CandidateRefits RefitMeasurementArtefacts(const FitData& fit, const FitData& validation, const BaseFit& base,
+                                          const DiagnosisOptions& options, int num_physics_candidates,
+                                          const RefitProgress& progress = {});
 
 }  // namespace beamid::solver

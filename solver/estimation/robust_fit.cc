@@ -83,24 +83,34 @@ RobustFitResult RobustRefit(const FitData& data, const ModelStructure& structure
   IdentifyOptions refit = options;
   refit.num_starts = 0;
   refit.num_workers = 1;
+  // From the optimum a refit converges in a few iterations or not at all.
+  refit.continuation_iterations = 0;
 
   std::vector<int> kept(data.steps.size());  // current step → ordinary step
   for (std::size_t i = 0; i < kept.size(); ++i) kept[i] = static_cast<int>(i);
   FitData current = data;
   IdentifyResult fit = ordinary;
-  for (int round = 0; round < robust.max_rounds; ++round) {
+  // The steps one may leave out; outliers beyond them are the model's or a
+  // channel's (header).
+  const int budget = std::min(allowed, robust.max_rounds);
+  for (;;) {
     const std::unique_ptr<FitProblem> problem = options.family->MakeProblem(current, structure, options.model);
     problem->FeasiblePoint(fit.starts[static_cast<std::size_t>(fit.best_start)].scaled_at);
     std::vector<OutlyingStep> found = FindOutlyingSteps(current, StepChiSquares(*problem, fit.x), robust);
     if (found.empty()) break;
-    if (static_cast<int>(out.outliers.size() + found.size()) > allowed) {
+    // The pulled fit makes neighbours of a faulty step look outlying too:
+    // only when outliers remain after the budget's worth of steps has been
+    // left out one at a time is the misfit no faulty step.
+    if (static_cast<int>(out.outliers.size()) >= budget) {
+      const std::size_t remaining = found.size();
       for (auto& s : found) s.step = kept[static_cast<std::size_t>(s.step)];
       out.outliers.insert(out.outliers.end(), found.begin(), found.end());
       out.note = fmt::format(
-          "{} of {} steps miss beyond the noise: a misfit spread over that many steps is no faulty step but the "
-          "model's or a whole channel's (a sensor's calibration, position or delay); no step was left out (run "
-          "'beamid diagnose', which checks both)",
-          out.outliers.size(), data.steps.size());
+          "{} of {} steps miss beyond the noise ({} still after leaving out the worst {}): a misfit spread over that "
+          "many steps is no faulty step but the model's or a whole channel's (a sensor's calibration, position or "
+          "delay); no step was left out (run 'beamid diagnose', which checks both)",
+          out.outliers.size(), data.steps.size(), remaining, out.outliers.size() - remaining);
+      out.applied = false;
       out.data = data;
       out.fit = ordinary;
       return out;
@@ -122,7 +132,17 @@ RobustFitResult RobustRefit(const FitData& data, const ModelStructure& structure
     for (const auto& p : fit.parameters) start.push_back(p.value);
     ModelStructure from = structure;
     from.SetValues(start);
-    fit = IdentifyWith([&] { return refit.family->MakeProblem(current, from, refit.model); }, from, start, refit);
+    try {
+      fit = IdentifyWith([&] { return refit.family->MakeProblem(current, from, refit.model); }, from, start, refit);
+    } catch (const std::runtime_error& e) {
+      out = {.applied = false,
+             .outliers = out.outliers,
+             .note = std::string("the refit without the outlying steps failed (") + e.what() +
+                     "); no step was left out",
+             .data = data,
+             .fit = ordinary};
+      return out;
+    }
     out.applied = true;
   }
   if (out.applied) {

@@ -7,11 +7,11 @@
 //     s² = max(1, median_i χ²_i / median χ²(d))  (a robust scale),
 // the worst outlier is left out (its pull can make its neighbours look
 // outlying too), the fit is repeated from the optimum and the test again on
-// what is left (at most max_rounds steps). The pull is bounded
-// only when the outliers are few (at most max_outlier_fraction of the steps,
-// at least one): a misfit spread over many steps is the model's, and leaving
-// those steps out would hide the physics `beamid diagnose` is to find — the
-// robust fit then declines and says so. The scale s² makes the test loose
+// what is left. The pull is bounded only when the outliers are few: when
+// outliers remain after min(max_rounds, max_outlier_fraction of the steps,
+// at least one) steps have been left out, the misfit is the model's or a
+// whole channel's, and leaving steps out would hide what `beamid diagnose`
+// is to find — the robust fit then declines and says so. The scale s² makes the test loose
 // where the whole fit misses, for the same reason.
 #pragma once
 

@@ -35,8 +35,8 @@ struct FaultyCampaign {
   FitData fit, validation, located;
 };
 
-// unweighed: the fitted channels as extracted without the settling uncertainty.
-FaultyCampaign Simulate(const std::string& example, FitData* unweighed = nullptr) {
+// unweighed: the campaign as extracted without the settling uncertainty.
+FaultyCampaign Simulate(const std::string& example, FaultyCampaign* unweighed = nullptr) {
   FaultyCampaign out;
   out.scenario = hb::ReadScenario("examples/scenarios/" + example + ".json");
   const testing::ExtractedCampaign campaign =
@@ -51,8 +51,11 @@ FaultyCampaign Simulate(const std::string& example, FitData* unweighed = nullptr
     signal::ExtractOptions extract;
     extract.estimator.num_harmonics = 5;
     extract.estimator.settling_uncertainty = false;
-    *unweighed = MakeFitData(campaign.campaign, signal::ExtractCampaign(campaign.campaign, extract),
-                             {.channels = {"acc1", "acc2"}});
+    const signal::PhasorSet phasors = signal::ExtractCampaign(campaign.campaign, extract);
+    unweighed->scenario = out.scenario;
+    unweighed->fit = MakeFitData(campaign.campaign, phasors, {.channels = {"acc1", "acc2"}});
+    unweighed->validation = MakeFitData(campaign.campaign, phasors, {.channels = {"acc3"}});
+    unweighed->located = MakeFitData(campaign.campaign, phasors, {.channels = {"acc1", "acc2"}, .num_fit_harmonics = 5});
   }
   std::filesystem::remove_all(campaign.folder);
   return out;
@@ -99,7 +102,7 @@ void ExpectSensorFaultNamed(const std::string& example, const std::string& cause
 }
 
 TEST(RecordingFaults, AStepRecordedBeforeItSettledIsWeighedByWhatIsLeftOfItsTransient) {
-  FitData unweighed;
+  FaultyCampaign unweighed;
   const FaultyCampaign c = Simulate("paper_unsettled_step", &unweighed);
   const std::string early_file = c.truth.at("measurement_artefacts").at("early_records").at(0).at("file");
   int flagged = 0;
@@ -117,16 +120,22 @@ TEST(RecordingFaults, AStepRecordedBeforeItSettledIsWeighedByWhatIsLeftOfItsTran
   {
     // Unweighed, the step pulls the fit beyond the noise; the robust fit
     // finds it alone, leaves it out, and the truth is back in the intervals.
-    const IdentifyResult pulled = Identify(unweighed, structure, options);
+    const IdentifyResult pulled = Identify(unweighed.fit, structure, options);
     std::printf("unweighed: reduced chi-square %.3g\n", pulled.reduced_chi_square);
     EXPECT_FALSE(pulled.verdict.within_noise);
-    const RobustFitResult robust = RobustRefit(unweighed, structure, pulled, options);
+    const RobustFitResult robust = RobustRefit(unweighed.fit, structure, pulled, options);
     std::printf("robust: %s\n", robust.note.c_str());
     ASSERT_TRUE(robust.applied);
     ASSERT_EQ(robust.outliers.size(), 1u);
     EXPECT_EQ(robust.outliers.front().file, early_file);
     EXPECT_TRUE(robust.fit.verdict.within_noise);
     ExpectSupportWithinIntervals(robust.fit.parameters, c.scenario);
+    // And the diagnosis names that step as the recording's fault, no physics.
+    const DiagnosisResult result = DiagnoseCampaign(unweighed, "unsettled step, unweighed");
+    const std::string step = "outlying_step(high 55 Hz)";
+    testing::ExpectNamed(result, step, testing::HeldOut::kFirstHarmonic, "the recording");
+    EXPECT_NE(result.summary.find("re-record high 55 Hz (" + early_file + ")"), std::string::npos);
+    ExpectSupportWithinIntervals(result.final_fit.parameters, c.scenario);
   }
   const IdentifyResult ordinary = Identify(c.fit, structure, options);
   const RobustFitResult robust = RobustRefit(c.fit, structure, ordinary, options);
