@@ -146,7 +146,7 @@ void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& glo
     if (s.unsettled)
       result_file.unsettled_steps.push_back({.level = s.level,
                                              .file = s.file,
-                                             .frequency_hz = s.omega_rad_s / (2.0 * M_PI),
+                                             .frequency_hz = s.FrequencyHz(),
                                              .change_relative = s.unsettled_change_relative});
   solver::WriteResultFile(options.output, result_file);
 

@@ -753,7 +753,7 @@ DiagnosisResult Diagnose(const FitData& fit, const FitData& validation, const Fi
       result.recording_findings.push_back(fmt::format(
           "step {} {:.4g} Hz ({}) was recorded before it settled (its analysed part changes by {:.2f} % between "
           "halves); its uncertainty includes that change",
-          s.level, s.omega_rad_s / (2.0 * 3.141592653589793), s.file, 100.0 * s.unsettled_change_relative));
+          s.level, s.FrequencyHz(), s.file, 100.0 * s.unsettled_change_relative));
 
   // The recording first (an engineer whose fit fails checks the recording
   // before the model): its artefacts are cheap refits of the base physics.

@@ -13,7 +13,6 @@ namespace {
 
 using Complex = std::complex<double>;
 
-constexpr double kPi = 3.141592653589793;
 // A weightless step keeps this share of its whitening (header).
 constexpr double kLeftOutWeight = 1e-6;
 // Rounds of artefact estimate and physics refit (header).
@@ -59,7 +58,7 @@ ArtefactEstimate ScalarGaussNewton(const FitData& fit, double start, double step
   return {.value = theta, .std = jtj > 0.0 ? std::sqrt(scale / jtj) : 0.0};
 }
 
-std::string StepLabel(const FitStep& s) { return fmt::format("{} {:.4g} Hz", s.level, s.omega_rad_s / (2.0 * kPi)); }
+std::string StepLabel(const FitStep& s) { return fmt::format("{} {:.4g} Hz", s.level, s.FrequencyHz()); }
 
 }  // namespace
 

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <complex>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,8 @@ struct FitStep {
   // signal/settling_uncertainty.h). 0: settled.
   double unsettled_change_relative = 0.0;
   bool unsettled = false;
+
+  double FrequencyHz() const { return omega_rad_s / (2.0 * std::numbers::pi); }
 };
 
 struct FitData {

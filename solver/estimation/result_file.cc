@@ -16,8 +16,6 @@ namespace {
 
 using Complex = std::complex<double>;
 
-double FrequencyHz(double omega_rad_s) { return omega_rad_s / (2 * std::numbers::pi); }
-
 // Relative RMS error and χ² per fitted channel, harmonic and level.
 std::vector<ChannelQuality> Quality(const FitData& fit, FitProblem& problem, const Eigen::VectorXd& x) {
   const std::vector<Eigen::MatrixXcd> model = ModelPhasors(fit, problem, x);
@@ -66,7 +64,7 @@ std::vector<HeldOutChannel> Validation(const FitData& validation, FitProblem& pr
                            .measurable_relative_std = kMeasurable};
     for (std::size_t i = 0; i < validation.steps.size(); ++i) {
       const FitStep& s = validation.steps[i];
-      HeldOutStep step{.level = s.level, .file = s.file, .frequency_hz = FrequencyHz(s.omega_rad_s)};
+      HeldOutStep step{.level = s.level, .file = s.file, .frequency_hz = s.FrequencyHz()};
       for (int k = 1; k <= validation.num_fit_harmonics; ++k) {
         const Complex measured = s.measured(c, k - 1), model = predicted[i](c, k - 1);
         const double error = std::abs(model - measured) / std::max(std::abs(measured), 1e-300);
@@ -150,7 +148,7 @@ ResultFile MakeResultFile(const FitData& fit, const FitData& validation, FitProb
 
   for (int i = 0; i < static_cast<int>(fit.steps.size()); ++i) {
     const FitStep& s = fit.steps[i];
-    ResultStep step{.level = s.level, .file = s.file, .frequency_hz = FrequencyHz(s.omega_rad_s), .force_N = s.force_N};
+    ResultStep step{.level = s.level, .file = s.file, .frequency_hz = s.FrequencyHz(), .force_N = s.force_N};
     step.state = problem.StepState(result.x, i);
     if (step.state.size() != context.family->StateSize(problem.num_model_harmonics()))
       throw std::logic_error("MakeResultFile: the problem's state is not its family's");

@@ -58,7 +58,7 @@ std::vector<OutlyingStep> FindOutlyingSteps(const FitData& data, const std::vect
     outliers.push_back({.step = static_cast<int>(i),
                         .level = s.level,
                         .file = s.file,
-                        .frequency_hz = s.omega_rad_s / (2.0 * M_PI),
+                        .frequency_hz = s.FrequencyHz(),
                         .chi_square = chi_squares[i],
                         .num_residuals = per_step,
                         .tail_probability = tail,
