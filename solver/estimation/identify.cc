@@ -168,6 +168,56 @@ ModelStructure WithDataBounds(const ModelStructure& structure, const hb::BeamPro
 // Starts from the direct estimate of the polynomial law with any model; the
 // model is built on the structure with the data's bounds.
 using BoundedProblemFactory = std::function<std::unique_ptr<FitProblem>(const ModelStructure&)>;
+
+// The linear fit's continuation (IdentifyOptions::linear_continuation): the
+// nonlinear coefficients' share of their data bounds at each stage. The
+// linear model (share 0) has one optimum and converges from the direct
+// estimate; each wider stage starts where the narrower one ended, so the fit
+// follows its optimum out of the linear regime instead of jumping into it.
+constexpr double kLinearContinuationShares[] = {0.0, 1e-2, 1e-1, 1.0};
+
+// The linear stage starts from the direct estimate's k1 and c (a linear
+// least-squares fit of the same data), its states seeded at the measured
+// rotation whatever the caller chose: this is the rescue, not the comparison.
+IdentifyResult ContinueFromLinearFit(const BoundedProblemFactory& make_problem, const ModelStructure& bounded,
+                                     std::vector<double> from, const DirectEstimate& direct,
+                                     const IdentifyOptions& options, const ProgressCallback& progress,
+                                     const std::string& tried) {
+  IdentifyOptions stage_options = options;
+  stage_options.num_starts = 0;
+  stage_options.linear_continuation = false;
+  stage_options.seed_states_from_measurements = true;
+  const auto bounds = bounded.Bounds();
+  if (std::isfinite(direct.k1_Nm_rad) && std::isfinite(direct.c_Nms_rad)) {
+    from[0] = std::clamp(direct.k1_Nm_rad, bounds[0].lower, bounds[0].upper);
+    from[3] = std::clamp(direct.c_Nms_rad, bounds[3].lower, bounds[3].upper);
+    from[3] = std::max(from[3], 1e-3 * bounds[3].typical);
+  }
+  const std::vector<ParameterBounds> full = bounded.law_bounds;
+  IdentifyResult result;
+  std::string path;
+  for (double share : kLinearContinuationShares) {
+    ModelStructure stage = bounded;
+    for (int j : {1, 2}) {
+      stage.law_bounds[j].lower = share * full[j].lower;
+      stage.law_bounds[j].upper = share * full[j].upper;
+      from[j] = std::clamp(from[j], stage.law_bounds[j].lower, stage.law_bounds[j].upper);
+    }
+    if (progress) progress(0.0, share == 0.0 ? "linear fit" : "continuation from the linear fit");
+    try {
+      result = IdentifyWith([&] { return make_problem(stage); }, stage, from, stage_options);
+    } catch (const NumericalError& e) {
+      throw NumericalError(tried + "; continuation from the linear fit (k2 = k3 = 0" + path + ") then ended with: " +
+                           e.what());
+    }
+    for (std::size_t k = 0; k < from.size(); ++k) from[k] = result.parameters[k].value;
+    if (share > 0.0) path += ", " + std::to_string(share) + " of their range";
+  }
+  result.warnings.insert(result.warnings.begin(),
+                         tried + "; the fit was found by continuation in the parameters from the linear fit (k2 = k3 "
+                                 "= 0, then their range opened to 1 %, 10 % and all of it, each stage from the last)");
+  return result;
+}
 IdentifyResult IdentifyFromDirectEstimate(const BoundedProblemFactory& make_problem, const FitData& data,
                                           const ModelStructure& structure, const IdentifyOptions& options,
                                           const ProgressCallback& progress) {
@@ -189,8 +239,15 @@ IdentifyResult IdentifyFromDirectEstimate(const BoundedProblemFactory& make_prob
     // cannot start: nudge it inside.
     first[3] = std::max(first[3], 1e-3 * bounds[3].typical);
   }
-  IdentifyResult result =
-      IdentifyWith([&] { return make_problem(bounded); }, bounded, first, options, progress);
+  const auto started = std::chrono::steady_clock::now();
+  IdentifyResult result;
+  try {
+    result = IdentifyWith([&] { return make_problem(bounded); }, bounded, first, options, progress);
+  } catch (const NumericalError& e) {
+    if (!options.linear_continuation || !dynamic_cast<const hb::PolynomialSupportLaw*>(structure.law.get())) throw;
+    result = ContinueFromLinearFit(make_problem, bounded, first, direct, options, progress, e.what());
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  }
   result.direct = direct;
   return result;
 }

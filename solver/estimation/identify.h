@@ -59,6 +59,12 @@ struct IdentifyOptions {
   // iterations (a model that misses the data slows Ipopt near the optimum);
   // 0: fail at once (the diagnosis's refits, which a cap cuts on purpose).
   int continuation_iterations = 3000;
+  // When no start converged even so (a polynomial law only): continuation in
+  // the parameters from the linear fit — k2 = k3 = 0 first, then their range
+  // opened in steps of ×kLinearContinuationWidening, each fit from the one
+  // before (solver/estimation/identify.cc). Off for refits that are cut
+  // short on purpose, as continuation_iterations.
+  bool linear_continuation = true;
 
   // Throws InputError naming the field, its value and the allowed range
   // (model and ipopt included).
