@@ -147,15 +147,16 @@ std::string WriteSummary(const DiagnosisResult& r) {
         best.description, best.residual_drop, r.base.chi_square, best.fit.chi_square, r.base.bic,
         best.fit.bic, best.p_value);
     if (std::isfinite(r.base.held_out_h1_relative_error))
-      out << fmt::format("Held-out channels: first-harmonic error {:.3g} % -> {:.3g} %, chi-square of the harmonics "
+      out << fmt::format("{}: first-harmonic error {:.3g} % -> {:.3g} %, chi-square of the harmonics "
                          "the model predicts {:.4g} -> {:.4g}. ",
+                         r.ranked_by == "levels left out in turn" ? "Levels left out in turn" : "Held-out channels",
                          100.0 * r.base.held_out_h1_relative_error, 100.0 * r.final_fit.held_out_h1_relative_error,
                          r.base.held_out_chi_square, r.final_fit.held_out_chi_square);
-    if (r.ranked_by == "held-out channels" && r.candidates.size() > 1 && r.candidates[1].significant &&
+    if (r.ranked_by != "in-sample BIC" && r.candidates.size() > 1 && r.candidates[1].significant &&
         r.candidates[1].fit.bic < best.fit.bic)
-      out << fmt::format("The held-out channels decide: {} fits the fitted channels better (BIC {:.5g}) but predicts "
-                         "the held-out ones worse (chi-square {:.4g} against {:.4g}). ",
-                         r.candidates[1].name, r.candidates[1].fit.bic, r.candidates[1].fit.held_out_chi_square,
+      out << fmt::format("The {} decide: {} fits the data it saw better (BIC {:.5g}) but predicts "
+                         "what it did not see worse (chi-square {:.4g} against {:.4g}). ",
+                         r.ranked_by, r.candidates[1].name, r.candidates[1].fit.bic, r.candidates[1].fit.held_out_chi_square,
                          best.fit.held_out_chi_square);
     out << "Identified: " << DescribeParameters(r.final_fit, r.final_extra_parameters) << ".";
   } else if (r.verdict == "unexplained") {
@@ -215,6 +216,20 @@ IdentifyResult FitPolynomialThenLossFactor(const FitData& fit, const DiagnosisOp
   } catch (const std::runtime_error&) {
   }
   return polynomial;
+}
+
+// Validated on the levels left out in turn, when there is no held-out
+// channel: this many of the significant candidates, best BIC first.
+constexpr int kLevelValidatedCandidates = 3;
+
+std::vector<int> BestSignificant(const std::vector<CandidateOutcome>& outcomes, int count) {
+  std::vector<int> chosen;
+  for (int c = 0; c < static_cast<int>(outcomes.size()); ++c)
+    if (outcomes[c].significant && outcomes[c].converged) chosen.push_back(c);
+  std::stable_sort(chosen.begin(), chosen.end(),
+                   [&](int a, int b) { return outcomes[a].fit.bic < outcomes[b].fit.bic; });
+  if (static_cast<int>(chosen.size()) > count) chosen.resize(static_cast<std::size_t>(count));
+  return chosen;
 }
 
 void ApplyHeldOut(const HeldOutCheck& check, FitSummary* summary) {
@@ -537,6 +552,48 @@ HeldOutCheck ValidateOnHeldOut(const FittedModel& model, const FitData& validati
   return check;
 }
 
+HeldOutCheck ValidateOnLeftOutLevels(const FittedModel& model, const DiagnosisOptions& options) {
+  const FitData& data = model.data;
+  HeldOutCheck check;
+  if (data.levels.size() < 2) return check;
+  const IdentifyOptions refit = CandidateRefitOptions(options, model.model_harmonics);
+  double chi2 = 0.0, error2 = 0.0, norm2 = 0.0;
+  int num_residuals = 0;
+  for (const std::string& level : data.levels) {
+    FitData seen = data, left_out = data;
+    seen.steps.clear();
+    left_out.steps.clear();
+    for (const FitStep& s : data.steps) (s.level == level ? left_out : seen).steps.push_back(s);
+    if (seen.steps.empty() || left_out.steps.empty()) continue;
+    std::vector<double> values;
+    try {
+      const IdentifyResult r = IdentifyWith(
+          [&] { return refit.family->MakeProblem(seen, model.structure, refit.model); }, model.structure,
+          model.structure.Values(), refit);
+      for (const auto& p : r.parameters) values.push_back(p.value);
+    } catch (const std::exception&) {
+      return {};
+    }
+    ModelStructure at = model.structure;
+    at.SetValues(values);
+    const std::unique_ptr<FitProblem> problem = refit.family->MakeProblem(left_out, at, refit.model);
+    const Eigen::VectorXd x = problem->FeasiblePoint(values);
+    chi2 += problem->WeightedResiduals(x).squaredNorm();
+    num_residuals += left_out.NumResiduals();
+    const std::vector<Eigen::MatrixXcd> predicted = ModelPhasors(left_out, *problem, x);
+    for (std::size_t i = 0; i < left_out.steps.size(); ++i)
+      for (int c = 0; c < static_cast<int>(left_out.channels.size()); ++c) {
+        error2 += std::norm(predicted[i](c, 0) - left_out.steps[i].measured(c, 0));
+        norm2 += std::norm(left_out.steps[i].measured(c, 0));
+      }
+  }
+  if (num_residuals == 0) return check;
+  check.chi_square = chi2;
+  check.h1_relative_error = std::sqrt(error2 / std::max(norm2, 1e-300));
+  check.num_residuals = num_residuals;
+  return check;
+}
+
 LocationStage Locate(const FitData& fit, const BaseFit& base, const FitData& located_in) {
   LocationStage stage;
   const FitData& located = located_in.channels.empty() ? fit : located_in;
@@ -681,7 +738,8 @@ int ChoosePair(const std::vector<CandidateOutcome>& pairs, const FitSummary& fir
 }
 
 Verdict DecideVerdict(const FitSummary& base, const std::optional<MisfitLocation>& location,
-                      const std::vector<CandidateOutcome>& candidates, const DiagnosisOptions& options) {
+                      const std::vector<CandidateOutcome>& candidates, const DiagnosisOptions& options,
+                      const std::string& validated_on) {
   Verdict v;
   v.ranking.resize(candidates.size());
   for (int c = 0; c < static_cast<int>(v.ranking.size()); ++c) v.ranking[c] = c;
@@ -711,7 +769,7 @@ Verdict DecideVerdict(const FitSummary& base, const std::optional<MisfitLocation
   if (num_significant > 0) {
     v.cause = v.ranking.front();
     v.verdict = "cause named";
-    v.ranked_by = held_out ? "held-out channels" : "in-sample BIC";
+    v.ranked_by = held_out ? validated_on : "in-sample BIC";
     v.selected = {candidates[v.cause].name};
     if (num_significant > 1) {
       const FitSummary &a = candidates[v.cause].fit, &b = candidates[v.ranking[1]].fit;
@@ -791,7 +849,17 @@ DiagnosisResult Diagnose(const FitData& fit, const FitData& validation, const Fi
     if (refits.models[c] && !refits.outcomes[c].measurement)
       ApplyHeldOut(ValidateOnHeldOut(*refits.models[c], validation), &refits.outcomes[c].fit);
 
-  const Verdict verdict = DecideVerdict(result.base, result.location, refits.outcomes, options);
+  // Without a held-out channel, the levels left out in turn validate the
+  // base and the best significant candidates (each costs a refit per level).
+  const bool by_levels = validation.channels.empty() && fit.levels.size() >= 2;
+  if (by_levels) {
+    report(0.8, "validating on the levels left out in turn");
+    ApplyHeldOut(ValidateOnLeftOutLevels(base.model, options), &result.base);
+    for (int c : BestSignificant(refits.outcomes, kLevelValidatedCandidates))
+      if (refits.models[c]) ApplyHeldOut(ValidateOnLeftOutLevels(*refits.models[c], options), &refits.outcomes[c].fit);
+  }
+  const std::string validated_on = by_levels ? "levels left out in turn" : "held-out channels";
+  const Verdict verdict = DecideVerdict(result.base, result.location, refits.outcomes, options, validated_on);
   for (int c : verdict.ranking) result.candidates.push_back(refits.outcomes[c]);
   result.verdict = verdict.verdict;
   result.ranked_by = verdict.ranked_by;
@@ -814,6 +882,10 @@ DiagnosisResult Diagnose(const FitData& fit, const FitData& validation, const Fi
     pairs = RefitPairs(fit, *refits.models[verdict.cause], refits.outcomes[verdict.cause], partners, options);
     for (std::size_t c = 0; c < pairs.models.size(); ++c)
       if (pairs.models[c]) ApplyHeldOut(ValidateOnHeldOut(*pairs.models[c], validation), &pairs.outcomes[c].fit);
+    if (by_levels) {
+      for (int c : BestSignificant(pairs.outcomes, kLevelValidatedCandidates))
+        if (pairs.models[c]) ApplyHeldOut(ValidateOnLeftOutLevels(*pairs.models[c], options), &pairs.outcomes[c].fit);
+    }
     const int chosen = ChoosePair(pairs.outcomes, refits.outcomes[verdict.cause].fit);
     if (chosen >= 0) {
       const CandidateOutcome& pair = pairs.outcomes[chosen];

@@ -155,7 +155,8 @@ struct DiagnosisResult {
   // "no significant discrepancy" | "unexplained"
   std::string verdict;
   // How the named cause was chosen: "held-out channels" (they decided, or
-  // confirmed the in-sample ranking) or "in-sample BIC" (no held-out channel).
+  // confirmed the in-sample ranking), "levels left out in turn" (no
+  // held-out channel: ValidateOnLeftOutLevels) or "in-sample BIC" (neither).
   std::string ranked_by;
   // After the selected model, the rest of the misfit lies within the noise
   // (reduced χ² ≤ acceptable_reduced_chi_square); false: only part explained.
@@ -219,6 +220,13 @@ struct HeldOutCheck {
 // skip_step: a step left out of the check (-1: none), e.g. an outlying
 // step whose held-out channels share its faulty record.
 HeldOutCheck ValidateOnHeldOut(const FittedModel& model, const FitData& validation, int skip_step = -1);
+// Validation without a held-out channel: each level left out in turn, the
+// model refitted to the others from its optimum (CandidateRefitOptions), and
+// its prediction of the left-out level's channels compared with them; χ² and
+// the first harmonic's error summed over the levels. A model that bent
+// itself to the data it saw predicts a level it did not see worse. NaN with
+// fewer than two levels or when a refit fails.
+HeldOutCheck ValidateOnLeftOutLevels(const FittedModel& model, const DiagnosisOptions& options);
 
 // Stage 2, where the base misses: LocateMisfit of its residuals on the
 // located channels (harmonics beyond the fitted ones included) against the
@@ -284,8 +292,11 @@ struct Verdict {
 // Whether the data separate two fits (header), in sample or on the held-out channels.
 bool SeparatedInSample(const FitSummary& a, const FitSummary& b);
 bool SeparatedHeldOut(const FitSummary& a, const FitSummary& b);
+// validated_on: what the held-out fields measure ("held-out channels" or
+// "levels left out in turn"), the ranked_by when they decide.
 Verdict DecideVerdict(const FitSummary& base, const std::optional<MisfitLocation>& location,
-                      const std::vector<CandidateOutcome>& candidates, const DiagnosisOptions& options);
+                      const std::vector<CandidateOutcome>& candidates, const DiagnosisOptions& options,
+                      const std::string& validated_on = "held-out channels");
 
 // CSV of the response curves: level, frequency, channel, held_out, then
 // amplitude and phase of measured, base and final first harmonics.

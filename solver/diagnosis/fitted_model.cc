@@ -7,7 +7,7 @@ namespace beamid::solver {
 FittedModel::FittedModel(const FitData& fit, const ModelFamily& model_family, const ModelStructure& s, int harmonics,
                          const std::vector<double>& scaled_at, Eigen::VectorXd variables,
                          const std::vector<double>& values)
-    : family(&model_family), structure(s), x(std::move(variables)), model_harmonics(harmonics) {
+    : data(fit), family(&model_family), structure(s), x(std::move(variables)), model_harmonics(harmonics) {
   problem = model_family.MakeProblem(fit, structure, ModelOptions{.num_harmonics = harmonics});
   problem->FeasiblePoint(scaled_at);
   // After the problem: its internal scales are those of the structure the
@@ -15,6 +15,6 @@ FittedModel::FittedModel(const FitData& fit, const ModelFamily& model_family, co
   structure.SetValues(values);
 }
 
-std::vector<Eigen::MatrixXcd> FittedModel::Phasors(const FitData& data) const { return ModelPhasors(data, *problem, x); }
+std::vector<Eigen::MatrixXcd> FittedModel::Phasors(const FitData& at) const { return ModelPhasors(at, *problem, x); }
 
 }  // namespace beamid::solver

@@ -20,6 +20,7 @@ namespace beamid::solver {
 // its phasors at any channel are the fit's own (not a re-solve that could
 // land on another branch).
 struct FittedModel {
+  FitData data;  // what it was fitted to (corrected data for a fault of the recording)
   const ModelFamily* family;
   ModelStructure structure;  // values: the optimum
   std::unique_ptr<FitProblem> problem;
@@ -33,7 +34,7 @@ struct FittedModel {
 
   // Per step, channels × K phasors of `data`'s channels in its units
   // (harmonics the model lacks are 0).
-  std::vector<Eigen::MatrixXcd> Phasors(const FitData& data) const;
+  std::vector<Eigen::MatrixXcd> Phasors(const FitData& at) const;
 };
 
 }  // namespace beamid::solver
