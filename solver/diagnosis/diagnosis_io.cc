@@ -540,7 +540,9 @@ std::string CandidateRefitToText(const CandidateRefit& refit) {
                             {"values", ExactJsonNumbers(refit.values)},
                             {"std", ExactJsonNumbers(refit.std)},
                             {"scaled_at", ExactJsonNumbers(refit.scaled_at)},
-                            {"x", ExactJsonNumbers(refit.x)}};
+                            {"x", ExactJsonNumbers(refit.x)},
+                            {"artefact_value", ExactJsonNumber(refit.artefact_value)},
+                            {"artefact_std", ExactJsonNumber(refit.artefact_std)}};
   return j.dump();
 }
 
@@ -552,7 +554,9 @@ CandidateRefit CandidateRefitFromText(const std::string& text) {
             .values = ExactNumbersFromJson(j.at("values")),
             .std = ExactNumbersFromJson(j.at("std")),
             .scaled_at = ExactNumbersFromJson(j.at("scaled_at")),
-            .x = ExactNumbersFromJson(j.at("x"))};
+            .x = ExactNumbersFromJson(j.at("x")),
+            .artefact_value = ExactNumberFromJson(j.at("artefact_value")),
+            .artefact_std = ExactNumberFromJson(j.at("artefact_std"))};
   } catch (const std::exception& e) {
     throw std::runtime_error(std::string("a candidate refit's record is damaged: ") + e.what());
   }

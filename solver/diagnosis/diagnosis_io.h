@@ -69,6 +69,10 @@ struct CandidateRefit {
   std::vector<double> std;        // their standard uncertainties
   std::vector<double> scaled_at;  // the parameters whose feasible point set x's scales
   std::vector<double> x;          // the optimiser's variables at the optimum
+  // A fault of the recording's refit (solver/diagnosis/measurement_artefacts.h):
+  // its parameter, the one the data were corrected with, and its std (0 otherwise).
+  double artefact_value = 0.0;
+  double artefact_std = 0.0;
 };
 
 std::string CandidateRefitToText(const CandidateRefit& refit);

@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <thread>
 
 #include <fmt/format.h>
 
+#include "solver/diagnosis/diagnosis_io.h"
+#include "solver/estimation/internal/worker_processes.h"
 #include "solver/estimation/robust_fit.h"
 
 namespace beamid::solver {
@@ -207,6 +210,7 @@ struct ArtefactFit {
   double chi_square = 0.0;
   std::vector<double> values, std;
   std::unique_ptr<FittedModel> model;
+  std::vector<double> scaled_at;  // of the last refit, to rebuild its model in another process
 };
 
 // Block coordinate descent (header), accelerated: the rounds converge
@@ -253,9 +257,9 @@ ArtefactFit FitArtefact(const FitData& fit, const BaseFit& base, const ModelStru
       out.std.push_back(p.std);
     }
     out.chi_square = r.chi_square;
+    out.scaled_at = r.starts[static_cast<std::size_t>(r.best_start)].scaled_at;
     out.model = std::make_unique<FittedModel>(corrected, *refit.family, from, base.model.model_harmonics,
-                                              r.starts[static_cast<std::size_t>(r.best_start)].scaled_at, r.x,
-                                              out.values);
+                                              out.scaled_at, r.x, out.values);
     at = out.model.get();
   }
   return out;
@@ -313,46 +317,74 @@ CandidateRefits RefitMeasurementArtefacts(const FitData& fit, const FitData& val
     structure.SetValues(values);
     added = 1;
   }
+  // Each artefact's rounds of refits in a worker process (their models are
+  // rebuilt here from the record, on the data corrected as in the worker).
   CandidateRefits out;
-  for (std::size_t a = 0; a < artefacts.size(); ++a) {
-    MeasurementArtefact artefact = artefacts[a];
-    const auto [parameter, unit] = Parameter(fit, artefact);
-    CandidateOutcome outcome{.name = ArtefactName(fit, artefact),
-                             .description = Description(artefact.kind),
-                             .extra_parameters = parameter.empty() ? std::vector<std::string>{}
-                                                                   : std::vector<std::string>{parameter},
-                             .test_dof = added + (artefact.kind == ArtefactKind::kOutlyingStep ? per_step : 1),
-                             .measurement = true};
-    std::unique_ptr<FittedModel> model;
-    const auto started = std::chrono::steady_clock::now();
-    try {
-      ArtefactFit f = FitArtefact(fit, base, structure, refit, &artefact);
-      outcome.fit = SummarizeFit(structure, base.model.model_harmonics, f.chi_square, fit.NumResiduals(), f.values,
-                                 f.std, outcome.test_dof - added);
-      if (!parameter.empty())
-        outcome.fit.parameters.push_back({.name = parameter,
-                                          .unit = unit,
-                                          .value = f.estimate.value,
-                                          .std = f.estimate.std,
-                                          .lower_95 = f.estimate.value - 1.96 * f.estimate.std,
-                                          .upper_95 = f.estimate.value + 1.96 * f.estimate.std});
-      outcome.converged = true;
-      outcome.status = "solved";
-      TestAgainstReference(base.summary.chi_square, base.summary, num_candidates, options, &outcome);
-      model = std::move(f.model);
-      const HeldOutCheck held_out = ValidateOnHeldOut(*model, validation, artefact.step);
-      outcome.fit.held_out_chi_square = held_out.chi_square;
-      outcome.fit.held_out_h1_relative_error = held_out.h1_relative_error;
-      outcome.fit.held_out_num_residuals = held_out.num_residuals;
-    } catch (const std::exception& e) {
-      outcome.status = std::string("failed: ") + e.what();
-    }
-    outcome.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    outcome.rig_check = ArtefactRigCheck(fit, artefact);
-    out.outcomes.push_back(std::move(outcome));
-    out.models.push_back(std::move(model));
-    if (progress) progress(static_cast<int>(a) + 1, static_cast<int>(artefacts.size()), out.outcomes.back().name);
-  }
+  out.outcomes.resize(artefacts.size());
+  out.models.resize(artefacts.size());
+  const int workers = options.num_workers > 0 ? options.num_workers
+                                              : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  internal::RunTextJobsInWorkers(
+      static_cast<int>(artefacts.size()), std::min<int>(workers, static_cast<int>(artefacts.size())),
+      [&](int a) {
+        MeasurementArtefact artefact = artefacts[static_cast<std::size_t>(a)];
+        const auto started = std::chrono::steady_clock::now();
+        ArtefactFit f = FitArtefact(fit, base, structure, refit, &artefact);
+        CandidateRefit record{.chi_square = f.chi_square,
+                              .seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(),
+                              .values = f.values,
+                              .std = f.std,
+                              .scaled_at = f.scaled_at,
+                              .x = std::vector<double>(f.model->x.data(), f.model->x.data() + f.model->x.size()),
+                              .artefact_value = artefact.value,
+                              .artefact_std = f.estimate.std};
+        return CandidateRefitToText(record);
+      },
+      [&](int a, const std::string& text, const std::string& error, int done) {
+        MeasurementArtefact artefact = artefacts[static_cast<std::size_t>(a)];
+        const auto [parameter, unit] = Parameter(fit, artefact);
+        CandidateOutcome outcome{.name = ArtefactName(fit, artefact),
+                                 .description = Description(artefact.kind),
+                                 .extra_parameters = parameter.empty() ? std::vector<std::string>{}
+                                                                       : std::vector<std::string>{parameter},
+                                 .test_dof = added + (artefact.kind == ArtefactKind::kOutlyingStep ? per_step : 1),
+                                 .measurement = true};
+        std::unique_ptr<FittedModel> model;
+        try {
+          if (!error.empty()) throw std::runtime_error(error);
+          const CandidateRefit f = CandidateRefitFromText(text);
+          if (f.values.size() != static_cast<std::size_t>(structure.NumParameters()) || f.std.size() != f.values.size())
+            throw std::runtime_error("a recording check's record holds the wrong number of parameters");
+          artefact.value = f.artefact_value;
+          outcome.seconds = f.seconds;
+          outcome.fit = SummarizeFit(structure, base.model.model_harmonics, f.chi_square, fit.NumResiduals(), f.values,
+                                     f.std, outcome.test_dof - added);
+          if (!parameter.empty())
+            outcome.fit.parameters.push_back({.name = parameter,
+                                              .unit = unit,
+                                              .value = f.artefact_value,
+                                              .std = f.artefact_std,
+                                              .lower_95 = f.artefact_value - 1.96 * f.artefact_std,
+                                              .upper_95 = f.artefact_value + 1.96 * f.artefact_std});
+          outcome.converged = true;
+          outcome.status = "solved";
+          TestAgainstReference(base.summary.chi_square, base.summary, num_candidates, options, &outcome);
+          model = std::make_unique<FittedModel>(
+              CorrectedData(fit, artefact), *refit.family, structure, base.model.model_harmonics, f.scaled_at,
+              Eigen::Map<const Eigen::VectorXd>(f.x.data(), static_cast<Eigen::Index>(f.x.size())), f.values);
+          const HeldOutCheck held_out = ValidateOnHeldOut(*model, validation, artefact.step);
+          outcome.fit.held_out_chi_square = held_out.chi_square;
+          outcome.fit.held_out_h1_relative_error = held_out.h1_relative_error;
+          outcome.fit.held_out_num_residuals = held_out.num_residuals;
+        } catch (const std::exception& e) {
+          outcome.status = std::string("failed: ") + e.what();
+        }
+        outcome.rig_check = ArtefactRigCheck(fit, artefact);
+        out.outcomes[static_cast<std::size_t>(a)] = std::move(outcome);
+        out.models[static_cast<std::size_t>(a)] = std::move(model);
+        if (progress)
+          progress(done, static_cast<int>(artefacts.size()), out.outcomes[static_cast<std::size_t>(a)].name);
+      });
   return out;
 }
 
