@@ -1,5 +1,7 @@
 #include "signal/phasor_estimator.h"
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 #include <vector>
 
@@ -12,12 +14,6 @@ namespace beamid::signal {
 namespace {
 
 using internal::FormatNumber;
-
-Eigen::Matrix2d Rotation(double angle_rad) {
-  Eigen::Matrix2d r;
-  r << std::cos(angle_rad), -std::sin(angle_rad), std::sin(angle_rad), std::cos(angle_rad);
-  return r;
-}
 
 }  // namespace
 
@@ -52,7 +48,7 @@ std::vector<ChannelPhasors> ReferencePhasors(const HarmonicFit& fit, std::size_t
         cz(0, 0) = u.dot(cx * u);
         phasor.SetCovariance(cz);
       } else {
-        const Eigen::Matrix2d r = Rotation(-k * phi);
+        const Eigen::Matrix2d r = Eigen::Rotation2Dd(-k * phi).toRotationMatrix();
         const Eigen::Vector2d v(phasor.value.imag(), -phasor.value.real());
         phasor.SetCovariance(r * cx * r.transpose() + k * k * phase_variance * v * v.transpose());
       }

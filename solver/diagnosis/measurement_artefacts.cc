@@ -22,6 +22,12 @@ constexpr double kLeftOutWeight = 1e-6;
 constexpr int kMaxRounds = 8;
 // The artefact's parameter has converged when a round moves it by less than this share.
 constexpr double kConvergedRelative = 1e-3;
+// A first round that leaves more than this share of the base's χ² ends the
+// rounds: each round takes ~2/3 of the way to the joint optimum (below), so
+// the joint fit would still leave over 85 % — the artefact is no explanation,
+// and its further rounds (a physics refit each) would cost the diagnosis
+// seconds on every campaign whose misfit is physics.
+constexpr double kUnpromisingShare = 0.9;
 
 Eigen::Matrix2d Rotation(double angle_rad) {
   Eigen::Matrix2d r;
@@ -261,6 +267,7 @@ ArtefactFit FitArtefact(const FitData& fit, const BaseFit& base, const ModelStru
     out.model = std::make_unique<FittedModel>(corrected, *refit.family, from, base.model.model_harmonics,
                                               out.scaled_at, r.x, out.values);
     at = out.model.get();
+    if (out.chi_square > kUnpromisingShare * base.summary.chi_square) break;
   }
   return out;
 }
