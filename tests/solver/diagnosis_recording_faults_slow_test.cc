@@ -186,5 +186,24 @@ TEST(RecordingFaults, AnAcquisitionClockTwoTenthsOfAPercentFastIsNamedWithItsErr
   EXPECT_NEAR(clock.value, truth, 0.03 * truth);
 }
 
+// The response curves of a named clock error show what the channels record
+// at the read frequencies: its model at the true ones (at the read ones its
+// accelerations would read (1 + ε)² = 0.4 % low).
+TEST(RecordingFaults, TheClockErrorsResponseCurvesFollowTheRecordings) {
+  const FaultyCampaign c = Simulate("paper_clock_error");
+  DiagnosisOptions options;
+  options.num_workers = 2;
+  const DiagnosisResult result = Diagnose(c.fit, c.validation, c.located, options);
+  ASSERT_EQ(result.selected.front(), "clock_error");
+  std::vector<double> misfit;
+  for (const ResponsePoint& p : result.response)
+    if (std::abs(p.measured) > 0.0) misfit.push_back(std::abs(p.final_model / p.measured - 1.0));
+  ASSERT_FALSE(misfit.empty());
+  std::nth_element(misfit.begin(), misfit.begin() + static_cast<std::ptrdiff_t>(misfit.size() / 2), misfit.end());
+  const double median = misfit[misfit.size() / 2];
+  std::printf("median |final/measured - 1| of the first harmonic: %.2e\n", median);
+  EXPECT_LT(median, 1e-3);
+}
+
 }  // namespace
 }  // namespace beamid::solver
