@@ -227,7 +227,7 @@ void CampaignWriter::Finish() {
   // The measurement artefacts, only when the scenario has one (a campaign
   // without them is byte for byte what it was before they existed). Every
   // sensor is listed, so that a test reads any one's true and stated position.
-  bool any_artefact = !s.timing.early_records.empty();
+  bool any_artefact = !s.timing.early_records.empty() || s.timing.daq_clock_error_relative != 0.0;
   Json artefact_sensors = Json::array();
   for (const ScenarioSensor& sensor : s.sensors) {
     any_artefact = any_artefact || sensor.HasArtefact();
@@ -284,7 +284,9 @@ void CampaignWriter::Finish() {
       {"clipped_samples", clipped_samples_},
       {"steps", *truth_steps_}};
   if (any_artefact)
-    truth["measurement_artefacts"] = {{"sensors", artefact_sensors}, {"early_records", *early_records_}};
+    truth["measurement_artefacts"] = {{"sensors", artefact_sensors},
+                                      {"early_records", *early_records_},
+                                      {"daq_clock_error_relative", s.timing.daq_clock_error_relative}};
   WriteFile(directory_ / "truth.json", truth.dump(1) + "\n", bytes_written_);
   // Last: a folder with campaign.json is a complete campaign.
   WriteFile(directory_ / "campaign.json", campaign.dump(2) + "\n", bytes_written_);

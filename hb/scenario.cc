@@ -388,6 +388,11 @@ void ReadTiming(ObjectReader& top, const std::vector<ScenarioLevel>& levels, Sce
                                                   std::to_string(earliest) +
                                                   " and 1, so that the force stops inside the steady record");
   }
+  timing.daq_clock_error_relative = t.Number("daq_clock_error_relative", timing.daq_clock_error_relative);
+  if (!(std::abs(timing.daq_clock_error_relative) <= kMaxDaqClockError))
+    t.FailField("daq_clock_error_relative", "must lie within ±" + std::to_string(kMaxDaqClockError) +
+                                                " (the acquisition's clock runs (1 + this) fast against the stated "
+                                                "sample_rate_Hz; 0.002 is 2000 ppm, a rate stated 0.2 % low)");
   if (timing.settle_max_s < timing.settle_min_s) t.FailField("settle_max_s", "must not be below settle_min_s");
   // Limits that keep one simulated step within memory and minutes: at
   // most 2^24 samples per record, and a time step no finer than 1e-7 s.
@@ -580,6 +585,7 @@ OrderedJson TimingToJson(const ScenarioTiming& t) {
   out["record_s"] = t.record_s;
   out["restart_each_level"] = t.restart_each_level;
   out["excitation_stop_fraction"] = t.excitation_stop_fraction;
+  if (t.daq_clock_error_relative != 0.0) out["daq_clock_error_relative"] = t.daq_clock_error_relative;
   if (!t.early_records.empty()) {
     OrderedJson early = OrderedJson::array();
     for (const EarlyRecord& e : t.early_records) {

@@ -51,6 +51,9 @@ struct ScenarioSensor {
 
 // A delay is a filter's group delay, a few samples at most.
 inline constexpr double kMaxSensorDelay_s = 0.01;
+// A clock (or a stated sample rate) off by more than 5 % is a wrong setting,
+// not a drifting crystal, and would move a sweep off its resonance.
+inline constexpr double kMaxDaqClockError = 0.05;
 
 // A step recorded before it settled (timing.early_records): the step of
 // `level` whose nominal frequency is frequency_hz is recorded after
@@ -115,8 +118,19 @@ struct ScenarioTiming {
   // rings down and the excitation channel records only its noise. 0 = never.
   // It must fall inside the steady part: > transient_s/(transient_s + record_s), < 1.
   double excitation_stop_fraction = 0.0;
+  // A measurement artefact, concealed from campaign.json and listed in
+  // truth.json: the acquisition's sample clock runs at
+  // sample_rate_hz·(1 + ε) while the files state sample_rate_hz, so sample
+  // n is taken at the true time n/(sample_rate_hz·(1 + ε)) and labelled
+  // n/sample_rate_hz; every frequency read from the files is the true one
+  // divided by 1 + ε. Not the generator's clock (noise.clock_offset_ppm),
+  // which moves the excitation, not the time axis. |ε| ≤ kMaxDaqClockError.
+  double daq_clock_error_relative = 0.0;
   // Steps recorded before they settled; empty = every step settles.
   std::vector<EarlyRecord> early_records;
+
+  // The rate at which the acquisition truly samples [Hz].
+  double TrueSampleRate_hz() const { return sample_rate_hz * (1.0 + daq_clock_error_relative); }
 };
 
 // What the excitation channel records and the level's amplitude sets

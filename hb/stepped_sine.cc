@@ -104,7 +104,10 @@ Eigen::RowVectorXd OutputModalRow(TimeSimulator& simulator, int output) {
 SteppedSineSimulation::SteppedSineSimulation(const Scenario& scenario)
     : scenario_(scenario), law_(scenario.MakeSupportLaw()), base_excitation_(scenario.BaseExcitation()) {
   const ScenarioTiming& timing = scenario_.timing;
-  const double sample_period_s = 1.0 / timing.sample_rate_hz;
+  // The integrator lands on the samples the acquisition truly takes (its
+  // clock's error, ScenarioTiming::daq_clock_error_relative, included): the
+  // files label them at the stated rate, so nothing is interpolated.
+  const double sample_period_s = 1.0 / timing.TrueSampleRate_hz();
   substeps_ = std::max(1, static_cast<int>(std::ceil(sample_period_s / timing.max_time_step_s - 1e-9)));
   TimeSimulatorModel model;
   model.beam = scenario_.beam;
@@ -224,7 +227,11 @@ void SteppedSineSimulation::RecordedValues(const Eigen::VectorXd& channels, Eige
 
 void SteppedSineSimulation::Run(const std::function<void(const SimulatedStep&)>& sink) {
   const ScenarioTiming& timing = scenario_.timing;
+  // The acquisition counts samples of its own clock: the files' lengths and
+  // the transient kept are set in samples at the stated rate, while the
+  // settling, physical, is timed at the true one.
   const double fs = timing.sample_rate_hz;
+  const double true_fs = timing.TrueSampleRate_hz();
   const double dt = simulator_->time_step_s();
   const int num_sensors = static_cast<int>(scenario_.sensors.size());
   const int num_channels = num_sensors + 1;
@@ -294,16 +301,16 @@ void SteppedSineSimulation::Run(const std::function<void(const SimulatedStep&)>&
 
       // Settle.
       const int window_periods = std::max(2, static_cast<int>(std::ceil(kMinSettleWindow_s * step.frequency_hz)));
-      const int window_samples = std::max(16, static_cast<int>(std::lround(window_periods * fs / step.frequency_hz)));
-      long min_samples = std::lround(timing.settle_min_s * fs);
-      long max_samples = std::max(min_samples, std::lround(timing.settle_max_s * fs));
+      const int window_samples = std::max(16, static_cast<int>(std::lround(window_periods * true_fs / step.frequency_hz)));
+      long min_samples = std::lround(timing.settle_min_s * true_fs);
+      long max_samples = std::max(min_samples, std::lround(timing.settle_max_s * true_fs));
       // An early record ignores the settling rule: its file starts after
       // exactly its settle_s, so it holds the transient (the ring keeps the
       // last transient_capacity samples of the settling).
       const EarlyRecord* early = scenario_.EarlyRecordOf(level.label, step.nominal_frequency_hz);
       if (early) {
         step.early_record_settle_s = early->settle_s;
-        min_samples = max_samples = std::lround(early->settle_s * fs) + transient_capacity;
+        min_samples = max_samples = std::lround(early->settle_s * true_fs) + transient_capacity;
       }
       TimeHarmonicFit window(kTruthHarmonics, num_sensors + 1);
       Eigen::VectorXcd previous_fundamentals;
@@ -336,7 +343,7 @@ void SteppedSineSimulation::Run(const std::function<void(const SimulatedStep&)>&
         }
         previous_fundamentals = fundamentals;
       }
-      step.settle_s = static_cast<double>(samples) / fs;
+      step.settle_s = static_cast<double>(samples) / true_fs;
 
       // Record: the tail of the settling, then the steady part, fitted for the truth.
       step.transient_samples = ring.size();

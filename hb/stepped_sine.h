@@ -64,8 +64,9 @@ struct SimulatedStep {
 
   // Samples × channels (the excitation, then the sensors in scenario order),
   // SI (N, or V with a voltage drive, or the base's m/s²; m/s², m/s or m;
-  // absolute acceleration with base excitation), noise-free, at the nominal
-  // sample rate; each sensor's gain error and delay applied.
+  // absolute acceleration with base excitation), noise-free, sampled at the
+  // acquisition's true rate (ScenarioTiming::TrueSampleRate_hz) and labelled
+  // at the stated one; each sensor's gain error and delay applied.
   Eigen::MatrixXd recording;
 
   // Truth, X_0..X_5 each, phase referenced to the force fundamental:

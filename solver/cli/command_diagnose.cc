@@ -167,7 +167,7 @@ BEAMID_REGISTER_COMMAND("diagnose", [](CLI::App& app, const GlobalOptions& globa
   sub->add_option("--candidates", options->candidates, "Physics candidates to try (default: all)")->delimiter(',');
   sub->add_flag("!--no-recording-check", options->recording_check,
                 "Do not try the measurement artefacts (sensor gain, phase delay and position per fitted channel, "
-                "outlying steps) before the physics");
+                "the acquisition's clock, outlying steps) before the physics");
   AddPhasorInputOptions(sub, &options->phasor_input);
   AddModelHarmonicsOptions(sub, &options->harmonics, &options->fit_harmonics, "Harmonics of the base model");
   sub->add_option("--workers", options->workers, "Parallel refits (0: one per core)")

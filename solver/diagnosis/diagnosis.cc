@@ -469,13 +469,17 @@ std::unique_ptr<FittedModel> TestCandidate(const FitData& fit, const FitSummary&
 }
 
 // Measured, base and final first harmonics of the fitted and held-out channels.
+// final_clock_error: the final model's ε when it is the clock error's (0
+// otherwise): it was fitted at the true frequencies, where it gives what the
+// channels record at the read ones.
 std::vector<ResponsePoint> ResponseCurves(const FitData& fit, const FitData& validation, const FittedModel& base,
-                                          const FittedModel& final_model) {
+                                          const FittedModel& final_model, double final_clock_error) {
   std::vector<ResponsePoint> response;
   for (const FitData* data : {&fit, &validation}) {
     if (data->channels.empty()) continue;
     const auto base_y = base.Phasors(*data);
-    const auto final_y = final_model.Phasors(*data);
+    const auto final_y = final_model.Phasors(
+        CorrectedData(*data, {.kind = ArtefactKind::kClockError, .value = final_clock_error}));
     for (std::size_t i = 0; i < data->steps.size(); ++i)
       for (int c = 0; c < static_cast<int>(data->channels.size()); ++c)
         response.push_back({.level = data->steps[i].level,
@@ -905,7 +909,12 @@ DiagnosisResult Diagnose(const FitData& fit, const FitData& validation, const Fi
                                            *refits.models[verdict.tied_with], refits.outcomes[verdict.tied_with].name);
   }
   report(0.95, "response curves");
-  result.response = ResponseCurves(fit, validation, base.model, *final_model);
+  double final_clock_error = 0.0;
+  if (named && final_model == refits.models[verdict.cause].get() &&
+      refits.outcomes[verdict.cause].name == ArtefactKindName(ArtefactKind::kClockError))
+    for (const ParameterEstimate& p : refits.outcomes[verdict.cause].fit.parameters)
+      if (p.name == ArtefactKindName(ArtefactKind::kClockError)) final_clock_error = p.value;
+  result.response = ResponseCurves(fit, validation, base.model, *final_model, final_clock_error);
   result.summary = WriteSummary(result);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   report(1.0, "done");

@@ -89,6 +89,7 @@ FitData MakeFitData(const signal::Campaign& campaign, const signal::PhasorSet& p
     fit.level = step.level;
     fit.file = step.file;
     fit.omega_rad_s = step.Omega_rad_s();
+    fit.nominal_frequency_hz = step.nominal_frequency_hz;
     fit.unsettled = step.quality.unsettled;
     fit.unsettled_change_relative = step.quality.unsettled_change_relative;
     fit.force_N = Eigen::VectorXcd::Zero(phasors.num_harmonics + 1);

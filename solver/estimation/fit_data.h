@@ -40,6 +40,10 @@ struct FitStep {
   std::string level;
   std::string file;
   double omega_rad_s = 0.0;
+  // The frequency campaign.json states for the step (the generator's
+  // setting, on its own clock); 0 when unknown. Beside the frequency read
+  // from the record it shows the acquisition's clock error.
+  double nominal_frequency_hz = 0.0;
   Eigen::VectorXcd force_N;              // F_0..F_H of the recording (F_0 = 0: transducers are AC)
   Eigen::MatrixXcd measured;             // channels × harmonics 1..K, SI of each channel's quantity
   std::vector<std::vector<Eigen::Matrix2d>> whitening;  // [channel][k-1]: L⁻¹

@@ -102,7 +102,8 @@ BENCHMARK(BM_DiagnoseIncompleteModel)->DenseRange(0, 4)->Unit(benchmark::kSecond
 const std::vector<std::string> kRecordingFaults = {
     "examples/scenarios/paper_unsettled_step.json", "examples/scenarios/paper_sensor_gain.json",
     "examples/scenarios/paper_sensor_position.json", "examples/scenarios/paper_sensor_delay.json",
-    "examples/scenarios/paper_friction.json", "examples/scenarios/paper_base.json"};
+    "examples/scenarios/paper_clock_error.json",     "examples/scenarios/paper_friction.json",
+    "examples/scenarios/paper_base.json"};
 
 void BM_DiagnoseRecordingFault(benchmark::State& state) {
   const std::string& file = kRecordingFaults.at(static_cast<std::size_t>(state.range(0)));
@@ -135,4 +136,4 @@ void BM_DiagnoseRecordingFault(benchmark::State& state) {
         if (p.name == name) state.counters[std::string(name) + "_sigma_from_truth"] = (p.value - truth) / p.std;
   }
 }
-BENCHMARK(BM_DiagnoseRecordingFault)->DenseRange(0, 5)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
+BENCHMARK(BM_DiagnoseRecordingFault)->DenseRange(0, 6)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);

@@ -1,11 +1,12 @@
 // The measurement artefacts of the simulator (docs/simulator.md, "Faults of
 // the measurement"): a sensor's gain error, its delay and a stated position
 // other than the true one, and a step recorded before it settled
-// (timing.early_records). Each is checked against the same scenario without
+// (timing.early_records), and the acquisition's clock error. Each is checked against the same scenario without
 // it, simulated noise-free: the artefact must change the recording exactly as
 // documented and nothing else, and truth.json must list it.
 #include <cmath>
 #include <complex>
+#include <cstdio>
 #include <filesystem>
 #include <numbers>
 #include <span>
@@ -306,6 +307,71 @@ TEST(SimulatorMeasurementArtefacts, AnEarlyRecordStartsItsFileSettleSecondsAfter
     EXPECT_EQ(a[i].recording, b[i].recording);
     EXPECT_EQ(a[i].settle_s, b[i].settle_s);
   }
+}
+
+// timing.daq_clock_error_relative: the acquisition samples at f_s·(1 + ε)
+// and its files say f_s, so every frequency the extraction reads from them is
+// the true one/(1 + ε); the amplitudes (m/s², not clock-based) are those of
+// the same beam without the fault, campaign.json states f_s, and truth.json
+// lists ε. ε = 0.5 %: a wrong 1 − ε (instead of 1/(1 + ε)) misses by ε² =
+// 2.5·10⁻⁵, far beyond the tolerance below (4σ of the frequency estimates,
+// ~2·10⁻⁷ relative).
+TEST(SimulatorMeasurementArtefacts, AFastAcquisitionClockReadsEveryFrequencyOneOverOnePlusEpsilonLow) {
+  constexpr double kClockError = 0.005;
+  // A little noise: the extraction looks for the steady state above a noise floor.
+  Json base = BaseScenario();
+  base["noise"]["default"] = {{"relative_rms", 1e-4}};
+  Json fast = base;
+  fast["timing"]["daq_clock_error_relative"] = kClockError;
+  const TempFolder plain_folder("beamid_daq_clock_plain"), fast_folder("beamid_daq_clock_fast");
+  const std::vector<SimulatedStep> plain =
+      beamid::testing::SimulateInto(ParseScenario(base.dump(), "plain.json"), plain_folder.path);
+  const std::vector<SimulatedStep> clocked =
+      beamid::testing::SimulateInto(ParseScenario(fast.dump(), "clock.json"), fast_folder.path);
+  const beamid::testing::ExtractedCampaign a = beamid::testing::ExtractFolder(plain_folder.path);
+  const beamid::testing::ExtractedCampaign b = beamid::testing::ExtractFolder(fast_folder.path);
+  ASSERT_EQ(a.phasors.steps.size(), 3u);
+  ASSERT_EQ(b.phasors.steps.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    SCOPED_TRACE("step " + std::to_string(i));
+    // The same beam driven at the same true frequency...
+    EXPECT_EQ(clocked[i].frequency_hz, plain[i].frequency_hz);
+    // ...sampled as many times per record, but faster.
+    EXPECT_EQ(clocked[i].recording.rows(), plain[i].recording.rows());
+    const double read = b.phasors.steps[i].frequency_hz, unfaulted = a.phasors.steps[i].frequency_hz;
+    std::printf("%.6f Hz read (± %.1e), %.6f Hz without the fault, ratio − 1/(1 + ε) = %.2e\n", read,
+                b.phasors.steps[i].frequency_std_hz, unfaulted, read / unfaulted - 1.0 / (1.0 + kClockError));
+    // To 4σ of the extraction's frequency estimates (~4·10⁻⁸ relative each).
+    const double sigma_read = b.phasors.steps[i].frequency_std_hz / read;
+    const double sigma_unfaulted = a.phasors.steps[i].frequency_std_hz / unfaulted;
+    ASSERT_GT(sigma_read, 0.0);
+    ASSERT_LT(sigma_read, 1e-6);
+    EXPECT_NEAR(read / unfaulted, 1.0 / (1.0 + kClockError), 4.0 * std::hypot(sigma_read, sigma_unfaulted));
+    EXPECT_NEAR(unfaulted / plain[i].frequency_hz, 1.0, 4.0 * sigma_unfaulted);
+    for (std::size_t c = 0; c < b.phasors.steps[i].responses.size(); ++c) {
+      SCOPED_TRACE(b.phasors.steps[i].responses[c].channel);
+      // What the extraction reads is the beam's true amplitude (a clock in
+      // it, through the ω² of an acceleration, would move it by 2ε = 10⁻²)...
+      const double read_amplitude = b.phasors.steps[i].responses[c].Harmonic(1).Amplitude();
+      const double true_amplitude = std::abs(clocked[i].channel_phasors[c + 1](1));
+      std::printf("  %s: read/true amplitude − 1 = %.2e, true with/without the fault − 1 = %.2e\n",
+                  b.phasors.steps[i].responses[c].channel.c_str(), read_amplitude / true_amplitude - 1.0,
+                  true_amplitude / std::abs(plain[i].channel_phasors[c + 1](1)) - 1.0);
+      EXPECT_NEAR(read_amplitude / true_amplitude, 1.0, 1e-5);
+      // ...and the beam's motion is the unfaulted one's, both settled to
+      // 10⁻⁵ between windows.
+      EXPECT_NEAR(true_amplitude / std::abs(plain[i].channel_phasors[c + 1](1)), 1.0, 1e-5);
+    }
+  }
+  // The files label the samples at the stated rate.
+  const auto columns = beamid::testing::ReadCsvColumns(fast_folder.path / clocked[1].file);
+  EXPECT_DOUBLE_EQ(columns.at(0).at(100), 100.0 / kSampleRate_Hz);
+  const Json campaign = beamid::testing::ReadJsonFile(fast_folder.path / "campaign.json");
+  EXPECT_EQ(campaign.at("sample_rate_Hz").get<double>(), kSampleRate_Hz);
+  EXPECT_EQ(campaign.dump().find("clock"), std::string::npos);
+  const Json truth = beamid::testing::ReadJsonFile(fast_folder.path / "truth.json");
+  EXPECT_EQ(truth.at("measurement_artefacts").at("daq_clock_error_relative").get<double>(), kClockError);
+  EXPECT_FALSE(beamid::testing::ReadJsonFile(plain_folder.path / "truth.json").contains("measurement_artefacts"));
 }
 
 }  // namespace

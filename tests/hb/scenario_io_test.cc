@@ -84,7 +84,8 @@ Scenario FilledVoltage() {
 }
 
 // Filled() with every measurement artefact: each sensor's gain error, delay
-// and stated position, and early records of both levels.
+// and stated position, early records of both levels, and the acquisition's
+// clock error.
 Scenario FilledArtefacts() {
   Scenario s = Filled();
   s.sensors[0].gain_error_relative = 0.05;
@@ -95,6 +96,7 @@ Scenario FilledArtefacts() {
   s.sensors[1].stated_position_m = 0.55;  // the beam's end: the test plan may say so
   s.timing.early_records = {{.level = "high_2", .frequency_hz = 50.3333333333333, .settle_s = 0.0125},
                             {.level = "low", .frequency_hz = 54.25, .settle_s = 0.3}};
+  s.timing.daq_clock_error_relative = 0.0035;
   return s;
 }
 
@@ -193,6 +195,7 @@ void ExpectSame(const Scenario& a, const Scenario& b) {
   EXPECT_EQ(a.timing.record_s, b.timing.record_s);
   EXPECT_EQ(a.timing.restart_each_level, b.timing.restart_each_level);
   EXPECT_EQ(a.timing.excitation_stop_fraction, b.timing.excitation_stop_fraction);
+  EXPECT_EQ(a.timing.daq_clock_error_relative, b.timing.daq_clock_error_relative);
   ASSERT_EQ(a.timing.early_records.size(), b.timing.early_records.size());
   for (std::size_t i = 0; i < a.timing.early_records.size(); ++i) {
     SCOPED_TRACE("early record " + std::to_string(i));
@@ -251,7 +254,8 @@ TEST(ScenarioFile, TheMeasurementArtefactsSurviveTheTextAndBack) {
   EXPECT_EQ(read.EarlyRecordOf("low", 54.25)->settle_s, 0.3);
   EXPECT_EQ(read.EarlyRecordOf("low", 55.5), nullptr);
   EXPECT_EQ(read.EarlyRecordOf("high_2", 54.25), nullptr);
-  for (const char* field : {"gain_error_relative", "delay_s", "stated_position_m", "early_records"}) {
+  for (const char* field :
+       {"gain_error_relative", "delay_s", "stated_position_m", "early_records", "daq_clock_error_relative"}) {
     EXPECT_THAT(text, HasSubstr(std::string("\"") + field + "\""));
     EXPECT_THAT(ScenarioToJson(Filled()), Not(HasSubstr(field)));
   }

@@ -157,6 +157,15 @@ TEST(ScenarioTest, RejectsMeasurementArtefactsOutsideTheirRanges) {
 
   // The level runs 51, 50.75, 50.5, 50.25, 50 Hz.
   const std::string levels = R"("direction": "down"}])";
+  auto with_clock = [&](const std::string& value) {
+    return With(levels, levels + R"(, "timing": {"daq_clock_error_relative": )" + value + "}");
+  };
+  ExpectRejected(with_clock("0.06"), "timing.daq_clock_error_relative must lie within ±0.05");
+  ExpectRejected(with_clock("-0.051"), "timing.daq_clock_error_relative must lie within ±0.05");
+  ExpectRejected(with_clock(R"("0.2 %")"), "timing.daq_clock_error_relative must be a finite number");
+  EXPECT_EQ(ParseScenario(with_clock("-0.003"), "my.json").timing.daq_clock_error_relative, -0.003);
+  EXPECT_EQ(ParseScenario(with_clock("0.05"), "my.json").timing.daq_clock_error_relative, 0.05);
+  EXPECT_EQ(ParseScenario(kMinimal, "my.json").timing.daq_clock_error_relative, 0.0);
   auto with_early = [&](const std::string& entry) {
     return With(levels, levels + R"(, "timing": {"early_records": [)" + entry + "]}");
   };

@@ -9,6 +9,9 @@
 // a check of the estimators against a known truth), with a standard
 // uncertainty that matches their scatter over noise draws (400 draws: the
 // sample spread is known to ±3.5 %, so the reported std must lie within 20 %).
+// The clock error scales every step's ω and nothing else, and
+// EstimateClockError recovers a known ε from phasors of the harmonic-balance
+// model evaluated at the scaled frequencies.
 #include "solver/diagnosis/measurement_artefacts.h"
 
 #include <algorithm>
@@ -16,12 +19,18 @@
 #include <complex>
 #include <cstdio>
 #include <numbers>
+#include <memory>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <Eigen/LU>
 #include <gtest/gtest.h>
 
+#include "solver/diagnosis/fitted_model.h"
+#include "solver/estimation/fit_problem.h"
+#include "solver/estimation/model_family.h"
+#include "solver/estimation/model_structure.h"
 #include "tests/support/synthetic_fit_data.h"
 
 namespace beamid::solver {
@@ -155,6 +164,101 @@ TEST(CorrectedData, AnOutlyingStepLosesItsWeightAndNothingElseChanges) {
   for (std::size_t c = 0; c < s.whitening.size(); ++c)
     for (std::size_t k = 0; k < s.whitening[c].size(); ++k)
       EXPECT_LT((t.whitening[c][k] - 1e-6 * s.whitening[c][k]).norm(), 1e-15 * s.whitening[c][k].norm()) << c << " " << k;
+}
+
+TEST(CorrectedData, AClockErrorScalesEveryStepsFrequencyAndNothingElse) {
+  FitData data = testing::SyntheticFitData();
+  std::mt19937 rng(4);
+  Scramble(data, rng);
+  for (double e : {0.004, -0.02}) {
+    const FitData corrected = CorrectedData(data, {.kind = ArtefactKind::kClockError, .value = e});
+    ASSERT_EQ(corrected.steps.size(), data.steps.size());
+    for (std::size_t i = 0; i < data.steps.size(); ++i) {
+      const FitStep& s = data.steps[i];
+      const FitStep& t = corrected.steps[i];
+      // The read ω is the true one/(1 + ε): the model's is the read one times 1 + ε.
+      EXPECT_EQ(t.omega_rad_s, s.omega_rad_s * (1.0 + e)) << i;
+      // Phasors in m/s² and their uncertainties do not depend on the time axis.
+      FitStep same_frequency = t;
+      same_frequency.omega_rad_s = s.omega_rad_s;
+      EXPECT_TRUE(SameSteps(same_frequency, s)) << i;
+      EXPECT_EQ(t.std_amplitude, s.std_amplitude);
+    }
+    for (std::size_t c = 0; c < data.channels.size(); ++c)
+      EXPECT_EQ(corrected.channels[c].position_m, data.channels[c].position_m);
+  }
+  EXPECT_EQ(ArtefactName(data, {.kind = ArtefactKind::kClockError, .value = 0.005}), "clock_error");
+}
+
+TEST(ClockErrorRigCheck, SaysHowFarTheFrequenciesReadOffInPercentAndPpm) {
+  const FitData data = testing::SyntheticFitData();
+  const std::string fast = ArtefactRigCheck(data, {.kind = ArtefactKind::kClockError, .value = 0.005});
+  // 1 − 1/1.005 = 0.4975 %.
+  EXPECT_NE(fast.find("the frequencies read 0.50 % low (the clock runs 5000 ppm fast)"), std::string::npos) << fast;
+  const std::string slow = ArtefactRigCheck(data, {.kind = ArtefactKind::kClockError, .value = -0.002});
+  EXPECT_NE(slow.find("0.20 % high (the clock runs 2000 ppm slow)"), std::string::npos) << slow;
+}
+
+// The stated frequencies against the read ones: a generator's ppm offset
+// is no clock error's evidence, a misread step does not move the median, and
+// without stated frequencies there is none.
+TEST(ClockErrorFromStatedFrequencies, IsTheMedianOffsetOfTheStatedFromTheReadFrequencies) {
+  FitData data = testing::SyntheticFitData();
+  EXPECT_EQ(ClockErrorFromStatedFrequencies(data), 0.0);
+  constexpr double kClock = 0.002;
+  for (FitStep& s : data.steps) s.nominal_frequency_hz = s.FrequencyHz() * (1.0 + kClock);
+  EXPECT_NEAR(ClockErrorFromStatedFrequencies(data), kClock, 1e-15);
+  data.steps[1].nominal_frequency_hz = 2.0 * data.steps[1].FrequencyHz();  // a misread step
+  EXPECT_NEAR(ClockErrorFromStatedFrequencies(data), kClock, 1e-15);
+  for (FitStep& s : data.steps) s.nominal_frequency_hz = s.FrequencyHz() * (1.0 - 25e-6);
+  EXPECT_NEAR(ClockErrorFromStatedFrequencies(data), -25e-6, 1e-12);
+}
+
+// ---------------------------------------------------------------------------
+// The clock error's estimate against a model evaluated at known scaled
+// frequencies: the paper's beam and support, harmonic balance.
+
+FittedModel ModelAt(const FitData& data, const ModelStructure& structure) {
+  const ModelFamily& family = HarmonicBalanceFamily();
+  const std::unique_ptr<FitProblem> problem = family.MakeProblem(data, structure, ModelOptions{.num_harmonics = 5});
+  const std::vector<double> values = structure.Values();
+  return FittedModel(data, family, structure, 5, values, problem->FeasiblePoint(values), values);
+}
+
+TEST(EstimateClockError, RecoversAKnownClockErrorFromAModelAtTheTrueFrequencies) {
+  ModelStructure structure = PolynomialModel({.k1_Nm_rad = 150.0, .k3_Nm_rad3 = 3e5, .c_Nms_rad = 0.05});
+  structure.linear.push_back(LossFactor(2e-4));
+  for (double e : {0.004, -0.003}) {
+    SCOPED_TRACE("clock error " + std::to_string(e));
+    FitData read = testing::SyntheticFitData();
+    // The recorded phasors are the beam's at the true frequencies, read (1 + ε) low.
+    const FitData at_truth = CorrectedData(read, {.kind = ArtefactKind::kClockError, .value = e});
+    const std::vector<Eigen::MatrixXcd> recorded = ModelAt(at_truth, structure).Phasors(at_truth);
+    for (std::size_t i = 0; i < read.steps.size(); ++i) read.steps[i].measured = recorded[i];
+    const FittedModel model = ModelAt(read, structure);
+    // Not trivially: at the read frequencies the model misses them by far more than σ.
+    const std::vector<Eigen::MatrixXcd> unscaled = model.Phasors(read);
+    double largest_miss = 0.0;
+    for (std::size_t i = 0; i < read.steps.size(); ++i)
+      largest_miss = std::max(largest_miss, (unscaled[i] - recorded[i]).cwiseAbs().maxCoeff());
+    EXPECT_GT(largest_miss, 100.0 * read.steps[0].std_amplitude(0, 0));
+
+    const ArtefactEstimate exact = EstimateClockError(read, model);
+    std::printf("noise-free: eps = %.9f ± %.2g (truth %.4f)\n", exact.value, exact.std, e);
+    EXPECT_GT(exact.std, 0.0);
+    EXPECT_NEAR(exact.value, e, 1e-6 * std::abs(e));
+
+    // With noise of the whitening's σ the truth lies within 3σ of the estimate.
+    std::mt19937 rng(11);
+    std::normal_distribution<double> normal;
+    for (auto& s : read.steps)
+      for (Eigen::Index j = 0; j < s.measured.size(); ++j)
+        s.measured(j) += s.std_amplitude(j) * Complex(normal(rng), normal(rng));
+    const ArtefactEstimate noisy = EstimateClockError(read, model);
+    std::printf("noisy: eps = %.9f ± %.2g\n", noisy.value, noisy.std);
+    EXPECT_LT(std::abs(noisy.value - e), 3.0 * noisy.std);
+    EXPECT_LT(noisy.std, 0.05 * std::abs(e));
+  }
 }
 
 // ---------------------------------------------------------------------------
