@@ -128,7 +128,7 @@ void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& glo
   solver::FitData fit_with_loss = robust.data;
   fit_with_loss.beam.loss_factor = options.beam_loss_factor;
   solver::ResultFile result_file = solver::MakeResultFile(
-      fit_with_loss, validation, *problem, result,
+      fit_with_loss, solver::WithoutLeftOutSteps(validation, robust), *problem, result,
       {.campaign_folder = options.campaign_folder,
        .campaign_name = campaign.name,
        // `beamid report` finds the campaign from anywhere on this machine.

@@ -75,6 +75,13 @@ FitData WithoutSteps(const FitData& data, const std::vector<int>& steps) {
   return out;
 }
 
+FitData WithoutLeftOutSteps(const FitData& held_out, const RobustFitResult& robust) {
+  if (!robust.applied || held_out.steps.empty()) return held_out;
+  std::vector<int> steps;
+  for (const OutlyingStep& o : robust.outliers) steps.push_back(o.step);
+  return WithoutSteps(held_out, steps);
+}
+
 RobustFitResult RobustRefit(const FitData& data, const ModelStructure& structure, const IdentifyResult& ordinary,
                             const IdentifyOptions& options, const RobustFitOptions& robust) {
   robust.Validate();

@@ -67,5 +67,9 @@ RobustFitResult RobustRefit(const FitData& data, const ModelStructure& structure
 
 // data without the steps listed (their indices in data).
 FitData WithoutSteps(const FitData& data, const std::vector<int>& steps);
+// Held-out channels of the same campaign (steps in the same order as the
+// fit's) without the steps the robust fit left out: those records are the
+// faulty ones, and the robust fit's model holds no state there.
+FitData WithoutLeftOutSteps(const FitData& held_out, const RobustFitResult& robust);
 
 }  // namespace beamid::solver

@@ -147,6 +147,23 @@ TEST(WithoutSteps, KeepsTheOtherStepsInOrderAndEverythingElse) {
   EXPECT_EQ(WithoutSteps(data, {}).steps.size(), 6u);
 }
 
+// identify --validate predicts the held-out channels with the robust fit's
+// model, which holds no state at a left-out step (it crashed on the step
+// count before): the held-out data lose the same steps, and only when the
+// robust fit was applied.
+TEST(WithoutLeftOutSteps, TheHeldOutChannelsLoseTheStepsTheRobustFitLeftOut) {
+  const FitData held_out = HandMadeData(5);
+  RobustFitResult robust;
+  robust.outliers = {OutlyingStep{.step = 3}, OutlyingStep{.step = 0}};
+  EXPECT_EQ(WithoutLeftOutSteps(held_out, robust).steps.size(), 5u);  // found, not applied: all kept
+  robust.applied = true;
+  const FitData out = WithoutLeftOutSteps(held_out, robust);
+  ASSERT_EQ(out.steps.size(), 3u);
+  const std::vector<std::string> files{"step1.csv", "step2.csv", "step4.csv"};
+  for (std::size_t i = 0; i < files.size(); ++i) EXPECT_EQ(out.steps[i].file, files[i]);
+  EXPECT_TRUE(WithoutLeftOutSteps(FitData{}, robust).steps.empty());
+}
+
 // ---------------------------------------------------------------------------
 // RobustRefit on a simulated campaign: the paper's set-up, base physics,
 // 1 N and 9 N, nine steps each over the resonance, 0.4 s records.
