@@ -5,6 +5,7 @@
 #include <cmath>
 #include <thread>
 
+#include <Eigen/Geometry>
 #include <fmt/format.h>
 
 #include "solver/diagnosis/diagnosis_io.h"
@@ -33,12 +34,6 @@ constexpr double kConvergedRelative = 1e-3;
 // and its further rounds (a physics refit each) would cost the diagnosis
 // seconds on every campaign whose misfit is physics.
 constexpr double kUnpromisingShare = 0.9;
-
-Eigen::Matrix2d Rotation(double angle_rad) {
-  Eigen::Matrix2d r;
-  r << std::cos(angle_rad), -std::sin(angle_rad), std::sin(angle_rad), std::cos(angle_rad);
-  return r;
-}
 
 Eigen::Vector2d Whitened(const FitStep& s, int c, int k, Complex value) {
   return s.whitening[c][k - 1] * Eigen::Vector2d(value.real(), value.imag());
@@ -144,7 +139,7 @@ FitData CorrectedData(const FitData& fit, const MeasurementArtefact& a) {
           const double angle = k * s.omega_rad_s * a.value;
           s.measured(a.channel, k - 1) *= std::polar(1.0, angle);
           auto& w = s.whitening[static_cast<std::size_t>(a.channel)][static_cast<std::size_t>(k - 1)];
-          w = w * Rotation(-angle);
+          w = w * Eigen::Rotation2Dd(-angle).toRotationMatrix();
         }
       break;
     case ArtefactKind::kSensorPosition:
