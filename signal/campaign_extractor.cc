@@ -42,8 +42,13 @@ StepPhasors ExtractStep(const Campaign& campaign, const Step& step, const Extrac
     (finding.severity == Severity::kWarning ? phasors.quality.warnings : phasors.quality.notes)
         .push_back(finding.Text(campaign.Use(finding.channel)));
   if (!recording.ignored_columns.empty()) {
+    // A few names say what the columns are; a header of thousands stays one line.
+    constexpr std::size_t kMaxNamed = 8;
+    const auto& ignored = recording.ignored_columns;
     std::string columns;
-    for (const auto& c : recording.ignored_columns) columns += (columns.empty() ? "" : ", ") + c;
+    for (std::size_t i = 0; i < ignored.size() && i < kMaxNamed; ++i)
+      columns += (columns.empty() ? "" : ", ") + ignored[i];
+    if (ignored.size() > kMaxNamed) columns += " and " + std::to_string(ignored.size() - kMaxNamed) + " more";
     phasors.quality.warnings.push_back("columns no channel uses, ignored: " + columns);
   }
   return phasors;

@@ -84,8 +84,16 @@ void PhasorEstimatorOptions::Validate() const {
 StepPhasors EstimateStepPhasors(const Recording& recording, const Campaign& campaign, const Step& step,
                                 const PhasorEstimatorOptions& options) {
   options.Validate();
-  const auto specs = campaign.Channels();
-  if (recording.channels.size() != specs.size() || recording.channels.front() != campaign.excitation.channel)
+  // The recording's channels in its column order: campaign.json's, less
+  // those of no use to the analysis that its file could not give
+  // (signal/recording.h).
+  std::vector<const ChannelSpec*> specs;
+  for (const std::string& name : recording.channels)
+    for (const ChannelSpec* spec : campaign.Channels())
+      if (spec->channel == name) specs.push_back(spec);
+  if (specs.size() != recording.channels.size() || specs.empty() ||
+      recording.channels.front() != campaign.excitation.channel ||
+      recording.samples.cols() != static_cast<Eigen::Index>(specs.size()))
     throw std::invalid_argument(recording.file + ": the recording's channels do not follow campaign.json's");
   const double fs = recording.sample_rate_hz;
   const std::string& force_name = campaign.excitation.channel;

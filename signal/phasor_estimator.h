@@ -53,7 +53,9 @@ struct PhasorEstimatorOptions {
   void Validate() const;
 };
 
-// Recording columns in Campaign::Channels() order (as ReadRecording returns).
+// Recording columns in Campaign::Channels() order (as ReadRecording returns),
+// possibly less channels the analysis does not use that their file could
+// not give: the step's responses are then those it holds.
 // Throws InputError for records that cannot represent the step (no steady
 // state, no excitation at the nominal frequency), std::runtime_error when the
 // frequency iteration fails.

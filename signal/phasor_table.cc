@@ -13,6 +13,7 @@
 
 #include "hb/text_file.h"
 #include "signal/input_error.h"
+#include "signal/internal/text.h"
 #include "signal/table_reader.h"
 
 namespace beamid::signal {
@@ -173,7 +174,10 @@ class TableParser {
     for (Role role : {Role::kFrequency, Role::kForce, Role::kResponse, Role::kPhase}) {
       if (Main(role) != nullptr) continue;
       std::string found;
-      for (const auto& cell : cells) found += (found.empty() ? "'" : ", '") + cell.text + "'";
+      // A few cells, printable: a table's header may be anything.
+      for (std::size_t i = 0; i < cells.size() && i < 12; ++i)
+        found += (found.empty() ? "'" : ", '") + internal::Excerpt(cells[i].text) + "'";
+      if (cells.size() > 12) found += " and " + std::to_string(cells.size() - 12) + " more";
       Fail(std::string(RoleName(role)), "missing (the header has " + found + ")",
            "name the columns frequency_Hz, force_N, one of acceleration_m_s2 / velocity_m_s / "
            "displacement_m (or response [unit]), and phase_rad or phase_deg (docs/phasor-table.md)");

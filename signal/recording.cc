@@ -5,18 +5,29 @@
 #include <cmath>
 #include <cctype>
 #include <fstream>
+#include <optional>
+#include <utility>
 
 #include "hb/text_file.h"
 #include "signal/input_error.h"
+#include "signal/internal/channel_defects.h"
+#include "signal/internal/text.h"
+#include "signal/quality_finding.h"
 #include "signal/table_reader.h"
 #include "signal/uff_recording.h"
 
 namespace beamid::signal {
 namespace {
 
+using internal::ChannelDefects;
+using internal::Excerpt;
+using internal::IsValidUtf8;
+
 constexpr int kTimeColumn = -1;
 constexpr int kIgnoredColumn = -2;
 constexpr double kLargestPlausibleValue = 1e15;
+// Unused columns named in a message: the first few say what they are.
+constexpr std::size_t kMaxColumnsNamed = 8;
 
 std::string LowerCase(std::string_view text) {
   std::string out(text);
@@ -26,11 +37,11 @@ std::string LowerCase(std::string_view text) {
 
 // What the header says of each CSV column.
 struct HeaderMap {
-  std::vector<int> columns;          // Recording column, kTimeColumn or kIgnoredColumn per cell
+  std::vector<int> columns;          // channel index, kTimeColumn or kIgnoredColumn per cell
   std::vector<std::string> names;    // per cell, for messages: the channel (or the time column's header)
   int time_cell = -1;
   double time_to_s = 1.0;            // 1e-3 for a time column in ms
-  std::vector<std::string> ignored;  // header cells no channel uses
+  std::vector<std::string> ignored;  // header cells no channel uses (printable excerpts)
 };
 
 // A header cell naming the time: "time_s", "t_ms", "time [ms]", "Time (s)";
@@ -53,80 +64,108 @@ double TimeUnitFactor(const HeaderCell& cell, const std::string& source) {
   const auto normalised = NormaliseUnit(unit);
   if (normalised == "s") return 1.0;
   if (normalised == "ms") return 1e-3;
-  throw InputError(source, cell.text, "the time column's unit '" + unit + "' is not a time unit",
+  throw InputError(source, Excerpt(cell.text), "the time column's unit '" + Excerpt(unit) + "' is not a time unit",
                    "give the time in s or ms: time_s, time [ms]");
 }
 
+// The channel a header cell names, and the unit it writes: the whole cell
+// ("acc1_g" is the channel acc1_g when there is one), else its name before a
+// bracketed unit ("acc1 [g]"), else a channel's name and a unit suffix
+// ("acc1_g" for acc1). A name is matched whole, never as a prefix, so sensors
+// acc1 and acc1_g are told apart in any order.
+std::optional<std::pair<std::size_t, std::string>> ChannelOfCell(const HeaderCell& cell,
+                                                                 const std::vector<const ChannelSpec*>& channels) {
+  for (std::size_t c = 0; c < channels.size(); ++c)
+    if (cell.text == channels[c]->channel) return std::pair{c, std::string()};
+  if (!cell.unit.empty())
+    for (std::size_t c = 0; c < channels.size(); ++c)
+      if (cell.name == channels[c]->channel) return std::pair{c, cell.unit};
+  std::optional<std::pair<std::size_t, std::string>> suffixed;
+  for (std::size_t c = 0; c < channels.size(); ++c)
+    if (const auto suffix = SplitUnitSuffix(cell.text, channels[c]->channel);
+        suffix && (!suffixed || channels[c]->channel.size() > channels[suffixed->first]->channel.size()))
+      suffixed = std::pair{c, *suffix};
+  return suffixed;
+}
+
+// The unit a header writes for a channel, against campaign.json's: "" when
+// they agree, else the problem.
+std::string UnitProblem(const ChannelSpec& spec, const std::string& unit) {
+  if (!IsValidUtf8(unit))
+    return "the header gives the unit '" + Excerpt(unit) + "', which is not UTF-8 text (campaign.json declares '" +
+           spec.unit + "')";
+  const auto normalised = NormaliseUnit(unit);
+  if (!normalised || !UnitToSiFactor(spec.quantity, *normalised))
+    return "the header gives the unit '" + Excerpt(unit) + "', which is not a unit of " +
+           std::string(QuantityName(spec.quantity)) + " (campaign.json declares '" + spec.unit + "')";
+  if (*normalised != spec.unit)
+    return "the header gives the unit '" + Excerpt(unit) + "' but campaign.json declares '" + spec.unit +
+           "' for this channel";
+  return "";
+}
+
+std::string ListColumns(const std::vector<std::string>& columns) {
+  std::string list;
+  for (std::size_t i = 0; i < columns.size() && i < kMaxColumnsNamed; ++i)
+    list += (list.empty() ? "'" : ", '") + columns[i] + "'";
+  if (columns.size() > kMaxColumnsNamed) list += " and " + std::to_string(columns.size() - kMaxColumnsNamed) + " more";
+  return list;
+}
+
 HeaderMap MapHeader(const TableReader& table, const std::vector<const ChannelSpec*>& channels,
-                    const std::string& source) {
+                    const std::string& source, ChannelDefects& defects) {
   HeaderMap map;
   std::vector<bool> seen(channels.size(), false);
   for (const HeaderCell& cell : table.Header()) {
     int column = kIgnoredColumn;
-    std::string unit;
-    std::string name = cell.text;
-    for (std::size_t c = 0; c < channels.size() && column == kIgnoredColumn; ++c) {
-      const std::string& channel = channels[c]->channel;
-      if (cell.text == channel) {
-        column = static_cast<int>(c);
-      } else if (!cell.unit.empty() && cell.name == channel) {
-        column = static_cast<int>(c);
-        unit = cell.unit;
-      } else if (const auto suffix = SplitUnitSuffix(cell.text, channel)) {
-        column = static_cast<int>(c);
-        unit = *suffix;
-      }
-    }
-    if (column >= 0) {
-      const ChannelSpec& spec = *channels[static_cast<std::size_t>(column)];
+    std::string name = Excerpt(cell.text);
+    if (const auto match = ChannelOfCell(cell, channels)) {
+      const auto& [c, unit] = *match;
+      const ChannelSpec& spec = *channels[c];
       name = spec.channel;
-      if (seen[static_cast<std::size_t>(column)])
-        throw InputError(source, name, "the header names the channel twice", "keep one column per channel");
-      seen[static_cast<std::size_t>(column)] = true;
-      if (!unit.empty()) {
-        const auto normalised = NormaliseUnit(unit);
-        if (!normalised || !UnitToSiFactor(spec.quantity, *normalised))
-          throw InputError(source, name,
-                           "the header gives the unit '" + unit + "', which is not a unit of " +
-                               std::string(QuantityName(spec.quantity)) + " (campaign.json declares '" + spec.unit +
-                               "')",
-                           "write the unit campaign.json declares, '" + spec.unit + "', or none in the header");
-        if (*normalised != spec.unit)
-          throw InputError(source, name,
-                           "the header gives the unit '" + unit + "' but campaign.json declares '" + spec.unit +
-                               "' for this channel",
-                           "make them agree: correct the channel's \"unit\" in campaign.json, or export the "
-                           "channel in " + spec.unit);
+      if (seen[c]) {
+        defects.Report(c, "the header names the channel twice", "keep one column per channel");
+      } else if (const std::string problem = unit.empty() ? "" : UnitProblem(spec, unit); !problem.empty()) {
+        defects.Report(c, problem,
+                       "make them agree: correct the channel's \"unit\" in campaign.json, or export the channel in " +
+                           spec.unit + " (its header may say " + spec.channel + " [" + spec.unit + "] or nothing)");
+      } else {
+        column = static_cast<int>(c);
       }
+      seen[c] = true;
     } else if (const double factor = TimeUnitFactor(cell, source); factor > 0.0) {
       if (map.time_cell >= 0)
-        throw InputError(source, cell.text,
+        throw InputError(source, name,
                          "the header has two time columns ('" + map.names[static_cast<std::size_t>(map.time_cell)] +
-                             "' and '" + cell.text + "')",
+                             "' and '" + name + "')",
                          "keep one time column");
       map.time_cell = static_cast<int>(map.columns.size());
       map.time_to_s = factor;
       column = kTimeColumn;
     } else if (!cell.text.empty()) {
-      map.ignored.push_back(cell.text);
+      map.ignored.push_back(name);
+      // Its name would reach the step's warnings, and from there JSON files.
+      if (!IsValidUtf8(cell.text))
+        defects.Note("column " + std::to_string(map.columns.size() + 1) + "'s header '" + name +
+                         "' is not UTF-8 text; no channel uses the column, so it is ignored",
+                     "save the file as UTF-8 if a channel should read this column");
     }
     map.columns.push_back(column);
-    map.names.push_back(name);
+    map.names.push_back(std::move(name));
   }
   for (std::size_t c = 0; c < channels.size(); ++c) {
     if (seen[c]) continue;
-    std::string unused;
-    for (const auto& ignored : map.ignored) unused += (unused.empty() ? "'" : ", '") + ignored + "'";
     // One header cell for several channels: the separator is none of ours.
     const std::string single = table.Header().size() == 1 && channels.size() > 1
                                    ? "; the header is a single column, so " + table.Format().Describe() +
                                          " but the header may use another separator"
                                    : "";
-    throw InputError(source, channels[c]->channel,
-                     "the channel of campaign.json is missing from the header" +
-                         (unused.empty() ? std::string() : " (columns no channel uses: " + unused + single + ")"),
-                     "export this channel into the recording or correct its name in campaign.json (a header may "
-                     "add a unit: " + channels[c]->channel + " [" + channels[c]->unit + "])");
+    defects.Report(c,
+                   "the channel of campaign.json is missing from the header" +
+                       (map.ignored.empty() ? std::string()
+                                            : " (columns no channel uses: " + ListColumns(map.ignored) + single + ")"),
+                   "export this channel into the recording or correct its name in campaign.json (a header may "
+                   "add a unit: " + channels[c]->channel + " [" + channels[c]->unit + "])");
   }
   return map;
 }
@@ -165,7 +204,8 @@ Recording ParseRecording(std::string_view csv_text, const Campaign& campaign, co
   const auto channels = campaign.Channels();
   TableReader table(csv_text, source, {.blank_lines_inside = false});
   if (!table.HasHeader()) throw InputError(source, "", "the file is empty", "export the recording again");
-  const HeaderMap map = MapHeader(table, channels, source);
+  ChannelDefects defects(campaign, channels, source);
+  const HeaderMap map = MapHeader(table, channels, source, defects);
   const bool has_time = map.time_cell >= 0;
   if (!has_time && !campaign.sample_rate_hz)
     throw InputError(source, "",
@@ -175,15 +215,22 @@ Recording ParseRecording(std::string_view csv_text, const Campaign& campaign, co
                      "campaign.json");
   const std::size_t num_cells = map.columns.size();
 
-  const auto max_rows = static_cast<Eigen::Index>(std::count(csv_text.begin(), csv_text.end(), '\n') + 1);
-  Eigen::MatrixXd samples(max_rows, static_cast<Eigen::Index>(channels.size()));
+  // The rows counted before anything is reserved: a file of blank lines or
+  // comments reserves nothing, and one without two rows stops here.
+  const std::size_t max_rows = table.CountRows();
+  if (max_rows < 2)
+    throw InputError(source, has_time ? map.names[static_cast<std::size_t>(map.time_cell)] : "",
+                     "fewer than two samples (" + std::to_string(max_rows) + " data rows after the header on line " +
+                         std::to_string(table.HeaderLine()) + ")",
+                     "record the whole step");
+  Eigen::MatrixXd samples(static_cast<Eigen::Index>(max_rows), static_cast<Eigen::Index>(channels.size()));
   std::vector<double> time_s;
   std::vector<int> lines;
   std::vector<PrintedPrecision> time_precision;
   if (has_time) {
-    time_s.reserve(static_cast<std::size_t>(max_rows));
-    lines.reserve(static_cast<std::size_t>(max_rows));
-    time_precision.reserve(static_cast<std::size_t>(max_rows));
+    time_s.reserve(max_rows);
+    lines.reserve(max_rows);
+    time_precision.reserve(max_rows);
   }
   Eigen::Index rows = 0;
   while (table.NextRow()) {
@@ -199,25 +246,35 @@ Recording ParseRecording(std::string_view csv_text, const Campaign& campaign, co
     }
     for (std::size_t field = 0; field < num_cells; ++field) {
       const int column = map.columns[field];
-      if (column == kIgnoredColumn) continue;
+      if (column == kIgnoredColumn || (column >= 0 && defects.Dropped(static_cast<std::size_t>(column)))) continue;
+      // A time column's problem is the whole record's; a channel's is graded.
+      const auto refuse = [&](const std::string& problem, const std::string& fix) {
+        if (column == kTimeColumn) throw InputError(source, map.names[field], problem, fix);
+        defects.Report(static_cast<std::size_t>(column), problem, fix);
+      };
       const std::string& channel_name = map.names[field];
       double value = 0.0;
       PrintedPrecision precision;
-      if (!table.Number(field, value, column == kTimeColumn ? &precision : nullptr))
-        throw InputError(source, channel_name, table.NotANumber(field, channel_name),
-                         table.Format().decimal_mark == ','
-                             ? "write plain decimal numbers with ',' as the decimal mark throughout the file"
-                             : "write plain decimal numbers with '.' as the decimal mark");
-      if (!std::isfinite(value))
-        throw InputError(source, channel_name, "NaN or infinite value at line " + std::to_string(line_number),
-                         "remove or repair the invalid samples (a NaN is no measurement)");
+      if (!table.Number(field, value, column == kTimeColumn ? &precision : nullptr)) {
+        refuse(table.NotANumber(field, channel_name),
+               table.Format().decimal_mark == ','
+                   ? "write plain decimal numbers with ',' as the decimal mark throughout the file"
+                   : "write plain decimal numbers with '.' as the decimal mark");
+        continue;
+      }
+      if (!std::isfinite(value)) {
+        refuse("NaN or infinite value at line " + std::to_string(line_number),
+               "remove or repair the invalid samples (a NaN is no measurement)");
+        continue;
+      }
       // No acquisition system writes 1e15 in any unit; such a value is a
       // corrupted sample, and 1e308 would overflow every sum of squares.
-      if (std::abs(value) > kLargestPlausibleValue)
-        throw InputError(source, channel_name,
-                         "value " + std::string(table.CellText(field)) + " at line " + std::to_string(line_number) +
-                             " is beyond any measurement (|value| > 1e15)",
-                         "remove or repair the corrupted sample");
+      if (std::abs(value) > kLargestPlausibleValue) {
+        refuse("value " + Excerpt(table.CellText(field)) + " at line " + std::to_string(line_number) +
+                   " is beyond any measurement (|value| > 1e15)",
+               "remove or repair the corrupted sample");
+        continue;
+      }
       if (column == kTimeColumn) {
         time_s.push_back(map.time_to_s == 1.0 ? value : value / 1000.0);
         lines.push_back(line_number);
@@ -233,7 +290,14 @@ Recording ParseRecording(std::string_view csv_text, const Campaign& campaign, co
   Recording recording;
   recording.file = source;
   recording.ignored_columns = map.ignored;
-  for (const auto* channel : channels) recording.channels.push_back(channel->channel);
+  std::vector<Eigen::Index> kept;
+  for (std::size_t c = 0; c < channels.size(); ++c) {
+    if (defects.Dropped(c)) continue;
+    kept.push_back(static_cast<Eigen::Index>(c));
+    recording.channels.push_back(channels[c]->channel);
+    if (channels[c]->to_si_factor != 1.0) samples.col(static_cast<Eigen::Index>(c)) *= channels[c]->to_si_factor;
+  }
+  if (defects.Any()) samples = Eigen::MatrixXd(samples(Eigen::all, kept));
   if (has_time) {
     PrintedTime printed;
     printed.column = map.names[static_cast<std::size_t>(map.time_cell)];
@@ -248,11 +312,11 @@ Recording ParseRecording(std::string_view csv_text, const Campaign& campaign, co
     recording.sample_rate_hz = *campaign.sample_rate_hz;
     recording.start_time_s = 0.0;
   }
-  for (std::size_t c = 0; c < channels.size(); ++c)
-    if (channels[c]->to_si_factor != 1.0) samples.col(static_cast<Eigen::Index>(c)) *= channels[c]->to_si_factor;
-  recording.findings = GradeFindings(CheckChannels(samples, recording.channels, recording.sample_rate_hz,
-                                                  recording.start_time_s, step.frequency_hz, source, checks),
-                                    campaign, source);
+  std::vector<QualityFinding> findings = std::move(defects.Findings());
+  for (auto& finding : CheckChannels(samples, recording.channels, recording.sample_rate_hz, recording.start_time_s,
+                                     step.frequency_hz, source, checks))
+    findings.push_back(std::move(finding));
+  recording.findings = GradeFindings(std::move(findings), campaign, source);
   recording.samples = std::move(samples);
   return recording;
 }

@@ -15,7 +15,13 @@
 // is an InputError naming the file, the channel and the line; the channels'
 // problems are graded by the channel's use (Campaign::Use): the errors are
 // thrown together in one InputError, warnings and notes are kept in
-// Recording::findings.
+// Recording::findings. That holds for reading too: a channel the analysis
+// does not use (not analysed, or in ignore_channels) whose column is missing,
+// names another unit than campaign.json, or holds a NaN, a value that is no
+// number or one beyond any measurement, is left out of the recording with a
+// finding, where a used channel's would stop the step.
+// Memory: the file's text, and the samples of the rows counted before they
+// are reserved (blank and comment lines reserve nothing).
 #pragma once
 
 #include <filesystem>
@@ -32,11 +38,14 @@ namespace beamid::signal {
 
 struct Recording {
   std::string file;                   // where it came from, for messages
-  std::vector<std::string> channels;  // force first, then sensors
+  // Force first, then sensors: Campaign::Channels() less those left out (see above).
+  std::vector<std::string> channels;
   double sample_rate_hz = 0.0;
   double start_time_s = 0.0;          // time_s of the first sample (0 without a time column)
   Eigen::MatrixXd samples;            // SI; rows = samples, one column per channel
-  std::vector<std::string> ignored_columns;  // header cells no channel uses, for the caller to mention
+  // Header cells no channel uses, for the caller to mention: printable
+  // excerpts, valid UTF-8 whatever the file holds (signal/internal/text.h).
+  std::vector<std::string> ignored_columns;
   // Graded problems of channels not analysed or ignored (errors throw).
   std::vector<QualityFinding> findings;
 

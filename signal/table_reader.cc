@@ -7,9 +7,19 @@
 #include <cstring>
 
 #include "signal/input_error.h"
+#include "signal/internal/text.h"
 
 namespace beamid::signal {
 namespace {
+
+using internal::Excerpt;
+
+// A header longer than this, or with more columns, is no acquisition
+// system's: a file without line ends (one line of every value), a binary
+// file or a damaged one. Refusing it before its cells are copied keeps the
+// memory to the file's own.
+constexpr std::size_t kMaxHeaderBytes = std::size_t{1} << 20;
+constexpr std::size_t kMaxColumns = 10000;
 
 bool IsBlank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
 
@@ -27,11 +37,17 @@ std::string_view Unquote(std::string_view s) {
   return s;
 }
 
+// A line ends at LF, CRLF or a CR alone (the "CSV (Macintosh)" export of
+// spreadsheets): a file of CR line ends is otherwise one line of every value.
 std::string_view NextLine(std::string_view& text) {
-  const std::size_t end = text.find('\n');
-  std::string_view line = text.substr(0, end);
-  text.remove_prefix(end == std::string_view::npos ? text.size() : end + 1);
-  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  const std::size_t end = text.find_first_of("\r\n");
+  if (end == std::string_view::npos) {
+    const std::string_view line = text;
+    text = {};
+    return line;
+  }
+  const std::string_view line = text.substr(0, end);
+  text.remove_prefix(end + (text[end] == '\r' && end + 1 < text.size() && text[end + 1] == '\n' ? 2 : 1));
   return line;
 }
 
@@ -90,6 +106,18 @@ std::optional<std::string> SplitUnitSuffix(std::string_view text, std::string_vi
 
 TableReader::TableReader(std::string_view text, std::string source, Options options)
     : text_(text), source_(std::move(source)), options_(options) {
+  if (text_.starts_with("\xFF\xFE") || text_.starts_with("\xFE\xFF"))
+    throw InputError(source_, "", "the file is UTF-16 text (it begins with a UTF-16 byte order mark)",
+                     "save or export it as UTF-8 (or ASCII) text");
+  if (const void* nul = std::memchr(text_.data(), '\0', text_.size())) {
+    const auto at = static_cast<std::size_t>(static_cast<const char*>(nul) - text_.data());
+    const auto line = std::count(text_.begin(), text_.begin() + static_cast<std::ptrdiff_t>(at), '\n') + 1;
+    throw InputError(source_, "",
+                     "byte " + std::to_string(at + 1) + " (line " + std::to_string(line) +
+                         ") is a NUL: the file is binary or UTF-16, not a text table",
+                     "give the table as exported text, in UTF-8 or ASCII (a file of NUL bytes is an unfinished "
+                     "copy or a damaged disk)");
+  }
   if (text_.size() >= 3 && std::memcmp(text_.data(), "\xEF\xBB\xBF", 3) == 0) text_.remove_prefix(3);
   std::string_view header;
   while (!text_.empty()) {
@@ -103,9 +131,20 @@ TableReader::TableReader(std::string_view text, std::string source, Options opti
   }
   if (!has_header_) return;
   header_line_ = line_;
+  if (header.size() > kMaxHeaderBytes)
+    throw InputError(source_, "",
+                     "the header (line " + std::to_string(line_) + ") is " + std::to_string(header.size()) +
+                         " bytes long, beyond any table's header; it begins '" + Excerpt(header) + "'",
+                     "give a table whose first line names the columns and whose lines end with LF, CRLF or CR");
   format_.separator = header.find(';') != std::string_view::npos    ? ';'
                       : header.find('\t') != std::string_view::npos ? '\t'
                                                                     : ',';
+  if (const auto columns = static_cast<std::size_t>(std::count(header.begin(), header.end(), format_.separator)) + 1;
+      columns > kMaxColumns)
+    throw InputError(source_, "",
+                     "the header (line " + std::to_string(line_) + ") has " + std::to_string(columns) +
+                         " columns, more than the " + std::to_string(kMaxColumns) + " a table may have",
+                     "give a table whose first line names the columns and whose lines end with LF, CRLF or CR");
   std::vector<std::string_view> cells;
   SplitCells(header, cells);
   for (const std::string_view cell : cells) {
@@ -123,6 +162,15 @@ TableReader::TableReader(std::string_view text, std::string source, Options opti
     header_.push_back(std::move(h));
   }
   DetectDecimalMark(text_);
+}
+
+std::size_t TableReader::CountRows() const {
+  std::size_t rows = 0;
+  for (std::string_view rest = text_; !rest.empty();) {
+    const std::string_view trimmed = Trim(NextLine(rest));
+    if (!trimmed.empty() && !IsComment(trimmed)) ++rows;
+  }
+  return rows;
 }
 
 void TableReader::DetectDecimalMark(std::string_view rest) {
@@ -176,19 +224,32 @@ bool TableReader::NextRow() {
 
 std::string_view TableReader::CellText(std::size_t cell) const { return Unquote(cells_.at(cell)); }
 
-bool TableReader::Number(std::size_t cell, double& value, PrintedPrecision* precision) const {
-  std::string_view token = Unquote(cells_[cell]);
+namespace {
+
+// The cell as a number: std::errc() when it is one, result_out_of_range when
+// it is one beyond a double's range ("1e400"), invalid_argument else.
+// `token` is left as parsed ('+' removed, a decimal comma made a point, in
+// `buffer`).
+std::errc ParseNumber(std::string_view& token, char decimal_mark, char (&buffer)[64], double& value) {
   if (!token.empty() && token.front() == '+') token.remove_prefix(1);
-  if (token.empty()) return false;
-  char buffer[64];
-  if (format_.decimal_mark == ',') {
-    if (token.size() >= sizeof buffer || token.find('.') != std::string_view::npos) return false;
+  if (token.empty()) return std::errc::invalid_argument;
+  if (decimal_mark == ',') {
+    if (token.size() >= sizeof buffer || token.find('.') != std::string_view::npos) return std::errc::invalid_argument;
     std::memcpy(buffer, token.data(), token.size());
     std::replace(buffer, buffer + token.size(), ',', '.');
     token = std::string_view(buffer, token.size());
   }
   const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
-  if (error != std::errc() || end != token.data() + token.size()) return false;
+  if (end != token.data() + token.size()) return std::errc::invalid_argument;
+  return error;
+}
+
+}  // namespace
+
+bool TableReader::Number(std::size_t cell, double& value, PrintedPrecision* precision) const {
+  std::string_view token = Unquote(cells_[cell]);
+  char buffer[64];
+  if (ParseNumber(token, format_.decimal_mark, buffer, value) != std::errc()) return false;
   if (precision != nullptr) {
     int after = 0, significant = 0, exponent = 0;
     bool in_fraction = false, leading = true;
@@ -214,8 +275,15 @@ bool TableReader::Number(std::size_t cell, double& value, PrintedPrecision* prec
 }
 
 std::string TableReader::NotANumber(std::size_t cell, std::string_view column) const {
-  return format_.Describe() + ": line " + std::to_string(line_) + ", column " + std::string(column) + ": '" +
-         std::string(CellText(cell)) + "' is not a number";
+  std::string_view token = CellText(cell);
+  char buffer[64];
+  double value = 0.0;
+  const bool out_of_range =
+      ParseNumber(token, format_.decimal_mark, buffer, value) == std::errc::result_out_of_range;
+  return format_.Describe() + ": line " + std::to_string(line_) + ", column " + Excerpt(column, 60) + ": '" +
+         Excerpt(CellText(cell)) + "' " +
+         (out_of_range ? "is out of range (a number's magnitude must lie between 1e-308 and 1e308)"
+                       : "is not a number");
 }
 
 }  // namespace beamid::signal

@@ -4,16 +4,21 @@
 // file is written and leaves what the columns mean to its callers:
 //  - separator ',', ';' or tab, from the header line; decimal mark '.' or,
 //    with ';' or tab, ',' (from the first data line that holds either);
-//  - a UTF-8 BOM, CRLF line ends, comment lines (starting with '#', '%' or
-//    '//'), blank lines at the end (inside the table only when the caller
-//    allows them);
+//  - a UTF-8 BOM, LF, CRLF or CR line ends, comment lines (starting with
+//    '#', '%' or '//'), blank lines at the end (inside the table only when
+//    the caller allows them);
 //  - header cells unquoted ("acc2") and split into a name and a bracketed
 //    unit ("acc2 [g]", "acc2 (m/s²)"); a unit suffix ("acc2_g") needs the
 //    caller's names and is split with SplitUnitSuffix.
 // Numbers are read with std::from_chars (an optional leading '+'); a cell
 // that is none is reported with the convention detected, e.g. "the file uses
 // ';' as separator and ',' as decimal mark: line 12, column acc2: 'abc' is not
-// a number".
+// a number" (or "'1e400' is out of range"), quoting at most a short printable
+// excerpt of the cell.
+// What is no text table is refused at once, before anything is copied: a
+// NUL byte (a binary or UTF-16 file, a file of zeros), a UTF-16 byte order
+// mark, a header beyond 1 MiB or 10000 columns. The reader keeps views into
+// the caller's text; its memory is the header's and one row's.
 #pragma once
 
 #include <optional>
@@ -62,7 +67,8 @@ class TableReader {
   };
 
   // Finds the header (the first line that is neither blank nor a comment) and
-  // detects the format. `source` names the file in messages.
+  // detects the format. `source` names the file in messages. Throws
+  // InputError for what is no text table (see above).
   TableReader(std::string_view text, std::string source, Options options);
 
   bool HasHeader() const { return has_header_; }
@@ -70,6 +76,10 @@ class TableReader {
   const std::vector<HeaderCell>& Header() const { return header_; }
   int HeaderLine() const { return header_line_; }
   const std::string& Source() const { return source_; }
+
+  // The number of data rows left at most (lines that are neither blank nor
+  // comments), counted without storing anything: what a caller may reserve.
+  std::size_t CountRows() const;
 
   // Moves to the next data row; false at the end of the table. Throws
   // InputError for a blank line inside the table unless allowed.
@@ -82,7 +92,8 @@ class TableReader {
   bool Number(std::size_t cell, double& value, PrintedPrecision* precision = nullptr) const;
   // The cell as written (blanks and quotes removed), for messages.
   std::string_view CellText(std::size_t cell) const;
-  // "<format>: line 12, column acc2: 'abc' is not a number"
+  // "<format>: line 12, column acc2: 'abc' is not a number", or "... '1e400'
+  // is out of range ..." for a number beyond a double's range.
   std::string NotANumber(std::size_t cell, std::string_view column) const;
 
  private:

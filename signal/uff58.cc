@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <optional>
 
 #include "hb/text_file.h"
@@ -17,11 +18,15 @@
 namespace beamid::signal {
 namespace {
 
+using internal::Excerpt;
 using internal::FormatNumber;
 
 constexpr int kRealSingle = 2;
 constexpr int kRealDouble = 4;
 constexpr int kNumHeaderRecords = 11;  // ID lines 1..5 and records 6..11
+// The header records are 80 columns wide; a line far longer is no record
+// (a file without line ends, a binary file) and is not copied.
+constexpr std::size_t kMaxHeaderLineBytes = 4096;
 
 std::string_view TrimView(std::string_view s) {
   while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
@@ -36,17 +41,36 @@ std::string_view Columns(std::string_view line, std::size_t first, std::size_t w
   return line.substr(first - 1, width);
 }
 
-std::optional<double> ParseReal(std::string_view token) {
+// A real number of a record: std::errc() when it is one, result_out_of_range
+// when it is one beyond a double's range ("1e400"), invalid_argument else.
+std::errc ParseReal(std::string_view token, double& value) {
   token = TrimView(token);
-  std::string text(token);
+  if (!token.empty() && token.front() == '+') token.remove_prefix(1);
+  // No number is this long; a longer token is not copied.
+  char text[80];
+  if (token.empty() || token.size() > sizeof text) return std::errc::invalid_argument;
+  std::memcpy(text, token.data(), token.size());
   // Fortran writers may use D as the exponent letter.
-  std::replace(text.begin(), text.end(), 'D', 'E');
-  std::replace(text.begin(), text.end(), 'd', 'e');
-  const char* begin = text.data() + (!text.empty() && text.front() == '+' ? 1 : 0);
+  std::replace(text, text + token.size(), 'D', 'E');
+  std::replace(text, text + token.size(), 'd', 'e');
+  const auto [end, error] = std::from_chars(text, text + token.size(), value);
+  if (end != text + token.size()) return std::errc::invalid_argument;
+  return error;
+}
+
+std::optional<double> ParseReal(std::string_view token) {
   double value = 0.0;
-  const auto [end, error] = std::from_chars(begin, text.data() + text.size(), value);
-  if (text.empty() || error != std::errc() || end != text.data() + text.size()) return std::nullopt;
+  if (ParseReal(token, value) != std::errc()) return std::nullopt;
   return value;
+}
+
+// "cannot read 'abc' as a number", "'1e400' is out of range ...".
+std::string RealProblem(std::string_view token) {
+  double value = 0.0;
+  if (ParseReal(token, value) == std::errc::result_out_of_range)
+    return "'" + Excerpt(TrimView(token)) + "' is out of range (a number's magnitude must lie between 1e-308 and "
+           "1e308)";
+  return "cannot read '" + Excerpt(TrimView(token)) + "' as a number";
 }
 
 std::optional<long long> ParseInteger(std::string_view token) {
@@ -58,15 +82,23 @@ std::optional<long long> ParseInteger(std::string_view token) {
   return value;
 }
 
-std::vector<std::string_view> Tokens(std::string_view line) {
-  std::vector<std::string_view> tokens;
+// The next blank-separated token of `line` (consumed), empty at its end:
+// the values of a line are read one by one, never all held.
+std::string_view NextToken(std::string_view& line) {
   std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
-    const std::size_t start = i;
-    while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
-    if (i > start) tokens.push_back(line.substr(start, i - start));
-  }
+  while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+  const std::size_t start = i;
+  while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+  const std::string_view token = line.substr(start, i - start);
+  line.remove_prefix(i);
+  return token;
+}
+
+// The first `max` tokens of a header line.
+std::vector<std::string_view> Tokens(std::string_view line, std::size_t max = 16) {
+  std::vector<std::string_view> tokens;
+  for (std::string_view token = NextToken(line); !token.empty() && tokens.size() < max; token = NextToken(line))
+    tokens.push_back(token);
   return tokens;
 }
 
@@ -91,6 +123,7 @@ class Cursor {
   Cursor(std::string_view bytes, const std::string& source) : bytes_(bytes), source_(source) {}
 
   bool AtEnd() const { return position_ >= bytes_.size(); }
+  std::size_t Remaining() const { return bytes_.size() - position_; }
   int line_number() const { return line_number_; }
 
   // The next line without its end of line (\n or \r\n); nullopt at the end.
@@ -147,13 +180,20 @@ class DatasetReader {
     if (!line || IsDelimiter(*line))
       Fail(std::string("the file ends inside the header, before ") + what,
            "export the dataset again: the file is truncated");
+    if (line->size() > kMaxHeaderLineBytes)
+      Fail("the line of " + std::string(what) + " is " + std::to_string(line->size()) +
+               " bytes long, not a record of 80 columns; it begins '" + Excerpt(*line) + "'",
+           "write the header records in the dataset 58 format (docs/uff58.md)");
     return *line;
   }
 
   int Integer(std::string_view field, const char* what) const {
     auto value = ParseInteger(field);
-    if (!value) Fail(std::string("cannot read ") + what + " from '" + std::string(field) + "'",
+    if (!value) Fail(std::string("cannot read ") + what + " from '" + Excerpt(field) + "'",
                      "write the record in the dataset 58 format (docs/uff58.md)");
+    if (*value < std::numeric_limits<int>::min() || *value > std::numeric_limits<int>::max())
+      Fail(std::string(what) + " " + std::to_string(*value) + " is out of range",
+           "write the record in the dataset 58 format (docs/uff58.md)");
     return static_cast<int>(*value);
   }
 
@@ -184,7 +224,9 @@ class DatasetReader {
     const int spacing = Integer(fields[2], "the abscissa spacing (record 7 field 3)");
     const auto start = ParseReal(fields[3]);
     const auto step = ParseReal(fields[4]);
-    if (!start || !step) Fail("cannot read x_min and dx from record 7", "write them as real numbers (E13.5)");
+    if (!start || !step)
+      Fail("cannot read x_min and dx from record 7: " + RealProblem(start ? fields[4] : fields[3]),
+           "write them as real numbers (E13.5)");
     dataset_.abscissa_start = *start;
     dataset_.abscissa_step = *step;
     dataset_.abscissa = Axis(HeaderLine("record 8"));
@@ -214,8 +256,10 @@ class DatasetReader {
   // ASCII values: any number per line, separated by blanks, up to the "-1"
   // that closes the dataset.
   void ReadAsciiValues() {
-    // A damaged record 7 must not reserve gigabytes: the vector grows anyway.
-    dataset_.values.reserve(std::min<std::size_t>(static_cast<std::size_t>(num_values_), std::size_t{1} << 22));
+    // A damaged record 7 must not reserve gigabytes: the vector grows anyway,
+    // and a value takes at least two bytes of the file (a digit and a blank).
+    dataset_.values.reserve(std::min({static_cast<std::size_t>(num_values_), cursor_.Remaining() / 2,
+                                      std::size_t{1} << 22}));
     while (true) {
       auto line = cursor_.Line();
       if (!line || IsDelimiter(*line)) {
@@ -224,10 +268,10 @@ class DatasetReader {
                  " values of record 7 before " + (line ? "the closing -1" : "the end of the file"),
              "export the dataset again, whole");
       }
-      for (std::string_view token : Tokens(*line)) {
+      std::string_view rest = *line;
+      for (std::string_view token = NextToken(rest); !token.empty(); token = NextToken(rest)) {
         auto value = ParseReal(token);
-        if (!value)
-          Fail("cannot read '" + std::string(token) + "' as a number", "write the values as real numbers (E13.5)");
+        if (!value) Fail(RealProblem(token), "write the values as real numbers (E13.5)");
         if (dataset_.values.size() == static_cast<std::size_t>(num_values_))
           Fail("more values than the " + std::to_string(num_values_) + " of record 7",
                "correct the number of values in record 7 field 2");
@@ -295,7 +339,7 @@ void SkipDataset(Cursor& cursor) {
 
 std::string Uff58Dataset::Describe() const {
   return "dataset 58 number " + std::to_string(number) +
-         (id_lines[0].empty() ? std::string() : " ('" + std::string(TrimView(id_lines[0])) + "')");
+         (id_lines[0].empty() ? std::string() : " ('" + Excerpt(TrimView(id_lines[0])) + "')");
 }
 
 std::string Uff58Dataset::NodeDirection() const {
@@ -316,13 +360,13 @@ std::vector<Uff58Dataset> ParseUff58(std::string_view bytes, const std::string& 
     if (!line) break;
     if (!IsDelimiter(*line))
       cursor.Fail("line " + std::to_string(cursor.line_number()) + " should open a dataset with -1 but reads '" +
-                      std::string(TrimView(*line)).substr(0, 40) + "'",
+                      Excerpt(TrimView(*line)) + "'",
                   any_dataset ? "export the file again: a dataset is damaged"
                               : "give a universal file (.uff/.unv) whose datasets open and close with -1");
     auto header = cursor.Line();
     if (!header) cursor.Fail("the file ends after an opening -1", "export the file again: it is truncated");
     const auto tokens = Tokens(*header);
-    const std::string kind = tokens.empty() ? std::string() : std::string(tokens[0]);
+    const std::string_view kind = tokens.empty() ? std::string_view() : tokens[0];
     any_dataset = true;
     if (kind != "58" && kind != "58b") {
       SkipDataset(cursor);
