@@ -1,7 +1,25 @@
-// Universal files, datasets 58 and 58b, ASCII and binary (signal::ParseUff58).
+// Universal files, datasets 58 and 58b, ASCII and binary (signal::ParseUff58),
+// and what parses as a step's recording of the fuzz campaign
+// (signal::RecordingFromUff58). Messages must be valid UTF-8 whatever the
+// file's ID lines and labels hold.
+#include <cstdlib>
+
+#include "hb/errors.h"
+#include "signal/campaign.h"
+#include "signal/internal/text.h"
 #include "signal/uff58.h"
+#include "signal/uff_recording.h"
 #include "tests/fuzz/fuzz_input.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  return beamid::fuzz::Accept([&] { beamid::signal::ParseUff58(beamid::fuzz::AsText(data, size), "fuzz/step.uff"); });
+  static const beamid::signal::Campaign campaign =
+      beamid::signal::ParseCampaign(beamid::fuzz::kCampaignJson, "fuzz", "fuzz/campaign.json");
+  return beamid::fuzz::Accept([&] {
+    try {
+      const auto datasets = beamid::signal::ParseUff58(beamid::fuzz::AsText(data, size), "fuzz/step.uff");
+      beamid::signal::RecordingFromUff58(datasets, campaign, campaign.steps.front(), "fuzz/step.uff");
+    } catch (const beamid::InputError& e) {
+      if (!beamid::signal::internal::IsValidUtf8(e.what())) std::abort();
+    }
+  });
 }

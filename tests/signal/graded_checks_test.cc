@@ -4,10 +4,16 @@
 //    result, which is that of a clean recording bit for bit (the steady state
 //    is judged on the analysed channels only);
 //  - on channels campaign.json ignores they are notes;
+//  - so are the problems of reading such a channel (a NaN, a cell that is no
+//    number, a missing column, another unit than campaign.json's): the
+//    channel is left out of the step, which the other channels give as a
+//    clean recording does;
 //  - campaign.json's ignore_channels and Campaign::Analyse refuse what makes
 //    no sense, naming the entry.
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <sstream>
 #include <numbers>
 #include <random>
 #include <string>
@@ -139,6 +145,71 @@ TEST_F(GradedChecksTest, ProblemsOfIgnoredChannelsAreNotes) {
   EXPECT_TRUE(Mentions(quality.notes, "channel 'acc3' (ignored in campaign.json): dropout"));
   EXPECT_FALSE(Mentions(quality.warnings, "acc2"));
   EXPECT_FALSE(Mentions(quality.warnings, "acc3"));
+}
+
+// The CSV text of s0.csv, edited by `edit`.
+void EditCsv(const fs::path& file, const std::function<void(std::string&)>& edit) {
+  std::stringstream text;
+  text << std::ifstream(file).rdbuf();
+  std::string csv = text.str();
+  edit(csv);
+  std::ofstream(file, std::ios::binary) << csv;
+}
+
+// Replaces acc3's value (the fifth cell) on file line `line`.
+void SetAcc3(std::string& csv, int line, const std::string& value) {
+  std::size_t start = 0;
+  for (int i = 1; i < line; ++i) start = csv.find('\n', start) + 1;
+  std::size_t cell = start;
+  for (int i = 0; i < 4; ++i) cell = csv.find(',', cell) + 1;
+  csv.replace(cell, csv.find('\n', cell) - cell, value);
+}
+
+TEST_F(GradedChecksTest, ReadingProblemsOfChannelsNotUsedAreNotesOrWarningsAndLeaveTheChannelOut) {
+  Write(samples_);
+  const PhasorSet clean = Extract({});
+  struct Case {
+    std::string what;
+    std::function<void(std::string&)> edit;
+    std::string problem;
+  };
+  const std::vector<Case> cases = {
+      {"NaN", [](std::string& csv) { SetAcc3(csv, 100, "nan"); }, "NaN or infinite value at line 100"},
+      {"no number", [](std::string& csv) { SetAcc3(csv, 100, "1.2.3"); }, "line 100, column acc3: '1.2.3' is not a number"},
+      {"out of range", [](std::string& csv) { SetAcc3(csv, 7, "1e400"); }, "'1e400' is out of range"},
+      {"beyond any measurement", [](std::string& csv) { SetAcc3(csv, 7, "1e20"); }, "beyond any measurement"},
+      {"missing column", [](std::string& csv) { csv.replace(csv.find("acc3"), 4, "acc9"); },
+       "missing from the header (columns no channel uses: 'acc9')"},
+      {"another unit", [](std::string& csv) { csv.replace(csv.find("acc3"), 4, "acc3 [g]"); },
+       "the header gives the unit 'g' but campaign.json declares 'm/s^2'"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.what);
+    // Ignored in campaign.json: a note.
+    Write(samples_, R"(, "ignore_channels": ["acc3"])");
+    EditCsv(folder_ / "s0.csv", c.edit);
+    const PhasorSet ignored = Extract({});
+    ASSERT_EQ(ignored.steps.size(), 1u);
+    const StepQuality& quality = ignored.steps[0].quality;
+    EXPECT_TRUE(Mentions(quality.notes, "channel 'acc3' (ignored in campaign.json): " + c.problem))
+        << (quality.notes.empty() ? "no notes" : quality.notes[0]);
+    EXPECT_TRUE(Mentions(quality.notes, "the channel is left out of this step"));
+    EXPECT_FALSE(Mentions(quality.warnings, "acc3"));
+    EXPECT_EQ(ignored.steps[0].Find("acc3"), nullptr);
+    EXPECT_EQ(ignored.steps[0].responses.size(), 2u);
+    EXPECT_EQ(ignored.steps[0].Find("acc1")->Harmonic(1).value, clean.steps[0].Find("acc1")->Harmonic(1).value);
+    EXPECT_EQ(ignored.steps[0].force.Harmonic(2).value, clean.steps[0].force.Harmonic(2).value);
+
+    // Not analysed by this run: a warning. Analysed: an error naming it.
+    Write(samples_);
+    EditCsv(folder_ / "s0.csv", c.edit);
+    const PhasorSet unused = Extract({"acc1"});
+    EXPECT_TRUE(Mentions(unused.steps[0].quality.warnings, "channel 'acc3' (not analysed): " + c.problem));
+    EXPECT_EQ(unused.steps[0].Find("acc3"), nullptr);
+    const std::string message = beamid::testing::InputErrorOf([&] { Extract({}); });
+    EXPECT_NE(message.find("channel 'acc3': " + c.problem), std::string::npos) << message;
+    EXPECT_NE(message.find((folder_ / "s0.csv").string()), std::string::npos) << message;
+  }
 }
 
 TEST_F(GradedChecksTest, IgnoreChannelsAndAnalyseRefuseWhatMakesNoSense) {

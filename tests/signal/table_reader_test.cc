@@ -4,7 +4,10 @@
 // time column, BOM/CRLF/comments — each read through ReadRecording (as
 // ExtractCampaign does) gives the phasors of the clean CSV within 1e-9; the
 // same for first-harmonic phasor tables; and the errors name the convention
-// detected, the file, the channel and the fix.
+// detected, the file, the channel and the fix, quoting at most a short
+// printable excerpt of the file. What is no table (a file of NUL bytes, a
+// line of megabytes) is refused at once, in memory of the file's size, and
+// a file of blank lines reserves nothing.
 #include "signal/table_reader.h"
 
 #include <cmath>
@@ -20,13 +23,16 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "signal/campaign.h"
 #include "signal/input_error.h"
 #include "signal/phasor_estimator.h"
 #include "signal/phasor_table.h"
+#include "signal/internal/text.h"
 #include "signal/recording.h"
 #include "tests/signal/synthetic_signal.h"
+#include "tests/support/memory_in_child.h"
 #include "tests/support/temp_path.h"
 
 namespace beamid::signal {
@@ -57,7 +63,7 @@ struct Export {
   std::vector<std::string> headers = {"time_s", "force", "acc1", "vel2"};  // time first, then the channels
   enum class Time { kSeconds, kMilliseconds, kRounded4, kNone } time = Time::kSeconds;
   bool extra_columns = false;  // a temperature and an unlisted accelerometer
-  bool bom = false, crlf = false, comments = false, quoted = false, trailing_blanks = false;
+  bool bom = false, crlf = false, cr = false, comments = false, quoted = false, trailing_blanks = false;
   bool reversed = false;       // channels in another order than campaign.json
 };
 
@@ -78,7 +84,7 @@ Eigen::MatrixXd CleanRecord() {
 }
 
 std::string Render(const Eigen::MatrixXd& x, const Export& e) {
-  const std::string eol = e.crlf ? "\r\n" : "\n";
+  const std::string eol = e.cr ? "\r" : e.crlf ? "\r\n" : "\n";
   const std::string sep(1, e.separator);
   auto number = [&](const char* format, double value) {
     char buffer[64];
@@ -201,6 +207,8 @@ TEST_F(TableReaderGallery, EveryExportGivesThePhasorsOfTheCleanCsv) {
   add("no time column", [](Export& e) { e.time = Export::Time::kNone; }, true);
   add("BOM, CRLF, comments, trailing blank lines",
       [](Export& e) { e.bom = true, e.crlf = true, e.comments = true, e.trailing_blanks = true; });
+  add("CR line ends (CSV Macintosh), comments, trailing blank lines",
+      [](Export& e) { e.cr = true, e.comments = true, e.trailing_blanks = true; });
   add("everything at once", [](Export& e) {
     e.separator = ';', e.decimal_comma = true, e.quoted = true, e.extra_columns = true, e.reversed = true;
     e.headers = {"time [ms]", "force [N]", "acc1 (g)", "vel2_mm_s"}, e.time = Export::Time::kMilliseconds;
@@ -333,6 +341,226 @@ TEST_F(TableReaderGallery, ASpaceSeparatedHeaderIsNamedAsOneColumn) {
                                            "',' as separator"),
             std::string::npos)
       << error.what();
+}
+
+// A file of zeros (an unfinished copy, a damaged disk) is refused at its
+// first byte: nothing of it is split into cells, copied into a header or
+// quoted, so the memory is the file's text alone.
+TEST_F(TableReaderGallery, ABigFileOfNulBytesIsRefusedAtOnceInMemoryOfItsSize) {
+  constexpr long long kBytes = 50LL << 20;
+  std::ofstream(folder_ / "campaign.json") << CampaignJson(false);
+  {
+    std::ofstream csv(folder_ / "step.csv", std::ios::binary);
+    const std::string zeros(1 << 20, '\0');
+    for (long long written = 0; written < kBytes; written += static_cast<long long>(zeros.size())) csv << zeros;
+  }
+  campaign_ = ReadCampaign(folder_);
+  const auto run = beamid::testing::MemoryInChild(3 * kBytes, [&] {
+    try {
+      ReadRecording(campaign_, campaign_.steps.front());
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  });
+  ASSERT_TRUE(run.ran);
+  std::cout << "  50 MB of NUL bytes: refused with " << run.text.size() << " characters, peak resident growth "
+            << run.growth_bytes / (1 << 20) << " MB\n";
+  EXPECT_NE(run.text.find(StepFile()), std::string::npos) << run.text;
+  EXPECT_NE(run.text.find("byte 1 (line 1) is a NUL: the file is binary or UTF-16, not a text table"),
+            std::string::npos)
+      << run.text;
+  EXPECT_NE(run.text.find("Fix: "), std::string::npos) << run.text;
+  EXPECT_LT(run.text.size(), 500u);
+  EXPECT_LT(run.growth_bytes, 3 * kBytes);
+}
+
+// 50 MB of blank lines after a record are trailing blank lines: harmless,
+// and they reserve nothing (rows are counted before the samples are).
+TEST_F(TableReaderGallery, TrailingBlankLinesReserveNothing) {
+  constexpr long long kBytes = 50LL << 20;
+  std::ofstream(folder_ / "campaign.json") << CampaignJson(false);
+  {
+    std::ofstream csv(folder_ / "step.csv", std::ios::binary);
+    csv << Render(CleanRecord(), {});
+    const std::string newlines(1 << 20, '\n');
+    for (long long written = 0; written < kBytes; written += static_cast<long long>(newlines.size())) csv << newlines;
+  }
+  campaign_ = ReadCampaign(folder_);
+  const auto run = beamid::testing::MemoryInChild(3 * kBytes, [&] {
+    try {
+      return "samples " + std::to_string(ReadRecording(campaign_, campaign_.steps.front()).NumSamples());
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+  });
+  ASSERT_TRUE(run.ran);
+  std::cout << "  a record and 50 MB of blank lines: peak resident growth " << run.growth_bytes / (1 << 20) << " MB\n";
+  EXPECT_EQ(run.text, "samples " + std::to_string(kSamples));
+  EXPECT_LT(run.growth_bytes, 3 * kBytes);
+}
+
+TEST_F(TableReaderGallery, AFileWithoutTwoRowsIsRefusedBeforeAnythingIsReserved) {
+  std::string text = "time_s,force,acc1,vel2\n";
+  for (int i = 0; i < 100000; ++i) text += "# a comment, no sample\n\n";
+  const std::string message = Error(text + "0,1,2,3\n", false).what();
+  EXPECT_NE(message.find("fewer than two samples (1 data row after the header on line 1)"), std::string::npos)
+      << message;
+}
+
+TEST_F(TableReaderGallery, ANumberBeyondADoubleIsOutOfRangeNotNoNumber) {
+  Export e;
+  for (const char* value : {"1e400", "-1e400", "1e-400"}) {
+    std::string text = Render(CleanRecord(), e);
+    const std::size_t line5 = [&] {
+      std::size_t at = 0;
+      for (int i = 0; i < 4; ++i) at = text.find('\n', at) + 1;
+      return at;
+    }();
+    const std::size_t a = text.find(',', text.find(',', line5) + 1) + 1;  // acc1, the third cell
+    text.replace(a, text.find(',', a) - a, value);
+    const InputError error = Error(text, false);
+    EXPECT_EQ(error.channel(), "acc1");
+    EXPECT_NE(std::string(error.what()).find("line 5, column acc1: '" + std::string(value) + "' is out of range"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
+// Whatever a file holds, a message quotes a short printable excerpt of it,
+// in valid UTF-8 (a message reaches the phasors file as a skipped step's
+// reason, and the JSON writer throws on invalid UTF-8).
+TEST_F(TableReaderGallery, MessagesQuoteAShortPrintableExcerptOfTheFile) {
+  const Eigen::MatrixXd x = CleanRecord();
+  std::string text = Render(x, {});
+  const std::size_t line3 = text.find('\n', text.find('\n') + 1) + 1;
+  const std::size_t a = text.find(',', text.find(',', line3) + 1) + 1;
+  text.replace(a, text.find(',', a) - a, "\x01\xE9\x7F" + std::string(100000, 'x'));
+  std::vector<std::pair<std::string, std::string>> cases = {
+      {"a cell of control, Latin-1 and 100000 more bytes", text}};
+  // Thousands of unused columns and a missing channel: the list stays short.
+  std::string wide = "time_s,force,vel2";
+  for (int i = 0; i < 5000; ++i) wide += ",spare" + std::to_string(i);
+  cases.emplace_back("5000 unused columns", wide + "\n");
+  cases.emplace_back("one line of 2 MB", "time_s" + std::string(2 << 20, ' ') + "x");
+  std::string many = "a";
+  for (int i = 0; i < 20000; ++i) many += ",a";
+  cases.emplace_back("a header of 20001 columns", many + "\n");
+  const std::vector<std::string> expected = {
+      // 40 characters: three escaped bytes and 37 of the x.
+      "line 3, column acc1: '\\x01\\xE9\\x7F" + std::string(37, 'x') + "\xE2\x80\xA6 (100003 bytes)' is not a number",
+      "channel 'acc1': the channel of campaign.json is missing from the header (columns no channel uses: 'spare0', "
+      "'spare1', 'spare2', 'spare3', 'spare4', 'spare5', 'spare6', 'spare7' and 4992 more)",
+      "the header (line 1) is 2097159 bytes long, beyond any table's header; it begins 'time_s",
+      "the header (line 1) has 20001 columns, more than the 10000 a table may have"};
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    SCOPED_TRACE(cases[i].first);
+    const std::string message = Error(cases[i].second, false).what();
+    EXPECT_NE(message.find(expected[i]), std::string::npos) << message.substr(0, 2000);
+    EXPECT_NE(message.find(StepFile()), std::string::npos);
+    EXPECT_LT(message.size(), 1000u);
+    EXPECT_TRUE(internal::IsValidUtf8(message));
+    EXPECT_NO_THROW(static_cast<void>(nlohmann::json(message).dump()));
+  }
+}
+
+// A Latin-1 header of a column no channel uses is a note, its name kept
+// with the bytes escaped; a channel's unit that is not UTF-8 is refused,
+// naming the file and the channel.
+TEST_F(TableReaderGallery, HeadersThatAreNotUtf8AreANoteOrAnErrorByTheirUse) {
+  Export e;
+  e.extra_columns = true;
+  std::string text = Render(CleanRecord(), e);
+  text.replace(text.find("temperature [degC]"), 18, "temperature [\xB0" "C]");
+  const Recording recording = Read(text, false);
+  EXPECT_EQ(recording.ignored_columns, (std::vector<std::string>{"temperature [\\xB0C]", "acc9 [m/s^2]"}));
+  ASSERT_EQ(recording.findings.size(), 1u);
+  EXPECT_EQ(recording.findings[0].severity, Severity::kNote);
+  EXPECT_NE(recording.findings[0].problem.find("column 2's header 'temperature [\\xB0C]' is not UTF-8 text"),
+            std::string::npos)
+      << recording.findings[0].problem;
+
+  e.extra_columns = false;
+  e.headers = {"time_s", "force", "acc1 [m/s\xB2]", "vel2"};
+  const InputError error = Error(Render(CleanRecord(), e), false);
+  EXPECT_EQ(error.file(), StepFile());
+  EXPECT_EQ(error.channel(), "acc1");
+  EXPECT_NE(std::string(error.what()).find("the header gives the unit 'm/s\\xB2', which is not UTF-8 text"),
+            std::string::npos)
+      << error.what();
+  EXPECT_TRUE(internal::IsValidUtf8(error.what()));
+}
+
+// Sensors acc1 and acc1_g: a header cell is the channel it names whole, so
+// acc1_g is never taken for acc1 in g, in any column order.
+TEST(ChannelMatching, ChannelNamesMatchWholeHeaderFieldsNotPrefixes) {
+  const std::string json = R"({
+  "format": "stepped-sine-campaign/1", "name": "prefixes",
+  "beam": {"length_m": 0.6, "width_m": 0.04, "thickness_m": 0.005, "youngs_modulus_Pa": 2.1e11, "density_kg_m3": 7850},
+  "excitation": {"channel": "force", "position_m": 0.57, "quantity": "force", "unit": "N"},
+  "sensors": [{"channel": "acc1", "position_m": 0.1, "quantity": "acceleration", "unit": "m/s^2"},
+              {"channel": "acc1_g", "position_m": 0.3, "quantity": "acceleration", "unit": "g"}],
+  "steps": [{"file": "step.csv", "frequency_Hz": 40.0, "level": "low"}], "sample_rate_Hz": 5120})";
+  const Campaign campaign = ParseCampaign(json, "prefixes", "prefixes/campaign.json");
+  constexpr int kRows = 2048;
+  auto value = [](int channel, int n) {
+    const double phase = 2.0 * std::numbers::pi * kFrequencyHz * n / kRateHz;
+    return channel == 0 ? std::sin(phase) : channel == 1 ? 2.0 * std::cos(phase) : 0.25 * std::sin(phase + 1.0);
+  };
+  for (const std::vector<std::string>& header :
+       {std::vector<std::string>{"force", "acc1", "acc1_g"}, {"force", "acc1_g", "acc1"},
+        {"acc1_g [g]", "force", "acc1 [m/s^2]"}, {"acc1_g_g", "acc1", "force"}}) {
+    SCOPED_TRACE(header[0] + "," + header[1] + "," + header[2]);
+    std::vector<int> channel_of;  // campaign channel of each column
+    for (const auto& cell : header)
+      channel_of.push_back(cell.starts_with("force") ? 0 : cell.starts_with("acc1_g") ? 2 : 1);
+    std::string text = header[0] + "," + header[1] + "," + header[2] + "\n";
+    char line[120];
+    for (int n = 0; n < kRows; ++n) {
+      std::snprintf(line, sizeof line, "%.12g,%.12g,%.12g\n", value(channel_of[0], n), value(channel_of[1], n),
+                    value(channel_of[2], n));
+      text += line;
+    }
+    const Recording recording = ParseRecording(text, campaign, campaign.steps.front(), "prefixes/step.csv");
+    ASSERT_EQ(recording.channels, (std::vector<std::string>{"force", "acc1", "acc1_g"}));
+    for (int n = 0; n < kRows; n += 97) {
+      EXPECT_NEAR(recording.samples(n, 1), value(1, n), 1e-11);
+      EXPECT_NEAR(recording.samples(n, 2), kGravity * value(2, n), 1e-11);
+    }
+  }
+}
+
+TEST(TableReader, RefusesWhatIsNoTextTable) {
+  for (const auto& [text, expected] : std::vector<std::pair<std::string, std::string>>{
+           {std::string("\xFF\xFEt\0i\0m\0e\0", 10), "the file is UTF-16 text"},
+           {std::string("time_s,force\n0,1\n0.1,\0\n", 23), "byte 22 (line 3) is a NUL"}}) {
+    try {
+      TableReader table(text, "x.csv", {});
+      ADD_FAILURE() << "accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+      EXPECT_EQ(e.file(), "x.csv");
+    }
+  }
+  TableReader cr("a,b\r1,2\r\r3,4\r", "cr.csv", {});
+  EXPECT_EQ(cr.CountRows(), 2u);
+  ASSERT_TRUE(cr.NextRow());
+  EXPECT_EQ(cr.Line(), 2);
+  EXPECT_EQ(cr.CellText(1), "2");
+  EXPECT_THROW(cr.NextRow(), InputError);  // the blank line 3 inside the table
+}
+
+TEST(Excerpt, IsShortPrintableUtf8) {
+  using internal::Excerpt;
+  EXPECT_EQ(Excerpt("acc1 [m/s\xC2\xB2]"), "acc1 [m/s\xC2\xB2]");
+  EXPECT_EQ(Excerpt(std::string("a\0b\tc\xB0\xC2\x85", 8)), "a\\x00b\\tc\\xB0\\xC2\\x85");
+  EXPECT_EQ(Excerpt("\xED\xA0\x80"), "\\xED\\xA0\\x80");  // a surrogate
+  EXPECT_EQ(Excerpt("\xF0\x9F\x98\x80"), "\xF0\x9F\x98\x80");
+  EXPECT_EQ(Excerpt(std::string(50, 'y'), 4), "yyyy\xE2\x80\xA6 (50 bytes)");
+  EXPECT_TRUE(internal::IsValidUtf8("m/s\xC2\xB2"));
+  EXPECT_FALSE(internal::IsValidUtf8("m/s\xB2"));
+  EXPECT_FALSE(internal::IsValidUtf8("\xC0\xAF"));  // overlong '/'
+  EXPECT_FALSE(internal::IsValidUtf8("\xE2\x82"));  // cut short
 }
 
 TEST(TableReader, DetectsTheConventions) {

@@ -1,19 +1,25 @@
 // Universal files (dataset 58, ASCII and binary) as step recordings: a
 // campaign written as UFF in five encodings gives the phasors of the same
 // samples written as CSV, and each malformed file gives an InputError naming
-// the file, the channel and what is wrong.
+// the file, the channel and what is wrong, quoting at most a short printable
+// excerpt of the file; a record 9 unit must be campaign.json's (as a CSV
+// header's must); the problems of a channel campaign.json ignores are notes.
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <iostream>
 #include <random>
 
 #include <gtest/gtest.h>
 
 #include "signal/campaign_extractor.h"
 #include "signal/input_error.h"
+#include "signal/internal/text.h"
 #include "signal/recording.h"
 #include "tests/signal/synthetic_signal.h"
 #include "tests/signal/uff58_writer.h"
+#include "tests/support/memory_in_child.h"
 #include "tests/support/temp_path.h"
 
 namespace beamid::signal {
@@ -258,6 +264,119 @@ TEST_F(UffMalformedTest, FrequencyResponseFunction) {
 
 TEST_F(UffMalformedTest, NotAUniversalFile) {
   ExpectError("time_s,force\n0,1\n", "", "should open a dataset with -1");
+}
+
+// A g where campaign.json says m/s² is a factor 9.81 that beamid will not
+// guess: refused as a CSV header's unit is, naming both units.
+TEST_F(UffMalformedTest, UnitDisagreesWithCampaign) {
+  channels_[1].unit = "m/s^2";  // campaign.json: g
+  ExpectError(File(), "acc1", "record 9 gives the unit 'm/s^2' but campaign.json declares 'g' for this channel");
+  ExpectError(File(), "acc1", "Fix: make them agree: correct the channel's \"unit\" in campaign.json, or export");
+  // The Latin-1 ² of many writers is m/s² too, and quoted printable.
+  channels_[1].unit = "m/s\xB2";
+  ExpectError(File(), "acc1", "record 9 gives the unit 'm/s\\xB2' but campaign.json declares 'g'");
+}
+
+TEST_F(UffMalformedTest, AValueBeyondADoubleIsOutOfRange) {
+  channels_[0].values[3] = 12345.678;
+  std::string text = File();
+  const std::size_t at = text.find("1.234567800000E+04");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 18, "             1e400");
+  ExpectError(text, "", "'1e400' is out of range");
+}
+
+// A file of zeros: refused at its first line, quoting a short excerpt of it,
+// in memory of the file's size.
+TEST_F(UffMalformedTest, ABigFileOfNulBytesIsRefusedInMemoryOfItsSize) {
+  constexpr long long kBytes = 50LL << 20;
+  {
+    std::ofstream out(folder_ / "s0.unv", std::ios::binary);
+    const std::string zeros(1 << 20, '\0');
+    for (long long written = 0; written < kBytes; written += static_cast<long long>(zeros.size())) out << zeros;
+  }
+  WriteFile(folder_ / "s1.unv", File());
+  const Campaign campaign = ReadCampaign(folder_);
+  const auto run = beamid::testing::MemoryInChild(3 * kBytes, [&] {
+    try {
+      ReadRecording(campaign, campaign.steps[0]);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  });
+  ASSERT_TRUE(run.ran);
+  std::cout << "  50 MB of NUL bytes as a universal file: peak resident growth " << run.growth_bytes / (1 << 20)
+            << " MB\n";
+  EXPECT_NE(run.text.find("line 1 should open a dataset with -1 but reads '\\x00\\x00"), std::string::npos)
+      << run.text.substr(0, 500);
+  EXPECT_NE(run.text.find("(52428800 bytes)"), std::string::npos) << run.text.substr(0, 500);
+  EXPECT_LT(run.text.size(), 500u);
+  EXPECT_LT(run.growth_bytes, 3 * kBytes);
+}
+
+TEST_F(UffMalformedTest, MessagesQuoteShortPrintableUtf8) {
+  channels_[2].id_line1 = "Vel \xE9\x01" + std::string(70, 'v');
+  WriteFile(folder_ / "s0.unv", File());
+  WriteFile(folder_ / "s1.unv", File());
+  const Campaign campaign = ReadCampaign(folder_);
+  try {
+    ReadRecording(campaign, campaign.steps[0]);
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("ID line 1 'Vel \\xE9\\x01vvv"), std::string::npos) << message;
+    EXPECT_TRUE(internal::IsValidUtf8(message)) << message;
+    EXPECT_LT(message.size(), 800u) << message;
+  }
+}
+
+// Problems of a channel campaign.json ignores are notes: the channel is left
+// out and the step read without it.
+TEST_F(UffMalformedTest, ProblemsOfAnIgnoredChannelAreNotes) {
+  std::string json = CampaignJson(".unv");
+  json.insert(json.rfind('}'), R"(, "ignore_channels": ["vel2"])");
+  WriteFile(folder_ / "campaign.json", json);
+  const std::vector<UffChannel> clean = channels_;
+  struct Case {
+    std::string what, problem;
+    std::function<std::string()> file;
+  };
+  const std::vector<Case> cases = {
+      {"NaN", "NaN or infinite value at sample 100",
+       [&] {
+         channels_ = clean;
+         channels_[2].values[100] = std::nan("");
+         return File(UffEncoding::kBinaryLittleDouble);
+       }},
+      {"another unit", "record 9 gives the unit 'm/s' but campaign.json declares 'mm/s'",
+       [&] {
+         channels_ = clean;
+         channels_[2].unit = "m/s";
+         return File();
+       }},
+      {"missing", "no dataset 58 holds the channel",
+       [&] {
+         channels_ = clean;
+         return beamid::testing::UffDataset58(channels_[0], UffEncoding::kAsciiDouble) +
+                beamid::testing::UffDataset58(channels_[1], UffEncoding::kAsciiDouble);
+       }},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.what);
+    const std::string bytes = c.file();
+    WriteFile(folder_ / "s0.unv", bytes);
+    WriteFile(folder_ / "s1.unv", bytes);
+    const Campaign campaign = ReadCampaign(folder_);
+    const Recording recording = ReadRecording(campaign, campaign.steps[0]);
+    EXPECT_EQ(recording.channels, (std::vector<std::string>{"force", "acc1"}));
+    EXPECT_EQ(recording.samples.cols(), 2);
+    ASSERT_EQ(recording.findings.size(), 1u);
+    EXPECT_EQ(recording.findings[0].severity, Severity::kNote);
+    EXPECT_EQ(recording.findings[0].channel, "vel2");
+    EXPECT_NE(recording.findings[0].problem.find(c.problem), std::string::npos) << recording.findings[0].problem;
+    EXPECT_NE(recording.findings[0].problem.find("the channel is left out of this step"), std::string::npos);
+  }
 }
 
 }  // namespace

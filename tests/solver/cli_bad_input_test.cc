@@ -5,6 +5,7 @@
 // ("did not converge") for something the user can fix, and never a silent
 // answer. The campaign is a 3-step simulation made once for the table; each
 // row spoils its own copy.
+#include <sys/stat.h>
 #include <sys/wait.h>
 
 #include <cstdlib>
@@ -228,6 +229,23 @@ TEST_F(BadInput, EveryBadInputEndsWithExitTwoAndAMessageThatNamesItAndTheFix) {
        "simulate {d}/s.json -o {d}/sim", {"s.json", "max_time_step_s"}},
       {"a scenario beam of 1e300 m", scenario_with("\"length_m\": 0.6", "\"length_m\": 1e300"),
        "simulate {d}/s.json -o {d}/sim", {"s.json", "length_m", "1 mm to 100 m", "Fix:"}},
+      // recording readers: what is no table, numbers, units, what stands in a step's place
+      {"a recording of NUL bytes", [&](auto m, auto) { WriteFile(step(m, 1), std::string(1 << 20, '\0')); },
+       "extract {m} -o {d}/p.json", {"step_001.csv", "byte 1 (line 1) is a NUL", "not a text table", "Fix:"}},
+      {"a recording of one 2 MB line", [&](auto m, auto) { WriteFile(step(m, 1), std::string(2 << 20, 'x')); },
+       "extract {m} -o {d}/p.json", {"step_001.csv", "2097152 bytes long", "Fix:"}},
+      {"a sample of 1e400", [&](auto m, auto) { ReplaceSample(step(m, 1), 5, 1, "1e400"); },
+       "extract {m} -o {d}/p.json", {"step_001.csv", "force", "'1e400' is out of range", "Fix:"}},
+      {"a header unit that contradicts campaign.json",
+       [&](auto m, auto) { Replace(step(m, 0), "acc1", "acc1 [g]"); },
+       "identify {m} --fit acc1,acc2 -o {d}/r.json",
+       {"step_000.csv", "acc1", "the header gives the unit 'g' but campaign.json declares 'm/s^2'", "Fix:"}},
+      {"a folder as a step's recording",
+       [&](auto m, auto) { fs::remove(step(m, 1)); fs::create_directory(step(m, 1)); },
+       "extract {m} -o {d}/p.json", {"step_001.csv", "is a folder, not a file", "Fix:"}},
+      {"a FIFO as a step's recording",
+       [&](auto m, auto) { fs::remove(step(m, 1)); ASSERT_EQ(::mkfifo(step(m, 1).c_str(), 0600), 0); },
+       "extract {m} -o {d}/p.json", {"step_001.csv", "is a FIFO, not a file", "Fix:"}},
   };
   const fs::path clean = root_ / "clean", result = root_ / "result.json";
   for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -243,6 +261,44 @@ TEST_F(BadInput, EveryBadInputEndsWithExitTwoAndAMessageThatNamesItAndTheFix) {
     for (const auto& word : row.key_words) EXPECT_THAT(run.output, HasSubstr(word)) << arguments;
     EXPECT_THAT(run.output, ::testing::Not(HasSubstr("internal error"))) << arguments;
   }
+}
+
+// What a channel no analysis uses holds is no reason to stop: a NaN in a
+// channel campaign.json ignores is a note, in a channel that --channel and
+// --fit leave out a warning; a Latin-1 header of an extra column is a note
+// (its bytes escaped in the phasors file); a recording with CR line ends is
+// read as any other.
+TEST_F(BadInput, WhatNoAnalysisUsesIsANoteOrAWarningNeverAStop) {
+  const fs::path d = root_ / "unused", m = d / "campaign";
+  fs::create_directories(d);
+  fs::copy(root_ / "clean", m, fs::copy_options::recursive);
+  ReplaceSample(m / "low" / "step_001.csv", 9, 4, "nan");  // acc3
+  Replace(m / "campaign.json", "\"sample_rate_Hz\"", "\"ignore_channels\": [\"acc3\"], \"sample_rate_Hz\"");
+  {
+    std::string csv = ReadFile(m / "low" / "step_002.csv");
+    std::string with_column;
+    std::istringstream in(csv);
+    for (std::string row; std::getline(in, row);)
+      with_column += row + (with_column.empty() ? ",temp [\xB0" "C]" : ",21.5") + "\r";
+    WriteFile(m / "low" / "step_002.csv", with_column);
+  }
+  const ProgramRun extracted = Beamid("extract " + m.string() + " -o " + (d / "p.json").string());
+  ASSERT_EQ(extracted.exit_code, 0) << extracted.output;
+  const std::string phasors = ReadFile(d / "p.json");
+  EXPECT_THAT(phasors, HasSubstr("channel 'acc3' (ignored in campaign.json): NaN or infinite value at line 9"));
+  EXPECT_THAT(phasors, HasSubstr("column 6's header 'temp [\\\\xB0C]' is not UTF-8 text"));
+  const ProgramRun identified =
+      Beamid("identify " + m.string() + " --fit acc1,acc2 -o " + (d / "r.json").string());
+  EXPECT_EQ(identified.exit_code, 0) << identified.output;
+
+  // Not ignored, but not analysed by this run.
+  Replace(m / "campaign.json", "\"ignore_channels\": [\"acc3\"], ", "");
+  const ProgramRun channel = Beamid("extract " + m.string() + " --channel acc1 -o " + (d / "p2.json").string());
+  ASSERT_EQ(channel.exit_code, 0) << channel.output;
+  EXPECT_THAT(ReadFile(d / "p2.json"), HasSubstr("channel 'acc3' (not analysed): NaN or infinite value at line 9"));
+  const ProgramRun all = Beamid("extract " + m.string() + " -o " + (d / "p3.json").string());
+  EXPECT_EQ(all.exit_code, 2) << all.output;
+  EXPECT_THAT(all.output, HasSubstr("channel 'acc3': NaN or infinite value at line 9"));
 }
 
 // The way out that the error above names: with --skip-bad-steps the other
