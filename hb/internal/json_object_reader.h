@@ -84,8 +84,8 @@ class ObjectReader {
     const Json& v = Array(key);
     if (v.size() > static_cast<std::size_t>(kMaxPointsOnBeam))
       FailField(key, "lists " + std::to_string(v.size()) + " points, more than the " +
-                         std::to_string(kMaxPointsOnBeam) + " a beam model takes (give at most " +
-                         std::to_string(kMaxPointsOnBeam) + ")");
+                         std::to_string(kMaxPointsOnBeam) + " a beam model takes. Fix: give at most " +
+                         std::to_string(kMaxPointsOnBeam) + " (see " + format_doc_ + ")");
     return v;
   }
   std::string PathOf(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
