@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <initializer_list>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -21,6 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "hb/errors.h"
+#include "hb/strict_json.h"
 
 namespace beamid {
 
@@ -131,13 +133,50 @@ class JsonField {
     return {At(0).Number(), At(1).Number()};
   }
 
+  // The ranges of what beamid writes (null, NaN, passes: the writer's "no
+  // number"): a value outside them was not written by beamid, and would
+  // reach a computation as if it were measured.
+  // An uncertainty, a χ², a duration: >= 0.
+  double NonNegative() const {
+    const double v = Number();
+    if (v < 0.0) Fail("= " + Shown(v) + " is negative (it is never below 0)");
+    return v;
+  }
+  // A frequency: > 0.
+  double Positive() const {
+    const double v = Number();
+    if (v <= 0.0) Fail("= " + Shown(v) + " is not positive");
+    return v;
+  }
+  // A probability: in [0, 1].
+  double Probability() const {
+    const double v = Number();
+    if (v < 0.0 || v > 1.0) Fail("= " + Shown(v) + " lies outside [0, 1] (a probability)");
+    return v;
+  }
+  // A count: an integer in [0, max].
+  int Count(int max = 1'000'000) const {
+    const int v = Integer();
+    if (v < 0 || v > max) Fail("= " + std::to_string(v) + " lies outside 0.." + std::to_string(max));
+    return v;
+  }
+
   // Shorthands for a member of this object.
+  double NonNegative(const std::string& key) const { return At(key).NonNegative(); }
+  double Positive(const std::string& key) const { return At(key).Positive(); }
+  double Probability(const std::string& key) const { return At(key).Probability(); }
+  int Count(const std::string& key, int max = 1'000'000) const { return At(key).Count(max); }
   double Number(const std::string& key) const { return At(key).Number(); }
   int Integer(const std::string& key) const { return At(key).Integer(); }
   bool Boolean(const std::string& key) const { return At(key).Boolean(); }
   std::string String(const std::string& key) const { return At(key).String(); }
 
  private:
+  static std::string Shown(double v) {
+    std::ostringstream out;
+    out << v;
+    return out.str();
+  }
   std::string Child(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
   JsonField Child(const nlohmann::ordered_json& value, const std::string& key) const {
     return JsonField(value, Child(key), source_, format_, fix_);
@@ -156,17 +195,13 @@ class JsonField {
   std::string_view fix_;
 };
 
-// The text of a file as one JSON object, or InputError "<source>: not JSON
-// (…)" (also for a number beyond double range) or "<source>: not a <what> (a
-// JSON array, not an object)", each with "Fix: <fix>".
+// The text of a file as one JSON object, parsed strictly (hb/strict_json.h:
+// a key written twice, a number beyond double range, too deep or too large a
+// text are refused), or InputError "<source>: not valid JSON (…)" or "<source>:
+// not a <what> (a JSON array, not an object)", each with "Fix: <fix>".
 inline nlohmann::ordered_json ParseJsonObject(const std::string& text, const std::string& source,
                                               std::string_view what, std::string_view fix) {
-  nlohmann::ordered_json json;
-  try {
-    json = nlohmann::ordered_json::parse(text);
-  } catch (const nlohmann::ordered_json::exception& e) {
-    throw InputError(source + ": not JSON (" + e.what() + "). Fix: " + std::string(fix));
-  }
+  nlohmann::ordered_json json = ParseStrictJson(text, source, fix);
   if (!json.is_object())
     throw InputError(source + ": not a " + std::string(what) + " (a JSON " + json.type_name() +
                      ", not an object). Fix: " + std::string(fix));

@@ -5,6 +5,7 @@
 
 #include "hb/errors.h"
 #include "hb/scenario.h"
+#include "hb/strict_json.h"
 #include "hb/text_file.h"
 #include "hb/version.h"
 #include "hb/internal/json_object_reader.h"
@@ -34,13 +35,8 @@ void ReadFormat(ObjectReader& top) {
 std::unique_ptr<SupportLaw> ModelFile::MakeSupportLaw() const { return MakePolynomialSupportLaw(polynomial, jenkins, one_sided_stiffness_Nm_rad); }
 
 ModelFile ParseModelFile(const std::string& json_text, const std::string& source) {
-  Json root;
-  try {
-    root = Json::parse(json_text);
-  } catch (const Json::exception& e) {  // syntax, and numbers beyond double (1e400)
-    throw std::invalid_argument(source + ": not valid JSON (" + e.what() + ")");
-  }
   constexpr const char* kDoc = "README.md, Model files";
+  const Json root = ParseStrictJson<Json>(json_text, source, "see README.md, Model files");
   ModelFile model;
   ObjectReader top(root, source, "", kDoc);
   ReadFormat(top);
@@ -66,7 +62,7 @@ ModelFile ParseModelFile(const std::string& json_text, const std::string& source
     model.force_position_m = e.Positive("position_m", 0.0);
   }
   if (top.Has("sensors")) {
-    const Json& sensors = top.Array("sensors");
+    const Json& sensors = top.PointList("sensors");
     for (size_t i = 0; i < sensors.size(); ++i) {
       ObjectReader r(sensors[i], source, "sensors[" + std::to_string(i) + "]", kDoc);
       // The recording's faults are not the beam's: a model predicts the true motion where the sensor is.

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "hb/errors.h"
+#include "hb/strict_json.h"
 #include "hb/text_file.h"
 #include "hb/version.h"
 #include "hb/internal/json_object_reader.h"
@@ -56,6 +57,7 @@ std::vector<double> ReadFrequencies(ObjectReader& level) {
   const std::string path = level.PathOf("frequencies_Hz");
   std::vector<double> f;
   if (spec.is_array()) {
+    if (spec.size() > 100000) throw std::invalid_argument(level.source() + ": " + path + " lists more than 100000 steps");
     for (const Json& v : spec) {
       if (!v.is_number()) throw std::invalid_argument(level.source() + ": " + path + " must hold numbers");
       f.push_back(v.get<double>());
@@ -140,11 +142,7 @@ namespace {
 // ---------------------------------------------------------------- reading, one helper per section
 
 Json ParseJson(const std::string& json_text, const std::string& source) {
-  try {
-    return Json::parse(json_text);
-  } catch (const Json::exception& e) {  // syntax, and numbers beyond double (1e400)
-    throw std::invalid_argument(source + ": not valid JSON (" + e.what() + ")");
-  }
+  return ParseStrictJson<Json>(json_text, source, "see docs/simulator.md");
 }
 
 // Checked first, so that another kind of file (a model file has no levels)
@@ -272,14 +270,14 @@ ScenarioSensor ReadSensor(ObjectReader& r) {
 }
 
 void ReadSensorsAndHiddenPositions(ObjectReader& top, Scenario& s) {
-  const Json& sensors = top.Array("sensors");
+  const Json& sensors = top.PointList("sensors");
   if (sensors.empty()) top.FailField("sensors", "must list at least one sensor");
   for (size_t i = 0; i < sensors.size(); ++i) {
     ObjectReader r(sensors[i], top.source(), "sensors[" + std::to_string(i) + "]");
     s.sensors.push_back(ReadSensor(r));
   }
   if (!top.Has("hidden_positions_m")) return;
-  for (const Json& v : top.Array("hidden_positions_m")) {
+  for (const Json& v : top.PointList("hidden_positions_m")) {
     if (!v.is_number()) top.FailField("hidden_positions_m", "must hold numbers");
     s.hidden_positions_m.push_back(v.get<double>());
   }

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Fuzzes every reader of user files with libFuzzer under AddressSanitizer and
 # UBSan: campaign.json, CSV recordings, universal files (UFF 58), phasor
-# tables, model files and scenarios (tests/fuzz/*_fuzzer.cc).
+# tables, model files, scenarios, and the files beamid writes and reads back:
+# phasors.json, result.json and diagnosis.json (tests/fuzz/*_fuzzer.cc).
 # Usage: bash scripts/fuzz.sh [SECONDS_PER_READER]   (default 600)
 #        FUZZ_RUNS=N bash scripts/fuzz.sh            (N inputs per reader with a fixed seed: what CI runs)
 # A finding stops the script with the reader's name and the input that
@@ -18,6 +19,11 @@ corpus="$build/corpus"
 mkdir -p "$corpus/model_file_fuzzer" "$corpus/scenario_fuzzer" "$build/findings"
 cp examples/paper_setup/model.json "$corpus/model_file_fuzzer/"
 cp examples/scenarios/*.json examples/concealed_friction/scenario.json "$corpus/scenario_fuzzer/" 2>/dev/null || true
+# Files of a real 3-step run (simulate, extract, identify, diagnose), kept small.
+for name in phasor_json_fuzzer result_json_fuzzer diagnosis_json_fuzzer; do
+  mkdir -p "$corpus/$name"
+  cp tests/fuzz/seeds/$name/* "$corpus/$name/"
+done
 export ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1
 passed=0
 for fuzzer in "$build"/tests/fuzz/*_fuzzer; do

@@ -9,6 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "hb/input_limits.h"
+#include "hb/strict_json.h"
 #include "hb/text_file.h"
 #include "signal/input_error.h"
 #include "signal/internal/text.h"
@@ -155,27 +157,9 @@ std::vector<const ChannelSpec*> Campaign::Channels() const {
 
 Campaign ParseCampaign(std::string_view json_text, const std::filesystem::path& folder, const std::string& source) {
   Reader reader(source);
-  json root;
-  // A key written twice in one object would silently take its second value.
-  std::vector<std::set<std::string>> keys_seen;
-  std::string duplicate_key;
-  const json::parser_callback_t refuse_duplicates = [&](int, json::parse_event_t event, json& parsed) {
-    if (event == json::parse_event_t::object_start) keys_seen.emplace_back();
-    if (event == json::parse_event_t::object_end && !keys_seen.empty()) keys_seen.pop_back();
-    if (event == json::parse_event_t::key && !keys_seen.empty() && !keys_seen.back().insert(parsed.get<std::string>()).second &&
-        duplicate_key.empty())
-      duplicate_key = parsed.get<std::string>();
-    return true;
-  };
-  try {
-    root = json::parse(json_text, refuse_duplicates);
-  } catch (const json::exception& e) {
-    // Syntax errors, and numbers beyond double's range (1e400).
-    reader.Fail("", "", std::string("not valid JSON (") + e.what() + ")", "correct the JSON at that byte");
-  }
-  if (!duplicate_key.empty())
-    reader.Fail("", "", "the key \"" + duplicate_key + "\" is written twice in one object",
-                "keep one of the two entries");
+  // Strict: a key written twice, at any depth, would silently take one of
+  // its values; a number beyond double's range is refused too.
+  const json root = ParseStrictJson<json>(json_text, source, "see docs/campaign-format.md");
   reader.RequireObject(root, "");
   reader.OnlyKeys(root, "", {"format", "beamid_version", "name", "beam", "excitation", "sensors", "steps", "sample_rate_Hz",
                              "ignore_channels"});
@@ -208,6 +192,10 @@ Campaign ParseCampaign(std::string_view json_text, const std::filesystem::path& 
   const json& sensors = reader.Member(root, "", "sensors");
   if (!sensors.is_array() || sensors.empty())
     reader.Fail("", "", "'sensors' must be a non-empty array", "list at least one response channel");
+  if (sensors.size() > static_cast<std::size_t>(hb::kMaxPointsOnBeam))
+    reader.Fail("", "", "'sensors' lists " + std::to_string(sensors.size()) + " channels, more than the " +
+                            std::to_string(hb::kMaxPointsOnBeam) + " beamid analyses",
+                "give at most " + std::to_string(hb::kMaxPointsOnBeam) + " sensors");
   std::set<std::string> names{campaign.excitation.channel};
   for (std::size_t i = 0; i < sensors.size(); ++i) {
     std::string where = "sensors[" + std::to_string(i) + "]";

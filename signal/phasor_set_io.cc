@@ -1,8 +1,11 @@
 #include "signal/phasor_set_io.h"
 
+#include "hb/input_limits.h"
+#include "hb/strict_json.h"
 #include "hb/version.h"
 #include "hb/text_file.h"
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -70,6 +73,52 @@ ChannelPhasors ChannelFromJson(const json& j) {
   return channel;
 }
 
+// The ranges of what extract writes: a value outside them was not measured
+// (a negative uncertainty, a frequency of 0 Hz) and would reach the fit as a
+// number. Each complaint names the entry's path in the file.
+// extract's -H takes 1..50.
+constexpr int kMaxPhasorHarmonics = 50;
+
+void CheckPhasorSet(const PhasorSet& set, const std::string& source) {
+  auto fail = [&](const std::string& where, const std::string& channel, double value, const std::string& problem) {
+    char shown[32];
+    std::snprintf(shown, sizeof shown, "%g", value);
+    throw InputError(source, channel, where + " = " + shown + " " + problem,
+                     "give the phasors file written by 'beamid extract' (see docs/signal.md), unedited");
+  };
+  if (set.num_harmonics < 1 || set.num_harmonics > kMaxPhasorHarmonics)
+    fail("num_harmonics", "", set.num_harmonics, "must lie in 1.." + std::to_string(kMaxPhasorHarmonics));
+  for (std::size_t i = 0; i < set.steps.size(); ++i) {
+    const StepPhasors& step = set.steps[i];
+    const std::string where = "steps[" + std::to_string(i) + "]";
+    if (!(step.nominal_frequency_hz > 0.0)) fail(where + ".nominal_frequency_Hz", "", step.nominal_frequency_hz, "must be positive");
+    if (!(step.frequency_hz > 0.0)) fail(where + ".frequency_Hz", "", step.frequency_hz, "must be positive");
+    if (!(step.frequency_std_hz >= 0.0)) fail(where + ".frequency_std_Hz", "", step.frequency_std_hz, "must not be negative");
+    if (step.responses.size() > static_cast<std::size_t>(hb::kMaxPointsOnBeam))
+      fail(where + ".channels", "", static_cast<double>(step.responses.size()),
+           "response channels are more than the " + std::to_string(hb::kMaxPointsOnBeam) + " beamid analyses");
+    for (std::size_t c = 0; c <= step.responses.size(); ++c) {
+      const ChannelPhasors& channel = c == 0 ? step.force : step.responses[c - 1];
+      const std::string at = where + ".channels[" + std::to_string(c) + "]";
+      if (channel.harmonics.size() > static_cast<std::size_t>(set.num_harmonics) + 1)
+        fail(at + ".harmonics", channel.channel, static_cast<double>(channel.harmonics.size()),
+             "phasors are more than num_harmonics + 1");
+      for (std::size_t k = 0; k < channel.harmonics.size(); ++k) {
+        const HarmonicPhasor& h = channel.harmonics[k];
+        const std::string hk = at + ".harmonics[" + std::to_string(k) + "]";
+        if (h.harmonic < 0 || h.harmonic > set.num_harmonics)
+          fail(hk + ".k", channel.channel, h.harmonic, "must lie in 0..num_harmonics");
+        if (!std::isfinite(h.value.real()) || !std::isfinite(h.value.imag()))
+          fail(hk + ".re", channel.channel, h.value.real(), "or its im is not a finite number");
+        if (!(h.std_real >= 0.0)) fail(hk + ".std_re", channel.channel, h.std_real, "must not be negative");
+        if (!(h.std_imag >= 0.0)) fail(hk + ".std_im", channel.channel, h.std_imag, "must not be negative");
+        if (!(std::abs(h.correlation) <= 1.0))
+          fail(hk + ".correlation", channel.channel, h.correlation, "must lie in [-1, 1]");
+      }
+    }
+  }
+}
+
 }  // namespace
 
 std::string PhasorSetToJson(const PhasorSet& set) {
@@ -115,7 +164,7 @@ std::string PhasorSetToJson(const PhasorSet& set) {
 
 PhasorSet PhasorSetFromJson(std::string_view json_text, const std::string& source) {
   try {
-    const json root = json::parse(json_text);
+    const json root = ParseStrictJson<json>(json_text, source, "see docs/signal.md");
     if (root.at("format").get<std::string>() != kPhasorFormat)
       throw InputError(source, "", "format '" + root.at("format").get<std::string>() + "' is not supported",
                        "give a phasors file written by 'beamid extract' (" + std::string(kPhasorFormat) + ")");
@@ -154,6 +203,7 @@ PhasorSet PhasorSetFromJson(std::string_view json_text, const std::string& sourc
                                .level = s.at("level").get<std::string>(),
                                .nominal_frequency_hz = s.at("nominal_frequency_Hz").get<double>(),
                                .reason = s.at("reason").get<std::string>()});
+    CheckPhasorSet(set, source);
     return set;
   } catch (const InputError&) {
     throw;

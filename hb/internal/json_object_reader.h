@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "hb/beam_properties.h"
+#include "hb/input_limits.h"
 #include "hb/linear_attachments.h"
 #include "hb/support_law.h"
 
@@ -76,6 +77,15 @@ class ObjectReader {
   const Json& Array(const std::string& key) {
     const Json& v = Raw(key);
     if (!v.is_array()) FailField(key, "must be a JSON array");
+    return v;
+  }
+  // A list of points on the beam (sensors, point masses), bounded.
+  const Json& PointList(const std::string& key) {
+    const Json& v = Array(key);
+    if (v.size() > static_cast<std::size_t>(kMaxPointsOnBeam))
+      FailField(key, "lists " + std::to_string(v.size()) + " points, more than the " +
+                         std::to_string(kMaxPointsOnBeam) + " a beam model takes. Fix: give at most " +
+                         std::to_string(kMaxPointsOnBeam) + " (see " + format_doc_ + ")");
     return v;
   }
   std::string PathOf(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
@@ -151,7 +161,7 @@ inline void ReadAttachments(ObjectReader& top, const std::string& format_doc, Li
   if (a.Has("support_translational_stiffness_N_m"))
     attachments.support_translational_stiffness_N_m = a.Positive("support_translational_stiffness_N_m", 0.0);
   if (a.Has("point_masses")) {
-    const Json& masses = a.Array("point_masses");
+    const Json& masses = a.PointList("point_masses");
     for (size_t i = 0; i < masses.size(); ++i) {
       ObjectReader m(masses[i], top.source(), "attachments.point_masses[" + std::to_string(i) + "]", format_doc);
       attachments.point_masses.push_back({m.NonNegative("position_m", 0.0), m.Positive("mass_kg", 0.0)});

@@ -9,6 +9,8 @@
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
+#include "hb/errors.h"
+#include "hb/strict_json.h"
 #include "hb/text_file.h"
 #include "signal/campaign.h"
 #include "signal/campaign_extractor.h"
@@ -34,9 +36,14 @@ struct ReportOptions {
 // "format"), which needs no model and no campaign.
 bool IsMeasuredBackboneFile(const std::string& path) {
   if (std::filesystem::path(path).extension() != ".json" || !std::filesystem::is_regular_file(path)) return false;
-  const nlohmann::json json = nlohmann::json::parse(
-      ReadTextFile(path, "report input", "give a result.json, a diagnosis.json or a measured backbone .json"), nullptr,
-      false);
+  const std::string text =
+      ReadTextFile(path, "report input", "give a result.json, a diagnosis.json or a measured backbone .json");
+  nlohmann::json json;
+  try {
+    json = ParseStrictJson<nlohmann::json>(text, path, "see docs/report.md");
+  } catch (const InputError&) {
+    return false;  // not one: the reader of a result or diagnosis names what is wrong
+  }
   return json.is_object() && json.contains("format") && json["format"] == solver::kMeasuredBackboneFormat;
 }
 

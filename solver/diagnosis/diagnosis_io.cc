@@ -248,40 +248,40 @@ LoopEvidence LoopsFromJson(const Field& f) {
     LoopStep step;
     step.level = s.String("level");
     step.omega_rad_s =
-        s.Has("omega_rad_s") ? s.Number("omega_rad_s") : 2.0 * std::numbers::pi * s.Number("frequency_hz");
+        s.Has("omega_rad_s") ? s.Positive("omega_rad_s") : 2.0 * std::numbers::pi * s.Positive("frequency_hz");
     step.theta_amplitude_rad = s.Number("theta_amplitude_rad");
-    step.theta_std_rad = s.Number("theta_std_rad");
+    step.theta_std_rad = s.NonNegative("theta_std_rad");
     step.moment_amplitude_Nm = s.Number("moment_amplitude_Nm");
     step.dissipated_energy_J = s.Number("dissipated_energy_J");
-    step.dissipated_energy_std_J = s.Number("dissipated_energy_std_J");
+    step.dissipated_energy_std_J = s.NonNegative("dissipated_energy_std_J");
     step.viscous_energy_J = s.Number("viscous_energy_J");
     step.equivalent_damping_Nms_rad = s.Number("equivalent_damping_Nms_rad");
-    step.equivalent_damping_std_Nms_rad = s.Number("equivalent_damping_std_Nms_rad");
+    step.equivalent_damping_std_Nms_rad = s.NonNegative("equivalent_damping_std_Nms_rad");
     step.moment_harmonic_ratio = s.Number("moment_harmonic_ratio");
-    step.elastic_harmonic_chi2 = s.Number("elastic_harmonic_chi2");
-    step.hysteretic_harmonic_chi2 = s.Number("hysteretic_harmonic_chi2");
+    step.elastic_harmonic_chi2 = s.NonNegative("elastic_harmonic_chi2");
+    step.hysteretic_harmonic_chi2 = s.NonNegative("hysteretic_harmonic_chi2");
     step.harmonic_dof = s.Integer("harmonic_dof");
     step.theta_even_fraction = s.Number("theta_even_fraction");
     step.moment_even_fraction = s.Number("moment_even_fraction");
     loops.steps.push_back(std::move(step));
   }
-  loops.num_steps_used = f.Integer("num_steps_used");
+  loops.num_steps_used = f.Count("num_steps_used");
   loops.area_exponent = f.Number("area_exponent");
-  loops.area_exponent_std = f.Number("area_exponent_std");
-  loops.viscous_chi2 = f.Number("viscous_chi2");
+  loops.area_exponent_std = f.NonNegative("area_exponent_std");
+  loops.viscous_chi2 = f.NonNegative("viscous_chi2");
   loops.viscous_dof = f.Integer("viscous_dof");
-  loops.viscous_p_value = f.Number("viscous_p_value");
+  loops.viscous_p_value = f.Probability("viscous_p_value");
   loops.mean_equivalent_damping_Nms_rad = f.Number("mean_equivalent_damping_Nms_rad");
   loops.damping_ratio_high_to_low = f.Number("damping_ratio_high_to_low");
-  loops.elastic_harmonic_chi2 = f.Number("elastic_harmonic_chi2");
-  loops.hysteretic_harmonic_chi2 = f.Number("hysteretic_harmonic_chi2");
+  loops.elastic_harmonic_chi2 = f.NonNegative("elastic_harmonic_chi2");
+  loops.hysteretic_harmonic_chi2 = f.NonNegative("hysteretic_harmonic_chi2");
   loops.harmonic_dof = f.Integer("harmonic_dof");
-  loops.elastic_harmonic_p_value = f.Number("elastic_harmonic_p_value");
-  loops.hysteretic_harmonic_p_value = f.Number("hysteretic_harmonic_p_value");
+  loops.elastic_harmonic_p_value = f.Probability("elastic_harmonic_p_value");
+  loops.hysteretic_harmonic_p_value = f.Probability("hysteretic_harmonic_p_value");
   loops.max_moment_harmonic_ratio = f.Number("max_moment_harmonic_ratio");
-  loops.theta_even_chi2 = f.Number("theta_even_chi2");
+  loops.theta_even_chi2 = f.NonNegative("theta_even_chi2");
   loops.theta_even_dof = f.Integer("theta_even_dof");
-  loops.theta_even_p_value = f.Number("theta_even_p_value");
+  loops.theta_even_p_value = f.Probability("theta_even_p_value");
   loops.dissipation_not_viscous = f.Boolean("dissipation_not_viscous");
   loops.non_elliptic = f.Boolean("non_elliptic");
   loops.hysteretic_shape = f.Boolean("hysteretic_shape");
@@ -295,11 +295,11 @@ MisfitLocation LocationFromJson(const Field& f) {
               "harmonic_excess_chi2", "channel_excess_chi2", "level_growth_exponent", "level_misfit_amplitude",
               "level_response_amplitude", "loops", "findings", "groups"});
   MisfitLocation location;
-  location.chi2 = f.Number("chi2");
+  location.chi2 = f.NonNegative("chi2");
   location.dof = f.Integer("dof");
-  location.p_value = f.Number("p_value");
+  location.p_value = f.Probability("p_value");
   location.significant = f.Boolean("significant");
-  location.num_groups_tested = f.Integer("num_groups_tested");
+  location.num_groups_tested = f.Count("num_groups_tested");
   const Field groups = f.At("groups");
   for (std::size_t i = 0; i < groups.Size(); ++i) {
     const Field g = groups.At(i);
@@ -310,10 +310,10 @@ MisfitLocation LocationFromJson(const Field& f) {
                                .level = g.String("level"),
                                .part = g.String("part"),
                                .band = g.String("band"),
-                               .chi2 = g.Number("chi2"),
+                               .chi2 = g.NonNegative("chi2"),
                                .dof = g.Integer("dof"),
-                               .p_value = g.Number("p_value"),
-                               .adjusted_p_value = g.Number("adjusted_p_value"),
+                               .p_value = g.Probability("p_value"),
+                               .adjusted_p_value = g.Probability("adjusted_p_value"),
                                .significant = g.Boolean("significant"),
                                .excess_chi2 = g.Number("excess_chi2"),
                                .growth_exponent = g.Number("growth_exponent")});
@@ -355,8 +355,8 @@ CandidateOutcome CandidateFromJson(const Field& f) {
   c.residual_drop = f.Number("residual_drop");
   c.likelihood_ratio = f.Number("likelihood_ratio");
   c.test_dof = f.Integer("test_dof");
-  c.p_value = f.Number("p_value");
-  c.seconds = f.Number("seconds");
+  c.p_value = f.Probability("p_value");
+  c.seconds = f.NonNegative("seconds");
   c.fit = FitFromJson(f.At("fit"));
   return c;
 }
@@ -364,7 +364,7 @@ CandidateOutcome CandidateFromJson(const Field& f) {
 ResponsePoint ResponseFromJson(const Field& f) {
   f.OnlyKeys({"level", "frequency_hz", "channel", "held_out", "measured", "base_model", "final_model"});
   return {.level = f.String("level"),
-          .frequency_hz = f.Number("frequency_hz"),
+          .frequency_hz = f.Positive("frequency_hz"),
           .channel = f.String("channel"),
           .held_out = f.Boolean("held_out"),
           .measured = f.At("measured").Phasor(),
@@ -440,7 +440,7 @@ DiagnosisResult ResultFromJson(const Field& root) {
     const Field response = root.At("response");
     for (std::size_t i = 0; i < response.Size(); ++i) r.response.push_back(ResponseFromJson(response.At(i)));
   }
-  r.seconds = root.Number("seconds");
+  r.seconds = root.NonNegative("seconds");
   return r;
 }
 
@@ -454,11 +454,7 @@ std::string DiagnosisFileToJson(const DiagnosisFile& file) {
   root["campaign"] = {{"folder", file.campaign_folder}, {"name", file.campaign_name}};
   if (!file.result_file.empty()) root["result_file"] = file.result_file;
   if (!file.embedded_result_json.empty()) {
-    try {
-      root["result"] = Json::parse(file.embedded_result_json);
-    } catch (const Json::parse_error& e) {
-      throw std::invalid_argument(std::string("DiagnosisFile::embedded_result_json is not JSON: ") + e.what());
-    }
+    root["result"] = ParseStrictJson<Json>(file.embedded_result_json, "DiagnosisFile::embedded_result_json", "");
   }
   root["selected"] = r.selected;
   root["verdict"] = r.verdict;
@@ -548,7 +544,7 @@ std::string CandidateRefitToText(const CandidateRefit& refit) {
 
 CandidateRefit CandidateRefitFromText(const std::string& text) {
   try {
-    const nlohmann::json j = nlohmann::json::parse(text);
+    const nlohmann::json j = ParseStrictJson<nlohmann::json>(text, "a candidate refit's record", "");
     return {.chi_square = ExactNumberFromJson(j.at("chi_square")),
             .seconds = ExactNumberFromJson(j.at("seconds")),
             .values = ExactNumbersFromJson(j.at("values")),

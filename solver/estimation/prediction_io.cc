@@ -77,7 +77,7 @@ PredictionStep StepFromJson(const Field& f, std::string& quantity) {
   PredictionStep s;
   s.level = f.String("level");
   s.file = f.String("file");
-  s.frequency_hz = f.Number("frequency_Hz");
+  s.frequency_hz = f.Positive("frequency_Hz");
   s.converged = f.Boolean("converged");
   const Field harmonics = f.At("harmonics");
   for (std::size_t i = 0; i < harmonics.Size(); ++i) {
@@ -98,12 +98,12 @@ PredictionStep StepFromJson(const Field& f, std::string& quantity) {
     } else {
       h.OnlyKeys({"k", "displacement_m", "displacement_std_m", "acceleration_m_s2", "acceleration_amplitude_m_s2"});
     }
-    out.k = h.Integer("k");
+    out.k = h.Count("k", 50);
     out.displacement_m = h.At("displacement_m").Phasor();
     const Field std = h.At("displacement_std_m");
     if (std.Size() != 2) std.Fail("must be [std of re, std of im]");
-    out.displacement_std_real_m = std.At(0).Number();
-    out.displacement_std_imag_m = std.At(1).Number();
+    out.displacement_std_real_m = std.At(0).NonNegative();
+    out.displacement_std_imag_m = std.At(1).NonNegative();
     out.acceleration_m_s2 = h.At("acceleration_m_s2").Phasor();
     out.acceleration_amplitude_m_s2 = h.Number("acceleration_amplitude_m_s2");
     s.harmonics.push_back(out);

@@ -1,16 +1,19 @@
 #include "solver/estimation/result_io.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <utility>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "hb/errors.h"
 #include "hb/json_field.h"
 #include "hb/text_file.h"
 #include "solver/estimation/model_family.h"
+#include "solver/estimation/model_structure.h"
 
 namespace beamid::solver {
 namespace {
@@ -232,8 +235,44 @@ std::vector<ResultParameter> ReadParameters(const Field& root) {
                    .std = p.Number("std"),
                    .lower_95 = ci95[0],
                    .upper_95 = ci95[1]});
+    // A standard uncertainty is never negative (NaN: the fit gave none).
+    if (out.back().std < 0.0) p.At("std").Fail("= " + fmt::format("{:g}", out.back().std) + " is negative");
   }
   return out;
+}
+
+// The physical range identify fits each parameter in (model_structure.h:
+// k1 >= 0, since a support of negative stiffness pushes the beam away; c >=
+// 0; EI_scale in [0.5, 1.5], ...): a value outside it was not written by
+// identify, and the model it makes may have no solution. Ipopt may end a
+// hair beyond a bound, which the slack allows.
+void CheckParameterRanges(const Field& root, const ResultModel& model, const std::vector<ResultParameter>& parameters,
+                          const std::vector<std::string>& linear_parameters) {
+  if (model.law != "polynomial") return;  // predict refuses other laws, naming the law
+  ModelStructure structure = PolynomialModel({});
+  for (const auto& name : linear_parameters) {
+    try {
+      structure.linear.push_back(LinearParameterByName(name, 0.0));
+    } catch (const std::invalid_argument&) {
+      return;  // an unknown name is refused by predict, naming linear_parameters
+    }
+  }
+  const std::vector<std::string> names = structure.Names();
+  const std::vector<ParameterBounds> bounds = structure.Bounds();
+  for (const ResultParameter& p : parameters) {
+    const auto it = std::find(names.begin(), names.end(), p.name);
+    if (it == names.end()) continue;
+    const ParameterBounds& b = bounds[static_cast<std::size_t>(it - names.begin())];
+    const double slack = 1e-6 * std::max(b.typical, std::max(std::abs(b.lower), std::abs(b.upper)) * 1e-6);
+    if (p.value >= b.lower - slack && p.value <= b.upper + slack) continue;
+    const Field value = root.At("parameters").At(p.name).At("value");
+    const std::string shown = "= " + fmt::format("{:g}", p.value);
+    if (b.lower == 0.0 && p.value < 0.0)
+      value.Fail(shown + " is negative: " + p.name + " is physical only >= 0 (identify fits it in [0, " +
+                 fmt::format("{:g}", b.upper) + "])");
+    value.Fail(shown + " lies outside [" + fmt::format("{:g}", b.lower) + ", " + fmt::format("{:g}", b.upper) +
+               "], the physical range identify fits " + p.name + " in");
+  }
 }
 
 Json EstimateJson(const ParameterEstimate& p) {
@@ -463,6 +502,7 @@ ResultFile ReadResult(const Json& root, const std::string& source) {
   out.model = ReadModel(r.At("model"));
   out.parameters = ReadParameters(r);
   out.linear_parameters = r.At("linear_parameters").Strings();
+  CheckParameterRanges(r, out.model, out.parameters, out.linear_parameters);
   out.covariance = SquareMatrix(r.At("covariance"), out.parameters.size());
   out.correlation = SquareMatrix(r.At("correlation"), out.parameters.size());
   out.fit = ReadFit(r.At("fit"));

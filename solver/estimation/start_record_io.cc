@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "hb/json_field.h"
+#include "hb/strict_json.h"
 
 namespace beamid::solver {
 
@@ -25,7 +26,7 @@ std::string StartRecordToText(const StartRecord& record) {
 
 StartRecord StartRecordFromText(const std::string& text) {
   try {
-    const nlohmann::json j = nlohmann::json::parse(text);
+    const nlohmann::json j = ParseStrictJson<nlohmann::json>(text, "a start's record", "");
     StartRecord record;
     StartOutcome& o = record.outcome;
     o.objective = ExactNumberFromJson(j.at("objective"));

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "hb/errors.h"
+#include "hb/strict_json.h"
 #include "hb/text_file.h"
 #include "solver/estimation/result_io.h"
 
@@ -31,12 +32,7 @@ ReportInput LoadReportInput(const fs::path& input_file, const std::optional<fs::
   input.input_file = input_file;
   input.result_file = input_file;
   const std::string text = ReadTextFile(input_file, "result or diagnosis file", "check the path");
-  Json j;
-  try {
-    j = Json::parse(text);
-  } catch (const Json::exception& e) {  // syntax, and numbers beyond double (1e400)
-    throw std::invalid_argument(input_file.string() + ": not valid JSON (" + e.what() + ")");
-  }
+  const Json j = ParseStrictJson<Json>(text, input_file.string(), "see docs/report.md");
   if (IsDiagnosis(j)) {
     DiagnosisFile diagnosis = DiagnosisFileFromJson(text, input_file.string());
     if (!diagnosis.embedded_result_json.empty()) {

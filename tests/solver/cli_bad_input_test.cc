@@ -136,6 +136,27 @@ TEST_F(BadInput, EveryBadInputEndsWithExitTwoAndAMessageThatNamesItAndTheFix) {
       WriteFile(d / "s.json", scenario.replace(at, text.size(), replacement));
     };
   };
+  const auto model_with = [](const std::string& text, const std::string& replacement) {
+    return [=](const fs::path&, const fs::path& d) {
+      std::string model = ReadFile("examples/paper_setup/model.json");
+      const std::size_t at = model.find(text);
+      ASSERT_NE(at, std::string::npos) << text;
+      WriteFile(d / "model.json", model.replace(at, text.size(), replacement));
+    };
+  };
+  std::string many_sensors;
+  for (int i = 0; i < 65; ++i)
+    many_sensors += "{\"channel\": \"s" + std::to_string(i) + "\", \"position_m\": 0.1},";
+  // The identified result with k1's value (the first parameter's) replaced by edit(value).
+  const auto result_with = [](std::function<std::string(std::string)> edit) {
+    return [=](const fs::path&, const fs::path& d) {
+      std::string result = ReadFile(root_ / "result.json");
+      const std::size_t k1 = result.find("\"k1\": {", result.find("\"parameters\": {"));
+      ASSERT_NE(k1, std::string::npos);
+      const std::size_t value = result.find("\"value\": ", k1) + 9, end = result.find(',', value);
+      WriteFile(d / "result.json", result.replace(value, end - value, edit(result.substr(value, end - value))));
+    };
+  };
   const std::vector<Row> rows = {
       // campaign.json
       {"a number beyond double range",
@@ -246,6 +267,26 @@ TEST_F(BadInput, EveryBadInputEndsWithExitTwoAndAMessageThatNamesItAndTheFix) {
       {"a FIFO as a step's recording",
        [&](auto m, auto) { fs::remove(step(m, 1)); ASSERT_EQ(::mkfifo(step(m, 1).c_str(), 0600), 0); },
        "extract {m} -o {d}/p.json", {"step_001.csv", "is a FIFO, not a file", "Fix:"}},
+      // strict JSON (hb/strict_json.h): a key written twice is refused in every format, the values the
+      // readers take are checked for range, and the lists of points on the beam are bounded
+      {"a model with length_m written twice", model_with("\"length_m\": 0.600", "\"length_m\": 0.6, \"length_m\": 6.0"),
+       "frc {d}/model.json -o {d}/f", {"model.json", "\"length_m\" is written twice", "beam.length_m", "Fix:"}},
+      {"a model with 65 sensors", model_with("{ \"channel\": \"acc1\", \"position_m\": 0.100 },", many_sensors),
+       "frc {d}/model.json -o {d}/f", {"model.json", "sensors", "more than the 64", "Fix:"}},
+      {"a scenario with k1 written twice", scenario_with("\"k1_Nm_rad\": 150", "\"k1_Nm_rad\": 150, \"k1_Nm_rad\": 15"),
+       "simulate {d}/s.json -o {d}/sim", {"s.json", "\"k1_Nm_rad\" is written twice", "Fix:"}},
+      {"a result with k1.value written twice", result_with([](std::string value) { return "1000, \"value\": " + value; }),
+       "predict {d}/result.json --x 0.3 -o {d}/pred.json",
+       {"result.json", "\"value\" is written twice", "parameters.k1.value", "Fix:"}},
+      {"a result with k1 = -5", result_with([](const std::string&) { return std::string("-5"); }),
+       "predict {d}/result.json --x 0.3 -o {d}/pred.json",
+       {"result.json", "parameters.k1.value", "-5 is negative", "Fix:"}},
+      {"phasors with a key written twice",
+       [](auto m, auto d) {
+         ASSERT_EQ(Beamid("-q extract " + m.string() + " -o " + (d / "p.json").string()).exit_code, 0);
+         Replace(d / "p.json", "\"num_harmonics\": ", "\"num_harmonics\": 3, \"num_harmonics\": ");
+       },
+       "identify {m} --phasors {d}/p.json -o {d}/r.json", {"p.json", "\"num_harmonics\" is written twice", "Fix:"}},
   };
   const fs::path clean = root_ / "clean", result = root_ / "result.json";
   for (std::size_t i = 0; i < rows.size(); ++i) {

@@ -363,7 +363,7 @@ TEST(MeasuredBackboneFile, AWrongFormatIsRefusedNamingTheFile) {
   EXPECT_THAT(message, HasSubstr("Fix: "));
   EXPECT_THAT(InputErrorOf([] { MeasuredBackboneFileFromJson("[1, 2]", "list.json"); }), HasSubstr("list.json: not a"));
   EXPECT_THAT(InputErrorOf([] { MeasuredBackboneFileFromJson("{\"format\": ", "cut.json"); }),
-              HasSubstr("cut.json: not JSON"));
+              HasSubstr("cut.json: not valid JSON"));
 }
 
 TEST(MeasuredBackboneFile, AFieldOfTheWrongTypeIsRefusedNamingTheFileAndTheField) {

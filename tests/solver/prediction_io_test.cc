@@ -221,7 +221,7 @@ TEST(PredictionFile, AWrongFormatIsRefusedNamingTheFile) {
               }),
               HasSubstr("i.json: field \"command\" is \"identify\""));
   EXPECT_THAT(InputErrorOf([] { PredictionFileFromJson("[]", "list.json"); }), HasSubstr("list.json: not a"));
-  EXPECT_THAT(InputErrorOf([] { PredictionFileFromJson("{", "cut.json"); }), HasSubstr("cut.json: not JSON"));
+  EXPECT_THAT(InputErrorOf([] { PredictionFileFromJson("{", "cut.json"); }), HasSubstr("cut.json: not valid JSON"));
 }
 
 TEST(PredictionFile, AFieldOfTheWrongTypeIsRefusedNamingTheFileAndTheField) {

@@ -590,7 +590,7 @@ TEST(ResultFile, AWrongFormatOrNoJsonIsRefusedNamingTheFile) {
   message = InputErrorOf([] { ResultFileFromJson("[1, 2]", "list.json"); });
   EXPECT_THAT(message, HasSubstr("list.json: not a beamid result"));
   message = InputErrorOf([] { ResultFileFromJson(R"({"format": "beamid-result/1",)", "cut.json"); });
-  EXPECT_THAT(message, HasSubstr("cut.json: not JSON"));
+  EXPECT_THAT(message, HasSubstr("cut.json: not valid JSON"));
   const std::filesystem::path missing = testing::UniqueTempPath("no_such_result.json");
   message = InputErrorOf([&] { ReadResultFile(missing); });
   EXPECT_THAT(message, HasSubstr(missing.string()));
