@@ -5,7 +5,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   libeigen3-dev libfftw3-dev coinor-libipopt-dev libgtest-dev libbenchmark-dev
-  nlohmann-json3-dev libcli11-dev libfmt-dev gnuplot-nox zlib1g-dev
+  nlohmann-json3-dev libcli11-dev libfmt-dev gnuplot-nox zlib1g-dev libssl-dev
   chromium
   clang libclang-rt-14-dev
 )

@@ -12,6 +12,7 @@
 #include "hb/input_limits.h"
 #include "hb/strict_json.h"
 #include "hb/text_file.h"
+#include "signal/campaign_hash.h"
 #include "signal/input_error.h"
 #include "signal/internal/text.h"
 
@@ -284,6 +285,22 @@ Campaign ReadCampaign(const std::filesystem::path& folder) {
                        "copy the recording into the campaign folder or correct its \"file\" entry");
     }
   }
+  std::vector<std::string> files;
+  for (const auto& step : campaign.steps) files.push_back(step.file);
+  const CampaignHash hash = HashCampaign(folder, files);
+  campaign.sha256 = hash.sha256;
+  // Two steps with the same bytes are one measurement fitted twice, at two
+  // nominal frequencies or levels: a copy made by mistake, most likely.
+  for (std::size_t i = 0; i < files.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (hash.step_sha256[i] == hash.step_sha256[j]) {
+        campaign.warnings.push_back("the recording " + campaign.StepPath(campaign.steps[i]).string() + " of steps[" +
+                                    std::to_string(i) + "] holds the same bytes as " +
+                                    campaign.StepPath(campaign.steps[j]).string() + " (steps[" + std::to_string(j) +
+                                    "]): the same measurement would count twice; copy the right recording in, or "
+                                    "remove the step from " + file.string());
+        break;
+      }
   return campaign;
 }
 

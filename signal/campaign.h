@@ -60,6 +60,14 @@ struct Campaign {
   // The sensors the running analysis uses (set by the command: fitted,
   // validated, named with --channel); empty: every sensor not ignored.
   std::vector<std::string> analysed_sensors;
+  // Set by ReadCampaign: the content hash of campaign.json and the
+  // recordings (signal/campaign_hash.h), which every file derived from the
+  // campaign carries as "campaign_sha256"; "" when not read from files.
+  std::string sha256;
+  // Set by ReadCampaign: what the engineer should look at but that does not
+  // stop an analysis (a recording that is a byte copy of another step's),
+  // one sentence each, naming the files.
+  std::vector<std::string> warnings;
 
   // kUsed for the excitation and the analysed sensors.
   ChannelUse Use(std::string_view channel) const;
@@ -75,7 +83,8 @@ struct Campaign {
 };
 
 // Reads and validates folder/campaign.json; also checks that every step's
-// recording exists. Throws InputError.
+// recording exists, computes the campaign's content hash (sha256) and warns
+// of a recording whose bytes are another step's. Throws InputError.
 Campaign ReadCampaign(const std::filesystem::path& folder);
 
 // The same validation on campaign.json text already in memory; source names

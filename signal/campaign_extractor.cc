@@ -94,6 +94,7 @@ PhasorSet ExtractCampaign(const Campaign& campaign, const ExtractOptions& option
 
   PhasorSet set;
   set.campaign = campaign.name;
+  set.campaign_sha256 = campaign.sha256;
   set.num_harmonics = options.estimator.num_harmonics;
   std::string listed;
   std::size_t num_bad = 0;

@@ -93,6 +93,7 @@ struct SkippedStep {
 
 struct PhasorSet {
   std::string campaign;        // campaign name
+  std::string campaign_sha256;  // the campaign's content hash (signal/campaign_hash.h); "" in older files
   int num_harmonics = 0;       // H requested
   std::vector<StepPhasors> steps;  // campaign order
   std::vector<SkippedStep> skipped;  // campaign order

@@ -148,6 +148,7 @@ std::string PhasorSetToJson(const PhasorSet& set) {
                {"beamid_version", kVersion},
                {"convention", kConvention},
                {"campaign", set.campaign},
+               {"campaign_sha256", set.campaign_sha256},
                {"num_harmonics", set.num_harmonics},
                {"steps", steps}};
   if (!set.skipped.empty()) {
@@ -170,6 +171,7 @@ PhasorSet PhasorSetFromJson(std::string_view json_text, const std::string& sourc
                        "give a phasors file written by 'beamid extract' (" + std::string(kPhasorFormat) + ")");
     PhasorSet set;
     set.campaign = root.at("campaign").get<std::string>();
+    if (root.contains("campaign_sha256")) set.campaign_sha256 = root.at("campaign_sha256").get<std::string>();
     set.num_harmonics = root.at("num_harmonics").get<int>();
     for (const auto& s : root.at("steps")) {
       StepPhasors step;

@@ -1,6 +1,8 @@
 // Files of a PhasorSet (signal/phasor_set.h), written by `beamid extract` and
 // read by solver/:
-//  - JSON, format "beamid-phasors/1": per step its file, level,
+//  - JSON, format "beamid-phasors/1": campaign, campaign_sha256 (the
+//    campaign's content hash, signal/campaign_hash.h; absent in files of an
+//    older beamid, read as ""), num_harmonics, and per step its file, level,
 //    nominal_frequency_Hz, frequency_Hz, frequency_std_Hz, quality, and per
 //    channel (force first) quantity, SI unit, position_m, mean, thd, snr_dB,
 //    noise_rms and harmonics [{k, re, im, amplitude, phase_rad, std_re,

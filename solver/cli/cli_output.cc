@@ -11,6 +11,7 @@
 #include "hb/errors.h"
 #include "hb/text_file.h"
 #include "signal/campaign_extractor.h"
+#include "signal/campaign_identity.h"
 #include "signal/phasor_set_io.h"
 
 namespace beamid::cli {
@@ -105,15 +106,43 @@ void RequireFitWithinModelHarmonics(int fit_harmonics, int harmonics) {
                      std::to_string(harmonics) + ": fit at most the harmonics the model holds");
 }
 
-signal::Campaign ReadCampaignForAnalysis(const std::string& folder, const std::vector<std::string>& fit_channels,
-                                         const std::vector<std::string>& validate_channels) {
+signal::Campaign ReadCampaignAndWarn(const std::string& command, const std::filesystem::path& folder,
+                                     const GlobalOptions& global) {
   signal::Campaign campaign = signal::ReadCampaign(folder);
-  if (!fit_channels.empty()) {
-    std::vector<std::string> analysed = fit_channels;
-    analysed.insert(analysed.end(), validate_channels.begin(), validate_channels.end());
-    campaign.Analyse(analysed);
-  }
+  if (!global.quiet)
+    for (const auto& warning : campaign.warnings) fmt::print(stderr, "beamid {}: warning: {}\n", command, warning);
   return campaign;
+}
+
+CampaignForAnalysis ReadCampaignForAnalysis(const std::string& command, const std::string& folder,
+                                            const std::vector<std::string>& fit_channels,
+                                            const std::vector<std::string>& validate_channels,
+                                            const GlobalOptions& global) {
+  CampaignForAnalysis out{.campaign = ReadCampaignAndWarn(command, folder, global), .fit_channels = fit_channels};
+  const signal::Campaign& campaign = out.campaign;
+  const auto validated = [&](const std::string& channel) {
+    return std::find(validate_channels.begin(), validate_channels.end(), channel) != validate_channels.end();
+  };
+  for (const auto& channel : fit_channels)
+    if (validated(channel))
+      throw InputError("--validate " + channel + ": the channel is also fitted (--fit), so its held-out error "
+                       "would be a fitted residual, not a prediction. Fix: leave " + channel +
+                       " out of --fit or out of --validate");
+  if (out.fit_channels.empty())
+    for (const auto& sensor : campaign.sensors)
+      if (campaign.Use(sensor.channel) != signal::ChannelUse::kIgnored && !validated(sensor.channel))
+        out.fit_channels.push_back(sensor.channel);
+  if (out.fit_channels.empty()) {
+    const std::string campaign_json = (campaign.folder / "campaign.json").string();
+    throw InputError(campaign_json + ": no sensor is left to fit: every sensor is listed in ignore_channels" +
+                     (validate_channels.empty() ? std::string() : " or held out with --validate") +
+                     ". Fix: remove a sensor from ignore_channels in " + campaign_json +
+                     (validate_channels.empty() ? std::string() : ", or hold out fewer channels"));
+  }
+  std::vector<std::string> analysed = out.fit_channels;
+  analysed.insert(analysed.end(), validate_channels.begin(), validate_channels.end());
+  out.campaign.Analyse(analysed);
+  return out;
 }
 
 void AddPhasorInputOptions(CLI::App* command, PhasorInput* input) {
@@ -156,6 +185,14 @@ signal::PhasorSet ReadOrExtractPhasors(const signal::Campaign& campaign, const P
                        std::to_string(campaign.steps.size()) +
                        ", or other files or levels). Fix: extract this campaign again (beamid extract) or give "
                        "the phasor file extracted from it");
+    // The same files and levels may hold other recordings (another beam,
+    // another day): only the content hash tells.
+    signal::RequireDerivedFrom({.file = "--phasors " + input.phasors_file,
+                                .sha256 = phasors.campaign_sha256,
+                                .name = phasors.campaign},
+                               campaign,
+                               "extract this campaign again (beamid extract " + campaign.folder.string() +
+                                   ") or give the phasor file extracted from it");
     if (!phasors.skipped.empty() && !input.skip_bad_steps)
       throw InputError(input.phasors_file + ": " + std::to_string(phasors.skipped.size()) +
                        " steps were skipped at extraction (bad recordings). Fix: add --skip-bad-steps to analyse "

@@ -67,11 +67,26 @@ void RequireWritableOutput(const std::filesystem::path& output, const std::vecto
 void AddModelHarmonicsOptions(CLI::App* command, int* harmonics, int* fit_harmonics, const std::string& model_help);
 void RequireFitWithinModelHarmonics(int fit_harmonics, int harmonics);
 
-// campaign.json of a folder, with the sensors a fit uses (fit ∪ validate;
-// none named: every sensor not ignored) marked as analysed, so that only
-// their recordings' problems stop the run (signal::Campaign::Use).
-signal::Campaign ReadCampaignForAnalysis(const std::string& folder, const std::vector<std::string>& fit_channels,
-                                         const std::vector<std::string>& validate_channels);
+// campaign.json of a folder (its warnings printed on stderr, signal::
+// Campaign::warnings) and the channels a fit uses: --fit as given, or every
+// sensor neither ignored nor held out; the fitted and held-out sensors are
+// marked as analysed, so that only their recordings' problems stop the run
+// (signal::Campaign::Use). Throws InputError for a channel both fitted and
+// held out (its "prediction" would be a fit) and for a fit with no channel
+// left.
+struct CampaignForAnalysis {
+  signal::Campaign campaign;
+  std::vector<std::string> fit_channels;
+};
+CampaignForAnalysis ReadCampaignForAnalysis(const std::string& command, const std::string& folder,
+                                            const std::vector<std::string>& fit_channels,
+                                            const std::vector<std::string>& validate_channels,
+                                            const GlobalOptions& global);
+
+// campaign.json of a folder, its warnings printed on stderr unless --quiet
+// (a recording that is a byte copy of another step's).
+signal::Campaign ReadCampaignAndWarn(const std::string& command, const std::filesystem::path& folder,
+                                     const GlobalOptions& global);
 
 // Where a model-based command takes its phasors from.
 struct PhasorInput {
@@ -81,7 +96,8 @@ struct PhasorInput {
 void AddPhasorInputOptions(CLI::App* command, PhasorInput* input);
 
 // The phasors of a campaign: read from input.phasors_file when given (and
-// checked to be this campaign's), else extracted with harmonics
+// checked to be this campaign's: its steps, and its campaign_sha256 against
+// the campaign's content hash, signal/campaign_identity.h), else extracted with harmonics
 // 1..num_harmonics and progress on stderr. The steps left out (skipped) are
 // listed on stderr unless --quiet.
 signal::PhasorSet ReadOrExtractPhasors(const signal::Campaign& campaign, const PhasorInput& input, int num_harmonics,

@@ -7,6 +7,7 @@
 
 #include "signal/campaign.h"
 #include "signal/campaign_extractor.h"
+#include "signal/campaign_identity.h"
 #include "signal/phasor_set_io.h"
 #include "solver/cli/cli_output.h"
 #include "solver/cli/command_registry.h"
@@ -73,19 +74,19 @@ void RunDiagnose(const DiagnoseCommandOptions& options, const GlobalOptions& glo
                                   "' (known: support_friction, clamp_compliance, added_mass, modulus_error, "
                                   "support_asymmetry, harmonic_truncation)");
   }
-  const signal::Campaign campaign =
-      ReadCampaignForAnalysis(options.campaign_folder, options.fit_channels, options.validate_channels);
+  const CampaignForAnalysis analysis = ReadCampaignForAnalysis("diagnose", options.campaign_folder, options.fit_channels,
+                                                               options.validate_channels, global);
+  const signal::Campaign& campaign = analysis.campaign;
   if (!options.result_file.empty()) {
-    const std::string mismatch =
-        solver::CampaignMismatch(solver::ReadResultFile(options.result_file), campaign.name, options.campaign_folder);
-    if (!mismatch.empty())
-      throw InputError("--result " + options.result_file + ": " + mismatch +
-                       ". Fix: give the result.json that 'beamid identify' wrote for this campaign");
+    const solver::ResultFile result = solver::ReadResultFile(options.result_file);
+    signal::RequireDerivedFrom(
+        {.file = "--result " + options.result_file, .sha256 = result.campaign.sha256, .name = result.campaign.name},
+        campaign, "give the result.json that 'beamid identify' wrote for this campaign (or identify it again)");
   }
   const signal::PhasorSet phasors =
       ReadOrExtractPhasors(campaign, options.phasor_input, std::max(5, options.fit_harmonics), global);
   const solver::FitData fit = solver::MakeFitData(
-      campaign, phasors, {.channels = options.fit_channels, .num_fit_harmonics = options.fit_harmonics});
+      campaign, phasors, {.channels = analysis.fit_channels, .num_fit_harmonics = options.fit_harmonics});
   const solver::FitData validation =
       options.validate_channels.empty()
           ? solver::FitData{}
@@ -111,7 +112,8 @@ void RunDiagnose(const DiagnoseCommandOptions& options, const GlobalOptions& glo
   solver::DiagnosisFile file{
       .diagnosis = result,
       .campaign_folder = std::filesystem::absolute(options.campaign_folder).lexically_normal().string(),
-      .campaign_name = campaign.name};
+      .campaign_name = campaign.name,
+      .campaign_sha256 = campaign.sha256};
   if (!options.result_file.empty()) {
     file.result_file = std::filesystem::absolute(options.result_file).lexically_normal().string();
   }
@@ -161,7 +163,9 @@ BEAMID_REGISTER_COMMAND("diagnose", [](CLI::App& app, const GlobalOptions& globa
       "to measure when two causes tie, and show the fit.\n"
       "Example: beamid diagnose campaign/ --fit acc1,acc2 --validate acc3 -o diagnosis.json --curves frc");
   sub->add_option("campaign", options->campaign_folder, "Campaign folder (holds campaign.json)")->required();
-  sub->add_option("--fit", options->fit_channels, "Response channels to fit (default: all)")->delimiter(',');
+  sub->add_option("--fit", options->fit_channels,
+                  "Response channels to fit (default: every sensor neither ignored nor held out)")
+      ->delimiter(',');
   sub->add_option("--validate", options->validate_channels, "Held-out channels to predict and compare")
       ->delimiter(',');
   sub->add_option("--candidates", options->candidates, "Physics candidates to try (default: all)")->delimiter(',');

@@ -31,7 +31,7 @@ void RunExtract(const ExtractCommandOptions& options, const GlobalOptions& globa
   if (options.harmonics < 1 || options.harmonics > 50)
     throw std::invalid_argument("-H/--harmonics must lie between 1 and 50 (got " + std::to_string(options.harmonics) +
                                 ")");
-  signal::Campaign campaign = signal::ReadCampaign(options.campaign_folder);
+  signal::Campaign campaign = ReadCampaignAndWarn("extract", options.campaign_folder, global);
   campaign.Analyse(options.channels);
   signal::ExtractOptions extract;
   extract.skip_bad_steps = options.skip_bad_steps;

@@ -18,6 +18,7 @@
 #include "solver/estimation/result_file.h"
 #include "solver/estimation/result_io.h"
 #include "solver/estimation/robust_fit.h"
+#include "solver/report/held_out_summary.h"
 
 namespace beamid::cli {
 namespace {
@@ -77,12 +78,13 @@ void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& glo
   RequireWritableOutput(options.output, {std::filesystem::path(options.campaign_folder) / "campaign.json", options.phasor_input.phasors_file});
   const solver::ModelFamily& family = solver::FindModelFamily(options.model);
   RequireFitWithinModelHarmonics(options.fit_harmonics, options.harmonics);
-  const signal::Campaign campaign =
-      ReadCampaignForAnalysis(options.campaign_folder, options.fit_channels, options.validate_channels);
+  const CampaignForAnalysis analysis = ReadCampaignForAnalysis("identify", options.campaign_folder, options.fit_channels,
+                                                               options.validate_channels, global);
+  const signal::Campaign& campaign = analysis.campaign;
   const signal::PhasorSet phasors =
       ReadOrExtractPhasors(campaign, options.phasor_input, std::max(5, options.fit_harmonics), global);
-  const solver::FitData fit =
-      solver::MakeFitData(campaign, phasors, {.channels = options.fit_channels, .num_fit_harmonics = options.fit_harmonics});
+  const solver::FitData fit = solver::MakeFitData(
+      campaign, phasors, {.channels = analysis.fit_channels, .num_fit_harmonics = options.fit_harmonics});
   const solver::FitData validation =
       options.validate_channels.empty()
           ? solver::FitData{}
@@ -133,6 +135,7 @@ void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& glo
        .campaign_name = campaign.name,
        // `beamid report` finds the campaign from anywhere on this machine.
        .campaign_absolute_folder = std::filesystem::absolute(options.campaign_folder).lexically_normal().string(),
+       .campaign_sha256 = campaign.sha256,
        .family = &family});
   result_file.damping_laws = damping_laws;
   if (!robust.outliers.empty())
@@ -170,10 +173,7 @@ void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& glo
                  result.minima.minima.size(), result.minima.second_chi_square_gap,
                  result.minima.decisive ? "ruled out by the data" : "NOT ruled out by the data");
     for (const auto& v : result_file.validation)
-      fmt::print("  held-out {}: worst error {:.2f} % on the 1st harmonic ({} steps), {:.2f} % on the 3rd ({} steps; "
-                 "the others lie below the noise floor)\n",
-                 v.channel, 100.0 * v.worst_h1_relative_error, v.measurable_steps_h1, 100.0 * v.worst_h3_relative_error,
-                 v.measurable_steps_h3);
+      fmt::print("  held-out {}: {} (the other steps lie below the noise floor)\n", v.channel, solver::HeldOutSummary(v));
     for (const auto& w : result.warnings) fmt::print("  warning: {}\n", w);
     fmt::print("  verdict: {}\n", result.verdict.text);
     fmt::print("wrote {}\n", options.output);
@@ -188,7 +188,9 @@ BEAMID_REGISTER_COMMAND("identify", [](CLI::App& app, const GlobalOptions& globa
       "Identify the support (k1, k2, k3, c) from a stepped-sine campaign.\n"
       "Example: beamid identify campaign/ --fit acc1,acc2 --validate acc3 -o result.json");
   sub->add_option("campaign", options->campaign_folder, "Campaign folder (holds campaign.json)")->required();
-  sub->add_option("--fit", options->fit_channels, "Response channels to fit (default: all)")->delimiter(',');
+  sub->add_option("--fit", options->fit_channels,
+                  "Response channels to fit (default: every sensor neither ignored nor held out)")
+      ->delimiter(',');
   sub->add_option("--validate", options->validate_channels, "Held-out channels to predict and compare")
       ->delimiter(',');
   std::string families;

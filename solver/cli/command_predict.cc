@@ -13,6 +13,7 @@
 #include "hb/version.h"
 #include "signal/campaign.h"
 #include "signal/campaign_extractor.h"
+#include "signal/campaign_identity.h"
 #include "solver/cli/cli_output.h"
 #include "solver/cli/command_registry.h"
 #include "solver/estimation/fit_data.h"
@@ -42,13 +43,12 @@ void RunPredict(const PredictOptions& options, const GlobalOptions& global) {
   int compared_order = 2;  // the compared channel's quantity: 0 displacement, 1 velocity, 2 acceleration
   std::vector<Eigen::VectorXcd> measured;
   if (!options.campaign_folder.empty()) {
-    const signal::Campaign campaign = signal::ReadCampaign(options.campaign_folder);
+    const signal::Campaign campaign = ReadCampaignAndWarn("predict", options.campaign_folder, global);
     // Another campaign of the same layout has steps of the same file names:
     // the comparison would be with the wrong recordings.
-    if (const std::string mismatch = solver::CampaignMismatch(result, campaign.name, options.campaign_folder);
-        !mismatch.empty())
-      throw InputError(options.result_file + ": " + mismatch +
-                       ". Fix: compare a result with the campaign it was identified from");
+    signal::RequireDerivedFrom(
+        {.file = options.result_file, .sha256 = result.campaign.sha256, .name = result.campaign.name}, campaign,
+        "compare a result with the campaign it was identified from (or identify this campaign again)");
     for (const auto& s : campaign.sensors)
       if (std::abs(s.position_m - options.position_m) < 1e-3) compared = s.channel;
     if (!compared.empty()) {
@@ -74,6 +74,7 @@ void RunPredict(const PredictOptions& options, const GlobalOptions& global) {
   const char* const quantity = compared_order == 0 ? "displacement_m" : compared_order == 1 ? "velocity_m_s" : "acceleration_m_s2";
   solver::PredictionFile file{.beamid_version = kVersion,
                               .result_file = options.result_file,
+                              .campaign_sha256 = result.campaign.sha256,
                               .model_kind = model.family->Name(),
                               .position_m = options.position_m,
                               .compared_channel = compared,

@@ -14,6 +14,7 @@
 #include "hb/text_file.h"
 #include "signal/campaign.h"
 #include "signal/campaign_extractor.h"
+#include "signal/campaign_identity.h"
 #include "solver/cli/cli_output.h"
 #include "solver/cli/command_registry.h"
 #include "solver/report/html_report.h"
@@ -78,7 +79,17 @@ void RunReport(const ReportOptions& options, const GlobalOptions& global) {
   const solver::ReportInput input = solver::LoadReportInput(
       options.input_file,
       options.campaign_folder.empty() ? std::nullopt : std::optional<std::filesystem::path>(options.campaign_folder));
-  const signal::Campaign campaign = signal::ReadCampaign(input.campaign_folder);
+  const signal::Campaign campaign = ReadCampaignAndWarn("report", input.campaign_folder, global);
+  // A --campaign of the same layout would put the result's curves over
+  // another campaign's recordings.
+  signal::RequireDerivedFrom({.file = input.result_file.string(),
+                              .sha256 = input.result.campaign.sha256,
+                              .name = input.result.campaign.name},
+                             campaign,
+                             options.campaign_folder.empty()
+                                 ? "the campaign changed since it was identified: identify it again"
+                                 : "give with --campaign the campaign the result was identified from (or leave "
+                                   "--campaign out to use the one the result names)");
   signal::PhasorSet phasors;
   {
     // The phasors as `beamid identify` extracted them.

@@ -25,7 +25,7 @@
 namespace beamid::cli {
 namespace {
 
-std::vector<signal::FirstHarmonicLevel> ReadLevels(const MeasuredBackboneCommandOptions& options, bool quiet) {
+std::vector<signal::FirstHarmonicLevel> ReadLevels(const MeasuredBackboneCommandOptions& options, const GlobalOptions& global) {
   namespace fs = std::filesystem;
   const fs::path first = options.inputs.front();
   const bool tables = first.extension() == ".csv" || first.extension() == ".CSV" || first.extension() == ".txt";
@@ -43,14 +43,14 @@ std::vector<signal::FirstHarmonicLevel> ReadLevels(const MeasuredBackboneCommand
   if (fs::is_directory(first)) {
     signal::ExtractOptions extract;
     extract.estimator.num_harmonics = 3;
-    set = signal::ExtractCampaign(signal::ReadCampaign(first), extract);
+    set = signal::ExtractCampaign(ReadCampaignAndWarn("backbone", first, global), extract);
   } else {
     set = signal::ReadPhasorSetJson(first);
   }
   if (set.steps.empty() || set.steps.front().responses.empty())
     throw std::invalid_argument(first.string() + ": no steps with a response channel");
   const std::string channel = options.channel.empty() ? set.steps.front().responses.front().channel : options.channel;
-  if (!quiet && options.channel.empty()) fmt::print(stderr, "backbone: response channel {} (--channel to choose)\n", channel);
+  if (!global.quiet && options.channel.empty()) fmt::print(stderr, "backbone: response channel {} (--channel to choose)\n", channel);
   return signal::FirstHarmonicLevels(set, channel, first.string());
 }
 
@@ -74,7 +74,7 @@ void RunMeasuredBackbone(const MeasuredBackboneCommandOptions& options, const Gl
                        "): -o takes the prefix of the outputs; choose another name");
   }
   for (const char* suffix : {".csv", "_curves.csv", ".json"}) RequireWritableOutput(options.output + suffix, inputs);
-  const auto levels = ReadLevels(options, global.quiet);
+  const auto levels = ReadLevels(options, global);
   const solver::MeasuredBackbone measured =
       solver::AnalyseMeasuredBackbone(levels, {.keep_flagged_levels_in_fit = options.keep_flagged_levels});
 

@@ -401,7 +401,7 @@ MeasurementSuggestion SuggestionFromJson(const Field& f) {
 }
 
 DiagnosisResult ResultFromJson(const Field& root) {
-  root.OnlyKeys({"format", "beamid_version", "campaign", "result", "result_file", "selected", "verdict", "ranked_by",
+  root.OnlyKeys({"format", "beamid_version", "campaign", "campaign_sha256", "result", "result_file", "selected", "verdict", "ranked_by",
                  "rest_within_noise", "blame", "recording_findings", "suggestion", "combinations", "summary", "base", "final", "candidates", "location", "response", "seconds"});
   DiagnosisResult r;
   r.selected = root.At("selected").Strings();
@@ -452,6 +452,7 @@ std::string DiagnosisFileToJson(const DiagnosisFile& file) {
   root["format"] = std::string(kDiagnosisFormat);
   root["beamid_version"] = file.beamid_version;
   root["campaign"] = {{"folder", file.campaign_folder}, {"name", file.campaign_name}};
+  if (!file.campaign_sha256.empty()) root["campaign_sha256"] = file.campaign_sha256;
   if (!file.result_file.empty()) root["result_file"] = file.result_file;
   if (!file.embedded_result_json.empty()) {
     root["result"] = ParseStrictJson<Json>(file.embedded_result_json, "DiagnosisFile::embedded_result_json", "");
@@ -504,6 +505,7 @@ DiagnosisFile DiagnosisFileFromJson(const std::string& text, const std::string& 
     file.campaign_folder = campaign.String("folder");
     file.campaign_name = campaign.String("name");
   }
+  if (root.Has("campaign_sha256")) file.campaign_sha256 = root.String("campaign_sha256");
   if (root.Has("result")) {
     const Field result = root.At("result");
     if (result.json().is_string()) file.result_file = result.String();

@@ -4,7 +4,8 @@
 // the file carries beside it: the campaign, identify's result (a path or the
 // embedded result.json) and the version of beamid that wrote it.
 // Keys, as `beamid report` and older files know them: format, beamid_version,
-// campaign {folder, name}, result_file (or "result": a path or the result
+// campaign {folder, name}, campaign_sha256 (the campaign's content hash,
+// signal/campaign_hash.h), result_file (or "result": a path or the result
 // object), selected, verdict, summary, base, final {extension, fit,
 // extra_parameter_names}, candidates [{name, description, score, converged,
 // status, significant, extra_parameters {name: {value, std, unit, ci95}},
@@ -19,7 +20,7 @@
 // Numbers are written with the digits that read back to the same double;
 // JSON has no NaN, so a NaN (e.g. a held-out error without held-out
 // channels) is written as null and read back as NaN. A file of an earlier
-// version, without beamid_version, campaign, extra_parameter_names, response
+// version, without beamid_version, campaign, campaign_sha256, extra_parameter_names, response
 // or a loop step's omega_rad_s, still reads (version "", names from the
 // extra_parameters keys, no response points, ω from frequency_hz). A key the
 // format does not have is refused.
@@ -41,6 +42,7 @@ struct DiagnosisFile {
   DiagnosisResult diagnosis;
   std::string campaign_folder;  // as given to `beamid diagnose`
   std::string campaign_name;
+  std::string campaign_sha256;  // the campaign's content hash (signal/campaign_hash.h); "" in older files
   // identify's result.json: a path (absolute as `beamid diagnose --result`
   // writes it; a relative one is relative to the diagnosis file), or the
   // result embedded as JSON text for ResultFileFromJson

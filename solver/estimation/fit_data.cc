@@ -62,6 +62,11 @@ FitData MakeFitData(const signal::Campaign& campaign, const signal::PhasorSet& p
   if (names.empty())
     for (const auto& sensor : campaign.sensors)
       if (campaign.Use(sensor.channel) != signal::ChannelUse::kIgnored) names.push_back(sensor.channel);
+  // A fit of no channel has no residual: its parameters would be the start's.
+  if (names.empty())
+    throw InputError((campaign.folder / "campaign.json").string(), "",
+                     "no sensor is left to fit: every sensor is listed in ignore_channels",
+                     "remove a sensor from ignore_channels");
   for (std::size_t i = 0; i < names.size(); ++i)
     if (std::find(names.begin(), names.begin() + static_cast<std::ptrdiff_t>(i), names[i]) != names.begin() + static_cast<std::ptrdiff_t>(i))
       // Fitted twice, a channel would count double and its σ shrink by √2.

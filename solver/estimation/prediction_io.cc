@@ -119,7 +119,7 @@ PredictionStep StepFromJson(const Field& f, std::string& quantity) {
 std::string PredictionFileToJson(const PredictionFile& file) {
   Json steps = Json::array();
   for (const PredictionStep& s : file.steps) steps.push_back(StepToJson(s, file.compared_quantity));
-  const Json root = {{"format", std::string(kPredictionFormat)},
+  Json root = {{"format", std::string(kPredictionFormat)},
                      {"command", "predict"},
                      {"beamid_version", file.beamid_version},
                      {"result", file.result_file},
@@ -128,6 +128,7 @@ std::string PredictionFileToJson(const PredictionFile& file) {
                      {"compared_channel", file.compared_channel},
                      {"compared_quantity", file.compared_quantity},
                      {"steps", steps}};
+  if (!file.campaign_sha256.empty()) root["campaign_sha256"] = file.campaign_sha256;
   return root.dump(1) + "\n";
 }
 
@@ -146,10 +147,11 @@ PredictionFile PredictionFileFromJson(const std::string& text, const std::string
     throw InputError(source + ": field \"command\" is \"" + command +
                      "\", not \"predict\". Fix: give a prediction file written by 'beamid predict'");
   root.OnlyKeys({"format", "command", "beamid_version", "result", "model", "position_m", "compared_channel",
-                 "compared_quantity", "steps"});
+                 "compared_quantity", "steps", "campaign_sha256"});
   PredictionFile file;
   file.beamid_version = root.Has("beamid_version") ? root.String("beamid_version") : "";
   file.result_file = root.String("result");
+  if (root.Has("campaign_sha256")) file.campaign_sha256 = root.String("campaign_sha256");
   file.model_kind = root.String("model");
   try {
     FindModelFamily(file.model_kind);

@@ -10,8 +10,10 @@
 // and with a compared channel measured_<q>, predicted_<q>: [re, im],
 // relative_error}], time_s, acceleration_m_s2, acceleration_std_m_s2}], where
 // <q> is the channel's quantity (displacement_m, velocity_m_s or
-// acceleration_m_s2). The writer adds "format" and "compared_quantity"; a file
-// without them (the earlier writer's) reads, the quantity taken from the keys.
+// acceleration_m_s2). The writer adds "format", "compared_quantity" and
+// "campaign_sha256" (the identified campaign's content hash, when the result
+// has one); a file without them (an earlier writer's) reads, the quantity
+// taken from the keys.
 // JSON has no NaN: a number that is not finite is written as null and read
 // back as NaN. Reading throws InputError naming the file, the field (e.g.
 // "steps[3].harmonics[0].displacement_m") and the fix.
@@ -58,6 +60,9 @@ struct PredictionStep {
 struct PredictionFile {
   std::string beamid_version = kVersion;  // "" in files older than the key
   std::string result_file;                // as given to `beamid predict`
+  // The content hash of the campaign the model was identified from (the
+  // result's, signal/campaign_hash.h); "" in older files.
+  std::string campaign_sha256;
   std::string model_kind = "hb";          // the model family's name (solver/estimation/model_family.h)
   double position_m = 0.0;
   std::string compared_channel;   // "" when no campaign sensor sits at position_m

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 
@@ -83,6 +84,10 @@ std::vector<HeldOutChannel> Validation(const FitData& validation, FitProblem& pr
       }
       channel.steps.push_back(std::move(step));
     }
+    // No step resolves the error: there is no worst error to give (0 would
+    // read as a perfect prediction).
+    if (channel.measurable_steps_h1 == 0) channel.worst_h1_relative_error = std::numeric_limits<double>::quiet_NaN();
+    if (channel.measurable_steps_h3 == 0) channel.worst_h3_relative_error = std::numeric_limits<double>::quiet_NaN();
     out.push_back(std::move(channel));
   }
   return out;
@@ -97,7 +102,8 @@ ResultFile MakeResultFile(const FitData& fit, const FitData& validation, FitProb
   out.beamid_version = kVersion;
   out.campaign = {.folder = context.campaign_folder,
                   .name = context.campaign_name,
-                  .absolute_folder = context.campaign_absolute_folder};
+                  .absolute_folder = context.campaign_absolute_folder,
+                  .sha256 = context.campaign_sha256};
   const ModelStructure& structure = problem.structure();
   out.model = {.kind = context.family->Name(),
                .law = structure.law->Name(),
@@ -157,22 +163,5 @@ ResultFile MakeResultFile(const FitData& fit, const FitData& validation, FitProb
   return out;
 }
 
-std::string CampaignMismatch(const ResultFile& result, const std::string& campaign_name,
-                             const std::filesystem::path& campaign_folder) {
-  const auto canonical = [](const std::filesystem::path& folder) {
-    std::error_code error;
-    const std::filesystem::path path = std::filesystem::weakly_canonical(std::filesystem::absolute(folder), error);
-    return error ? folder : path;
-  };
-  const std::string described = "campaign '" + result.campaign.name + "' (" +
-                                (result.campaign.absolute_folder.empty() ? result.campaign.folder
-                                                                          : result.campaign.absolute_folder) + ")";
-  if (result.campaign.name != campaign_name)
-    return "the result is of " + described + ", not of campaign '" + campaign_name + "'";
-  if (!result.campaign.absolute_folder.empty() && !campaign_folder.empty() &&
-      canonical(result.campaign.absolute_folder) != canonical(campaign_folder))
-    return "the result is of " + described + ", not of the campaign in " + campaign_folder.string();
-  return "";
-}
 
 }  // namespace beamid::solver

@@ -33,6 +33,7 @@ struct ResultCampaign {
   std::string folder;           // as given to identify
   std::string name;
   std::string absolute_folder;  // empty: not recorded
+  std::string sha256;           // content hash (signal/campaign_hash.h), "campaign_sha256"; "" in older files
 };
 
 struct ResultModel {
@@ -128,6 +129,8 @@ struct HeldOutChannel {
   double worst_h1_relative_error = 0.0;
   double worst_h3_relative_error = 0.0;
   double measurable_relative_std = 0.0;
+  // 0: no step resolves that harmonic's error, and its worst error is NaN
+  // (null in the file): nothing was measured there, not a perfect prediction.
   int measurable_steps_h1 = 0;
   int measurable_steps_h3 = 0;
   std::vector<HeldOutStep> steps;
@@ -192,6 +195,7 @@ struct ResultContext {
   std::string campaign_folder;
   std::string campaign_name;
   std::string campaign_absolute_folder;  // lets `beamid report` find the campaign from elsewhere; "" = none
+  std::string campaign_sha256;           // the campaign's content hash (signal::Campaign::sha256)
   const ModelFamily* family = &HarmonicBalanceFamily();  // the family `problem` is of
 };
 
@@ -202,11 +206,5 @@ struct ResultContext {
 ResultFile MakeResultFile(const FitData& fit, const FitData& validation, FitProblem& problem,
                           const IdentifyResult& result, const ResultContext& context);
 
-// Whether a result was identified on this campaign: the same name and, when
-// the result knows its absolute folder, the same folder (links resolved).
-// Returns "" when it was, else what differs, for a message: a diagnosis or a
-// report that mixed two campaigns would show numbers of one beside the other.
-std::string CampaignMismatch(const ResultFile& result, const std::string& campaign_name,
-                             const std::filesystem::path& campaign_folder);
 
 }  // namespace beamid::solver

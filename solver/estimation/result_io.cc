@@ -499,6 +499,7 @@ ResultFile ReadResult(const Json& root, const std::string& source) {
   out.campaign.folder = campaign.String("folder");
   out.campaign.name = campaign.String("name");
   if (campaign.Has("absolute_folder")) out.campaign.absolute_folder = campaign.String("absolute_folder");
+  if (r.Has("campaign_sha256")) out.campaign.sha256 = r.String("campaign_sha256");
   out.model = ReadModel(r.At("model"));
   out.parameters = ReadParameters(r);
   out.linear_parameters = r.At("linear_parameters").Strings();
@@ -524,6 +525,7 @@ std::string ResultFileToJson(const ResultFile& result) {
   root["command"] = "identify";
   root["campaign"] = {{"folder", result.campaign.folder}, {"name", result.campaign.name}};
   if (!result.campaign.absolute_folder.empty()) root["campaign"]["absolute_folder"] = result.campaign.absolute_folder;
+  if (!result.campaign.sha256.empty()) root["campaign_sha256"] = result.campaign.sha256;
   root["model"] = ModelJson(result.model);
   Json parameters = Json::object(), order = Json::array();
   for (const auto& p : result.parameters) {

@@ -6,7 +6,7 @@
 // finite is written as null and read back as NaN.
 // Reading checks every field and throws InputError naming the file, the field
 // (e.g. "fit.starts[2].objective") and the fix; fields later versions added
-// ("beamid_version", "campaign.absolute_folder", "model.kind",
+// ("beamid_version", "campaign.absolute_folder", "campaign_sha256", "model.kind",
 // "model.beam.loss_factor", "validation") may be absent.
 #pragma once
 

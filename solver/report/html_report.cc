@@ -1,5 +1,6 @@
 #include "solver/report/html_report.h"
 
+#include "solver/report/held_out_summary.h"
 #include "solver/report/html_escape.h"
 #include "solver/report/html_page.h"
 
@@ -357,9 +358,7 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves) {
 
   html += "<section id=\"parameters\"><h2>Identified parameters</h2>\n" + ParameterTable(result);
   for (const auto& v : result.validation)
-    html += fmt::format("<p>Held-out {}: worst relative error {:.2f} % on the first harmonic, {:.2f} % on the "
-                        "third.</p>\n",
-                        HtmlEscape(v.channel), 100 * v.worst_h1_relative_error, 100 * v.worst_h3_relative_error);
+    html += fmt::format("<p>Held-out {}: {}.</p>\n", HtmlEscape(v.channel), HtmlEscape(HeldOutSummary(v)));
   html += Warnings(result.warnings) + "</section>\n";
   html += RecordingSection(curves, result);
 

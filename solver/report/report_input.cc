@@ -7,6 +7,7 @@
 #include "hb/errors.h"
 #include "hb/strict_json.h"
 #include "hb/text_file.h"
+#include "signal/campaign_identity.h"
 #include "solver/estimation/result_io.h"
 
 namespace beamid::solver {
@@ -47,11 +48,10 @@ ReportInput LoadReportInput(const fs::path& input_file, const std::optional<fs::
                        "result.json of 'beamid identify' instead, or run 'beamid diagnose' with --result");
     }
     // A diagnosis and a result of two campaigns would be mixed into one page.
-    if (const std::string mismatch = CampaignMismatch(input.result, diagnosis.campaign_name,
-                                                      Relative(diagnosis.campaign_folder, input_file));
-        !mismatch.empty())
-      throw InputError(input_file.string() + ": " + mismatch +
-                       ". Fix: run 'beamid diagnose' with --result naming the result.json of the campaign diagnosed");
+    signal::RequireSameCampaign(
+        {.file = input_file.string(), .sha256 = diagnosis.campaign_sha256, .name = diagnosis.campaign_name},
+        {.file = input.result_file.string(), .sha256 = input.result.campaign.sha256, .name = input.result.campaign.name},
+        "run 'beamid diagnose' with --result naming the result.json of the campaign diagnosed");
     input.diagnosis = std::move(diagnosis);
   } else {
     if (!j.is_object() || j.value("format", "") != kResultFormat)

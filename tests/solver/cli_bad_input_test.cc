@@ -79,6 +79,33 @@ void ReplaceSample(const fs::path& path, int line, int column, const std::string
   WriteFile(path, out);
 }
 
+// Changes the value of `column` (0-based) on CSV line `line` in its last
+// significant digits: another recording of the same rig, files and levels,
+// that extracts like the first.
+void NudgeSample(const fs::path& path, int line, int column) {
+  std::istringstream in(ReadFile(path));
+  std::string row;
+  for (int n = 1; std::getline(in, row) && n < line; ++n) {
+  }
+  std::vector<std::string> fields;
+  std::stringstream cells(row);
+  for (std::string cell; std::getline(cells, cell, ',');) fields.push_back(cell);
+  std::string value = fields.at(static_cast<std::size_t>(column));
+  const std::size_t exponent = value.find_first_of("eE");
+  value.insert(exponent == std::string::npos ? value.size() : exponent, value.find('.') == std::string::npos ? ".1" : "1");
+  ReplaceSample(path, line, column, value);
+}
+
+// Removes the line of the file that holds `key` (a JSON member written on
+// its own line, as beamid writes them).
+void RemoveLineWith(const fs::path& path, const std::string& key) {
+  std::string content = ReadFile(path);
+  const std::size_t at = content.find(key);
+  ASSERT_NE(at, std::string::npos) << key << " not in " << path;
+  const std::size_t start = content.rfind('\n', at) + 1, end = content.find('\n', at);
+  WriteFile(path, content.erase(start, end + 1 - start));
+}
+
 class BadInput : public ::testing::Test {
  protected:
   static ProgramRun Beamid(const std::string& arguments) {
@@ -287,6 +314,52 @@ TEST_F(BadInput, EveryBadInputEndsWithExitTwoAndAMessageThatNamesItAndTheFix) {
          Replace(d / "p.json", "\"num_harmonics\": ", "\"num_harmonics\": 3, \"num_harmonics\": ");
        },
        "identify {m} --phasors {d}/p.json -o {d}/r.json", {"p.json", "\"num_harmonics\" is written twice", "Fix:"}},
+      // consistency: files derived from another campaign of the same name, files
+      // and levels (told by the campaign's content hash), fitted channels held
+      // out, fits of no channel
+      {"phasors of another campaign with the same files and levels",
+       [](auto m, auto d) {
+         NudgeSample(m / "low" / "step_001.csv", 500, 3);
+         ASSERT_EQ(Beamid("-q extract " + m.string() + " -o " + (d / "p.json").string()).exit_code, 0);
+       },
+       "identify {c} --phasors {d}/p.json -o {d}/r.json",
+       {"--phasors", "p.json", "campaign.json", "content SHA-256", "Fix:", "extract"}},
+      {"phasors written before the campaign's content hash",
+       [](auto, auto d) {
+         ASSERT_EQ(Beamid("-q extract " + (root_ / "clean").string() + " -o " + (d / "p.json").string()).exit_code, 0);
+         RemoveLineWith(d / "p.json", "\"campaign_sha256\"");
+       },
+       "diagnose {c} --phasors {d}/p.json -o {d}/d.json", {"p.json", "written by an older beamid", "Fix:", "extract"}},
+      {"a result given to report with another campaign of the same layout",
+       [](auto m, auto) { NudgeSample(m / "low" / "step_002.csv", 400, 2); },
+       "report {r} --campaign {m} -o {d}/report.html",
+       {"result.json", "campaign.json", "content SHA-256", "Fix:", "--campaign"}},
+      {"a result given to predict with another campaign of the same name",
+       [](auto m, auto) { NudgeSample(m / "low" / "step_000.csv", 300, 2); },
+       "predict {r} --campaign {m} --x 0.57 -o {d}/pred.json", {"result.json", "campaign.json", "content SHA-256", "Fix:"}},
+      {"a result given to diagnose with another campaign of the same name",
+       [](auto m, auto) { NudgeSample(m / "low" / "step_000.csv", 300, 2); },
+       "diagnose {m} --result {r} -o {d}/d.json", {"--result", "result.json", "content SHA-256", "Fix:"}},
+      {"a result written before the campaign's content hash",
+       [](auto, auto d) {
+         fs::copy_file(root_ / "result.json", d / "old.json");
+         RemoveLineWith(d / "old.json", "\"campaign_sha256\"");
+       },
+       "predict {d}/old.json --campaign {c} --x 0.57 -o {d}/pred.json", {"old.json", "written by an older beamid", "Fix:"}},
+      {"a fitted channel held out by identify", nullptr, "identify {c} --fit acc1,acc2 --validate acc1 -o {d}/r.json",
+       {"--validate acc1", "also fitted", "Fix:"}},
+      {"a fitted channel held out by diagnose", nullptr, "diagnose {c} --fit acc1,acc2 --validate acc2 -o {d}/d.json",
+       {"--validate acc2", "also fitted", "Fix:"}},
+      {"every sensor ignored",
+       [](auto m, auto) {
+         Replace(m / "campaign.json", "\"sample_rate_Hz\"", "\"ignore_channels\": [\"acc1\", \"acc2\", \"acc3\"], \"sample_rate_Hz\"");
+       },
+       "identify {m} -o {d}/r.json", {"campaign.json", "no sensor is left to fit", "ignore_channels", "Fix:"}},
+      {"every sensor not ignored held out",
+       [](auto m, auto) {
+         Replace(m / "campaign.json", "\"sample_rate_Hz\"", "\"ignore_channels\": [\"acc1\", \"acc2\"], \"sample_rate_Hz\"");
+       },
+       "diagnose {m} --validate acc3 -o {d}/d.json", {"campaign.json", "no sensor is left to fit", "--validate", "Fix:"}},
   };
   const fs::path clean = root_ / "clean", result = root_ / "result.json";
   for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -367,6 +440,23 @@ TEST_F(BadInput, SkipBadStepsFitsTheOtherStepsAndNamesTheSkippedOne) {
   const ProgramRun with_flag = Beamid("identify " + m.string() + " --skip-bad-steps --phasors " +
                                       (d / "p.json").string() + " -o " + (d / "r2.json").string());
   EXPECT_EQ(with_flag.exit_code, 0) << with_flag.output;
+}
+
+// Not bad input: a recording copied over another step's is analysed, but
+// every command that reads the recordings warns, naming both files.
+TEST_F(BadInput, ARecordingThatCopiesAnotherStepIsAWarningNamingBoth) {
+  const fs::path d = root_ / "duplicate", m = d / "campaign";
+  fs::create_directories(d);
+  fs::copy(root_ / "clean", m, fs::copy_options::recursive);
+  fs::copy_file(m / "low" / "step_002.csv", m / "low" / "step_001.csv", fs::copy_options::overwrite_existing);
+  const ProgramRun run = Beamid("extract " + m.string() + " -o " + (d / "p.json").string());
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_THAT(run.output, HasSubstr("beamid extract: warning: the recording " + (m / "low" / "step_002.csv").string() +
+                                    " of steps[2] holds the same bytes as " + (m / "low" / "step_001.csv").string()));
+  // The clean campaign has no such warning.
+  const ProgramRun clean = Beamid("extract " + (root_ / "clean").string() + " -o " + (d / "clean.json").string());
+  EXPECT_EQ(clean.exit_code, 0) << clean.output;
+  EXPECT_THAT(clean.output, ::testing::Not(HasSubstr("the same bytes")));
 }
 
 // Not bad input: a campaign the model cannot fit (acc2 stated 30 mm from where

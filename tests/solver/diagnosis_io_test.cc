@@ -203,6 +203,7 @@ DiagnosisFile FullFile(bool with_location) {
   r.seconds = 61.0 / 7.0;
   file.campaign_folder = "campaigns/friction";
   file.campaign_name = "concealed friction";
+  file.campaign_sha256 = "9f86d081884c7d659a2feaa0c55ad015a3bf4f1b2b0b822cd15d6c15b0f00a08";
   file.result_file = "runs/identify/result.json";
   file.embedded_result_json =
       R"({"format":"beamid-result/1","parameters":{"k1":{"value":120.5}},"fit":{"chi_square":null}})";
@@ -345,6 +346,7 @@ void ExpectSameCandidates(const std::vector<CandidateOutcome>& xs, const std::ve
 void ExpectSameFile(const DiagnosisFile& a, const DiagnosisFile& b) {
   EXPECT_EQ(a.campaign_folder, b.campaign_folder);
   EXPECT_EQ(a.campaign_name, b.campaign_name);
+  EXPECT_EQ(a.campaign_sha256, b.campaign_sha256);
   EXPECT_EQ(a.result_file, b.result_file);
   EXPECT_EQ(a.embedded_result_json, b.embedded_result_json);
   EXPECT_EQ(a.beamid_version, b.beamid_version);
@@ -448,6 +450,7 @@ TEST(DiagnosisFile, WritesTheLayoutTheReportReads) {
   EXPECT_EQ(j["beamid_version"], "9.8.7-test");
   EXPECT_EQ(j["campaign"]["folder"], "campaigns/friction");
   EXPECT_EQ(j["campaign"]["name"], "concealed friction");
+  EXPECT_EQ(j["campaign_sha256"], "9f86d081884c7d659a2feaa0c55ad015a3bf4f1b2b0b822cd15d6c15b0f00a08");
   EXPECT_EQ(j["result_file"], "runs/identify/result.json");
   EXPECT_EQ(j["result"]["format"], "beamid-result/1");
   EXPECT_EQ(j["selected"], nlohmann::json::array({"support_friction"}));
@@ -588,6 +591,7 @@ TEST(DiagnosisFile, ReadsTheFirstLayout) {
   EXPECT_EQ(file.beamid_version, "");
   EXPECT_EQ(file.campaign_folder, "out/clamp");
   EXPECT_EQ(file.campaign_name, "clamp");
+  EXPECT_EQ(file.campaign_sha256, "");
   EXPECT_EQ(file.result_file, "result.json");
   EXPECT_EQ(file.embedded_result_json, "");
   const DiagnosisResult& r = file.diagnosis;

@@ -38,6 +38,7 @@ PredictionFile Filled() {
   PredictionFile f;
   f.beamid_version = "9.8.7";
   f.result_file = "runs/result.json";
+  f.campaign_sha256 = "9f86d081884c7d659a2feaa0c55ad015a3bf4f1b2b0b822cd15d6c15b0f00a08";
   f.model_kind = "ms";
   f.position_m = 0.4567;
   f.compared_channel = "vel2";
@@ -75,6 +76,7 @@ PredictionFile Filled() {
 void ExpectSame(const PredictionFile& a, const PredictionFile& b) {
   EXPECT_EQ(a.beamid_version, b.beamid_version);
   EXPECT_EQ(a.result_file, b.result_file);
+  EXPECT_EQ(a.campaign_sha256, b.campaign_sha256);
   EXPECT_EQ(a.model_kind, b.model_kind);
   EXPECT_TRUE(Same(a.position_m, b.position_m));
   EXPECT_EQ(a.compared_channel, b.compared_channel);
@@ -124,6 +126,7 @@ TEST(PredictionFile, EveryFieldSurvivesTheTextAndBackAndTheTextIsStable) {
   EXPECT_THAT(text, HasSubstr("\"format\": \"beamid-prediction/1\""));
   EXPECT_THAT(text, HasSubstr("\"command\": \"predict\""));
   EXPECT_THAT(text, HasSubstr("\"beamid_version\": \"9.8.7\""));
+  EXPECT_THAT(text, HasSubstr("\"campaign_sha256\": \"9f86d081"));
   EXPECT_THAT(text, HasSubstr("\"measured_velocity_m_s\""));
   EXPECT_THAT(text, HasSubstr("null"));  // the NaNs
 }
@@ -179,6 +182,7 @@ TEST(PredictionFile, AFileOfTheEarlierWriterReads) {
   const PredictionFile f = PredictionFileFromJson(kEarlierFile, "old.json");
   EXPECT_EQ(f.beamid_version, "0.9.0");
   EXPECT_EQ(f.result_file, "r.json");
+  EXPECT_EQ(f.campaign_sha256, "");
   EXPECT_EQ(f.model_kind, "hb");
   EXPECT_EQ(f.position_m, 0.45);
   EXPECT_EQ(f.compared_channel, "acc3");

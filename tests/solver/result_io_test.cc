@@ -79,7 +79,10 @@ ResultFit Fit(int num_parameters) {
 ResultFile HarmonicBalanceResult() {
   ResultFile r;
   r.beamid_version = "9.8.7";
-  r.campaign = {.folder = "campaigns/base", .name = "paper beam, \"three\" levels", .absolute_folder = "/data/campaigns/base"};
+  r.campaign = {.folder = "campaigns/base",
+                .name = "paper beam, \"three\" levels",
+                .absolute_folder = "/data/campaigns/base",
+                .sha256 = "9f86d081884c7d659a2feaa0c55ad015a3bf4f1b2b0b822cd15d6c15b0f00a08"};
   r.model = {.kind = "hb",
              .law = "polynomial",
              .beam = {.length_m = 0.61,
@@ -218,6 +221,7 @@ void ExpectSame(const ResultFile& a, const ResultFile& b) {
   EXPECT_EQ(a.campaign.folder, b.campaign.folder);
   EXPECT_EQ(a.campaign.name, b.campaign.name);
   EXPECT_EQ(a.campaign.absolute_folder, b.campaign.absolute_folder);
+  EXPECT_EQ(a.campaign.sha256, b.campaign.sha256);
 
   EXPECT_EQ(a.model.kind, b.model.kind);
   EXPECT_EQ(a.model.law, b.model.law);
@@ -432,6 +436,7 @@ TEST(ResultFile, WritesTheVersionTheStateOfItsKindAndNullForNaN) {
   const std::string hb = ResultFileToJson(HarmonicBalanceResult());
   EXPECT_THAT(hb, HasSubstr("\"beamid_version\": \"9.8.7\""));
   EXPECT_THAT(hb, HasSubstr("\"absolute_folder\": \"/data/campaigns/base\""));
+  EXPECT_THAT(hb, HasSubstr("\"campaign_sha256\": \"9f86d081"));
   EXPECT_THAT(hb, HasSubstr("\"relative_residual\": null"));
   EXPECT_THAT(hb, HasSubstr("\"theta_rad\""));
   EXPECT_THAT(hb, Not(HasSubstr("\"modal_phasor_m\"")));
@@ -443,6 +448,7 @@ TEST(ResultFile, WritesTheVersionTheStateOfItsKindAndNullForNaN) {
   EXPECT_THAT(ms, Not(HasSubstr("\"validation\"")));
   EXPECT_THAT(ms, Not(HasSubstr("\"beamid_version\"")));
   EXPECT_THAT(ms, Not(HasSubstr("\"absolute_folder\"")));
+  EXPECT_THAT(ms, Not(HasSubstr("\"campaign_sha256\"")));
 }
 
 TEST(ResultFile, WrittenFileReadsBackAndGivesTheIdentifiedModel) {
@@ -523,6 +529,7 @@ TEST(ResultFile, AFileOfTheEarlierWriterStillReads) {
   EXPECT_EQ(r.campaign.folder, "out/base");
   EXPECT_EQ(r.campaign.name, "earlier campaign");
   EXPECT_EQ(r.campaign.absolute_folder, "");
+  EXPECT_EQ(r.campaign.sha256, "");  // refused with any campaign (signal/campaign_identity.h)
   EXPECT_EQ(r.model.kind, "hb");
   EXPECT_EQ(r.model.beam.youngs_modulus_Pa, 2.1e11);
   EXPECT_EQ(r.model.fit_channels, (std::vector<std::string>{"acc1", "acc2"}));

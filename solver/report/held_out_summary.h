@@ -1,0 +1,18 @@
+// The words for a held-out channel's prediction error, as `beamid identify`
+// prints them and the report shows them: the worst relative error on the
+// 1st and 3rd harmonics over the steps that resolve it, with their count;
+// a harmonic no step resolves is said to have nothing measurable, never
+// "0.00 %" (which would read as a perfect prediction).
+#pragma once
+
+#include <string>
+
+#include "solver/estimation/result_file.h"
+
+namespace beamid::solver {
+
+// E.g. "worst error 1.23 % on the 1st harmonic (5 steps); nothing measurable
+// on the 3rd harmonic (no step resolves its error)".
+std::string HeldOutSummary(const HeldOutChannel& channel);
+
+}  // namespace beamid::solver
