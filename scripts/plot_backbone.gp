@@ -1,10 +1,15 @@
 # Plots the measured backbone of `beamid backbone --measured ... -o PREFIX`:
-#   gnuplot -e "bb='out/measured'; out='out/measured.png'" scripts/plot_backbone.gp
+#   gnuplot -c scripts/plot_backbone.gp out/measured out/measured.png
+# The prefix and the picture are arguments (ARG1, ARG2): gnuplot takes them
+# as strings, so a quote in a path stays part of it (pasting a path into
+# -e "bb='...'" would run whatever follows a quote in it as gnuplot).
 # Top: phase-resonance frequency against the sensor's displacement amplitude,
 # per level with its error bars, the single-mode fit ω_n(a) (±1 σ band) and,
 # if the run had --result, the identified model's backbone at the sensor.
 # Bottom: damping ratio against amplitude by the three per-level methods and
 # the fit's ζ(a).
+if (ARGC >= 1) bb = ARG1
+if (ARGC >= 2) out = ARG2
 if (!exists("bb")) bb = 'backbone'
 if (!exists("out")) out = bb.'.png'
 levels = bb.'.csv'

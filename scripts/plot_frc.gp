@@ -1,6 +1,13 @@
 # Plots beamid frc output (PREFIX.csv) and, if given, the backbone (BB.csv):
-#   gnuplot -e "frc='out/frc.csv'; bb='out/backbone.csv'; channel='acc3'; out='out/frc.png'" scripts/plot_frc.gp
+#   gnuplot -c scripts/plot_frc.gp out/frc.csv acc3 out/frc.png [out/backbone.csv]
 # Solid: stable branches; dashed: unstable (between turning points).
+# Files and channel are arguments (ARG1..ARG4): gnuplot takes them as
+# strings, so a quote in a path stays part of it (pasting a path into
+# -e "frc='...'" would run whatever follows a quote in it as gnuplot).
+if (ARGC >= 1) frc = ARG1
+if (ARGC >= 2) channel = ARG2
+if (ARGC >= 3) out = ARG3
+if (ARGC >= 4) bb = ARG4
 if (!exists("channel")) channel = 'acc3'
 if (!exists("out")) out = 'frc.png'
 set terminal pngcairo size 900,560 enhanced font ",11"
@@ -8,7 +15,7 @@ set output out
 set datafile separator ','
 set datafile columnheaders
 set xlabel 'frequency [Hz]'
-set ylabel sprintf('%s: 1st-harmonic acceleration amplitude [m/s^2]', channel)
+set ylabel sprintf('%s: 1st-harmonic acceleration amplitude [m/s^2]', channel) noenhanced
 set grid
 set key top left
 amp = sprintf('%s_h1_acc_amp_m_s2', channel)

@@ -57,7 +57,19 @@ class Reader {
     const json& value = Member(object, where, key);
     if (!value.is_string() || value.get<std::string>().empty())
       Fail(where, "", "'" + key + "' must be a non-empty string", "write it as \"" + key + "\": \"...\"");
-    return value.get<std::string>();
+    std::string text = value.get<std::string>();
+    // Names and labels end up in file names, CSV columns, plot titles and
+    // reports: a line break or another control character has no place there
+    // (the value itself is not repeated, so that the message stays one line).
+    for (std::size_t i = 0; i < text.size(); ++i) {
+      const auto byte = static_cast<unsigned char>(text[i]);
+      if (byte < 0x20 || byte == 0x7F)
+        Fail(where, "",
+             "'" + key + "' holds a control character (byte " + std::to_string(byte) + " at position " +
+                 std::to_string(i + 1) + ": a line break, tab or the like)",
+             "write \"" + key + "\" without line breaks, tabs or other control characters");
+    }
+    return text;
   }
 
   // A finite number, > 0 (or >= 0 when zero_allowed).

@@ -29,7 +29,8 @@ step "4. predict acc3 (x = 0.57 m) at every step and compare (the paper's Fig. 4
 step "5. measured backbone (model-free) with the identified model's backbone"
 "$beamid" backbone --measured "$out/campaign" --channel acc3 --result "$out/result.json" -o "$out/backbone"
 if command -v gnuplot >/dev/null; then
-  gnuplot -e "bb='$out/backbone'; out='$out/backbone.png'" "$root/scripts/plot_backbone.gp" && echo "plot: $out/backbone.png"
+  # The paths as arguments, not pasted into gnuplot code (a quote in them would end the string).
+  gnuplot -c "$root/scripts/plot_backbone.gp" "$out/backbone" "$out/backbone.png" && echo "plot: $out/backbone.png"
 fi
 
 report_input="$out/result.json"

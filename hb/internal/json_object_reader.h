@@ -66,7 +66,17 @@ class ObjectReader {
     read_.insert(key);
     if (!Has(key)) return fallback;
     if (!object_.at(key).is_string()) FailField(key, "must be a string");
-    return object_.at(key).get<std::string>();
+    std::string text = object_.at(key).get<std::string>();
+    // Names and labels end up in file names, CSV columns, plot titles and
+    // reports, where a line break or another control character has no place.
+    for (std::size_t i = 0; i < text.size(); ++i) {
+      const auto byte = static_cast<unsigned char>(text[i]);
+      if (byte < 0x20 || byte == 0x7F)
+        FailField(key, "holds a control character (byte " + std::to_string(byte) + " at position " +
+                           std::to_string(i + 1) + ": a line break, tab or the like). Fix: write it without line "
+                           "breaks, tabs or other control characters");
+    }
+    return text;
   }
   bool Bool(const std::string& key, bool fallback) {
     read_.insert(key);

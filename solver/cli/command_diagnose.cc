@@ -1,7 +1,10 @@
 // beamid diagnose: where the base model misses a campaign, which left-out
 // physics explains it (refitting every candidate), and the fit with it.
-#include <cstdlib>
+#include <algorithm>
+#include <complex>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include <fmt/core.h>
 
@@ -14,6 +17,9 @@
 #include "solver/diagnosis/diagnosis.h"
 #include "solver/diagnosis/diagnosis_io.h"
 #include "solver/estimation/result_io.h"
+#include "solver/report/external_program.h"
+#include "solver/report/gnuplot_script.h"
+#include "solver/report/temp_folder.h"
 
 namespace beamid::cli {
 namespace {
@@ -36,31 +42,69 @@ struct DiagnoseCommandOptions {
 
 // A gnuplot script, one panel per channel: per level the measured
 // first-harmonic amplitude (points), the base model (dashed) and the
-// diagnosed model (solid) against frequency.
-std::string PlotScript(const solver::DiagnosisResult& result, const std::string& csv, const std::string& png) {
+// diagnosed model (solid) against frequency. The numbers go in as one
+// datablock per level and channel; labels and names only as quoted texts
+// (GnuplotText), so none can become a gnuplot command. The PNG goes to
+// standard output: the script names no file.
+std::string PlotScript(const solver::DiagnosisResult& result) {
   std::vector<std::string> levels, channels;
   for (const auto& p : result.response) {
     if (std::find(levels.begin(), levels.end(), p.level) == levels.end()) levels.push_back(p.level);
     if (std::find(channels.begin(), channels.end(), p.channel) == channels.end()) channels.push_back(p.channel);
   }
   std::string script = fmt::format(
-      "set terminal pngcairo size {},600\nset output '{}'\nset datafile separator ','\nset key top left\n"
-      "set xlabel 'frequency [Hz]'\nset ylabel 'first-harmonic amplitude (channel unit)'\n"
-      "set multiplot layout 1,{}\n",
-      500 * channels.size(), png, channels.size());
-  for (const auto& channel : channels) {
-    script += fmt::format(
-        "set title '{} (points: measured, dashed: base, solid: diagnosed)' noenhanced font ',10'\nplot ", channel);
+      "# Draws PREFIX.png of beamid diagnose --curves on standard output: gnuplot PREFIX.gp > PREFIX.png\n"
+      "set terminal pngcairo size {},600 enhanced\nset key top left\n"
+      "set xlabel 'frequency [Hz]'\nset ylabel 'first-harmonic amplitude (channel unit)'\n",
+      500 * std::max<std::size_t>(channels.size(), 1));
+  for (std::size_t c = 0; c < channels.size(); ++c)
     for (std::size_t l = 0; l < levels.size(); ++l) {
-      const std::string rows =
-          fmt::format("\"< awk -F, '$1==\\\"{}\\\" && $3==\\\"{}\\\"' {}\"", levels[l], channel, csv);
-      script += fmt::format("{0} using 2:5 with points pt 7 lc {1} title '{2}', "
-                            "{0} using 2:7 with lines dt 2 lc {1} notitle, "
-                            "{0} using 2:9 with lines dt 1 lc {1} notitle{3}",
-                            rows, l + 1, levels[l], l + 1 < levels.size() ? ", \\\n  " : "\n");
+      std::vector<std::vector<double>> rows;  // frequency, measured, base, diagnosed
+      for (const auto& p : result.response)
+        if (p.level == levels[l] && p.channel == channels[c])
+          rows.push_back({p.frequency_hz, std::abs(p.measured), std::abs(p.base_model), std::abs(p.final_model)});
+      script += solver::Datablock(fmt::format("c{}_l{}", c, l), rows);
     }
+  script += fmt::format("set multiplot layout 1,{}\n", std::max<std::size_t>(channels.size(), 1));
+  for (std::size_t c = 0; c < channels.size(); ++c) {
+    script += fmt::format("set title {} font ',10'\nplot ",
+                          solver::GnuplotText(channels[c] + " (points: measured, dashed: base, solid: diagnosed)"));
+    for (std::size_t l = 0; l < levels.size(); ++l)
+      script += fmt::format("$c{0}_l{1} using 1:2 with points pt 7 lc {2} title {3}, "
+                            "$c{0}_l{1} using 1:3 with lines dt 2 lc {2} notitle, "
+                            "$c{0}_l{1} using 1:4 with lines dt 1 lc {2} notitle{4}",
+                            c, l, l + 1, solver::GnuplotText(levels[l]), l + 1 < levels.size() ? ", \\\n  " : "\n");
   }
   return script + "unset multiplot\n";
+}
+
+std::string ReadWholeFile(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Draws PREFIX.png with gnuplot, run without a shell; the PNG is written like
+// every other output (whole or not at all). A missing or failing gnuplot
+// leaves the CSV and the script and says so (the diagnosis is written).
+void DrawCurves(const std::string& script, const std::string& png, const std::string& csv, const GlobalOptions& global) {
+  std::string problem;
+  try {
+    const solver::TempFolder folder("gnuplot");
+    const std::filesystem::path picture = folder.path() / "curves.png", messages = folder.path() / "gnuplot.err";
+    const int status = solver::RunExternalProgram({.program = "gnuplot",
+                                                   .debian_package = "gnuplot-nox",
+                                                   .stdin_text = script,
+                                                   .stdout_file = picture,
+                                                   .stderr_file = messages});
+    const std::string bytes = ReadWholeFile(picture);
+    if (status == 0 && !bytes.empty()) WriteTextFile(png, bytes);
+    else problem = fmt::format("gnuplot failed (exit status {}): {}", status, ReadWholeFile(messages).substr(0, 2000));
+  } catch (const EnvironmentError& e) {
+    problem = e.what();
+  }
+  if (!problem.empty() && !global.quiet) fmt::print(stderr, "{}\n{} not drawn ({} is there)\n", problem, png, csv);
 }
 
 void RunDiagnose(const DiagnoseCommandOptions& options, const GlobalOptions& global) {
@@ -121,13 +165,9 @@ void RunDiagnose(const DiagnoseCommandOptions& options, const GlobalOptions& glo
   if (!options.curves.empty()) {
     const std::string csv = options.curves + ".csv", png = options.curves + ".png", gp = options.curves + ".gp";
     WriteTextFile(csv, solver::ResponseCsv(result));
-    WriteTextFile(gp, PlotScript(result, std::filesystem::path(csv).filename().string(),
-                                 std::filesystem::path(png).filename().string()));
-    const std::string folder = std::filesystem::absolute(gp).parent_path().string();
-    const std::string command = "cd '" + folder + "' && gnuplot '" + std::filesystem::path(gp).filename().string() +
-                                "' 2>/dev/null";
-    if (std::system(command.c_str()) != 0 && !global.quiet)
-      fmt::print(stderr, "gnuplot failed or is missing: {} not drawn ({} is there)\n", png, csv);
+    const std::string script = PlotScript(result);
+    WriteTextFile(gp, script);
+    DrawCurves(script, png, csv, global);
   }
   if (!global.quiet) {
     fmt::print("diagnosed {} steps in {:.2f} s: {}{}\n", fit.steps.size(), result.seconds, result.verdict,

@@ -50,9 +50,9 @@ std::string FrcPlot(const ReportCurves& curves, std::size_t channel) {
   const ReportChannel& ch = curves.channels[channel];
   std::string script = fmt::format(
       "set title {}\nset xlabel 'frequency [Hz]'\nset ylabel {}\nset grid\nset key top left box opaque\n",
-      GnuplotQuote(PlotText(fmt::format("{} at x = {:.3f} m ({}): first harmonic", ch.channel, ch.position_m,
-                                        ch.fitted ? "fitted" : "held out"))),
-      GnuplotQuote(PlotText(fmt::format("|X_1| [{}]", ch.si_unit))));
+      GnuplotText(fmt::format("{} at x = {:.3f} m ({}): first harmonic", ch.channel, ch.position_m,
+                              ch.fitted ? "fitted" : "held out")),
+      GnuplotText(fmt::format("|X_1| [{}]", ch.si_unit)));
   std::string plot = "plot ";
   Rows flagged;  // steps not to be trusted as the others (MeasuredPoint::flag)
   for (std::size_t l = 0; l < curves.levels.size(); ++l) {
@@ -65,12 +65,12 @@ std::string FrcPlot(const ReportCurves& curves, std::size_t channel) {
     }
     script += Datablock(fmt::format("s{}", l), stable) + Datablock(fmt::format("u{}", l), unstable) +
               Datablock(fmt::format("m{}", l), measured);
-    const std::string label = PlotText(fmt::format("{} ({:.3g} N)", level.level, level.force_amplitude_N));
+    const std::string label = fmt::format("{} ({:.3g} N)", level.level, level.force_amplitude_N);
     plot += fmt::format(
         "{}$s{} with lines lw 2 lc rgb '{}' title {}, $u{} with lines lw 2 dt 2 lc rgb '{}' notitle, "
         "$m{} with points pt 7 ps 0.7 lc rgb '{}' title {}",
-        l ? ", " : "", l, Colour(l), GnuplotQuote("model " + label), l, Colour(l), l, Colour(l),
-        GnuplotQuote("measured " + label));
+        l ? ", " : "", l, Colour(l), GnuplotText("model " + label), l, Colour(l), l, Colour(l),
+        GnuplotText("measured " + label));
   }
   if (!flagged.empty()) {
     script += Datablock("flagged", flagged);
@@ -109,8 +109,8 @@ std::string BackbonePlot(const ReportCurves& curves) {
   const ReportChannel& ch = curves.channels[c];
   std::string script = fmt::format(
       "set title {}\nset xlabel 'frequency [Hz]'\nset ylabel {}\nset grid\nset key top left box opaque\n",
-      GnuplotQuote(PlotText(fmt::format("backbone at {} (x = {:.3f} m)", ch.channel, ch.position_m))),
-      GnuplotQuote(PlotText(fmt::format("|X_1| [{}]", ch.si_unit))));
+      GnuplotText(fmt::format("backbone at {} (x = {:.3f} m)", ch.channel, ch.position_m)),
+      GnuplotText(fmt::format("|X_1| [{}]", ch.si_unit)));
   Rows frc, backbone, resonance;
   for (const auto& level : curves.levels) {
     for (const auto& p : level.model) frc.push_back({p.frequency_hz, p.amplitude[c]});
@@ -158,8 +158,8 @@ std::string DampingPlot(const ReportCurves& curves) {
                    p.damping_ratio + 2 * p.damping_ratio_std});
   std::string script = fmt::format(
       "set title {}\nset xlabel {}\nset ylabel 'damping ratio {{/Symbol z}}'\nset grid\nset key outside below\n",
-      GnuplotQuote(PlotText(fmt::format("damping against amplitude at {} (model-free)", ch.channel))),
-      GnuplotQuote(fmt::format("|X_1| at phase resonance [{}]", ch.si_unit)));
+      GnuplotText(fmt::format("damping against amplitude at {} (model-free)", ch.channel)),
+      GnuplotText(fmt::format("|X_1| at phase resonance [{}]", ch.si_unit)));
   script += Datablock("q", quadrature) + Datablock("l", local) + Datablock("h", half_power) + Datablock("f", fit);
   std::string plot = "plot ";
   auto add = [&](const std::string& item) { plot += (plot.size() > 5 ? ", " : "") + item; };
@@ -204,8 +204,8 @@ std::string TimePlot(const TimeHistory& history, const std::string& channel) {
   return fmt::format(
              "set title {}\nset xlabel 'time [ms]'\nset ylabel 'acceleration [m/s^2]'\nset grid\n"
              "set key top right box opaque\n",
-             GnuplotQuote(PlotText(fmt::format("{} (held out), level {}, {:.3f} Hz: one period of the steady state",
-                                               channel, history.level, history.frequency_hz)))) +
+             GnuplotText(fmt::format("{} (held out), level {}, {:.3f} Hz: one period of the steady state", channel,
+                                     history.level, history.frequency_hz))) +
          Datablock("t", rows) +
          "plot $t using 1:($2-2*$3):($2+2*$3) with filledcurves fc rgb '#c6dbef' title 'prediction ±2σ', "
          "$t using 1:2 with lines lw 2 lc rgb '#1f77b4' title 'predicted', "
@@ -222,11 +222,11 @@ std::string ResidualPlot(const ResidualMap& map) {
   }
   std::string ytics, xtics, arrows;
   for (Eigen::Index r = 0; r < rows; ++r)
-    ytics += fmt::format("{}{} {}", r ? ", " : "", GnuplotQuote(PlotText(map.rows[r])), r);
+    ytics += fmt::format("{}{} {}", r ? ", " : "", GnuplotText(map.rows[r], GnuplotTextUse::kTicLabel), r);
   std::size_t start = 0;
   for (std::size_t i = 1; i <= map.step_level.size(); ++i) {
     if (i < map.step_level.size() && map.step_level[i] == map.step_level[start]) continue;
-    xtics += fmt::format("{}{} {}", xtics.empty() ? "" : ", ", GnuplotQuote(PlotText(map.step_level[start])),
+    xtics += fmt::format("{}{} {}", xtics.empty() ? "" : ", ", GnuplotText(map.step_level[start], GnuplotTextUse::kTicLabel),
                          0.5 * (start + i - 1));
     if (i < map.step_level.size())
       arrows += fmt::format("set arrow from {0}, graph 0 to {0}, graph 1 nohead lc rgb '#ffffff' lw 2 front\n", i - 0.5);

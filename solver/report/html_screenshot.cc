@@ -1,12 +1,15 @@
 #include "solver/report/html_screenshot.h"
 
-#include "hb/errors.h"
-
 #include <cstdlib>
-#include <stdexcept>
+#include <fstream>
+#include <sstream>
 #include <string_view>
 
 #include <fmt/core.h>
+
+#include "hb/errors.h"
+#include "solver/report/external_program.h"
+#include "solver/report/temp_folder.h"
 
 namespace beamid::solver {
 
@@ -28,23 +31,48 @@ std::optional<fs::path> FindChromium() {
   return std::nullopt;
 }
 
+std::string FileUrl(const fs::path& file) {
+  std::string url = "file://";
+  for (const char c : fs::absolute(file).lexically_normal().string()) {
+    const auto byte = static_cast<unsigned char>(c);
+    const bool plain = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-' ||
+                       c == '.' || c == '_' || c == '~' || c == '/';
+    url += plain ? std::string(1, c) : fmt::format("%{:02X}", byte);
+  }
+  return url;
+}
+
 void ScreenshotHtml(const fs::path& html_file, const fs::path& png_file, const ScreenshotOptions& options) {
   const auto chromium = FindChromium();
   if (!chromium)
     throw EnvironmentError("no Chromium for the screenshot: install the Debian package chromium "
-                             "(scripts/install-deps.sh)");
+                           "(scripts/install-deps.sh)");
   std::error_code error;
-  if (png_file.has_parent_path()) fs::create_directories(png_file.parent_path(), error);
-  fs::remove(png_file, error);
-  // --no-sandbox: Chromium refuses to run as root (CI containers) without it.
-  const std::string command = fmt::format(
-      "'{}' --headless --no-sandbox --disable-gpu --hide-scrollbars --no-first-run --mute-audio "
-      "--window-size={},{} --screenshot='{}' 'file://{}' > /dev/null 2>&1",
-      chromium->string(), options.width_px, options.height_px, fs::absolute(png_file).string(),
-      fs::absolute(html_file).string());
-  const int status = std::system(command.c_str());
-  if (status != 0 || !fs::is_regular_file(png_file, error) || fs::file_size(png_file, error) == 0)
-    throw EnvironmentError(fmt::format("Chromium wrote no screenshot {} (exit status {})", png_file.string(), status));
+  const fs::path png = fs::absolute(png_file).lexically_normal();
+  if (png.has_parent_path()) fs::create_directories(png.parent_path(), error);
+  fs::remove(png, error);
+  const TempFolder profile("chromium");
+  const fs::path log = profile.path() / "chromium.log";
+  const int status = RunExternalProgram({
+      .program = chromium->string(),
+      .arguments = {"--headless", "--no-sandbox",  // Chromium refuses to run as root (CI containers) without it
+                    "--disable-gpu", "--hide-scrollbars", "--no-first-run", "--mute-audio",
+                    "--disable-background-networking", "--disable-component-update", "--disable-sync",
+                    "--user-data-dir=" + (profile.path() / "profile").string(),
+                    fmt::format("--window-size={},{}", options.width_px, options.height_px),
+                    "--screenshot=" + png.string(), FileUrl(html_file)},
+      .debian_package = "chromium",
+      .stderr_file = log,
+      .timeout_s = options.timeout_s,
+  });
+  if (status != 0 || !fs::is_regular_file(png, error) || fs::file_size(png, error) == 0) {
+    std::ifstream in(log);
+    std::ostringstream text;
+    text << in.rdbuf();
+    const std::string message = text.str();
+    throw EnvironmentError(fmt::format("Chromium wrote no screenshot {} (exit status {}): {}", png_file.string(),
+                                       status, message.substr(message.size() > 2000 ? message.size() - 2000 : 0)));
+  }
 }
 
 }  // namespace beamid::solver

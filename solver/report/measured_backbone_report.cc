@@ -46,7 +46,7 @@ std::string PlotAgainstAmplitude(const MeasuredBackboneFile& file, bool frequenc
   }
   std::string script = fmt::format(
       "set xlabel 'displacement amplitude at the sensor [mm]'\nset ylabel {}\nset grid\nset key top left box opaque\n",
-      GnuplotQuote(frequency ? "phase-resonance frequency [Hz]" : "damping ratio ζ"));
+      GnuplotText(frequency ? "phase-resonance frequency [Hz]" : "damping ratio ζ"));
   script += Datablock("band", band) + Datablock("fit", in_fit) + Datablock("out", left_out);
   std::vector<std::string> plots;
   if (!band.empty())
@@ -56,7 +56,7 @@ std::string PlotAgainstAmplitude(const MeasuredBackboneFile& file, bool frequenc
     plots.push_back("$fit using 1:2:3 with yerrorbars pt 7 ps 1.2 lc rgb '#c03020' title 'levels in the fit'");
   if (!left_out.empty())
     plots.push_back("$out using 1:2:3 with yerrorbars pt 6 ps 1.4 lc rgb '#a50f15' title " +
-                    GnuplotQuote(PlotText("flagged levels, left out of the fit")));
+                    GnuplotText("flagged levels, left out of the fit"));
   if (plots.empty()) return "";
   std::string plot = "plot ";
   for (std::size_t i = 0; i < plots.size(); ++i) plot += (i ? ", " : "") + plots[i];

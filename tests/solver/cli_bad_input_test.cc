@@ -360,6 +360,24 @@ TEST_F(BadInput, EveryBadInputEndsWithExitTwoAndAMessageThatNamesItAndTheFix) {
          Replace(m / "campaign.json", "\"sample_rate_Hz\"", "\"ignore_channels\": [\"acc1\", \"acc2\"], \"sample_rate_Hz\"");
        },
        "diagnose {m} --validate acc3 -o {d}/d.json", {"campaign.json", "no sensor is left to fit", "--validate", "Fix:"}},
+      // Control characters in names and labels: a line break in a label
+      // would end a command of the plots' gnuplot scripts.
+      {"a line break in a level label",
+       [](auto m, auto) { Replace(m / "campaign.json", "\"level\": \"low\"", "\"level\": \"low\\nset output 'x'\""); },
+       "diagnose {m} -o {d}/d.json --curves {d}/c",
+       {"campaign.json", "steps[0]", "'level' holds a control character", "Fix:", "without line breaks"}},
+      {"a tab in a channel name",
+       [](auto m, auto) { Replace(m / "campaign.json", "\"channel\": \"acc1\"", "\"channel\": \"acc\\t1\""); },
+       "report {r} --campaign {m} -o {d}/report.html", {"campaign.json", "sensors[0]", "'channel' holds a control character", "Fix:"}},
+      {"a DEL in a step's file name",
+       [](auto m, auto) { Replace(m / "campaign.json", "low/step_001.csv", "low/step\\u007f_001.csv"); },
+       "extract {m} -o {d}/p.json", {"campaign.json", "steps[1]", "'file' holds a control character", "Fix:"}},
+      {"an escape character in a unit",
+       [](auto m, auto) { Replace(m / "campaign.json", "\"unit\": \"m/s^2\"", "\"unit\": \"m/s^2\\u001b[0m\""); },
+       "extract {m} -o {d}/p.json", {"campaign.json", "'unit' holds a control character", "Fix:"}},
+      {"a line break in a scenario's sensor name",
+       scenario_with("{\"channel\": \"acc1\"", "{\"channel\": \"acc1\\n\""), "simulate {d}/s.json -o {d}/sim",
+       {"s.json", "sensors[0].channel", "control character", "Fix:"}},
   };
   const fs::path clean = root_ / "clean", result = root_ / "result.json";
   for (std::size_t i = 0; i < rows.size(); ++i) {
