@@ -34,7 +34,7 @@ class StrictSax {
   bool number_integer(number_integer_t v) { return Place(Json(v)) != nullptr; }
   bool number_unsigned(number_unsigned_t v) { return Place(Json(v)) != nullptr; }
   bool number_float(number_float_t v, const string_t& text) {
-    // strtod gives ±inf beyond double's range; JSON has no infinity.
+    // Kept should the parser ever hand ±inf on (JSON has no infinity).
     if (!std::isfinite(v))
       return Refuse("not valid JSON (the number " + text + At(ChildPath()) +
                         " is out of range: a double holds at most ±1.8e308)",
@@ -63,7 +63,13 @@ class StrictSax {
     return true;
   }
 
-  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception& e) {
+  bool parse_error(std::size_t position, const std::string& last_token, const nlohmann::detail::exception& e) {
+    // nlohmann's parser finds a number beyond double's range itself (its
+    // out_of_range 406, with neither line nor path): name both.
+    if (e.id == 406)
+      return Refuse("not valid JSON (the number " + last_token + At(ChildPath()) + " ending at byte " +
+                        std::to_string(position) + " is out of range: a double holds at most ±1.8e308)",
+                    "write a finite number in SI units");
     // "[json.exception.parse_error.101] parse error at line 3, column 14: syntax error ..."
     std::string what = e.what();
     if (const auto bracket = what.find("] "); what.rfind("[json.exception", 0) == 0 && bracket != std::string::npos)

@@ -220,6 +220,12 @@ ResultModel ReadModel(const Field& m) {
 
 std::vector<ResultParameter> ReadParameters(const Field& root) {
   const std::vector<std::string> order = root.At("parameter_order").Strings();
+  // identify fits the law's few parameters and a few linear ones; the
+  // covariance is read as an order × order matrix, allocated before its rows.
+  constexpr std::size_t kMaxParameters = 64;
+  if (order.size() > kMaxParameters)
+    root.At("parameter_order").Fail("names " + std::to_string(order.size()) + " parameters, more than " +
+                                    std::to_string(kMaxParameters));
   const Field parameters = root.At("parameters");
   if (parameters.Members().size() != order.size())
     parameters.Fail("holds " + std::to_string(parameters.Members().size()) + " parameters but parameter_order names " +
