@@ -173,7 +173,7 @@ void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& glo
                  result.minima.minima.size(), result.minima.second_chi_square_gap,
                  result.minima.decisive ? "ruled out by the data" : "NOT ruled out by the data");
     for (const auto& v : result_file.validation)
-      fmt::print("  held-out {}: {} (the other steps lie below the noise floor)\n", v.channel, solver::HeldOutSummary(v));
+      fmt::print("  held-out {}: {}\n", v.channel, solver::HeldOutSummary(v));
     for (const auto& w : result.warnings) fmt::print("  warning: {}\n", w);
     fmt::print("  verdict: {}\n", result.verdict.text);
     fmt::print("wrote {}\n", options.output);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include <fmt/core.h>
 
@@ -35,6 +36,16 @@ void RunPredict(const PredictOptions& options, const GlobalOptions& global) {
   RequireWritableOutput(options.output, {options.result_file});
   const solver::ResultFile result = solver::ReadResultFile(options.result_file);
   const solver::IdentifiedModel model = solver::ToIdentifiedModel(result);
+  // The campaign first: one the result was not identified from is refused
+  // before any work. Another campaign of the same layout has steps of the
+  // same file names: the comparison would be with the wrong recordings.
+  std::optional<signal::Campaign> campaign;
+  if (!options.campaign_folder.empty()) {
+    campaign = ReadCampaignAndWarn("predict", options.campaign_folder, global);
+    signal::RequireDerivedFrom(
+        {.file = options.result_file, .sha256 = result.campaign.sha256, .name = result.campaign.name}, *campaign,
+        "compare a result with the campaign it was identified from (or identify this campaign again)");
+  }
   Progress progress("predict", global);
   const std::vector<solver::PredictedStep> steps = solver::PredictAt(model, options.position_m);
   progress.Done();
@@ -42,18 +53,12 @@ void RunPredict(const PredictOptions& options, const GlobalOptions& global) {
   std::string compared;
   int compared_order = 2;  // the compared channel's quantity: 0 displacement, 1 velocity, 2 acceleration
   std::vector<Eigen::VectorXcd> measured;
-  if (!options.campaign_folder.empty()) {
-    const signal::Campaign campaign = ReadCampaignAndWarn("predict", options.campaign_folder, global);
-    // Another campaign of the same layout has steps of the same file names:
-    // the comparison would be with the wrong recordings.
-    signal::RequireDerivedFrom(
-        {.file = options.result_file, .sha256 = result.campaign.sha256, .name = result.campaign.name}, campaign,
-        "compare a result with the campaign it was identified from (or identify this campaign again)");
-    for (const auto& s : campaign.sensors)
+  if (campaign) {
+    for (const auto& s : campaign->sensors)
       if (std::abs(s.position_m - options.position_m) < 1e-3) compared = s.channel;
     if (!compared.empty()) {
-      const signal::PhasorSet phasors = signal::ExtractCampaign(campaign);
-      const solver::FitData data = solver::MakeFitData(campaign, phasors, {.channels = {compared}});
+      const signal::PhasorSet phasors = signal::ExtractCampaign(*campaign);
+      const solver::FitData data = solver::MakeFitData(*campaign, phasors, {.channels = {compared}});
       compared_order = data.channels.front().derivative_order;
       int matched = 0;
       for (const solver::PredictedStep& p : steps) {

@@ -7,18 +7,20 @@ namespace {
 
 // Keyed on the count, not the value: files written before the worst error
 // of an unresolved harmonic was NaN hold 0 there.
-std::string Harmonic(int measurable_steps, double worst, const char* harmonic) {
+std::string Harmonic(int measurable_steps, std::size_t steps, double worst, const char* harmonic) {
   if (measurable_steps == 0)
-    return fmt::format("nothing measurable on the {} harmonic (no step resolves its error)", harmonic);
-  return fmt::format("worst error {:.2f} % on the {} harmonic ({} step{})", 100.0 * worst, harmonic, measurable_steps,
-                     measurable_steps == 1 ? "" : "s");
+    return fmt::format("nothing measurable on the {} harmonic (none of the {} steps resolves its error: all lie below "
+                       "the noise floor)",
+                       harmonic, steps);
+  return fmt::format("worst error {:.2f} % on the {} harmonic (over the {} of {} steps that resolve it)", 100.0 * worst,
+                     harmonic, measurable_steps, steps);
 }
 
 }  // namespace
 
 std::string HeldOutSummary(const HeldOutChannel& channel) {
-  return Harmonic(channel.measurable_steps_h1, channel.worst_h1_relative_error, "1st") + "; " +
-         Harmonic(channel.measurable_steps_h3, channel.worst_h3_relative_error, "3rd");
+  return Harmonic(channel.measurable_steps_h1, channel.steps.size(), channel.worst_h1_relative_error, "1st") + "; " +
+         Harmonic(channel.measurable_steps_h3, channel.steps.size(), channel.worst_h3_relative_error, "3rd");
 }
 
 }  // namespace beamid::solver

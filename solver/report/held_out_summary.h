@@ -11,8 +11,9 @@
 
 namespace beamid::solver {
 
-// E.g. "worst error 1.23 % on the 1st harmonic (5 steps); nothing measurable
-// on the 3rd harmonic (no step resolves its error)".
+// E.g. "worst error 1.23 % on the 1st harmonic (over the 5 of 6 steps that
+// resolve it); nothing measurable on the 3rd harmonic (none of the 6 steps
+// resolves its error: all lie below the noise floor)".
 std::string HeldOutSummary(const HeldOutChannel& channel);
 
 }  // namespace beamid::solver

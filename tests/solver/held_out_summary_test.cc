@@ -40,8 +40,8 @@ TEST(HeldOutSummary, AHarmonicNoStepResolvesIsNothingMeasurableNotZero) {
   EXPECT_TRUE(std::isnan(acc1.worst_h3_relative_error)) << acc1.worst_h3_relative_error;
 
   const std::string text = HeldOutSummary(acc1);
-  EXPECT_THAT(text, HasSubstr("on the 1st harmonic (3 steps)"));
-  EXPECT_THAT(text, HasSubstr("nothing measurable on the 3rd harmonic"));
+  EXPECT_THAT(text, HasSubstr("on the 1st harmonic (over the 3 of 3 steps that resolve it)"));
+  EXPECT_THAT(text, HasSubstr("nothing measurable on the 3rd harmonic (none of the 3 steps resolves its error"));
   EXPECT_THAT(text, Not(HasSubstr("nan")));
 
   // Stored as null, read back as NaN with its count of 0.
@@ -59,18 +59,21 @@ TEST(HeldOutSummary, AnOlderFilesZeroWithNoStepIsNothingMeasurable) {
                              .worst_h1_relative_error = 0.0,
                              .worst_h3_relative_error = 0.0,
                              .measurable_steps_h1 = 0,
-                             .measurable_steps_h3 = 0};
+                             .measurable_steps_h3 = 0,
+                             .steps = std::vector<HeldOutStep>(5)};
   const std::string text = HeldOutSummary(older);
-  EXPECT_THAT(text, HasSubstr("nothing measurable on the 1st harmonic"));
+  EXPECT_THAT(text, HasSubstr("nothing measurable on the 1st harmonic (none of the 5 steps"));
   EXPECT_THAT(text, HasSubstr("nothing measurable on the 3rd harmonic"));
   EXPECT_THAT(text, Not(HasSubstr("0.00 %")));
   const HeldOutChannel measured{.channel = "acc3",
                                 .worst_h1_relative_error = 0.0123,
                                 .worst_h3_relative_error = 0.2,
                                 .measurable_steps_h1 = 1,
-                                .measurable_steps_h3 = 4};
+                                .measurable_steps_h3 = 4,
+                                .steps = std::vector<HeldOutStep>(5)};
   EXPECT_EQ(HeldOutSummary(measured),
-            "worst error 1.23 % on the 1st harmonic (1 step); worst error 20.00 % on the 3rd harmonic (4 steps)");
+            "worst error 1.23 % on the 1st harmonic (over the 1 of 5 steps that resolve it); worst error 20.00 % on the "
+            "3rd harmonic (over the 4 of 5 steps that resolve it)");
 }
 
 }  // namespace

@@ -161,6 +161,7 @@ TEST_F(ReportCommand, RendersADiagnosisSummary) {
   DiagnosisFile file;
   file.campaign_name = result.campaign.name;
   file.campaign_folder = result.campaign.absolute_folder;
+  file.campaign_sha256 = result.campaign.sha256;
   file.result_file = "result.json";
   DiagnosisResult& d = file.diagnosis;
   d.selected = {"support_friction"};
@@ -202,13 +203,16 @@ TEST_F(ReportCommand, RendersADiagnosisSummary) {
   // A diagnosis of another campaign beside this result is refused, not mixed
   // into one page.
   file.campaign_name = "another campaign";
+  file.campaign_sha256 = std::string(64, 'a');
   WriteDiagnosisFile(*folder_ / "other_diagnosis.json", file);
   const ProgramRun mixed = RunShell(std::string(BEAMID_EXECUTABLE) + " -q report " +
                                         (*folder_ / "other_diagnosis.json").string() + " -o " +
                                         (*folder_ / "mixed.html").string(),
                                     *folder_ / "mixed.log");
   EXPECT_EQ(mixed.exit_code, 2) << mixed.output;
-  EXPECT_THAT(mixed.output, HasSubstr("not of campaign 'another campaign'"));
+  EXPECT_THAT(mixed.output, HasSubstr("other_diagnosis.json: is of campaign 'another campaign' (content SHA-256 "
+                                      "aaaaaaaaaaaa…), not of the campaign of "));
+  EXPECT_THAT(mixed.output, HasSubstr("result.json ('report test"));
   EXPECT_FALSE(fs::exists(*folder_ / "mixed.html"));
 }
 
