@@ -152,7 +152,7 @@ TEST_F(ExternalProgramTest, TheChildInheritsNoOtherFileDescriptor) {
   std::istringstream lines(ReadFile(out));
   std::vector<std::string> fds;
   for (std::string line; std::getline(lines, line);) fds.push_back(line);
-  EXPECT_THAT(fds, ::testing::IsSupersetOf({"0", "1", "2"}));
+  for (const char* standard : {"0", "1", "2"}) EXPECT_THAT(fds, ::testing::Contains(standard));
   EXPECT_THAT(fds, Not(::testing::Contains("100")));
 }
 

@@ -90,7 +90,7 @@ class Injection : public ::testing::Test {
     const std::string touch = "touch " + sentinel_.string();
     low_ = "low'; " + touch + "; echo '";
     high_ = "high\"$(" + touch + ")`" + touch + "`'.system('" + touch + "').' acc_2^{x}@&~\\ 50%s";
-    channels_ = {"acc1'.system('" + touch + "').'", "acc2$(" + touch + ")", "acc3`" + touch + "`;" + touch};
+    channels_ = {"acc1'.system('" + touch + "').'", "acc2$(" + touch + ")", "acc3`" + touch + "`"};
     out_ = root_ / "out '\"$(touch SENTINEL)`touch SENTINEL`#?% x";
     fs::create_directories(out_);
 
@@ -164,8 +164,11 @@ TEST_F(Injection, DiagnoseDrawsItsCurvesWithTheLabelsAsText) {
   const std::string script = ReadFile(curves.string() + ".gp");
   for (const std::string& text : {low_, high_})
     EXPECT_THAT(script, HasSubstr("title " + beamid::solver::GnuplotText(text))) << text;
-  for (const std::string& channel : channels_)
-    EXPECT_THAT(script, HasSubstr("set title " + beamid::solver::GnuplotText(channel + " (points:"))) << channel;
+  for (const std::string& channel : channels_) {
+    std::string title = beamid::solver::GnuplotText(channel + " (points:");
+    title.pop_back();  // the title goes on: no closing quote here
+    EXPECT_THAT(script, HasSubstr("set title " + title)) << channel;
+  }
   EXPECT_THAT(script, Not(HasSubstr("\"<")));
   EXPECT_THAT(script, Not(HasSubstr("awk")));
   EXPECT_THAT(script, Not(HasSubstr("set output")));
