@@ -281,10 +281,17 @@ Campaign ReadCampaign(const std::filesystem::path& folder) {
       throw InputError(file.string(), "",
                        where + "'s file \"" + campaign.steps[i].file + "\" is named by another step too",
                        "give every step its own recording (a step listed twice would count twice in the fit)");
-    if (!std::filesystem::is_regular_file(path, error))
+    // A folder, a FIFO or a device named as a recording is said to be one,
+    // not "missing": the fix differs.
+    if (const std::string kind = FileKind(path); kind == "missing")
       throw InputError(path.string(), "",
                        "recording of steps[" + std::to_string(i) + "] is missing (named in " + file.string() + ")",
                        "copy the recording into the campaign folder or correct its \"file\" entry");
+    else if (!kind.empty())
+      throw InputError(path.string(), "",
+                       "recording of steps[" + std::to_string(i) + "] is " + kind + ", not a file (named in " +
+                           file.string() + ")",
+                       "put the recording itself (a regular file) there or correct its \"file\" entry");
   }
   return campaign;
 }

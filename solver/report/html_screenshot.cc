@@ -35,7 +35,13 @@ void ScreenshotHtml(const fs::path& html_file, const fs::path& png_file, const S
                              "(scripts/install-deps.sh)");
   std::error_code error;
   if (png_file.has_parent_path()) fs::create_directories(png_file.parent_path(), error);
-  fs::remove(png_file, error);
+  // The target is not removed first (the command has refused any target
+  // that is one of its inputs, but a file must not vanish before Chromium
+  // writes): a screenshot is recognised by its new modification time. A
+  // character device (/dev/null) is written in place and not inspected.
+  const bool device = fs::is_character_file(png_file, error);
+  const auto before = fs::last_write_time(png_file, error);
+  const bool existed = !error;
   // --no-sandbox: Chromium refuses to run as root (CI containers) without it.
   const std::string command = fmt::format(
       "'{}' --headless --no-sandbox --disable-gpu --hide-scrollbars --no-first-run --mute-audio "
@@ -43,7 +49,9 @@ void ScreenshotHtml(const fs::path& html_file, const fs::path& png_file, const S
       chromium->string(), options.width_px, options.height_px, fs::absolute(png_file).string(),
       fs::absolute(html_file).string());
   const int status = std::system(command.c_str());
-  if (status != 0 || !fs::is_regular_file(png_file, error) || fs::file_size(png_file, error) == 0)
+  const bool written = device || (fs::is_regular_file(png_file, error) && fs::file_size(png_file, error) > 0 &&
+                                  (!existed || fs::last_write_time(png_file, error) != before));
+  if (status != 0 || !written)
     throw EnvironmentError(fmt::format("Chromium wrote no screenshot {} (exit status {})", png_file.string(), status));
 }
 
