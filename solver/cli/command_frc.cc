@@ -148,7 +148,7 @@ BEAMID_REGISTER_COMMAND("frc", [](CLI::App& app, const GlobalOptions& global) {
       ->check(CLI::Range(1, 50))
       ->capture_default_str();
   sub->add_option("--max-points", options->max_points, "Most continuation points per curve")
-      ->check(CLI::Range(10, 100000))
+      ->check(CLI::Range(2, 100000))
       ->capture_default_str();
   sub->add_option("-o,--output", options->output, "Output prefix: writes PREFIX.csv and PREFIX.json")
       ->capture_default_str();

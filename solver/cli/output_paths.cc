@@ -86,12 +86,12 @@ void OutputPaths::Check() const {
     const fs::path target = Resolve(output.path);
     for (const fs::path& input : input_files_)
       if (Resolve(input) == target || SameFile(input, output.path))
-        throw InputError(Quoted(output.option, output.path) + " is " + input.string() +
-                         ", which this command reads: choose another name (beamid never overwrites its inputs)");
+        throw InputError(Quoted(output.option, output.path) + " is also an input of this command (" + input.string() +
+                         "): choose another name (beamid never overwrites what it reads)");
     for (const fs::path& folder : input_folders_) {
       if (IsWithin(target, Resolve(folder)) || SameFile(folder, output.path))
         throw InputError(Quoted(output.option, output.path) + " lies inside " + folder.string() +
-                         ", which this command reads (every file there is an input): write elsewhere");
+                         ", which is also an input of this command (every file there is read): write elsewhere");
     }
     if (output.folder) {
       for (const auto* inputs : {&input_files_, &input_folders_})

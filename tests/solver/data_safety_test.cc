@@ -164,7 +164,7 @@ TEST_F(DataSafety, TwoOutputsOnOnePathAndAFifoOrAFolderAsOutputAreRefused) {
   const fs::path d = root_ / "outputs";
   fs::create_directories(d / "folder");
   ASSERT_EQ(::mkfifo((d / "fifo").c_str(), 0600), 0) << std::strerror(errno);
-  for (const std::string& arguments :
+  for (const char* arguments :
        {"extract {C} -o {r}/outputs/same.json --csv {r}/outputs/same.json",
         "diagnose {C} -o {r}/outputs/frc.csv --curves {r}/outputs/frc", "extract {C} -o {r}/outputs/fifo",
         "extract {C} -o {r}/outputs/p.json --csv {r}/outputs/fifo", "predict {r}/result.json --x 0.3 -o {r}/outputs/folder",
