@@ -282,20 +282,17 @@ Campaign ReadCampaign(const std::filesystem::path& folder) {
       throw InputError(file.string(), "",
                        where + "'s file \"" + campaign.steps[i].file + "\" is named by another step too",
                        "give every step its own recording (a step listed twice would count twice in the fit)");
-    if (const auto status = std::filesystem::status(path, error); !std::filesystem::is_regular_file(status)) {
-      // Say what stands there: "missing" for a folder or a FIFO sends the
-      // user looking for a file that is there.
-      const std::string what = std::filesystem::is_directory(status)  ? "is a folder, not a file"
-                               : std::filesystem::is_fifo(status)     ? "is a FIFO, not a file"
-                               : std::filesystem::is_block_file(status) || std::filesystem::is_character_file(status)
-                                   ? "is a device, not a file"
-                               : std::filesystem::is_socket(status) ? "is a socket, not a file"
-                               : std::filesystem::exists(status)    ? "is not a regular file"
-                                                                    : "is missing";
+    // A folder, a FIFO or a device named as a recording is said to be one,
+    // not "missing": the fix differs.
+    if (const std::string kind = FileKind(path); kind == "missing")
       throw InputError(path.string(), "",
-                       "recording of steps[" + std::to_string(i) + "] " + what + " (named in " + file.string() + ")",
+                       "recording of steps[" + std::to_string(i) + "] is missing (named in " + file.string() + ")",
                        "copy the recording into the campaign folder or correct its \"file\" entry");
-    }
+    else if (!kind.empty())
+      throw InputError(path.string(), "",
+                       "recording of steps[" + std::to_string(i) + "] is " + kind + ", not a file (named in " +
+                           file.string() + ")",
+                       "put the recording itself (a regular file) there or correct its \"file\" entry");
   }
   std::vector<std::string> files;
   for (const auto& step : campaign.steps) files.push_back(step.file);

@@ -1,6 +1,7 @@
 #include "solver/cli/cli_output.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <stdexcept>
@@ -9,6 +10,7 @@
 #include <unistd.h>
 
 #include "hb/errors.h"
+#include "hb/option_checks.h"
 #include "hb/text_file.h"
 #include "signal/campaign_extractor.h"
 #include "signal/campaign_identity.h"
@@ -34,14 +36,13 @@ void Progress::Update(double fraction, const std::string& what) {
   if (json_) {
     nlohmann::json line = {{"event", "progress"}, {"task", label_}, {"fraction", percent / 100.0}};
     if (!what.empty()) line["what"] = what;
-    fmt::print(stderr, "{}\n", line.dump());
+    PrintToStderr(line.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
   } else if (terminal_) {
     // Pad so that a shorter "what" overwrites a longer one.
-    fmt::print(stderr, "\r{}  {:3d} %  {:<40.40}", label_, percent, what);
+    PrintToStderr(fmt::format("\r{}  {:3d} %  {:<40.40}", label_, percent, what));
   } else {
-    fmt::print(stderr, "{}  {:3d} %{}\n", label_, percent, what.empty() ? "" : "  " + what);
+    PrintToStderr(fmt::format("{}  {:3d} %{}\n", label_, percent, what.empty() ? "" : "  " + what));
   }
-  std::fflush(stderr);
 }
 
 void Progress::Done() {
@@ -49,16 +50,16 @@ void Progress::Done() {
   done_ = true;
   if (json_) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    fmt::print(stderr, "{}\n", nlohmann::json({{"event", "done"}, {"task", label_}, {"seconds", seconds}}).dump());
+    PrintToStderr(nlohmann::json({{"event", "done"}, {"task", label_}, {"seconds", seconds}}).dump() + "\n");
   } else if (!quiet_ && terminal_) {
-    fmt::print(stderr, "\r{}  done{:<50}\n", label_, "");
+    PrintToStderr(fmt::format("\r{}  done{:<50}\n", label_, ""));
   }
 }
 
 void PrintJsonExit(int exit_code, const std::string& message) {
   nlohmann::json line = {{"event", "exit"}, {"exit_code", exit_code}};
   if (!message.empty()) line["message"] = message;
-  fmt::print(stderr, "{}\n", line.dump());
+  PrintToStderr(line.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
 }
 
 nlohmann::json PhasorsToJson(const Eigen::VectorXcd& phasors) {
@@ -73,24 +74,29 @@ void WriteTextFile(const std::filesystem::path& path, const std::string& text) {
   WriteTextFileAtomically(path, text);
 }
 
-void RequireWritableOutput(const std::filesystem::path& output, const std::vector<std::filesystem::path>& inputs) {
-  std::error_code error;
-  const auto canonical = [&](const std::filesystem::path& p) {
-    return std::filesystem::weakly_canonical(std::filesystem::absolute(p), error);
-  };
-  const std::filesystem::path target = canonical(output);
-  for (const auto& input : inputs)
-    if (!input.empty() && canonical(input) == target)
-      throw InputError("-o " + output.string() + " is also an input of this command (" + input.string() +
-                       "): choose another output name, or beamid would overwrite what it reads");
-  if (std::filesystem::is_directory(output, error))
-    throw InputError("-o " + output.string() + " is a folder: give a file name");
-  if (output.has_parent_path()) std::filesystem::create_directories(output.parent_path(), error);
-  std::filesystem::path probe = output;
-  probe += ".probe-" + std::to_string(::getpid());
-  if (!std::ofstream(probe, std::ios::binary))
-    throw InputError("-o " + output.string() + ": cannot write there (check the folder and its permissions)");
-  std::filesystem::remove(probe, error);
+void PrintToStderr(std::string_view text) noexcept {
+  std::fwrite(text.data(), 1, text.size(), stderr);
+  std::fflush(stderr);
+  std::clearerr(stderr);
+}
+
+CLI::Validator FiniteRange(double min, double max) {
+  const std::string range = option_checks::FormatValue(min) + " … " + option_checks::FormatValue(max);
+  return CLI::Validator(
+      [min, max, range](std::string& input) -> std::string {
+        double value = 0.0;
+        if (!CLI::detail::lexical_cast(input, value)) return "'" + input + "' is not a number";
+        if (!(std::isfinite(value) && value >= min && value <= max))
+          return "'" + input + "' must be a finite number in " + range;
+        return std::string();
+      },
+      "FINITE in [" + range + "]");
+}
+
+CLI::Validator NonEmptyPath() {
+  return CLI::Validator(
+      [](std::string& input) -> std::string { return input.empty() ? "an empty path: give a file or folder name" : ""; },
+      "PATH");
 }
 
 void AddModelHarmonicsOptions(CLI::App* command, int* harmonics, int* fit_harmonics, const std::string& model_help) {
@@ -146,7 +152,8 @@ CampaignForAnalysis ReadCampaignForAnalysis(const std::string& command, const st
 }
 
 void AddPhasorInputOptions(CLI::App* command, PhasorInput* input) {
-  command->add_option("--phasors", input->phasors_file, "Use phasors from 'beamid extract' instead of extracting");
+  command->add_option("--phasors", input->phasors_file, "Use phasors from 'beamid extract' instead of extracting")
+      ->check(NonEmptyPath());
   command->add_flag("--skip-bad-steps", input->skip_bad_steps,
                     "Analyse the other steps when some recordings hold errors (they are listed); without it the "
                     "run stops with the list");
@@ -155,8 +162,8 @@ void AddPhasorInputOptions(CLI::App* command, PhasorInput* input) {
 void PrintSkippedSteps(const std::string& command, const signal::PhasorSet& phasors, const GlobalOptions& global) {
   if (global.quiet) return;
   for (const auto& step : phasors.skipped)
-    fmt::print(stderr, "beamid {}: warning: skipped {} ({} Hz, {}): {}\n", command, step.file,
-               step.nominal_frequency_hz, step.level, step.reason);
+    PrintToStderr(fmt::format("beamid {}: warning: skipped {} ({} Hz, {}): {}\n", command, step.file,
+                              step.nominal_frequency_hz, step.level, step.reason));
 }
 
 signal::PhasorSet ReadOrExtractPhasors(const signal::Campaign& campaign, const PhasorInput& input, int num_harmonics,

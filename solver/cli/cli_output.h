@@ -15,6 +15,7 @@
 #include <complex>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <Eigen/Core>
@@ -55,11 +56,15 @@ nlohmann::json PhasorsToJson(const Eigen::VectorXcd& phasors);
 // naming the path if it cannot.
 void WriteTextFile(const std::filesystem::path& path, const std::string& text);
 
-// Before any computation: an output that cannot be written, or that is one
-// of the command's inputs (-o over the user's data), is refused at once
-// (InputError naming the output), instead of after minutes of work or by
-// overwriting what was read.
-void RequireWritableOutput(const std::filesystem::path& output, const std::vector<std::filesystem::path>& inputs);
+// Writes text to stderr and never throws: a full or closed stderr must not
+// turn a run (or its error message) into a crash. Failures are ignored.
+void PrintToStderr(std::string_view text) noexcept;
+
+// A CLI11 check: a finite number in [min, max] (CLI::Range lets NaN pass).
+CLI::Validator FiniteRange(double min, double max);
+
+// A CLI11 check for a path option: an empty path ('') is refused.
+CLI::Validator NonEmptyPath();
 
 // -H/--harmonics (the model's H, 1..50) and --fit-harmonics (K, 1..50), as
 // identify and diagnose take them; and the check, before any work, that the

@@ -16,6 +16,7 @@
 #include "hb/multiple_scales.h"
 #include "solver/cli/cli_output.h"
 #include "solver/cli/command_registry.h"
+#include "solver/cli/output_paths.h"
 #include "solver/cli/measured_backbone_command.h"
 
 namespace beamid::cli {
@@ -31,9 +32,16 @@ struct BackboneCommandOptions {
 };
 
 void RunBackbone(const BackboneCommandOptions& options, const GlobalOptions& global) {
+  if (options.output.empty()) throw InputError("-o is empty: give the prefix of the files to write");
+  OutputPaths()
+      .Input(options.model_file)
+      .Output("-o (PREFIX.csv)", options.output + ".csv")
+      .Output("-o (PREFIX.json)", options.output + ".json")
+      .Check();
+  if (!(options.min_theta_rad < options.max_theta_rad))
+    throw InputError(fmt::format("--min-theta-rad {} must lie below --max-theta-rad {}", options.min_theta_rad,
+                                 options.max_theta_rad));
   const hb::ModelFile model = hb::ReadModelFile(options.model_file);
-  if (options.harmonics < 1 || options.harmonics > 50)
-    throw std::invalid_argument("--harmonics must lie between 1 and 50");
   const auto law = model.MakeSupportLaw();
   const hb::LinearBeamModel linear_model{.beam = model.beam, .attachments = model.attachments};
   // Segments sized for harmonic H of a resonance that may rise by half.
@@ -124,16 +132,27 @@ BEAMID_REGISTER_COMMAND("backbone", [](CLI::App& app, const GlobalOptions& globa
                   "Measured input: a campaign folder, a phasor file of beamid extract, or first-harmonic CSV tables "
                   "(one per level, docs/phasor-table.md)");
   sub->add_option("--channel", measured->channel, "With --measured: the response channel of a campaign (default: first)");
-  sub->add_option("--result", measured->result_file, "With --measured: overlay this identified model's backbone");
-  sub->add_option("--position-m", measured->position_m, "With --measured tables and --result: the sensor's position [m]");
+  sub->add_option("--result", measured->result_file, "With --measured: overlay this identified model's backbone")
+      ->check(NonEmptyPath());
+  sub->add_option("--position-m", measured->position_m, "With --measured tables and --result: the sensor's position [m]")
+      ->check(FiniteRange(0.0, 100.0));
   sub->add_flag("--keep-flagged-levels", measured->keep_flagged_levels,
                 "With --measured: keep flagged levels (a jump, damping not positive, peak outside the band, "
                 "regeneration beyond the noise) in the cross-level fit and the damping trend; by default they are left "
                 "out (the flags are shown either way)");
-  sub->add_option("--min-theta-rad", options->min_theta_rad, "Smallest θ amplitude [rad]")->capture_default_str();
-  sub->add_option("--max-theta-rad", options->max_theta_rad, "Largest θ amplitude [rad]")->capture_default_str();
-  sub->add_option("--points", options->points, "Number of amplitudes")->capture_default_str();
-  sub->add_option("-H,--harmonics", options->harmonics, "Harmonics kept in the balance")->capture_default_str();
+  // θ is the slope at the support: 1 rad (57°) is far beyond any beam.
+  sub->add_option("--min-theta-rad", options->min_theta_rad, "Smallest θ amplitude [rad]")
+      ->check(FiniteRange(1e-12, 1.0))
+      ->capture_default_str();
+  sub->add_option("--max-theta-rad", options->max_theta_rad, "Largest θ amplitude [rad]")
+      ->check(FiniteRange(1e-12, 1.0))
+      ->capture_default_str();
+  sub->add_option("--points", options->points, "Number of amplitudes (2 … 10000)")
+      ->check(CLI::Range(2, 10000))
+      ->capture_default_str();
+  sub->add_option("-H,--harmonics", options->harmonics, "Harmonics kept in the balance")
+      ->check(CLI::Range(1, 50))
+      ->capture_default_str();
   sub->add_option("-o,--output", options->output, "Output prefix: writes PREFIX.csv and PREFIX.json")
       ->capture_default_str();
   sub->callback([options, measured, &global] {

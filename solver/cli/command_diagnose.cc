@@ -14,6 +14,7 @@
 #include "signal/phasor_set_io.h"
 #include "solver/cli/cli_output.h"
 #include "solver/cli/command_registry.h"
+#include "solver/cli/output_paths.h"
 #include "solver/diagnosis/diagnosis.h"
 #include "solver/diagnosis/diagnosis_io.h"
 #include "solver/estimation/result_io.h"
@@ -108,8 +109,15 @@ void DrawCurves(const std::string& script, const std::string& png, const std::st
 }
 
 void RunDiagnose(const DiagnoseCommandOptions& options, const GlobalOptions& global) {
-  RequireWritableOutput(options.output, {std::filesystem::path(options.campaign_folder) / "campaign.json",
-                                         options.phasor_input.phasors_file, options.result_file});
+  OutputPaths paths;
+  paths.InputFolder(options.campaign_folder)
+      .Input(options.phasor_input.phasors_file)
+      .Input(options.result_file)
+      .Output("-o", options.output);
+  if (!options.curves.empty())
+    for (const char* suffix : {".csv", ".gp", ".png"})
+      paths.Output(std::string("--curves (PREFIX") + suffix + ")", options.curves + suffix);
+  paths.Check();
   RequireFitWithinModelHarmonics(options.fit_harmonics, options.harmonics);
   for (const auto& name : options.candidates) {
     const auto names = solver::CandidateNames();
@@ -218,15 +226,17 @@ BEAMID_REGISTER_COMMAND("diagnose", [](CLI::App& app, const GlobalOptions& globa
       ->check(CLI::Range(0, 256))
       ->capture_default_str();
   sub->add_option("--significance", options->significance, "Family-wise significance of naming a cause (0 < α < 1)")
-      ->check(CLI::Range(1e-12, 0.5))
+      ->check(FiniteRange(1e-12, 0.5))
       ->capture_default_str();
   sub->add_option("--curves", options->curves,
                   "Write PREFIX.csv with the first-harmonic response of measurements, base and diagnosed model per "
-                  "level, and PREFIX.png (gnuplot)");
+                  "level, and PREFIX.png (gnuplot)")
+      ->check(NonEmptyPath());
   sub->add_option("-o,--output", options->output, "Diagnosis file (JSON)")->capture_default_str();
   sub->add_option("--result", options->result_file,
                   "result.json of 'beamid identify' on this campaign, named in the diagnosis so that "
-                  "'beamid report' shows both");
+                  "'beamid report' shows both")
+      ->check(NonEmptyPath());
   sub->callback([options, &global] { RunDiagnose(*options, global); });
 });
 

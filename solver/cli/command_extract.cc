@@ -12,6 +12,7 @@
 #include "signal/phasor_set_io.h"
 #include "solver/cli/cli_output.h"
 #include "solver/cli/command_registry.h"
+#include "solver/cli/output_paths.h"
 
 namespace beamid::cli {
 namespace {
@@ -27,7 +28,10 @@ struct ExtractCommandOptions {
 };
 
 void RunExtract(const ExtractCommandOptions& options, const GlobalOptions& global) {
-  RequireWritableOutput(options.output, {std::filesystem::path(options.campaign_folder) / "campaign.json"});
+  OutputPaths paths;
+  paths.InputFolder(options.campaign_folder).Output("-o", options.output);
+  if (!options.csv_output.empty()) paths.Output("--csv", options.csv_output);
+  paths.Check();
   if (options.harmonics < 1 || options.harmonics > 50)
     throw std::invalid_argument("-H/--harmonics must lie between 1 and 50 (got " + std::to_string(options.harmonics) +
                                 ")");
@@ -57,8 +61,8 @@ void RunExtract(const ExtractCommandOptions& options, const GlobalOptions& globa
     if (step.quality.warnings.empty()) continue;
     ++warned;
     for (const auto& warning : step.quality.warnings)
-      fmt::print(stderr, "beamid extract: warning: {} ({} Hz, {}): {}\n", step.file, step.nominal_frequency_hz,
-                 step.level, warning);
+      PrintToStderr(fmt::format("beamid extract: warning: {} ({} Hz, {}): {}\n", step.file, step.nominal_frequency_hz,
+                 step.level, warning));
   }
   fmt::print("{} steps{}, {} channels, harmonics 1..{}: worst SNR {:.1f} dB, longest transient {:.3f} s, {} steps with "
              "warnings, {} with notes (in {})\nwrote {}{}\n",
@@ -78,11 +82,16 @@ BEAMID_REGISTER_COMMAND("extract", [](CLI::App& app, const GlobalOptions& global
       "  beamid simulate examples/scenarios/paper_base.json -o out/paper_base\n"
       "  beamid extract out/paper_base -H 5 -o out/phasors.json --csv out/phasors.csv");
   sub->add_option("campaign", options->campaign_folder, "Campaign folder (holds campaign.json)")->required();
-  sub->add_option("-H,--harmonics", options->harmonics, "Harmonics per channel")->capture_default_str();
+  sub->add_option("-H,--harmonics", options->harmonics, "Harmonics per channel")
+      ->check(CLI::Range(1, 50))
+      ->capture_default_str();
   sub->add_option("-o,--output", options->output, "Phasors file (JSON, format beamid-phasors/1)")
       ->capture_default_str();
-  sub->add_option("--csv", options->csv_output, "Also write a CSV table (one row per step, channel, harmonic)");
-  sub->add_option("--threads", options->threads, "Worker threads (0: one per core)")->capture_default_str();
+  sub->add_option("--csv", options->csv_output, "Also write a CSV table (one row per step, channel, harmonic)")
+      ->check(NonEmptyPath());
+  sub->add_option("--threads", options->threads, "Worker threads (0: one per core)")
+      ->check(CLI::Range(0, 256))
+      ->capture_default_str();
   sub->add_option("--channel", options->channels,
                   "Sensors to be analysed (default: all not ignored); problems of the others only warn")
       ->delimiter(',');

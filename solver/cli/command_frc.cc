@@ -2,6 +2,7 @@
 // pseudo-arclength continuation, at one or more force levels.
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 #include <fmt/core.h>
 #include <fmt/format.h>
@@ -12,26 +13,33 @@
 #include "hb/model_file.h"
 #include "solver/cli/cli_output.h"
 #include "solver/cli/command_registry.h"
+#include "solver/cli/output_paths.h"
 
 namespace beamid::cli {
 namespace {
 
+// The band's top may reach this multiple of the first natural frequency.
+constexpr double kMaxBandOverFirstMode = 10.0;
+
 struct FrcOptions {
   std::string model_file;
   std::vector<double> force_levels_N = {0.5, 1.0, 2.0};
-  double from_hz = 0.0;  // 0 = 0.9 × the first natural frequency
-  double to_hz = 0.0;    // 0 = 1.1 × the first natural frequency
+  // 0: not given (the options refuse 0), 0.9 and 1.1 × the first natural frequency.
+  double from_hz = 0.0;
+  double to_hz = 0.0;
   int harmonics = 7;
   int max_points = 3000;
   std::string output = "frc";
 };
 
 void RunFrc(const FrcOptions& options, const GlobalOptions& global) {
+  if (options.output.empty()) throw InputError("-o is empty: give the prefix of the files to write");
+  OutputPaths()
+      .Input(options.model_file)
+      .Output("-o (PREFIX.csv)", options.output + ".csv")
+      .Output("-o (PREFIX.json)", options.output + ".json")
+      .Check();
   const hb::ModelFile model = hb::ReadModelFile(options.model_file);
-  if (options.harmonics < 1 || options.harmonics > 50)
-    throw std::invalid_argument("--harmonics must lie between 1 and 50");
-  for (double f : options.force_levels_N)
-    if (!(f > 0.0)) throw std::invalid_argument("--force-N: every force amplitude must be positive");
   const auto law = model.MakeSupportLaw();
   hb::LinearBeamModel linear_model{.beam = model.beam, .attachments = model.attachments,
                                    .support_stiffness_Nm_rad = law->InitialStiffness_Nm_rad()};
@@ -39,7 +47,15 @@ void RunFrc(const FrcOptions& options, const GlobalOptions& global) {
       hb::LinearBeam(linear_model, model.force_position_m).NaturalFrequencies_rad_s(1)[0] / (2 * std::numbers::pi);
   const double from_hz = options.from_hz > 0 ? options.from_hz : 0.9 * f1_hz;
   const double to_hz = options.to_hz > 0 ? options.to_hz : 1.1 * f1_hz;
-  if (from_hz == to_hz) throw std::invalid_argument("--from-hz and --to-hz must differ");
+  if (from_hz == to_hz) throw InputError("--from-hz and --to-hz must differ");
+  // The balance holds every mode up to (H + 1) × the band's top: a band far
+  // above the first mode would take hours (1 MHz: a minute per curve).
+  const double most_hz = kMaxBandOverFirstMode * f1_hz;
+  for (const auto& [option, hz] : {std::pair{"--from-hz", from_hz}, std::pair{"--to-hz", to_hz}})
+    if (hz > most_hz)
+      throw InputError(fmt::format("{} {} Hz lies beyond {} × the model's first natural frequency ({:.6g} Hz): "
+                                   "give a band of at most {:.6g} Hz",
+                                   option, hz, kMaxBandOverFirstMode, f1_hz, most_hz));
 
   linear_model.support_stiffness_Nm_rad = 0.0;  // the law carries the support
   const hb::LinearBeam beam(linear_model, model.force_position_m,
@@ -120,11 +136,20 @@ BEAMID_REGISTER_COMMAND("frc", [](CLI::App& app, const GlobalOptions& global) {
       "Frequency response curves by harmonic balance and continuation (stable and unstable branches).\n"
       "Example: beamid frc examples/paper_setup/model.json --force-N 0.5,1,2 --from-hz 50 --to-hz 58 -o out/frc");
   sub->add_option("model", options->model_file, "Model file (JSON, see README 'Model files')")->required();
-  sub->add_option("--force-N", options->force_levels_N, "Force amplitudes [N], comma-separated")->delimiter(',');
-  sub->add_option("--from-hz", options->from_hz, "Start frequency [Hz] (default 0.9 × first natural frequency)");
-  sub->add_option("--to-hz", options->to_hz, "End frequency [Hz] (default 1.1 × first natural frequency)");
-  sub->add_option("-H,--harmonics", options->harmonics, "Harmonics kept in the balance")->capture_default_str();
-  sub->add_option("--max-points", options->max_points, "Most continuation points per curve")->capture_default_str();
+  sub->add_option("--force-N", options->force_levels_N, "Force amplitudes [N], comma-separated")
+      ->delimiter(',')
+      ->check(FiniteRange(1e-9, 1e6));
+  sub->add_option("--from-hz", options->from_hz,
+                  "Start frequency [Hz] (default 0.9 × first natural frequency; at most 10 × it)")
+      ->check(FiniteRange(1e-3, 1e7));
+  sub->add_option("--to-hz", options->to_hz, "End frequency [Hz] (default 1.1 × first natural frequency; at most 10 × it)")
+      ->check(FiniteRange(1e-3, 1e7));
+  sub->add_option("-H,--harmonics", options->harmonics, "Harmonics kept in the balance")
+      ->check(CLI::Range(1, 50))
+      ->capture_default_str();
+  sub->add_option("--max-points", options->max_points, "Most continuation points per curve")
+      ->check(CLI::Range(2, 100000))
+      ->capture_default_str();
   sub->add_option("-o,--output", options->output, "Output prefix: writes PREFIX.csv and PREFIX.json")
       ->capture_default_str();
   sub->callback([options, &global] { RunFrc(*options, global); });

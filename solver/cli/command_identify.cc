@@ -12,6 +12,7 @@
 #include "signal/phasor_set_io.h"
 #include "solver/cli/cli_output.h"
 #include "solver/cli/command_registry.h"
+#include "solver/cli/output_paths.h"
 #include "solver/estimation/damping_laws.h"
 #include "solver/estimation/identify.h"
 #include "solver/estimation/model_family.h"
@@ -75,7 +76,11 @@ void PrintDampingLaws(const solver::DampingLawEnvelope& envelope) {
 }
 
 void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& global) {
-  RequireWritableOutput(options.output, {std::filesystem::path(options.campaign_folder) / "campaign.json", options.phasor_input.phasors_file});
+  OutputPaths()
+      .InputFolder(options.campaign_folder)
+      .Input(options.phasor_input.phasors_file)
+      .Output("-o", options.output)
+      .Check();
   const solver::ModelFamily& family = solver::FindModelFamily(options.model);
   RequireFitWithinModelHarmonics(options.fit_harmonics, options.harmonics);
   const CampaignForAnalysis analysis = ReadCampaignForAnalysis("identify", options.campaign_folder, options.fit_channels,
@@ -221,6 +226,7 @@ BEAMID_REGISTER_COMMAND("identify", [](CLI::App& app, const GlobalOptions& globa
                 "Do not test the steps for outliers: fit every step with its full weight, even a faulty one");
   sub->add_option("--beam-loss-factor", options->beam_loss_factor,
                   "The beam's structural loss factor: the start of its fit, or its value with --fix-loss-factor")
+      ->check(FiniteRange(0.0, 1.0))
       ->capture_default_str();
   sub->add_option("-o,--output", options->output, "Result file (JSON)")->capture_default_str();
   sub->callback([options, &global] { RunIdentify(*options, global); });

@@ -17,6 +17,7 @@
 #include "signal/campaign_identity.h"
 #include "solver/cli/cli_output.h"
 #include "solver/cli/command_registry.h"
+#include "solver/cli/output_paths.h"
 #include "solver/estimation/fit_data.h"
 #include "solver/estimation/prediction.h"
 #include "solver/estimation/prediction_io.h"
@@ -33,7 +34,11 @@ struct PredictOptions {
 };
 
 void RunPredict(const PredictOptions& options, const GlobalOptions& global) {
-  RequireWritableOutput(options.output, {options.result_file});
+  OutputPaths()
+      .Input(options.result_file)
+      .InputFolder(options.campaign_folder)
+      .Output("-o", options.output)
+      .Check();
   const solver::ResultFile result = solver::ReadResultFile(options.result_file);
   const solver::IdentifiedModel model = solver::ToIdentifiedModel(result);
   // The campaign first: one the result was not identified from is refused
@@ -140,8 +145,11 @@ BEAMID_REGISTER_COMMAND("predict", [](CLI::App& app, const GlobalOptions& global
       "Predict the steady state at any position from an identified model, with uncertainty bands.\n"
       "Example: beamid predict result.json --campaign campaign/ --x 0.45 -o pred.json");
   sub->add_option("result", options->result_file, "result.json of 'beamid identify'")->required();
-  sub->add_option("--x", options->position_m, "Position on the beam [m]")->required();
-  sub->add_option("--campaign", options->campaign_folder, "Campaign to compare with (a sensor at x)");
+  sub->add_option("--x", options->position_m, "Position on the beam [m]")
+      ->required()
+      ->check(FiniteRange(0.0, 100.0));
+  sub->add_option("--campaign", options->campaign_folder, "Campaign to compare with (a sensor at x)")
+      ->check(NonEmptyPath());
   sub->add_option("-o,--output", options->output, "Output file (JSON)")->capture_default_str();
   sub->callback([options, &global] { RunPredict(*options, global); });
 });

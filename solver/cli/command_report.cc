@@ -17,6 +17,7 @@
 #include "signal/campaign_identity.h"
 #include "solver/cli/cli_output.h"
 #include "solver/cli/command_registry.h"
+#include "solver/cli/output_paths.h"
 #include "solver/report/html_report.h"
 #include "solver/report/html_screenshot.h"
 #include "solver/report/measured_backbone_report.h"
@@ -58,8 +59,10 @@ void Screenshot(const ReportOptions& options, const GlobalOptions& global) {
 }
 
 void RunReport(const ReportOptions& options, const GlobalOptions& global) {
-  RequireWritableOutput(options.output, {options.input_file});
-  if (!options.screenshot.empty()) RequireWritableOutput(options.screenshot, {options.input_file, options.output});
+  OutputPaths paths;
+  paths.Input(options.input_file).InputFolder(options.campaign_folder).Output("-o", options.output);
+  if (!options.screenshot.empty()) paths.Output("--screenshot", options.screenshot);
+  paths.Check();
   const auto start = std::chrono::steady_clock::now();
   if (IsMeasuredBackboneFile(options.input_file)) {
     if (!options.campaign_folder.empty())
@@ -79,6 +82,9 @@ void RunReport(const ReportOptions& options, const GlobalOptions& global) {
   const solver::ReportInput input = solver::LoadReportInput(
       options.input_file,
       options.campaign_folder.empty() ? std::nullopt : std::optional<std::filesystem::path>(options.campaign_folder));
+  // What the input names (its result file, the campaign it was fitted on)
+  // is read too: known only now, checked before any work.
+  paths.Input(input.result_file).InputFolder(input.campaign_folder).Check();
   const signal::Campaign campaign = ReadCampaignAndWarn("report", input.campaign_folder, global);
   // A --campaign of the same layout would put the result's curves over
   // another campaign's recordings.
@@ -135,10 +141,12 @@ BEAMID_REGISTER_COMMAND("report", [](CLI::App& app, const GlobalOptions& global)
                   "'beamid backbone --measured' (rendered on its own: levels, flags, fit, damping trend)")
       ->required();
   sub->add_option("--campaign", options->campaign_folder,
-                  "Campaign folder (default: the one recorded in result.json)");
+                  "Campaign folder (default: the one recorded in result.json)")
+      ->check(NonEmptyPath());
   sub->add_option("-o,--output", options->output, "HTML file to write")->capture_default_str();
   sub->add_option("--screenshot", options->screenshot,
-                  "Also render the page in headless Chromium to this PNG and print its path");
+                  "Also render the page in headless Chromium to this PNG and print its path")
+      ->check(NonEmptyPath());
   sub->callback([options, &global] { RunReport(*options, global); });
 });
 

@@ -12,6 +12,7 @@
 #include "hb/stepped_sine.h"
 #include "solver/cli/cli_output.h"
 #include "solver/cli/command_registry.h"
+#include "solver/cli/output_paths.h"
 
 namespace beamid::cli {
 namespace {
@@ -23,6 +24,7 @@ struct SimulateOptions {
 };
 
 void RunSimulate(const SimulateOptions& options, const GlobalOptions& global) {
+  OutputPaths().Input(options.scenario).OutputFolder("-o", options.output).Check();
   const hb::Scenario scenario = hb::ReadScenario(options.scenario);
   hb::SteppedSineSimulation simulation(scenario);
   hb::CampaignWriter writer(simulation, options.output, {.overwrite = options.overwrite});
@@ -41,25 +43,25 @@ void RunSimulate(const SimulateOptions& options, const GlobalOptions& global) {
                       fmt::format("{} {:.3f} Hz", step.level, step.nominal_frequency_hz));
     if (step_lines) {
       const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      fmt::print(stderr, "[{:>4}/{}] {:<10} {:8.3f} Hz  settled in {:5.2f} s{}  ({:.1f} s elapsed)\n", step.index + 1,
+      PrintToStderr(fmt::format("[{:>4}/{}] {:<10} {:8.3f} Hz  settled in {:5.2f} s{}  ({:.1f} s elapsed)\n", step.index + 1,
                  total, step.level, step.nominal_frequency_hz, step.settle_s, step.settled ? "" : " (NOT settled)",
-                 elapsed);
+                 elapsed));
     }
   });
   writer.Finish();
   progress.Done();
   if (!global.quiet) {
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    fmt::print(stderr, "wrote {} steps to {} ({:.1f} MB) in {:.1f} s\n", total, options.output,
-               static_cast<double>(writer.bytes_written()) / 1e6, elapsed);
+    PrintToStderr(fmt::format("wrote {} steps to {} ({:.1f} MB) in {:.1f} s\n", total, options.output,
+               static_cast<double>(writer.bytes_written()) / 1e6, elapsed));
     if (unsettled > 0)
-      fmt::print(stderr,
-                 "warning: {} step(s) reached timing.settle_max_s before settling; their recordings still hold a "
-                 "transient (truth.json marks them \"settled\": false)\n",
-                 unsettled);
+      PrintToStderr(fmt::format(
+          "warning: {} step(s) reached timing.settle_max_s before settling; their recordings still hold a "
+          "transient (truth.json marks them \"settled\": false)\n",
+          unsettled));
     if (writer.clipped_samples() > 0)
-      fmt::print(stderr, "warning: the ADC clipped {} samples; raise adc_range in the scenario's noise\n",
-                 writer.clipped_samples());
+      PrintToStderr(fmt::format("warning: the ADC clipped {} samples; raise adc_range in the scenario's noise\n",
+                 writer.clipped_samples()));
   }
 }
 

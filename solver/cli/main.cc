@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <new>
 #include <stdexcept>
+#include <system_error>
 
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
@@ -51,11 +52,15 @@ int main(int argc, char** argv) {
         "the data beyond their noise (the result is written; run beamid diagnose), 1 internal error.");
   // With --progress json, stderr holds JSON lines only: the error goes into
   // the last one.
-  auto fail = [&](int code, const std::string& prefix, const std::string& message) {
-    if (global.JsonProgress()) {
-      PrintJsonExit(code, message);
-    } else {
-      fmt::print(stderr, "beamid: {}: {}\n", prefix, message);
+  // The exit code stands whether or not the message can be written (a full
+  // or closed stderr): printing the error must not become a crash.
+  auto fail = [&](int code, const std::string& prefix, const std::string& message) noexcept {
+    try {
+      if (global.JsonProgress())
+        PrintJsonExit(code, message);
+      else
+        PrintToStderr("beamid: " + prefix + ": " + message + "\n");
+    } catch (...) {
     }
     return code;
   };
@@ -85,6 +90,9 @@ int main(int argc, char** argv) {
   } catch (const EnvironmentError& e) {
     return fail(kExitEnvironment, "environment", e.what());
   } catch (const std::filesystem::filesystem_error& e) {
+    return fail(kExitEnvironment, "environment", e.what());
+  } catch (const std::system_error& e) {
+    // Writing the summary to a full or closed stdout, starting a thread.
     return fail(kExitEnvironment, "environment", e.what());
   } catch (const std::bad_alloc&) {
     return fail(kExitEnvironment, "environment",

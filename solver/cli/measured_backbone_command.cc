@@ -17,6 +17,7 @@
 #include "signal/phasor_set_io.h"
 #include "signal/phasor_table.h"
 #include "solver/cli/cli_output.h"
+#include "solver/cli/output_paths.h"
 #include "solver/backbone/measured_backbone.h"
 #include "solver/backbone/measured_backbone_io.h"
 #include "solver/estimation/prediction.h"
@@ -50,7 +51,7 @@ std::vector<signal::FirstHarmonicLevel> ReadLevels(const MeasuredBackboneCommand
   if (set.steps.empty() || set.steps.front().responses.empty())
     throw std::invalid_argument(first.string() + ": no steps with a response channel");
   const std::string channel = options.channel.empty() ? set.steps.front().responses.front().channel : options.channel;
-  if (!global.quiet && options.channel.empty()) fmt::print(stderr, "backbone: response channel {} (--channel to choose)\n", channel);
+  if (!quiet && options.channel.empty()) PrintToStderr(fmt::format("backbone: response channel {} (--channel to choose)\n", channel));
   return signal::FirstHarmonicLevels(set, channel, first.string());
 }
 
@@ -61,8 +62,6 @@ std::string Cell(const solver::Estimate& e) {
 }  // namespace
 
 void RunMeasuredBackbone(const MeasuredBackboneCommandOptions& options, const GlobalOptions& global) {
-  std::vector<std::filesystem::path> inputs(options.inputs.begin(), options.inputs.end());
-  inputs.push_back(options.result_file);
   // -o naming an input itself (a prefix: nothing would be overwritten, but surely a slip).
   for (const auto& input : options.inputs) {
     std::error_code error;
@@ -73,8 +72,19 @@ void RunMeasuredBackbone(const MeasuredBackboneCommandOptions& options, const Gl
       throw InputError("-o " + options.output + " is also an input of this command (" + input +
                        "): -o takes the prefix of the outputs; choose another name");
   }
-  for (const char* suffix : {".csv", "_curves.csv", ".json"}) RequireWritableOutput(options.output + suffix, inputs);
-  const auto levels = ReadLevels(options, global);
+  if (options.output.empty()) throw InputError("-o is empty: give the prefix of the files to write");
+  OutputPaths paths;
+  for (const auto& input : options.inputs) {
+    if (std::filesystem::is_directory(input))
+      paths.InputFolder(input);
+    else
+      paths.Input(input);
+  }
+  paths.Input(options.result_file);
+  for (const char* suffix : {".csv", "_curves.csv", ".json"})
+    paths.Output(std::string("-o (PREFIX") + suffix + ")", options.output + suffix);
+  paths.Check();
+  const auto levels = ReadLevels(options, global.quiet);
   const solver::MeasuredBackbone measured =
       solver::AnalyseMeasuredBackbone(levels, {.keep_flagged_levels_in_fit = options.keep_flagged_levels});
 
@@ -169,7 +179,7 @@ void RunMeasuredBackbone(const MeasuredBackboneCommandOptions& options, const Gl
   WriteTextFile(options.output + "_curves.csv", curves.str());
   solver::WriteMeasuredBackboneFile(options.output + ".json", file);
   if (global.quiet) return;
-  for (const auto& w : measured.warnings) fmt::print(stderr, "beamid backbone: warning: {}\n", w);
+  for (const auto& w : measured.warnings) PrintToStderr(fmt::format("beamid backbone: warning: {}\n", w));
   // A flag's note, with a space before it, next to the number it concerns.
   const auto note = [](const solver::LevelResonance& l, std::string_view quantity) {
     const std::string text = l.FlagNote(quantity);

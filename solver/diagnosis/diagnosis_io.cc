@@ -522,14 +522,8 @@ void WriteDiagnosisFile(const std::filesystem::path& path, const DiagnosisFile& 
 }
 
 DiagnosisFile ReadDiagnosisFile(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw InputError(path.string() + ": cannot be read (" +
-                     (std::filesystem::exists(path) ? "no permission or not a file" : "no such file") +
-                     "). Fix: give the diagnosis.json written by 'beamid diagnose'");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return DiagnosisFileFromJson(text.str(), path.string());
+  return DiagnosisFileFromJson(
+      ReadTextFile(path, "diagnosis file", "give the diagnosis.json written by 'beamid diagnose'"), path.string());
 }
 
 std::string CandidateRefitToText(const CandidateRefit& refit) {

@@ -50,7 +50,13 @@ void ScreenshotHtml(const fs::path& html_file, const fs::path& png_file, const S
   std::error_code error;
   const fs::path png = fs::absolute(png_file).lexically_normal();
   if (png.has_parent_path()) fs::create_directories(png.parent_path(), error);
-  fs::remove(png, error);
+  // The target is not removed first (the command has refused any target
+  // that is one of its inputs, but a file must not vanish before Chromium
+  // writes): a screenshot is recognised by its new modification time. A
+  // character device (/dev/null) is written in place and not inspected.
+  const bool device = fs::is_character_file(png, error);
+  const auto before = fs::last_write_time(png, error);
+  const bool existed = !error;
   const TempFolder profile("chromium");
   const fs::path log = profile.path() / "chromium.log";
   const int status = RunExternalProgram({
@@ -65,7 +71,9 @@ void ScreenshotHtml(const fs::path& html_file, const fs::path& png_file, const S
       .stderr_file = log,
       .timeout_s = options.timeout_s,
   });
-  if (status != 0 || !fs::is_regular_file(png, error) || fs::file_size(png, error) == 0) {
+  const bool written = device || (fs::is_regular_file(png, error) && fs::file_size(png, error) > 0 &&
+                                  (!existed || fs::last_write_time(png, error) != before));
+  if (status != 0 || !written) {
     std::ifstream in(log);
     std::ostringstream text;
     text << in.rdbuf();

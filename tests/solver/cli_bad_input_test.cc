@@ -378,6 +378,34 @@ TEST_F(BadInput, EveryBadInputEndsWithExitTwoAndAMessageThatNamesItAndTheFix) {
       {"a line break in a scenario's sensor name",
        scenario_with("{\"channel\": \"acc1\"", "{\"channel\": \"acc1\\n\""), "simulate {d}/s.json -o {d}/sim",
        {"s.json", "sensors[0].channel", "control character", "Fix:"}},
+      // outputs and option ranges (solver/cli/output_paths.h, checks before any work)
+      {"an empty -o", nullptr, "extract {c} -o ''", {"-o", "empty"}},
+      {"an empty --phasors", nullptr, "identify {c} --phasors '' -o {d}/r.json", {"--phasors", "empty"}},
+      {"an empty --csv", nullptr, "extract {c} --csv '' -o {d}/p.json", {"--csv", "empty"}},
+      {"an empty frc prefix", nullptr, "frc examples/paper_setup/model.json -o ''", {"-o", "empty"}},
+      {"frc from 0 Hz", nullptr, "frc examples/paper_setup/model.json --from-hz 0 -o {d}/f", {"--from-hz", "finite"}},
+      {"frc from -1 Hz", nullptr, "frc examples/paper_setup/model.json --from-hz -1 -o {d}/f", {"--from-hz", "finite"}},
+      {"frc from NaN Hz", nullptr, "frc examples/paper_setup/model.json --from-hz nan -o {d}/f", {"--from-hz", "finite"}},
+      {"frc to 1 GHz", nullptr, "frc examples/paper_setup/model.json --to-hz 1e9 -o {d}/f", {"--to-hz", "finite"}},
+      {"frc far above the first mode", nullptr, "frc examples/paper_setup/model.json --from-hz 5000 --to-hz 6000 -o {d}/f",
+       {"--from-hz", "first natural frequency"}},
+      {"an infinite force", nullptr, "frc examples/paper_setup/model.json --force-N inf -o {d}/f", {"--force-N", "finite"}},
+      {"a negative force", nullptr, "frc examples/paper_setup/model.json --force-N 1,-2 -o {d}/f", {"--force-N"}},
+      {"frc without points", nullptr, "frc examples/paper_setup/model.json --max-points 0 -o {d}/f", {"--max-points"}},
+      {"a backbone of 1e8 points", nullptr, "backbone examples/paper_setup/model.json --points 100000000 -o {d}/b",
+       {"--points"}},
+      {"a backbone from above its end", nullptr,
+       "backbone examples/paper_setup/model.json --min-theta-rad 0.1 --max-theta-rad 0.01 -o {d}/b",
+       {"--min-theta-rad", "--max-theta-rad"}},
+      {"an infinite backbone amplitude", nullptr, "backbone examples/paper_setup/model.json --max-theta-rad inf -o {d}/b",
+       {"--max-theta-rad"}},
+      {"a backbone without harmonics", nullptr, "backbone examples/paper_setup/model.json -H 0 -o {d}/b", {"--harmonics"}},
+      {"a NaN loss factor", nullptr, "identify {c} --beam-loss-factor nan -o {d}/r.json", {"--beam-loss-factor"}},
+      {"a NaN significance", nullptr, "diagnose {c} --significance nan -o {d}/d.json", {"--significance"}},
+      {"a NaN position", nullptr, "predict {r} --x nan -o {d}/p.json", {"--x"}},
+      {"a position off the beam", nullptr, "predict {r} --x 5 -o {d}/p.json", {"--x", "outside the beam"}},
+      {"a negative thread count", nullptr, "extract {c} --threads -1 -o {d}/p.json", {"--threads"}},
+      {"extract without harmonics", nullptr, "extract {c} -H 0 -o {d}/p.json", {"--harmonics"}},
   };
   const fs::path clean = root_ / "clean", result = root_ / "result.json";
   for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -431,6 +459,17 @@ TEST_F(BadInput, WhatNoAnalysisUsesIsANoteOrAWarningNeverAStop) {
   const ProgramRun all = Beamid("extract " + m.string() + " -o " + (d / "p3.json").string());
   EXPECT_EQ(all.exit_code, 2) << all.output;
   EXPECT_THAT(all.output, HasSubstr("channel 'acc3': NaN or infinite value at line 9"));
+// The exit code does not depend on whether the error can be printed: with
+// stderr on a full device the run still ends with exit 2, not an abort.
+TEST_F(BadInput, AnErrorOnAFullStderrStillEndsWithItsExitCode) {
+  for (const std::string global : {"-q", "--progress json"}) {
+    const std::string command = std::string(BEAMID_EXECUTABLE) + " " + global + " extract " +
+                                (root_ / "no_such_campaign").string() + " -o " + (root_ / "x.json").string() +
+                                " 2>/dev/full";
+    const int status = std::system(command.c_str());
+    ASSERT_TRUE(WIFEXITED(status)) << command;
+    EXPECT_EQ(WEXITSTATUS(status), 2) << command;
+  }
 }
 
 // The way out that the error above names: with --skip-bad-steps the other
