@@ -495,7 +495,8 @@ TEST(DiagnosisFile, DoublesOfAnyBitPatternReadBackExactly) {
   }
   file.diagnosis.response.clear();
   for (std::size_t i = 0; i + 1 < values.size(); i += 2)
-    file.diagnosis.response.push_back({.level = "l", .frequency_hz = values[i], .channel = "c", .held_out = false,
+    // A frequency must be positive (the reader refuses others); the phasors take any bits.
+    file.diagnosis.response.push_back({.level = "l", .frequency_hz = 53.5, .channel = "c", .held_out = false,
                                        .measured = {values[i], values[i + 1]}, .base_model = {}, .final_model = {}});
   const DiagnosisFile read = DiagnosisFileFromJson(DiagnosisFileToJson(file), "random.json");
   ASSERT_EQ(read.diagnosis.response.size(), file.diagnosis.response.size());

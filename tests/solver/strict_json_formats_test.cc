@@ -4,7 +4,9 @@
 // fix (a lenient parser would keep one of the two values, and the reader
 // would complain about some other field, or none). The worker records of the
 // fits, read from another process, refuse it too.
+#include <fstream>
 #include <functional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -82,6 +84,41 @@ TEST(StrictJsonFormats, TheWorkerRecordsRefuseAKeyWrittenTwice) {
   } catch (const std::runtime_error& e) {
     EXPECT_THAT(e.what(), HasSubstr("\"chi_square\" is written twice"));
   }
+}
+
+// A file of a real 3-step run (the fuzz seeds; the tests run in the source
+// folder) with the first `from` replaced by `to`.
+std::string SeedWith(const std::string& path, const std::string& from, const std::string& to) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string s = text.str();
+  const std::size_t at = s.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return at == std::string::npos ? s : s.replace(at, from.size(), to);
+}
+
+TEST(StrictJsonFormats, ValuesOutsideTheirRangeAreRefusedNamingTheField) {
+  const std::string phasors = "tests/fuzz/seeds/phasor_json_fuzzer/phasors.json";
+  EXPECT_NO_THROW(signal::PhasorSetFromJson(SeedWith(phasors, "", ""), "p.json"));
+  EXPECT_THAT(InputErrorOf([&] {
+                signal::PhasorSetFromJson(SeedWith(phasors, "\"std_re\": 6.97", "\"std_re\": -6.97"), "p.json");
+              }),
+              HasSubstr("p.json: channel 'force': steps[0].channels[0].harmonics[0].std_re = -6.97"));
+  EXPECT_THAT(InputErrorOf([&] {
+                signal::PhasorSetFromJson(SeedWith(phasors, "\"frequency_Hz\": 53.6", "\"frequency_Hz\": -53.6"),
+                                          "p.json");
+              }),
+              HasSubstr("steps[0].frequency_Hz = -53.6"));
+  const std::string diagnosis = "tests/fuzz/seeds/diagnosis_json_fuzzer/diagnosis.json";
+  EXPECT_NO_THROW(solver::DiagnosisFileFromJson(SeedWith(diagnosis, "", ""), "d.json"));
+  EXPECT_THAT(InputErrorOf([&] {
+                solver::DiagnosisFileFromJson(SeedWith(diagnosis, "\"p_value\": 0.0077", "\"p_value\": 1.0077"),
+                                              "d.json");
+              }),
+              HasSubstr("p_value\" = 1.0077"));
+  const std::string result = "tests/fuzz/seeds/result_json_fuzzer/result.json";
+  EXPECT_NO_THROW(solver::ResultFileFromJson(SeedWith(result, "", ""), "r.json"));
 }
 
 }  // namespace
