@@ -220,8 +220,8 @@ Recording ParseRecording(std::string_view csv_text, const Campaign& campaign, co
   const std::size_t max_rows = table.CountRows();
   if (max_rows < 2)
     throw InputError(source, has_time ? map.names[static_cast<std::size_t>(map.time_cell)] : "",
-                     "fewer than two samples (" + std::to_string(max_rows) + (max_rows == 1 ? " data row" : " data rows") +
-                         " after the header on line " +
+                     "fewer than two samples (" + std::to_string(max_rows) +
+                         (max_rows == 1 ? " data row" : " data rows") + " after the header on line " +
                          std::to_string(table.HeaderLine()) + ")",
                      "record the whole step");
   Eigen::MatrixXd samples(static_cast<Eigen::Index>(max_rows), static_cast<Eigen::Index>(channels.size()));

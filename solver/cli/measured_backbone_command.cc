@@ -51,7 +51,7 @@ std::vector<signal::FirstHarmonicLevel> ReadLevels(const MeasuredBackboneCommand
   if (set.steps.empty() || set.steps.front().responses.empty())
     throw std::invalid_argument(first.string() + ": no steps with a response channel");
   const std::string channel = options.channel.empty() ? set.steps.front().responses.front().channel : options.channel;
-  if (!quiet && options.channel.empty()) PrintToStderr(fmt::format("backbone: response channel {} (--channel to choose)\n", channel));
+  if (!global.quiet && options.channel.empty()) PrintToStderr(fmt::format("backbone: response channel {} (--channel to choose)\n", channel));
   return signal::FirstHarmonicLevels(set, channel, first.string());
 }
 
@@ -84,7 +84,7 @@ void RunMeasuredBackbone(const MeasuredBackboneCommandOptions& options, const Gl
   for (const char* suffix : {".csv", "_curves.csv", ".json"})
     paths.Output(std::string("-o (PREFIX") + suffix + ")", options.output + suffix);
   paths.Check();
-  const auto levels = ReadLevels(options, global.quiet);
+  const auto levels = ReadLevels(options, global);
   const solver::MeasuredBackbone measured =
       solver::AnalyseMeasuredBackbone(levels, {.keep_flagged_levels_in_fit = options.keep_flagged_levels});
 

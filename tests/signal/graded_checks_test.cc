@@ -182,7 +182,8 @@ TEST_F(GradedChecksTest, ReadingProblemsOfChannelsNotUsedAreNotesOrWarningsAndLe
   };
   const std::vector<Case> cases = {
       {"NaN", [](std::string& csv) { SetAcc3(csv, 100, "nan"); }, "NaN or infinite value at line 100"},
-      {"no number", [](std::string& csv) { SetAcc3(csv, 100, "1.2.3"); }, "line 100, column acc3: '1.2.3' is not a number"},
+      {"no number", [](std::string& csv) { SetAcc3(csv, 100, "1.2.3"); },
+       "line 100, column acc3: '1.2.3' is not a number"},
       {"out of range", [](std::string& csv) { SetAcc3(csv, 7, "1e400"); }, "'1e400' is out of range"},
       {"beyond any measurement", [](std::string& csv) { SetAcc3(csv, 7, "1e20"); }, "beyond any measurement"},
       {"missing column", [](std::string& csv) { csv.replace(csv.find("acc3"), 4, "acc9"); },

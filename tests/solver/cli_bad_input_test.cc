@@ -19,6 +19,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "tests/signal/uff58_writer.h"
 #include "tests/support/paper_scenario.h"
 #include "tests/support/temp_path.h"
 
@@ -291,6 +292,34 @@ TEST_F(BadInput, EveryBadInputEndsWithExitTwoAndAMessageThatNamesItAndTheFix) {
       {"a folder as a step's recording",
        [&](auto m, auto) { fs::remove(step(m, 1)); fs::create_directory(step(m, 1)); },
        "extract {m} -o {d}/p.json", {"step_001.csv", "is a folder, not a file", "Fix:"}},
+      {"a UFF record 9 unit that contradicts campaign.json",
+       [&](auto m, auto) {
+         std::istringstream in(ReadFile(step(m, 1)));
+         std::string line;
+         std::getline(in, line);  // time_s,force,acc1,acc2,acc3
+         std::vector<std::vector<double>> columns(5);
+         while (std::getline(in, line)) {
+           std::stringstream cells(line);
+           std::string cell;
+           for (std::size_t c = 0; std::getline(cells, cell, ','); ++c) columns.at(c).push_back(std::stod(cell));
+         }
+         std::string uff;
+         const char* const names[] = {"force", "acc1", "acc2", "acc3"};
+         for (std::size_t c = 0; c < 4; ++c) {
+           beamid::testing::UffChannel channel;
+           channel.id_line1 = names[c];
+           channel.unit = c == 1 ? "g" : "";  // campaign.json: m/s^2
+           channel.x_min = columns[0].front();
+           channel.dx = (columns[0].back() - columns[0].front()) / static_cast<double>(columns[0].size() - 1);
+           channel.values = columns[c + 1];
+           uff += beamid::testing::UffDataset58(channel, beamid::testing::UffEncoding::kBinaryLittleDouble);
+         }
+         WriteFile(m / "low" / "step_001.uff", uff);
+         fs::remove(step(m, 1));
+         Replace(m / "campaign.json", "low/step_001.csv", "low/step_001.uff");
+       },
+       "extract {m} -o {d}/p.json",
+       {"step_001.uff", "acc1", "record 9 gives the unit 'g' but campaign.json declares 'm/s^2'", "Fix:"}},
       {"a FIFO as a step's recording",
        [&](auto m, auto) { fs::remove(step(m, 1)); ASSERT_EQ(::mkfifo(step(m, 1).c_str(), 0600), 0); },
        "extract {m} -o {d}/p.json", {"step_001.csv", "is a FIFO, not a file", "Fix:"}},
