@@ -488,6 +488,8 @@ TEST_F(BadInput, WhatNoAnalysisUsesIsANoteOrAWarningNeverAStop) {
   const ProgramRun all = Beamid("extract " + m.string() + " -o " + (d / "p3.json").string());
   EXPECT_EQ(all.exit_code, 2) << all.output;
   EXPECT_THAT(all.output, HasSubstr("channel 'acc3': NaN or infinite value at line 9"));
+}
+
 // The exit code does not depend on whether the error can be printed: with
 // stderr on a full device the run still ends with exit 2, not an abort.
 TEST_F(BadInput, AnErrorOnAFullStderrStillEndsWithItsExitCode) {
@@ -553,7 +555,12 @@ TEST_F(BadInput, AModelThatMissesTheDataIsWrittenWithItsVerdictAndExitFive) {
   fs::create_directories(d);
   fs::copy(root_ / "clean", m, fs::copy_options::recursive);
   Replace(m / "campaign.json", "\"position_m\": 0.3,", "\"position_m\": 0.33,");
-  const ProgramRun run = Beamid("identify " + m.string() + " --fit acc1,acc2 -o " + (d / "r.json").string());
+  // The loss factor is held: three steps at one level cannot tell the beam's
+  // η from the support's c (both damp the one mode), and with both free on
+  // this misfit Ipopt crawls along that valley past its iteration limit on
+  // some machines (exit 3), which is not what this test is about.
+  const ProgramRun run =
+      Beamid("identify " + m.string() + " --fit acc1,acc2 --fix-loss-factor -o " + (d / "r.json").string());
   EXPECT_EQ(run.exit_code, 5) << run.output;
   EXPECT_THAT(run.output, HasSubstr("verdict: misfits beyond the noise"));
   EXPECT_THAT(run.output, HasSubstr("run 'beamid diagnose'"));
