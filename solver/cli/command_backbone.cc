@@ -32,12 +32,7 @@ struct BackboneCommandOptions {
 };
 
 void RunBackbone(const BackboneCommandOptions& options, const GlobalOptions& global) {
-  if (options.output.empty()) throw InputError("-o is empty: give the prefix of the files to write");
-  OutputPaths()
-      .Input(options.model_file)
-      .Output("-o (PREFIX.csv)", options.output + ".csv")
-      .Output("-o (PREFIX.json)", options.output + ".json")
-      .Check();
+  OutputPaths().Input(options.model_file).OutputPrefix("-o", options.output, {".csv", ".json"}).Check();
   if (!(options.min_theta_rad < options.max_theta_rad))
     throw InputError(fmt::format("--min-theta-rad {} must lie below --max-theta-rad {}", options.min_theta_rad,
                                  options.max_theta_rad));

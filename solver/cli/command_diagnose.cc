@@ -114,9 +114,7 @@ void RunDiagnose(const DiagnoseCommandOptions& options, const GlobalOptions& glo
       .Input(options.phasor_input.phasors_file)
       .Input(options.result_file)
       .Output("-o", options.output);
-  if (!options.curves.empty())
-    for (const char* suffix : {".csv", ".gp", ".png"})
-      paths.Output(std::string("--curves (PREFIX") + suffix + ")", options.curves + suffix);
+  if (!options.curves.empty()) paths.OutputPrefix("--curves", options.curves, {".csv", ".gp", ".png"});
   paths.Check();
   RequireFitWithinModelHarmonics(options.fit_harmonics, options.harmonics);
   for (const auto& name : options.candidates) {

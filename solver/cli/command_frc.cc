@@ -33,12 +33,7 @@ struct FrcOptions {
 };
 
 void RunFrc(const FrcOptions& options, const GlobalOptions& global) {
-  if (options.output.empty()) throw InputError("-o is empty: give the prefix of the files to write");
-  OutputPaths()
-      .Input(options.model_file)
-      .Output("-o (PREFIX.csv)", options.output + ".csv")
-      .Output("-o (PREFIX.json)", options.output + ".json")
-      .Check();
+  OutputPaths().Input(options.model_file).OutputPrefix("-o", options.output, {".csv", ".json"}).Check();
   const hb::ModelFile model = hb::ReadModelFile(options.model_file);
   const auto law = model.MakeSupportLaw();
   hb::LinearBeamModel linear_model{.beam = model.beam, .attachments = model.attachments,

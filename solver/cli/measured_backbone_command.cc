@@ -72,7 +72,6 @@ void RunMeasuredBackbone(const MeasuredBackboneCommandOptions& options, const Gl
       throw InputError("-o " + options.output + " is also an input of this command (" + input +
                        "): -o takes the prefix of the outputs; choose another name");
   }
-  if (options.output.empty()) throw InputError("-o is empty: give the prefix of the files to write");
   OutputPaths paths;
   for (const auto& input : options.inputs) {
     if (std::filesystem::is_directory(input))
@@ -81,9 +80,7 @@ void RunMeasuredBackbone(const MeasuredBackboneCommandOptions& options, const Gl
       paths.Input(input);
   }
   paths.Input(options.result_file);
-  for (const char* suffix : {".csv", "_curves.csv", ".json"})
-    paths.Output(std::string("-o (PREFIX") + suffix + ")", options.output + suffix);
-  paths.Check();
+  paths.OutputPrefix("-o", options.output, {".csv", "_curves.csv", ".json"}).Check();
   const auto levels = ReadLevels(options, global);
   const solver::MeasuredBackbone measured =
       solver::AnalyseMeasuredBackbone(levels, {.keep_flagged_levels_in_fit = options.keep_flagged_levels});

@@ -72,6 +72,17 @@ OutputPaths& OutputPaths::Output(const std::string& option, const fs::path& file
   return *this;
 }
 
+OutputPaths& OutputPaths::OutputPrefix(const std::string& option, const std::string& prefix,
+                                       std::initializer_list<std::string_view> suffixes) {
+  if (prefix.empty()) {
+    outputs_.push_back({.option = option, .prefix = true});
+    return *this;
+  }
+  for (std::string_view suffix : suffixes)
+    outputs_.push_back({option + " (PREFIX" + std::string(suffix) + ")", prefix + std::string(suffix), false});
+  return *this;
+}
+
 OutputPaths& OutputPaths::OutputFolder(const std::string& option, const fs::path& folder) {
   outputs_.push_back({option, folder, true});
   return *this;
@@ -81,7 +92,8 @@ void OutputPaths::Check() const {
   std::vector<fs::path> resolved_outputs;
   for (const Named& output : outputs_) {
     if (output.path.empty())
-      throw InputError(output.option + " is empty: give the name of a " + (output.folder ? "folder" : "file") +
+      throw InputError(output.option + " is empty: give the " +
+                       (output.prefix ? "prefix of the files" : output.folder ? "name of a folder" : "name of a file") +
                        " to write");
     const fs::path target = Resolve(output.path);
     for (const fs::path& input : input_files_)

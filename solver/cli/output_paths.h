@@ -24,7 +24,9 @@
 #pragma once
 
 #include <filesystem>
+#include <initializer_list>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace beamid::cli {
@@ -38,6 +40,10 @@ class OutputPaths {
   // A file the command writes; option names it in messages ("-o", "--csv",
   // "--curves (PREFIX.png)").
   OutputPaths& Output(const std::string& option, const std::filesystem::path& file);
+  // The files PREFIX + suffix of an option that takes a prefix ("-o" for
+  // PREFIX.csv and PREFIX.json); an empty prefix is refused as such.
+  OutputPaths& OutputPrefix(const std::string& option, const std::string& prefix,
+                            std::initializer_list<std::string_view> suffixes);
   // A folder the command creates and fills.
   OutputPaths& OutputFolder(const std::string& option, const std::filesystem::path& folder);
 
@@ -49,6 +55,7 @@ class OutputPaths {
     std::string option;
     std::filesystem::path path;
     bool folder = false;
+    bool prefix = false;  // an empty prefix, given as such
   };
   std::vector<std::filesystem::path> input_files_;
   std::vector<std::filesystem::path> input_folders_;
