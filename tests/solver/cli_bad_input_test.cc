@@ -20,6 +20,7 @@
 #include <gtest/gtest.h>
 
 #include "tests/signal/uff58_writer.h"
+#include "tests/support/file_bytes.h"
 #include "tests/support/paper_scenario.h"
 #include "tests/support/temp_path.h"
 
@@ -28,19 +29,9 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-struct ProgramRun {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr
-};
-
-std::string ReadFile(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-void WriteFile(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
+using beamid::testing::ProgramRun;
+using beamid::testing::ReadFile;
+using beamid::testing::WriteFile;
 
 // Replaces the first occurrence of `text` in the file.
 void Replace(const fs::path& path, const std::string& text, const std::string& replacement) {

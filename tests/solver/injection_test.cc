@@ -23,6 +23,7 @@
 #include "solver/report/external_program.h"
 #include "solver/report/gnuplot_script.h"
 #include "solver/report/html_screenshot.h"
+#include "tests/support/file_bytes.h"
 #include "tests/support/paper_scenario.h"
 #include "tests/support/png_image.h"
 #include "tests/support/temp_path.h"
@@ -33,19 +34,9 @@ namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 using ::testing::Not;
 
-struct ProgramRun {
-  int exit_code = -1;
-  std::string output;  // standard output, then standard error
-};
-
-std::string ReadFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-void WriteFile(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
+using beamid::testing::ProgramRun;
+using beamid::testing::ReadFile;
+using beamid::testing::WriteFile;
 
 void ReplaceAll(std::string& text, const std::string& from, const std::string& to) {
   for (std::size_t at = 0; (at = text.find(from, at)) != std::string::npos; at += to.size())
