@@ -74,11 +74,7 @@ struct DiagnosisOptions {
   // Each candidate refit starts at the base optimum and needs < 40
   // iterations when the candidate fits; a start that wanders is cut short.
   int refit_max_iterations = 80;
-  // 0: no CPU-time cap. A cap in seconds ends a refit at an iteration that
-  // depends on the machine and its load, so the same campaign would be
-  // diagnosed differently on a busy machine; the iteration cap above bounds
-  // the work the same way everywhere.
-  double refit_max_cpu_seconds = 0.0;
+  double refit_max_cpu_seconds = 4.0;
   // When the named cause leaves a misfit beyond acceptable_reduced_chi_square,
   // it is refitted together with each of this many other candidates (those
   // whose own refit converged, best BIC first, then those whose refit from the
