@@ -492,6 +492,17 @@ TEST_F(BadInput, AnErrorOnAFullStderrStillEndsWithItsExitCode) {
     ASSERT_TRUE(WIFEXITED(status)) << command;
     EXPECT_EQ(WEXITSTATUS(status), 2) << command;
   }
+  // Progress and summaries on a full stderr are dropped; the run goes on.
+  for (const std::string global : {"", "--progress json"}) {
+    const std::string command = std::string(BEAMID_EXECUTABLE) + " " + global +
+                                " frc examples/paper_setup/model.json --force-N 1 --from-hz 53 --to-hz 56 -o " +
+                                (root_ / "full_stderr").string() + " > /dev/null 2>/dev/full";
+    const int status = std::system(command.c_str());
+    ASSERT_TRUE(WIFEXITED(status)) << command;
+    EXPECT_EQ(WEXITSTATUS(status), 0) << command;
+    EXPECT_TRUE(fs::exists(root_ / "full_stderr.json")) << command;
+    fs::remove(root_ / "full_stderr.json");
+  }
 }
 
 // The way out that the error above names: with --skip-bad-steps the other
