@@ -49,7 +49,7 @@ struct CandidateExtension {
 };
 
 struct CandidatePhysics {
-  std::string name;         // one of the names of issue 7 (support_friction, …)
+  std::string name;         // one of the names of CandidateNames() (support_friction, …)
   std::string description;  // what it is, in a test engineer's words
   std::string rig_check;    // what to check or do on the rig when it is named
   // Extends the base structure (its values are the base optimum).
@@ -89,7 +89,7 @@ CandidatePhysics SupportAsymmetry();
 // the balance (2H + 1, at least 9; no new parameter).
 CandidatePhysics HarmonicTruncation();
 
-// All of the above, in the order of issue 7 (instrument_masses, of issue 16, after added_mass).
+// All of the above, in a fixed order (instrument_masses after added_mass).
 std::vector<CandidatePhysics> CandidateLibrary();
 
 // Names accepted by diagnose: "none" and the library's.

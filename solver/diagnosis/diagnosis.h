@@ -1,4 +1,4 @@
-// Diagnosis of a model-vs-recording mismatch (issue 7): fit the base model
+// Diagnosis of a model-vs-recording mismatch: fit the base model
 // (polynomial support, nominal beam, its loss factor), locate where its
 // residuals exceed the noise (solver/misfit_location.h), refit every
 // candidate of solver/candidate_physics.h from the base optimum (Ipopt, all

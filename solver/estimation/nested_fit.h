@@ -1,5 +1,5 @@
 // The plain nested approach, kept as the baseline that `Identify` is
-// measured against (issue 6's benchmark): for each trial parameter set, solve
+// measured against (tests/benchmarks/identification_benchmark.cc): for each trial parameter set, solve
 // the harmonic balance of every step by Newton (warm-started along each
 // sweep), then take a Levenberg–Marquardt step on the parameters with a
 // forward-difference Jacobian — one full set of step solves per parameter.

@@ -3,7 +3,7 @@
 // files) as one quoted string that gnuplot shows exactly as written, and
 // numbers as an inline datablock ("$name << EOD ... EOD"). Nothing else of
 // the user's ever enters a script, so no label or path can become a gnuplot
-// command (system(), a "< command" pipe, `set output`).
+// command (a shell escape, a "< command" pipe, `set output`).
 #pragma once
 
 #include <string>

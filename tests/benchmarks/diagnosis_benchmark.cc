@@ -1,14 +1,14 @@
-// Issue 7's and issue 16's benchmarks. Issue 7: a full diagnosis (base fit, misfit location, every
+// Diagnosis benchmarks. First, a full diagnosis (base fit, misfit location, every
 // candidate refitted in worker processes, selection, final model and
 // response curves) of a 3-level campaign with concealed friction, 3 levels ×
 // 13 steps × 2 fitted channels plus a held-out one (target < 30 s on 2
 // cores). The campaign comes from the time-domain simulator (made once,
 // before the timings; it is examples/concealed_friction/scenario.json).
-// Issue 16: the same on the example campaigns of an incomplete model,
+// Then the same on the example campaigns of an incomplete model,
 // 3 levels × 33 steps (examples/scenarios/paper_*.json: a modulus error,
 // masses at the instruments, friction and a compliant clamp, Rayleigh beam
 // damping, and the base physics), each simulated once before its timing.
-// Issue 18: faults of the recording (below).
+// Last, faults of the recording (below).
 #include <chrono>
 #include <filesystem>
 #include <string>
@@ -94,7 +94,7 @@ void BM_DiagnoseIncompleteModel(benchmark::State& state) {
 }
 BENCHMARK(BM_DiagnoseIncompleteModel)->DenseRange(0, 4)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
 
-// Issue 18: identify (ordinary fit, then the robust fit) and diagnose on the
+// Faults of the recording: identify (ordinary fit, then the robust fit) and diagnose on the
 // example campaigns with a fault of the recording, beside a physics one
 // (friction) and the clean base. Counters: χ² of the base and of the named
 // model, and k1, k3, c of the named model (the robust fit's when nothing is

@@ -1,4 +1,4 @@
-// Issue 2's speed targets: one frequency response curve of 400 continuation
+// Harmonic balance speed targets: one frequency response curve of 400 continuation
 // points with H = 7 (target < 50 ms on one core) and one backbone of 200
 // points (target < 20 ms), on the paper's beam with a cubic support.
 #include <numbers>

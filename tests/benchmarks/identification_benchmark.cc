@@ -1,4 +1,4 @@
-// Issue 6's benchmark: identification of 3 levels × 40 steps × 2 channels
+// Identification benchmark: identification of 3 levels × 40 steps × 2 channels
 // from one start (target < 2 s), the multistart with 32 starts on the
 // machine's cores, and the plain nested approach on the same data (the
 // ratio is reported as a counter). The campaign comes from the time-domain

@@ -1,4 +1,4 @@
-// Issue 4's benchmark: phasor extraction throughput (samples per second on
+// Extraction benchmark: phasor extraction throughput (samples per second on
 // one core, in-memory records), CSV load speed (MB/s, parse + validation,
 // in memory and from a file in the page cache), and the wall time to extract
 // a 120-step, 4-channel campaign of 1 s at 5120 Hz from disk (target < 1 s),

@@ -1,4 +1,4 @@
-// Speed of the time-domain simulator (issue 3's target: the three-level
+// Speed of the time-domain simulator (the target: the three-level
 // example campaign in under 30 s on one core) and of one integration step.
 #include <cmath>
 #include <filesystem>

@@ -15,7 +15,7 @@
 namespace beamid::hb {
 namespace {
 
-constexpr double kFrequencyTolerance = 5e-4;  // 0.05 % (issue 3)
+constexpr double kFrequencyTolerance = 5e-4;  // 0.05 %
 
 BeamProperties PaperBeam() { return BeamProperties{}; }
 

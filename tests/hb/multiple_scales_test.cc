@@ -20,7 +20,7 @@ namespace beamid::hb {
 namespace {
 
 constexpr double kSupportStiffness_Nm_rad = 150.0;  // first resonance ≈ 54 Hz
-constexpr double kLinearLimitTolerance = 0.005;     // issue 2: first harmonic within 0.5 %
+constexpr double kLinearLimitTolerance = 0.005;     // required: first harmonic within 0.5 %
 constexpr double kExactRelative = 1e-8;
 
 PolynomialSupportLaw::Coefficients Support(double k2, double k3, double c) {

@@ -1,5 +1,5 @@
 // The multiple-scales model against the exact harmonic balance of the
-// continuous beam (issue 2): they agree at small amplitude (first harmonic
+// continuous beam: they agree at small amplitude (first harmonic
 // < 0.5 %), and the printed table documents how the error grows with the
 // amplitude. HB is continued in force from the linear solution.
 #include <algorithm>
@@ -18,7 +18,7 @@
 namespace beamid::hb {
 namespace {
 
-constexpr double kSmallAmplitudeTolerance = 0.005;  // issue 2: first harmonic < 0.5 %
+constexpr double kSmallAmplitudeTolerance = 0.005;  // required: first harmonic < 0.5 %
 
 struct Case {
   const char* name;

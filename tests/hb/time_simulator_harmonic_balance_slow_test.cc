@@ -1,7 +1,7 @@
 // Two independent models of the same physics must agree at a strongly
 // nonlinear level: the time-domain finite-element simulation (through the
 // production stepped-sine path, hb/stepped_sine.h) and the exact harmonic
-// balance of the continuous beam (hb/harmonic_balance.h). Issue 3: harmonics
+// balance of the continuous beam (hb/harmonic_balance.h). Required: harmonics
 // at each sensor within 1 % on the first and 5 % on the third, for the
 // polynomial law and for the Jenkins element.
 #include <cmath>

@@ -20,8 +20,8 @@ namespace beamid::hb {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kReceptanceTolerance = 5e-3;   // 0.5 % (issue 3)
-constexpr double kTimeStepTolerance = 1e-3;     // 0.1 % (issue 3)
+constexpr double kReceptanceTolerance = 5e-3;   // 0.5 %
+constexpr double kTimeStepTolerance = 1e-3;     // 0.1 %
 constexpr int kHarmonics = 5;
 
 const std::vector<double> kSensors{0.100, 0.300, 0.570};

@@ -1,4 +1,4 @@
-// Coverage of the identification's 95 % intervals (issue 6): the paper's
+// Coverage of the identification's 95 % intervals: the paper's
 // set-up, base physics, three levels, simulated ONCE by the independent
 // time-domain simulator (never by the harmonic-balance model being fitted);
 // then independent realisations of the campaign's own measurement noise

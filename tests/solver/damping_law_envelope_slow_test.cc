@@ -1,4 +1,4 @@
-// The model-form intervals over the beam's damping laws (issue 16): the
+// The model-form intervals over the beam's damping laws: the
 // paper's set-up simulated ONCE by the independent time-domain simulator
 // with a beam whose damping is Rayleigh (C = α·M + β·K), or modal with
 // unrelated ratios per mode, or the loss factor the fit assumes; then

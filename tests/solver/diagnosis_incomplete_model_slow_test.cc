@@ -1,5 +1,5 @@
 // Identification and diagnosis when the model lacks physics the rig has
-// (issue 16), on campaigns from the independent time-domain simulator with
+//, on campaigns from the independent time-domain simulator with
 // the paper's set-up, three levels of nine steps, realistic noise, a clock
 // offset and a distorted force (2 % second and 1 % third harmonic, as a
 // shaker on a nonlinear beam gives), acc1 and acc2 fitted and acc3 (at the

@@ -1,4 +1,4 @@
-// Selection that validates without a held-out sensor (issue 16): when every
+// Selection that validates without a held-out sensor: when every
 // accelerometer is fitted, each level is left out in turn, the model refitted
 // to the others and judged on the level it did not see. On campaigns of the
 // independent time-domain simulator (the paper's set-up, three levels of

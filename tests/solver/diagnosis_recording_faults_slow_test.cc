@@ -1,4 +1,4 @@
-// A misfit can be the recording's fault (issue 18). On campaigns of the
+// A misfit can be the recording's fault. On campaigns of the
 // independent time-domain simulator whose physics IS the base model
 // (examples/scenarios/paper_*.json: 3 levels × 33 steps, noise, a clock
 // offset), each with one fault of its recording concealed — a step recorded

@@ -1,4 +1,4 @@
-// The report's account of the recording (issue 18): a step the extraction
+// The report's account of the recording: a step the extraction
 // found cut before it settled and a step the robust fit left out are circled
 // on the frequency response plot and listed in "The recording" with the
 // parameters without and with them; when the diagnosis blames the

@@ -1,4 +1,4 @@
-// identify's last resort (issue 16): when no start converges and the best
+// identify's last resort: when no start converges and the best
 // end point cannot go on, the fit is found by continuation in the parameters
 // from the linear fit. On a campaign of the independent time-domain
 // simulator (the paper's set-up, base physics, three levels of nine steps,

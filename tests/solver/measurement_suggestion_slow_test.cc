@@ -1,4 +1,4 @@
-// What to measure next (issue 16): a campaign from the independent
+// What to measure next: a campaign from the independent
 // time-domain simulator whose two fitted accelerometers cannot tell an
 // unreported 10 g mass at 0.53 m (added_mass, free position) from heavier
 // instruments (instrument_masses: masses at the drive point and at the two

@@ -24,7 +24,7 @@ constexpr double kK1 = 150.0, kK3 = 3e5, kC = 0.05, kLossFactor = 2e-4;
 // Tolerances from the model's own error, which grows as a² (hb/ tests:
 // multiple_scales_vs_hb). At this campaign's top level (|θ1| ≤ 1.7 mrad) the
 // cubic part of the support stiffness is ¾·k3·θ²/k1 ≈ 0.4 % of k1, and the
-// seed's first-harmonic error is below the 0.5 % that issue 2 asserts at
+// seed's first-harmonic error is below the 0.5 % that the seed model is required to meet at
 // small amplitude. So k1 can absorb at most a tenth of that 0.4 % (0.04 %),
 // and c (the height of the resonance peak, ∝ 1/c) at most the 0.5 %; the
 // noise adds ~0.002 % (k1) and ~0.01 % (c). k3 is the issue's 10 % (at small
@@ -34,7 +34,7 @@ constexpr double kCTolerance = 0.01;
 constexpr double kK3Tolerance = 0.10;
 // MS and HB fitted to the same data: their k1 differ by the model error only.
 constexpr double kK1Agreement = 0.0005;
-constexpr double kPredictionTolerance = 0.02;  // issue 6: held-out first harmonic within 2 %
+constexpr double kPredictionTolerance = 0.02;  // required: held-out first harmonic within 2 %
 
 const std::string kScenario = testing::PaperScenarioJson("multiple-scales identification test: small amplitudes", R"([
   {"label": "low", "force_amplitude_N": 0.25, "frequencies_Hz": {"start": 52.6, "stop": 55.6, "step": 0.5}},

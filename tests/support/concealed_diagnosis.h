@@ -1,4 +1,4 @@
-// Test support for the diagnosis proofs (issue 7): a scenario simulated by
+// Test support for the diagnosis proofs: a scenario simulated by
 // the independent time-domain simulator with one concealed effect, fitted on
 // acc1 and acc2 (harmonics 1..3), held out on acc3, the fitted channels
 // located up to the 5th harmonic; and the checks every proof shares.

@@ -1,4 +1,4 @@
-// The paper's set-up as a test fixture (issue 2): steel beam 600 × 40 × 5 mm,
+// The paper's set-up as a test fixture: steel beam 600 × 40 × 5 mm,
 // force at 0.570 m, accelerometers at 0.100, 0.300, 0.570 m.
 #pragma once
 
