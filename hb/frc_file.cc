@@ -4,11 +4,9 @@
 #include <stdexcept>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
-
 #include "hb/errors.h"
 #include "hb/internal/curve_file_json.h"
-#include "hb/json_field.h"
+#include "hb/input_limits.h"
 #include "hb/option_checks.h"
 #include "hb/text_file.h"
 
@@ -16,14 +14,14 @@ namespace beamid::hb {
 namespace {
 
 using internal::CsvNumber;
-using internal::CurveJson;
-using internal::JsonNumber;
-using internal::JsonPhasors;
-using internal::HarmonicPhasors;
-using internal::PhasorsFromJson;
 using internal::SamePosition;
 
-constexpr const char* kFix = "give a file written by 'beamid frc', or repair that field";
+constexpr schema::Format kFormat{kFrcFormat, "frequency response file", "give the PREFIX.json of 'beamid frc'"};
+
+// Bounds on what a file can make the reader hold: `frc --max-points` and
+// the force levels of one run stay far below them.
+constexpr std::size_t kMaxCurves = 1'000;
+constexpr std::size_t kMaxPointsPerCurve = 1'000'000;
 
 // Every point holds Θ_0..Θ_H and one entry per sensor with as many phasors.
 void CheckShape(const FrcFile& file, const FrcPoint& p) {
@@ -34,73 +32,75 @@ void CheckShape(const FrcFile& file, const FrcPoint& p) {
   if (p.sensors.size() != file.sensors.size())
     throw std::invalid_argument("frc file: a point holds " + std::to_string(p.sensors.size()) +
                                 " sensors, not the file's " + std::to_string(file.sensors.size()));
-  for (const FrcSensorPhasors& s : p.sensors)
-    if (s.displacement_m.size() != n || s.acceleration_m_s2.size() != n)
-      throw std::invalid_argument("frc file: a sensor of a point does not hold harmonics + 1 phasors");
 }
 
-CurveJson PointToJson(const FrcFile& file, const FrcPoint& p) {
-  CheckShape(file, p);
-  CurveJson sensors = CurveJson::object();
-  for (std::size_t i = 0; i < file.sensors.size(); ++i)
-    sensors[file.sensors[i].channel] = {{"position_m", JsonNumber(file.sensors[i].position_m)},
-                                        {"displacement_m", JsonPhasors(p.sensors[i].displacement_m)},
-                                        {"acceleration_m_s2", JsonPhasors(p.sensors[i].acceleration_m_s2)}};
-  return {{"frequency_Hz", JsonNumber(p.frequency_hz)},
-          {"stable", p.stable},
-          {"theta_rad", JsonPhasors(p.theta_rad)},
-          {"sensors", sensors}};
-}
-
-FrcPoint PointFromJson(const JsonField& f, FrcFile& file, bool first) {
-  f.OnlyKeys({"frequency_Hz", "stable", "theta_rad", "sensors"});
-  FrcPoint p;
-  p.frequency_hz = f.Number("frequency_Hz");
-  p.stable = f.Boolean("stable");
-  p.theta_rad = HarmonicPhasors(f.At("theta_rad"), file.harmonics);
-  const JsonField sensors = f.At("sensors");
-  const std::vector<std::string> channels = internal::SensorChannels(sensors);
-  if (!first) {
-    bool same = channels.size() == file.sensors.size();
-    for (std::size_t i = 0; same && i < channels.size(); ++i) same = channels[i] == file.sensors[i].channel;
-    if (!same) sensors.Fail("names other sensors than the first point", "give a file written by 'beamid frc'");
-  }
-  for (std::size_t i = 0; i < channels.size(); ++i) {
-    const JsonField s = sensors.At(channels[i]);
-    s.OnlyKeys({"position_m", "displacement_m", "acceleration_m_s2"});
-    const double position_m = s.Number("position_m");
-    if (first) {
-      file.sensors.push_back({channels[i], position_m});
-    } else if (!SamePosition(position_m, file.sensors[i].position_m)) {
-      s.At("position_m").Fail("differs from the first point's", "give a file written by 'beamid frc'");
+// The first point that names other sensors than the file's first point
+// (other names, order or positions; NaN, unknown, equals NaN), as its path
+// "curves[c].points[p].sensors", or "".
+std::string PointWithOtherSensors(const FrcFile& f) {
+  const FrcPoint* first = nullptr;
+  for (std::size_t c = 0; c < f.curves.size(); ++c)
+    for (std::size_t j = 0; j < f.curves[c].points.size(); ++j) {
+      const FrcPoint& p = f.curves[c].points[j];
+      if (first == nullptr) first = &p;
+      bool same = p.sensors.size() == first->sensors.size();
+      for (std::size_t i = 0; same && i < p.sensors.size(); ++i)
+        same = p.sensors[i].channel == first->sensors[i].channel &&
+               SamePosition(p.sensors[i].position_m, first->sensors[i].position_m);
+      if (!same) return fmt::format("curves[{}].points[{}].sensors", c, j);
     }
-    p.sensors.push_back({HarmonicPhasors(s.At("displacement_m"), file.harmonics),
-                         HarmonicPhasors(s.At("acceleration_m_s2"), file.harmonics)});
-  }
-  return p;
+  return {};
 }
 
 }  // namespace
 
+// The declaration of the JSON file (hb/json_schema.h): its writer, reader
+// and documentation.
+void Describe(auto& io, schema::Like<FrcFile> auto& f) {
+  using schema::kOptional;
+  using schema::Presence;
+  io.Constant("format", kFrcFormat, kOptional);  // the earlier writer had only "command"
+  io.Constant("command", "frc");
+  io.Text("beamid_version", f.beamid_version, schema::TextRule::kAny, kOptional);
+  io.Text("model", f.model);
+  io.Integer("harmonics", f.harmonics, 1, option_checks::kMaxHarmonics);
+  io.Text("phasor_convention", f.phasor_convention);
+  io.Number("first_natural_frequency_Hz", f.first_natural_frequency_hz, "Hz", schema::Positive().OrNull());
+  const schema::Count phasors = schema::Count::Exactly(static_cast<std::size_t>(f.harmonics) + 1, "harmonics + 1");
+  io.List("curves", f.curves, kMaxCurves, Presence::kRequired, [&](auto& curve_io, auto& curve) {
+    curve_io.Number("force_N", curve.force_N, "N");
+    curve_io.Integer("turning_points", curve.turning_points, 0, kMaxPointsPerCurve);
+    curve_io.Boolean("complete", curve.complete);
+    curve_io.List("points", curve.points, kMaxPointsPerCurve, Presence::kRequired, [&](auto& point_io, auto& p) {
+      point_io.Number("frequency_Hz", p.frequency_hz, "Hz", schema::Positive().OrNull());
+      point_io.Boolean("stable", p.stable);
+      point_io.Phasors("theta_rad", p.theta_rad, "rad", phasors);
+      point_io.Keyed("sensors", p.sensors, &FrcSensorPhasors::channel, kMaxPointsOnBeam, Presence::kRequired,
+                     [&](auto& sensor_io, auto& s) {
+                       sensor_io.Number("position_m", s.position_m, "m", schema::Any().OrNull());
+                       sensor_io.Phasors("displacement_m", s.displacement_m, "m", phasors);
+                       sensor_io.Phasors("acceleration_m_s2", s.acceleration_m_s2, "m/s²", phasors);
+                     });
+    });
+  });
+  const std::string other = PointWithOtherSensors(f);
+  io.Check(other.empty(), "every point names the first point's sensors, in its order, at its positions", other);
+}
+
+std::vector<schema::FieldDoc> FrcFileFields() { return schema::Fields<FrcFile>(); }
+
 std::string FrcFileToJson(const FrcFile& file) {
-  CurveJson curves = CurveJson::array();
-  for (const FrcCurve& c : file.curves) {
-    CurveJson points = CurveJson::array();
-    for (const FrcPoint& p : c.points) points.push_back(PointToJson(file, p));
-    curves.push_back({{"force_N", JsonNumber(c.force_N)},
-                      {"turning_points", c.turning_points},
-                      {"complete", c.complete},
-                      {"points", points}});
-  }
-  const CurveJson root = {{"format", std::string(kFrcFormat)},
-                          {"command", "frc"},
-                          {"beamid_version", file.beamid_version},
-                          {"model", file.model},
-                          {"harmonics", file.harmonics},
-                          {"phasor_convention", file.phasor_convention},
-                          {"first_natural_frequency_Hz", JsonNumber(file.first_natural_frequency_hz)},
-                          {"curves", curves}};
-  return root.dump(1) + "\n";
+  // The file repeats the sensors' names and positions in every point.
+  FrcFile written = file;
+  for (FrcCurve& c : written.curves)
+    for (FrcPoint& p : c.points) {
+      CheckShape(written, p);
+      for (std::size_t i = 0; i < p.sensors.size(); ++i) {
+        p.sensors[i].channel = file.sensors[i].channel;
+        p.sensors[i].position_m = file.sensors[i].position_m;
+      }
+    }
+  return schema::ToJson(written);
 }
 
 std::string FrcFileToCsv(const FrcFile& file) {
@@ -128,47 +128,12 @@ std::string FrcFileToCsv(const FrcFile& file) {
 }
 
 FrcFile FrcFileFromJson(const std::string& text, const std::string& source) {
-  const CurveJson json =
-      ParseJsonObject(text, source, "frequency response file", "give the PREFIX.json of 'beamid frc'");
-  const JsonField root(json, "", source, kFrcFormat, kFix);
-  // The earlier writer had no "format", only "command".
-  if (root.Has("format")) {
-    const std::string format = root.String("format");
-    if (format != kFrcFormat)
-      throw InputError(source + ": field \"format\" is \"" + format + "\", not \"" + std::string(kFrcFormat) +
-                       "\". Fix: give the PREFIX.json of 'beamid frc'");
-  }
-  const std::string command = root.String("command");
-  if (command != "frc")
-    throw InputError(source + ": field \"command\" is \"" + command +
-                     "\", not \"frc\". Fix: give the PREFIX.json of 'beamid frc'");
-  root.OnlyKeys({"format", "command", "beamid_version", "model", "harmonics", "phasor_convention",
-                 "first_natural_frequency_Hz", "curves"});
-  FrcFile file;
-  file.beamid_version = root.Has("beamid_version") ? root.String("beamid_version") : "";
-  file.model = root.String("model");
-  file.harmonics = root.Integer("harmonics");
-  if (file.harmonics < 1 || file.harmonics > option_checks::kMaxHarmonics)
-    root.At("harmonics").Fail("must be between 1 and " + std::to_string(option_checks::kMaxHarmonics) + ", not " +
-                              std::to_string(file.harmonics));
-  file.phasor_convention = root.String("phasor_convention");
-  file.first_natural_frequency_hz = root.Number("first_natural_frequency_Hz");
-  const JsonField curves = root.At("curves");
-  bool first = true;
-  for (std::size_t i = 0; i < curves.Size(); ++i) {
-    const JsonField c = curves.At(i);
-    c.OnlyKeys({"force_N", "turning_points", "complete", "points"});
-    FrcCurve curve;
-    curve.force_N = c.Number("force_N");
-    curve.turning_points = c.Integer("turning_points");
-    curve.complete = c.Boolean("complete");
-    const JsonField points = c.At("points");
-    for (std::size_t j = 0; j < points.Size(); ++j) {
-      curve.points.push_back(PointFromJson(points.At(j), file, first));
-      first = false;
+  FrcFile file = schema::FromJson<FrcFile>(text, source, kFormat);
+  for (const FrcCurve& c : file.curves)
+    if (!c.points.empty()) {
+      for (const FrcSensorPhasors& s : c.points.front().sensors) file.sensors.push_back({s.channel, s.position_m});
+      break;
     }
-    file.curves.push_back(std::move(curve));
-  }
   return file;
 }
 

@@ -24,6 +24,7 @@
 #include <string_view>
 #include <vector>
 
+#include "hb/json_schema.h"
 #include "hb/version.h"
 
 namespace beamid::hb {
@@ -41,6 +42,10 @@ struct FrcSensor {
 struct FrcSensorPhasors {
   std::vector<std::complex<double>> displacement_m;     // k = 0..H
   std::vector<std::complex<double>> acceleration_m_s2;  // k = 0..H
+  // As the file holds them in every point; the writer takes them from
+  // FrcFile::sensors, the reader checks them against the first point's.
+  std::string channel;
+  double position_m = 0.0;
 };
 
 struct FrcPoint {
@@ -68,7 +73,10 @@ struct FrcFile {
   std::vector<FrcCurve> curves;
 };
 
-// Throws std::invalid_argument when a point's sensors do not match `sensors`.
+// The fields of the JSON file: path, type, unit, range (docs/formats.md).
+std::vector<schema::FieldDoc> FrcFileFields();
+
+// Throws std::logic_error when a point's sensors do not match `sensors`.
 std::string FrcFileToJson(const FrcFile& file);
 std::string FrcFileToCsv(const FrcFile& file);
 // `source` names the text in messages (the file it came from).

@@ -46,6 +46,14 @@ class JsonField {
                      std::string(fix.empty() ? fix_ : fix));
   }
 
+  // A complaint about a field below this one ("curves[0].points[1]"), which
+  // a rule between fields found.
+  [[noreturn]] void FailBelow(const std::string& sub_path, const std::string& problem) const {
+    JsonField(value_, path_.empty() ? sub_path : path_ + (sub_path.starts_with('[') ? "" : ".") + sub_path, source_,
+              format_, fix_)
+        .Fail(problem);
+  }
+
   // A key the format does not have is a misspelling or another file, not
   // something to skip.
   void OnlyKeys(std::initializer_list<std::string_view> known) const {

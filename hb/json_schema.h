@@ -1,0 +1,567 @@
+// One declaration per file format drives its writer, its reader and its
+// documentation. A format declares the fields of each of its structs once,
+// in a function found by argument-dependent lookup:
+//
+//   void Describe(auto& io, schema::Like<FrcCurve> auto& curve) {
+//     io.Number("force_N", curve.force_N, "N", schema::Positive());
+//     io.Integer("turning_points", curve.turning_points, 0, 1'000'000);
+//     io.List("points", curve.points, 1'000'000);
+//   }
+//
+// and the same lines then
+//   - write the struct as JSON (schema::ToJson; the struct is const there),
+//   - read it back (schema::FromJson): every field of the declaration is
+//     required unless declared Optional, a key it does not declare is
+//     refused, a number outside its range is refused, a list longer than
+//     its bound is refused, and every complaint is an InputError naming the
+//     file, the field's path ("curves[1].points[3].frequency_Hz") and the
+//     fix;
+//   - list the fields with their path, type, unit and range
+//     (schema::Fields), the table of the format's documentation, so that
+//     the documentation cannot drift from the reader.
+// Parsing itself is hb/strict_json.h (duplicate keys, depth, sizes).
+// A declaration only declares: it may compute from fields already read (a
+// count from "harmonics") but keeps no other state, because the reader also
+// runs it on a default struct to list an object's keys.
+// JSON has no NaN: a number that is not finite is written as null; null
+// reads back as NaN only where the declaration allows it (Limits::nullable).
+#pragma once
+
+#include <cmath>
+#include <complex>
+#include <algorithm>
+#include <concepts>
+#include <functional>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "hb/errors.h"
+#include "hb/json_field.h"
+
+namespace beamid::schema {
+
+// `T` is U or const U: Describe functions take both (writing reads a const
+// struct, reading fills a mutable one).
+template <typename T, typename U>
+concept Like = std::same_as<std::remove_const_t<T>, U>;
+
+// The range of a number. A value outside it was not written by beamid and
+// would reach a computation as if it were measured.
+struct Limits {
+  double min = -std::numeric_limits<double>::infinity();
+  double max = std::numeric_limits<double>::infinity();
+  bool min_open = false;  // min itself excluded
+  // null (JSON's only way to say "no number") reads as NaN.
+  bool nullable = false;
+
+  Limits OrNull() const {
+    Limits l = *this;
+    l.nullable = true;
+    return l;
+  }
+  bool Holds(double v) const {
+    if (std::isnan(v)) return nullable;
+    return (min_open ? v > min : v >= min) && v <= max;
+  }
+  // "> 0", "0 .. 1", "any", with "or null".
+  std::string Text() const {
+    std::string text;
+    const bool low = std::isfinite(min), high = std::isfinite(max);
+    if (low && high)
+      text = fmt::format("{}{} .. {}", min_open ? "> " : "", min, max);
+    else if (low)
+      text = fmt::format("{} {}", min_open ? ">" : "≥", min);
+    else if (high)
+      text = fmt::format("≤ {}", max);
+    else
+      text = "any";
+    return nullable ? text + ", or null" : text;
+  }
+};
+constexpr Limits Any() { return {}; }
+constexpr Limits Positive() { return {.min = 0.0, .min_open = true}; }
+constexpr Limits NonNegative() { return {.min = 0.0}; }
+constexpr Limits Probability() { return {.min = 0.0, .max = 1.0}; }
+constexpr Limits Between(double min, double max) { return {.min = min, .max = max}; }
+
+enum class Presence { kRequired, kOptional };
+constexpr Presence kOptional = Presence::kOptional;
+
+// A string field's rule. Text from a file can reach a plot's labels and a
+// terminal: a control character is refused everywhere.
+enum class TextRule { kAny, kNotEmpty };
+
+// An enumeration written by name.
+template <typename E>
+struct Name {
+  E value;
+  std::string_view name;
+};
+
+// How a format names itself in messages.
+struct Format {
+  std::string_view tag;   // "beamid-frc/1"
+  std::string_view what;  // "frequency response file"
+  std::string_view fix;   // what a complaint tells the user to do
+};
+
+// How many entries a list holds: at most `max` (a bound on the work a
+// file can cause), or exactly a number that an earlier field sets (the
+// harmonics + 1 phasors of a point), which `words` names in the documentation.
+struct Count {
+  Count(std::size_t max_entries) : max(max_entries) {}  // NOLINT: a bare number is "at most"
+  static Count Exactly(std::size_t n, std::string_view words) {
+    Count c(n);
+    c.min = n;
+    c.words = words;
+    return c;
+  }
+  std::size_t min = 0;
+  std::size_t max;
+  std::string_view words;
+
+  std::string Text() const {
+    if (!words.empty()) return "exactly " + std::string(words);
+    return fmt::format("at most {}", max);
+  }
+};
+
+// The declaration of T's fields found by argument-dependent lookup; a
+// List, Object or Keyed may pass its own (a lambda) when the element's
+// fields depend on the enclosing one (a phasor count set by "harmonics").
+struct DescribeByLookup {
+  template <typename Io, typename T>
+  void operator()(Io& io, T& value) const {
+    Describe(io, value);
+  }
+};
+
+// ---- writing ------------------------------------------------------------
+
+class Writer {
+ public:
+  static constexpr bool kReading = false;
+  using Json = nlohmann::ordered_json;
+
+  explicit Writer(Json& out) : out_(out) { out_ = Json::object(); }
+
+  void Constant(std::string_view key, std::string_view value, Presence = Presence::kRequired) {
+    Put(key, std::string(value));
+  }
+  void Number(std::string_view key, const double& v, std::string_view /*unit*/, Limits = {},
+              Presence = Presence::kRequired) {
+    Put(key, NumberJson(v));
+  }
+  // Written for a reader's convenience, computed from other fields, never
+  // read back.
+  void Derived(std::string_view key, double v, std::string_view /*unit*/) { Put(key, NumberJson(v)); }
+  template <std::integral I>
+  void Integer(std::string_view key, const I& v, std::int64_t /*min*/, std::int64_t /*max*/,
+               Presence = Presence::kRequired) {
+    Put(key, v);
+  }
+  void Boolean(std::string_view key, const bool& v, Presence = Presence::kRequired) { Put(key, v); }
+  void Text(std::string_view key, const std::string& v, TextRule = TextRule::kAny, Presence = Presence::kRequired) {
+    Put(key, v);
+  }
+  template <typename E, std::size_t N>
+  void Choice(std::string_view key, const E& v, const Name<E> (&names)[N], Presence = Presence::kRequired) {
+    for (const Name<E>& n : names)
+      if (n.value == v) return Put(key, std::string(n.name));
+    throw std::logic_error("schema: a value of field \"" + std::string(key) + "\" has no name");
+  }
+  void Numbers(std::string_view key, const std::vector<double>& v, std::string_view /*unit*/, Limits, Count count,
+               Presence = Presence::kRequired) {
+    CheckCount(key, v.size(), count);
+    Json list = Json::array();
+    for (double x : v) list.push_back(NumberJson(x));
+    Put(key, std::move(list));
+  }
+  void Phasors(std::string_view key, const std::vector<std::complex<double>>& v, std::string_view /*unit*/,
+               Count count, Presence = Presence::kRequired) {
+    CheckCount(key, v.size(), count);
+    Json list = Json::array();
+    for (const auto& p : v) list.push_back(Json::array({NumberJson(p.real()), NumberJson(p.imag())}));
+    Put(key, std::move(list));
+  }
+  void Texts(std::string_view key, const std::vector<std::string>& v, Count count, TextRule = TextRule::kAny,
+             Presence = Presence::kRequired) {
+    CheckCount(key, v.size(), count);
+    Put(key, Json(v));
+  }
+  template <typename T, typename F = DescribeByLookup>
+  void Object(std::string_view key, const T& v, Presence = Presence::kRequired, F describe = {}) {
+    Put(key, Written(v, describe));
+  }
+  template <typename T, typename F = DescribeByLookup>
+  void List(std::string_view key, const std::vector<T>& v, Count count, Presence = Presence::kRequired,
+            F describe = {}) {
+    CheckCount(key, v.size(), count);
+    Json list = Json::array();
+    for (const T& element : v) list.push_back(Written(element, describe));
+    Put(key, std::move(list));
+  }
+  // An object keyed by a member of each element ({"acc1": {...}, ...}); the
+  // element's own declaration leaves that member out.
+  template <typename T, typename F = DescribeByLookup>
+  void Keyed(std::string_view key, const std::vector<T>& v, std::string T::*name, Count /*count*/,
+             Presence = Presence::kRequired, F describe = {}) {
+    Json object = Json::object();
+    for (const T& element : v) object[element.*name] = Written(element, describe);
+    Put(key, std::move(object));
+  }
+  // A rule between fields: the writer's caller broke it (a bug, not input).
+  void Check(bool ok, std::string_view rule, const std::string& = {}) const {
+    if (!ok) throw std::logic_error("schema: a written value breaks the rule: " + std::string(rule));
+  }
+
+ private:
+  template <typename T, typename F>
+  static Json Written(const T& v, F& describe) {
+    Json child;
+    Writer w(child);
+    describe(w, v);
+    return child;
+  }
+  // A list of the wrong length is the writer's caller's bug, not input.
+  static void CheckCount(std::string_view key, std::size_t size, const Count& count) {
+    if (size < count.min || size > count.max)
+      throw std::logic_error("schema: field \"" + std::string(key) + "\" holds " + std::to_string(size) +
+                             " entries, not " + count.Text());
+  }
+  static Json NumberJson(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+  void Put(std::string_view key, Json value) { out_[std::string(key)] = std::move(value); }
+  Json& out_;
+};
+
+// ---- reading ------------------------------------------------------------
+
+class Reader {
+ public:
+  static constexpr bool kReading = true;
+
+  // declared_keys lists the keys of this object's declaration; it runs
+  // only when a required key is missing, to tell a misspelling from an
+  // absence.
+  Reader(JsonField field, std::function<std::vector<std::string>()> declared_keys)
+      : field_(std::move(field)), declared_keys_(std::move(declared_keys)) {
+    field_.Object();
+  }
+
+  void Constant(std::string_view key, std::string_view value, Presence presence = Presence::kRequired) {
+    if (!Present(key, presence)) return;
+    const std::string text = Field(key).String();
+    if (text != value) Field(key).Fail("is \"" + text + "\", not \"" + std::string(value) + "\"");
+  }
+  void Number(std::string_view key, double& v, std::string_view /*unit*/, Limits limits = {},
+              Presence presence = Presence::kRequired) {
+    if (Present(key, presence)) v = ReadNumber(Field(key), limits);
+  }
+  void Derived(std::string_view key, double /*v*/, std::string_view /*unit*/) {
+    if (Present(key, Presence::kOptional)) Field(key).Number();
+  }
+  template <std::integral I>
+  void Integer(std::string_view key, I& v, std::int64_t min, std::int64_t max,
+               Presence presence = Presence::kRequired) {
+    if (!Present(key, presence)) return;
+    const JsonField f = Field(key);
+    const nlohmann::ordered_json& j = f.json();
+    if (!j.is_number_integer()) f.Fail("must be an integer");
+    bool in_range;
+    if (j.is_number_unsigned()) {
+      const std::uint64_t u = j.get<std::uint64_t>();
+      in_range = max >= 0 && u <= static_cast<std::uint64_t>(max) && (min <= 0 || u >= static_cast<std::uint64_t>(min));
+    } else {
+      const std::int64_t i = j.get<std::int64_t>();
+      in_range = i >= min && i <= max;
+    }
+    if (!in_range) f.Fail(fmt::format("= {} lies outside {} .. {}", j.dump(), min, max));
+    v = j.get<I>();
+  }
+  void Boolean(std::string_view key, bool& v, Presence presence = Presence::kRequired) {
+    if (Present(key, presence)) v = Field(key).Boolean();
+  }
+  void Text(std::string_view key, std::string& v, TextRule rule = TextRule::kAny,
+            Presence presence = Presence::kRequired) {
+    if (Present(key, presence)) v = ReadText(Field(key), rule);
+  }
+  template <typename E, std::size_t N>
+  void Choice(std::string_view key, E& v, const Name<E> (&names)[N], Presence presence = Presence::kRequired) {
+    if (!Present(key, presence)) return;
+    const JsonField f = Field(key);
+    const std::string text = f.String();
+    std::string list;
+    for (const Name<E>& n : names) {
+      if (n.name == text) {
+        v = n.value;
+        return;
+      }
+      list += (list.empty() ? "\"" : ", \"") + std::string(n.name) + "\"";
+    }
+    f.Fail("is \"" + text + "\", not one of " + list);
+  }
+  void Numbers(std::string_view key, std::vector<double>& v, std::string_view /*unit*/, Limits limits, Count count,
+               Presence presence = Presence::kRequired) {
+    if (!Present(key, presence)) return;
+    const JsonField f = Sized(Field(key), count);
+    v.clear();
+    for (std::size_t i = 0; i < f.Size(); ++i) v.push_back(ReadNumber(f.At(i), limits));
+  }
+  void Phasors(std::string_view key, std::vector<std::complex<double>>& v, std::string_view /*unit*/, Count count,
+               Presence presence = Presence::kRequired) {
+    if (!Present(key, presence)) return;
+    const JsonField f = Sized(Field(key), count);
+    v.clear();
+    for (std::size_t i = 0; i < f.Size(); ++i) v.push_back(f.At(i).Phasor());
+  }
+  void Texts(std::string_view key, std::vector<std::string>& v, Count count, TextRule rule = TextRule::kAny,
+             Presence presence = Presence::kRequired) {
+    if (!Present(key, presence)) return;
+    const JsonField f = Sized(Field(key), count);
+    v.clear();
+    for (std::size_t i = 0; i < f.Size(); ++i) v.push_back(ReadText(f.At(i), rule));
+  }
+  template <typename T, typename F = DescribeByLookup>
+  void Object(std::string_view key, T& v, Presence presence = Presence::kRequired, F describe = {}) {
+    if (Present(key, presence)) ReadInto(Field(key), v, describe);
+  }
+  template <typename T, typename F = DescribeByLookup>
+  void List(std::string_view key, std::vector<T>& v, Count count, Presence presence = Presence::kRequired,
+            F describe = {}) {
+    if (!Present(key, presence)) return;
+    const JsonField f = Sized(Field(key), count);
+    v.assign(f.Size(), T{});
+    for (std::size_t i = 0; i < f.Size(); ++i) ReadInto(f.At(i), v[i], describe);
+  }
+  template <typename T, typename F = DescribeByLookup>
+  void Keyed(std::string_view key, std::vector<T>& v, std::string T::*name, Count count,
+             Presence presence = Presence::kRequired, F describe = {}) {
+    if (!Present(key, presence)) return;
+    const JsonField f = Field(key).Object();
+    const std::size_t size = f.json().size();
+    if (size < count.min || size > count.max)
+      f.Fail(fmt::format("holds {} entries, not {}", size, count.Text()));
+    v.clear();
+    for (auto& [member, value] : f.Members()) {
+      if (member.empty()) value.Fail("is an empty name", "name it");
+      CheckText(value, member, TextRule::kNotEmpty);
+      T element{};
+      element.*name = member;
+      ReadInto(value, element, describe);
+      v.push_back(std::move(element));
+    }
+  }
+  // A rule between fields, checked once they are read: `where` names the
+  // part of this object that breaks it ("" for the object itself).
+  void Check(bool ok, std::string_view rule, const std::string& where = {}) const {
+    if (ok) return;
+    const std::string problem = "breaks the rule: " + std::string(rule);
+    if (where.empty()) field_.Fail(problem);
+    field_.FailBelow(where, problem);
+  }
+
+  // Refuses a key the declaration did not name (a misspelling, or another
+  // file's field).
+  void Finish() const { RefuseKeysOtherThan(keys_); }
+
+  template <typename T, typename F = DescribeByLookup>
+  static void ReadInto(const JsonField& field, T& v, F describe = {}) {
+    Reader r(field, [&describe] { return DeclaredKeys<T>(describe); });
+    describe(r, v);
+    r.Finish();
+  }
+
+ private:
+  bool Present(std::string_view key, Presence presence) {
+    keys_.emplace_back(key);
+    if (field_.Has(std::string(key))) return true;
+    if (presence == Presence::kOptional) return false;
+    // "completed" where "complete" is declared: the misspelling is the news.
+    RefuseKeysOtherThan(declared_keys_());
+    Field(key);  // "is missing"
+    return false;
+  }
+  void RefuseKeysOtherThan(const std::vector<std::string>& known) const {
+    for (const auto& [key, value] : field_.Members()) {
+      if (std::find(known.begin(), known.end(), key) != known.end()) continue;
+      std::string list;
+      for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+      value.Fail("is not a field here", "correct its name or remove it (the fields here: " + list + ")");
+    }
+  }
+  template <typename T, typename F>
+  static std::vector<std::string> DeclaredKeys(F& describe);
+  JsonField Field(std::string_view key) const { return field_.At(std::string(key)); }
+  static double ReadNumber(const JsonField& f, const Limits& limits) {
+    const double v = limits.nullable ? f.Number() : f.NumberNotNull();
+    if (!limits.Holds(v)) f.Fail(fmt::format("= {} lies outside {}", v, limits.Text()));
+    return v;
+  }
+  static std::string ReadText(const JsonField& f, TextRule rule) {
+    std::string text = f.String();
+    CheckText(f, text, rule);
+    return text;
+  }
+  static void CheckText(const JsonField& f, const std::string& text, TextRule rule) {
+    if (rule == TextRule::kNotEmpty && text.empty()) f.Fail("is empty", "give it a name");
+    for (const char c : text)
+      if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F)
+        f.Fail(fmt::format("holds the control character 0x{:02X}", static_cast<unsigned char>(c)),
+               "remove it: names and labels are one line of printable text");
+  }
+  static const JsonField& Sized(const JsonField& f, const Count& count) {
+    if (f.Size() < count.min || f.Size() > count.max)
+      f.Fail(fmt::format("holds {} entries, not {}", f.Size(), count.Text()));
+    return f;
+  }
+
+  JsonField field_;
+  std::function<std::vector<std::string>()> declared_keys_;
+  std::vector<std::string> keys_;
+};
+
+// ---- documenting --------------------------------------------------------
+
+struct FieldDoc {
+  std::string path;  // "curves[].points[].frequency_Hz", "sensors.<name>.position_m"
+  std::string type;  // "number", "integer", "string", "[number]", "[[re, im]]", "object", ...
+  std::string unit;  // "Hz", "" where none
+  std::string range;  // "> 0", "0 .. 50", "\"measured\" | \"feasible\"", ""
+  bool optional = false;
+};
+
+class Documenter {
+ public:
+  static constexpr bool kReading = false;
+
+  Documenter(std::vector<FieldDoc>& out, std::string prefix) : out_(out), prefix_(std::move(prefix)) {}
+
+  void Constant(std::string_view key, std::string_view value, Presence p = Presence::kRequired) {
+    Add(key, "string", "", "\"" + std::string(value) + "\"", p);
+  }
+  void Number(std::string_view key, const double&, std::string_view unit, Limits limits = {},
+              Presence p = Presence::kRequired) {
+    Add(key, "number", unit, limits.Text(), p);
+  }
+  void Derived(std::string_view key, double, std::string_view unit) {
+    Add(key, "number", unit, "written, not read", Presence::kOptional);
+  }
+  template <std::integral I>
+  void Integer(std::string_view key, const I&, std::int64_t min, std::int64_t max, Presence p = Presence::kRequired) {
+    Add(key, "integer", "", fmt::format("{} .. {}", min, max), p);
+  }
+  void Boolean(std::string_view key, const bool&, Presence p = Presence::kRequired) { Add(key, "boolean", "", "", p); }
+  void Text(std::string_view key, const std::string&, TextRule rule = TextRule::kAny, Presence p = Presence::kRequired) {
+    Add(key, "string", "", rule == TextRule::kNotEmpty ? "not empty" : "", p);
+  }
+  template <typename E, std::size_t N>
+  void Choice(std::string_view key, const E&, const Name<E> (&names)[N], Presence p = Presence::kRequired) {
+    std::string range;
+    for (const Name<E>& n : names) range += (range.empty() ? "\"" : " | \"") + std::string(n.name) + "\"";
+    Add(key, "string", "", range, p);
+  }
+  void Numbers(std::string_view key, const std::vector<double>&, std::string_view unit, Limits limits, Count count,
+               Presence p = Presence::kRequired) {
+    Add(key, "[number]", unit, fmt::format("{}; {} entries", limits.Text(), count.Text()), p);
+  }
+  void Phasors(std::string_view key, const std::vector<std::complex<double>>&, std::string_view unit, Count count,
+               Presence p = Presence::kRequired) {
+    Add(key, "[[re, im]]", unit, count.Text() + " entries", p);
+  }
+  void Texts(std::string_view key, const std::vector<std::string>&, Count count, TextRule = TextRule::kAny,
+             Presence p = Presence::kRequired) {
+    Add(key, "[string]", "", count.Text() + " entries", p);
+  }
+  template <typename T, typename F = DescribeByLookup>
+  void Object(std::string_view key, const T&, Presence p = Presence::kRequired, F describe = {}) {
+    Add(key, "object", "", "", p);
+    Nested<T>(Path(key) + ".", describe);
+  }
+  template <typename T, typename F = DescribeByLookup>
+  void List(std::string_view key, const std::vector<T>&, Count count, Presence p = Presence::kRequired,
+            F describe = {}) {
+    Add(key, "[object]", "", count.Text() + " entries", p);
+    Nested<T>(Path(key) + "[].", describe);
+  }
+  template <typename T, typename F = DescribeByLookup>
+  void Keyed(std::string_view key, const std::vector<T>&, std::string T::*, Count count,
+             Presence p = Presence::kRequired, F describe = {}) {
+    Add(key, "object", "", "keyed by name, " + count.Text() + " entries", p);
+    Nested<T>(Path(key) + ".<name>.", describe);
+  }
+  void Check(bool, std::string_view rule, const std::string& = {}) {
+    out_.push_back({.path = prefix_.empty() ? "(file)" : prefix_.substr(0, prefix_.size() - 1), .type = "rule",
+                    .range = std::string(rule)});
+  }
+
+ private:
+  std::string Path(std::string_view key) const { return prefix_ + std::string(key); }
+  void Add(std::string_view key, std::string type, std::string_view unit, std::string range, Presence p) {
+    out_.push_back({Path(key), std::move(type), std::string(unit), std::move(range), p == Presence::kOptional});
+  }
+  template <typename T, typename F>
+  void Nested(std::string prefix, F& describe) {
+    const T element{};
+    Documenter d(out_, std::move(prefix));
+    describe(d, element);
+  }
+  std::vector<FieldDoc>& out_;
+  std::string prefix_;
+};
+
+template <typename T, typename F>
+std::vector<std::string> Reader::DeclaredKeys(F& describe) {
+  std::vector<FieldDoc> fields;
+  const T element{};
+  Documenter d(fields, "");
+  describe(d, element);
+  std::vector<std::string> keys;
+  for (const FieldDoc& f : fields)
+    if (f.type != "rule" && f.path.find_first_of(".[") == std::string::npos) keys.push_back(f.path);
+  return keys;
+}
+
+// ---- the three uses -----------------------------------------------------
+
+// The file's text: one field per line, the struct's order.
+template <typename T>
+std::string ToJson(const T& value) {
+  nlohmann::ordered_json json;
+  Writer w(json);
+  Describe(w, value);
+  return json.dump(1) + "\n";
+}
+
+// Reads a text that `source` names, throwing InputError "<source>: field
+// "<path>" <problem>. Fix: <fix>".
+template <typename T>
+T FromJson(const std::string& text, const std::string& source, const Format& format) {
+  const nlohmann::ordered_json json = ParseJsonObject(text, source, format.what, format.fix);
+  T value{};
+  Reader::ReadInto(JsonField(json, "", source, format.tag, format.fix), value);
+  return value;
+}
+
+template <typename T>
+std::vector<FieldDoc> Fields() {
+  std::vector<FieldDoc> out;
+  const T value{};
+  Documenter d(out, "");
+  Describe(d, value);
+  return out;
+}
+
+// The fields as a Markdown table (the format's documentation holds it).
+std::string FieldTable(const std::vector<FieldDoc>& fields);
+
+}  // namespace beamid::schema
