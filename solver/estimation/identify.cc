@@ -34,11 +34,6 @@ std::vector<std::vector<double>> LatinHypercube(int count, int dimensions, unsig
   return points;
 }
 
-// The first start (the direct estimate, or the caller's own start) is the one
-// a single-start fit rests on, and from a factor 3 away it may need ~400
-// iterations; the further starts are exploratory and keep the cap, because a
-// start on another branch of the response stalls rather than converges.
-constexpr int kFirstStartMaxIterations = 1000;
 // Re-seeding an end point's states on the measured branch must lower the
 // misfit by more than this (relative) to be worth another run.
 constexpr double kRepairGain = 1e-6;
@@ -77,7 +72,7 @@ constexpr int kSeededProbeIterations = 25;
 StartOutcome RunStart(FitProblem& problem, const IdentifyOptions& options, const std::vector<double>& start,
                       bool first, Eigen::VectorXd* x_out) {
   IpoptOptions ipopt = options.ipopt;
-  if (first) ipopt.max_iterations = std::max(ipopt.max_iterations, kFirstStartMaxIterations);
+  if (first) ipopt.max_iterations = std::max(ipopt.max_iterations, options.first_start_min_iterations);
   struct Attempt {
     StartRoute route;
     int max_iterations;
@@ -125,7 +120,7 @@ StartOutcome RunStart(FitProblem& problem, const IdentifyOptions& options, const
 // Done for the winner only: the other starts do not change the result.
 void RepairBranches(FitProblem& problem, const IdentifyOptions& options, StartOutcome* best, Eigen::VectorXd* x) {
   IpoptOptions ipopt = options.ipopt;
-  ipopt.max_iterations = std::max(ipopt.max_iterations, kFirstStartMaxIterations);
+  ipopt.max_iterations = std::max(ipopt.max_iterations, options.first_start_min_iterations);
   for (int repair = 0; best->success && repair < kMaxBranchRepairs; ++repair) {
     const std::vector<double> at = best->parameters;
     const Eigen::VectorXd reseeded = problem.FeasiblePoint(at);
@@ -303,6 +298,7 @@ void IdentifyOptions::Validate() const {
   if (family == nullptr) Refuse("IdentifyOptions.family", "null", "a model family (solver/estimation/model_family.h)");
   RequireInRange("IdentifyOptions.num_workers (worker processes, 0: one per core)", num_workers, 0, 256);
   RequireInRange("IdentifyOptions.continuation_iterations", continuation_iterations, 0, 100000);
+  RequireInRange("IdentifyOptions.first_start_min_iterations", first_start_min_iterations, 0, 100000);
   RequirePositive("IdentifyOptions.decisive_chi_square_gap", decisive_chi_square_gap);
 }
 
