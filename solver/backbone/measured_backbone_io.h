@@ -1,5 +1,6 @@
 // The file of `beamid backbone --measured` (format
-// "beamid-measured-backbone/1", <output>.json) and its one reader and writer:
+// "beamid-measured-backbone/1", <output>.json) and its one reader and writer,
+// driven by one declaration (hb/json_schema.h):
 // the measured backbone per level, the chosen single-mode fit with its
 // candidates and its curve against amplitude, the damping trend, and the
 // identified model's backbone at the sensor when --result was given.
@@ -45,6 +46,7 @@
 #include <string_view>
 #include <vector>
 
+#include "hb/json_schema.h"
 #include "hb/version.h"
 #include "solver/backbone/measured_backbone.h"
 
@@ -95,6 +97,9 @@ struct MeasuredBackboneFile {
   std::vector<MeasuredBackboneModelPoint> model_backbone;  // empty without --result
   std::vector<std::string> warnings;
 };
+
+// The fields of the JSON file: path, type, unit, range (docs/formats.md).
+std::vector<schema::FieldDoc> MeasuredBackboneFileFields();
 
 std::string MeasuredBackboneFileToJson(const MeasuredBackboneFile& file);
 // `source` names the text in messages (the file it came from).
