@@ -490,7 +490,7 @@ class Documenter {
     Add(key, "number (derived)", unit, "written, not read", Presence::kOptional);
   }
   void Derived(std::string_view key, std::string_view) {
-    Add(key, "string", "", "written, not read", Presence::kOptional);
+    Add(key, "string (derived)", "", "written, not read", Presence::kOptional);
   }
   template <std::integral I>
   void Integer(std::string_view key, const I&, std::int64_t min, std::int64_t max, Presence p = Presence::kRequired) {

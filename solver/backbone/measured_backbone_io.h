@@ -34,9 +34,11 @@
 // damping_ratio_verdict (on ζ alone)}, model_backbone [{amplitude_m, frequency_Hz}], warnings.
 // An estimate is {value, std}, or null when it could not be made. JSON has no
 // NaN: a number that is not finite is written as null and read back as NaN.
-// Reading checks every field and throws InputError naming the file, the field
-// (e.g. "levels[2].peak.frequency_Hz") and the fix; a key the format does not
-// have is refused; a file without beamid_version reads (version ""), one
+// The descriptions (amplitude, model, parameter_order, excitation's unit and
+// frf) are written for a reader and not read back. Reading checks every
+// field, its type and range (MeasuredBackboneFileFields) and throws
+// InputError naming the file, the field (e.g. "levels[2].peak.frequency_Hz")
+// and the fix; a key the format does not have is refused; a file without beamid_version reads (version ""), one
 // without jumps, flags, in_global_fit, noise_relative_rms or excitation
 // (older files) reads as no jumps, no flags, in the fit, 0, a force.
 #pragma once

@@ -25,6 +25,7 @@
 #include "hb/errors.h"
 #include "tests/support/csv_text.h"
 #include "tests/support/same_value.h"
+#include "tests/support/schema_checks.h"
 #include "tests/support/expect_refused.h"
 #include "tests/support/temp_path.h"
 
@@ -217,6 +218,15 @@ TEST(BackboneFile, PointsAtOtherSensorPositionsAreRefused) {
   text.replace(second, 19, "\"position_m\": 0.457");
   const std::string message = InputErrorOf([&] { BackboneFileFromJson(text, "x.json"); });
   EXPECT_THAT(message, HasSubstr("points[1].sensors.acc3.position_m"));
+}
+
+TEST(BackboneFile, TheDeclarationHoldsForEveryField) {
+  beamid::testing::ExpectDeclarationHolds({
+      .fields = BackboneFileFields(),
+      .sample = BackboneFileToJson(Filled()),
+      .read = [](const std::string& text) { BackboneFileFromJson(text, "x.json"); },
+      .rewrite = [](const std::string& text) { return BackboneFileToJson(BackboneFileFromJson(text, "x.json")); },
+  });
 }
 
 }  // namespace

@@ -20,6 +20,7 @@
 
 #include "hb/errors.h"
 #include "tests/support/same_value.h"
+#include "tests/support/schema_checks.h"
 #include "tests/support/temp_path.h"
 
 #include "tests/support/expect_refused.h"
@@ -393,6 +394,16 @@ TEST(MeasuredBackboneFile, AFieldOfTheWrongTypeIsRefusedNamingTheFileAndTheField
     EXPECT_THAT(message, HasSubstr("out/b.json: field \"" + std::string(c.field) + "\" " + c.problem));
     EXPECT_THAT(message, HasSubstr("Fix: "));
   }
+}
+
+TEST(MeasuredBackboneFile, TheDeclarationHoldsForEveryField) {
+  beamid::testing::ExpectDeclarationHolds({
+      .fields = MeasuredBackboneFileFields(),
+      .sample = MeasuredBackboneFileToJson(Filled()),
+      .read = [](const std::string& text) { MeasuredBackboneFileFromJson(text, "x.json"); },
+      .rewrite =
+          [](const std::string& text) { return MeasuredBackboneFileToJson(MeasuredBackboneFileFromJson(text, "x.json")); },
+  });
 }
 
 }  // namespace
