@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <type_traits>
 
 #include <fmt/format.h>
 
@@ -55,6 +56,8 @@ void Describe(auto& io, schema::Like<BackboneFile> auto& f) {
   using schema::Presence;
   io.Constant("format", kBackboneFormat, kOptional);  // the earlier writer had only "command"
   io.Constant("command", "backbone");
+  // A file older than the key reads with version "", not this program's.
+  if constexpr (std::remove_reference_t<decltype(io)>::kReading) f.beamid_version.clear();
   io.Text("beamid_version", f.beamid_version, schema::TextRule::kAny, kOptional);
   io.Text("model", f.model);
   io.Text("definition", f.definition);

@@ -2,6 +2,7 @@
 
 #include <numbers>
 #include <string_view>
+#include <type_traits>
 
 #include "hb/text_file.h"
 
@@ -198,6 +199,8 @@ void Describe(auto& io, schema::Like<MeasuredBackboneModelPoint> auto& p) {
 
 void Describe(auto& io, schema::Like<MeasuredBackboneFile> auto& f) {
   io.Constant("format", kMeasuredBackboneFormat);
+  // A file older than the key reads with version "", not this program's.
+  if constexpr (std::remove_reference_t<decltype(io)>::kReading) f.beamid_version.clear();
   io.Text("beamid_version", f.beamid_version, TextRule::kAny, kOptional);
   io.Texts("inputs", f.inputs, kMaxInputs, TextRule::kNotEmpty);
   io.Text("channel", f.channel, TextRule::kNotEmpty);

@@ -180,6 +180,14 @@ TEST(BackboneFile, AFileOfTheEarlierWriterReads) {
   EXPECT_EQ(f.points[0].force_N, 0.01);
 }
 
+TEST(BackboneFile, AFileOlderThanTheVersionKeyReadsWithNone) {
+  std::string text = kEarlierFile;
+  const std::string line = " \"beamid_version\": \"0.9.0\",\n";
+  ASSERT_NE(text.find(line), std::string::npos);
+  text.erase(text.find(line), line.size());
+  EXPECT_EQ(BackboneFileFromJson(text, "old.json").beamid_version, "");
+}
+
 std::string Damaged(const std::string& from, const std::string& to) {
   std::string text = BackboneFileToJson(Filled());
   const std::size_t at = text.find(from);
