@@ -332,6 +332,8 @@ TEST(MeasuredBackboneFile, AFileInTheEarlierLayoutReads) {
   ASSERT_EQ(f.single_mode_fit.curve.size(), 1u);
   EXPECT_EQ(f.single_mode_fit.curve[0].frequency_std_hz, 0.01);
   EXPECT_EQ(f.damping_trend.verdict, "no significant trend");
+  // Before the damping rate, the one verdict was on ζ.
+  EXPECT_EQ(f.damping_trend.damping_ratio_verdict, "no significant trend");
   ASSERT_EQ(f.model_backbone.size(), 1u);
   EXPECT_EQ(f.model_backbone[0].frequency_hz, 31.0);
 }
