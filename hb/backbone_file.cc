@@ -17,7 +17,8 @@ namespace {
 
 using internal::CsvNumber;
 
-constexpr schema::Format kFormat{kBackboneFormat, "backbone file", "give the PREFIX.json of 'beamid backbone' on a model"};
+constexpr schema::Format kFormat{kBackboneFormat, "backbone file",
+                                 "give the PREFIX.json of 'beamid backbone' on a model"};
 
 // A bound on what a file can make the reader hold: `backbone --max-points`
 // stays far below it.
@@ -118,7 +119,8 @@ std::string BackboneFileToCsv(const BackboneFile& file) {
 BackboneFile BackboneFileFromJson(const std::string& text, const std::string& source) {
   BackboneFile file = schema::FromJson<BackboneFile>(text, source, kFormat);
   if (!file.points.empty())
-    for (const BackboneFileSensorPhasors& s : file.points.front().sensors) file.sensors.push_back({s.channel, s.position_m});
+    for (const BackboneFileSensorPhasors& s : file.points.front().sensors)
+      file.sensors.push_back({s.channel, s.position_m});
   return file;
 }
 

@@ -83,7 +83,8 @@ void Describe(auto& io, schema::Like<SweepJump> auto& j) {
   io.Number("to_frequency_Hz", j.to_frequency_hz, "Hz", schema::Positive());
   io.Choice("direction", j.up_sweep, kDirections);
   io.Number("receptance_ratio", j.receptance_ratio, "1", schema::NonNegative().OrNull());
-  io.Number("phase_change_rad", j.phase_change_rad, "rad", schema::Between(-std::numbers::pi, std::numbers::pi).OrNull());
+  io.Number("phase_change_rad", j.phase_change_rad, "rad",
+            schema::Between(-std::numbers::pi, std::numbers::pi).OrNull());
   io.Number("miss_over_predicted", j.miss_over_predicted, "1", schema::Any().OrNull());
 }
 

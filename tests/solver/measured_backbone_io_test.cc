@@ -407,8 +407,9 @@ TEST(MeasuredBackboneFile, TheDeclarationHoldsForEveryField) {
       .fields = MeasuredBackboneFileFields(),
       .sample = MeasuredBackboneFileToJson(sample),
       .read = [](const std::string& text) { MeasuredBackboneFileFromJson(text, "x.json"); },
-      .rewrite =
-          [](const std::string& text) { return MeasuredBackboneFileToJson(MeasuredBackboneFileFromJson(text, "x.json")); },
+      .rewrite = [](const std::string& text) {
+        return MeasuredBackboneFileToJson(MeasuredBackboneFileFromJson(text, "x.json"));
+      },
   });
 }
 
