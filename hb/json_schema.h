@@ -165,6 +165,8 @@ class Writer {
   // Written for a reader's convenience, computed from other fields, never
   // read back.
   void Derived(std::string_view key, double v, std::string_view /*unit*/) { Put(key, NumberJson(v)); }
+  // A text for a reader (a description that is the same in every file).
+  void Derived(std::string_view key, std::string_view text) { Put(key, std::string(text)); }
   template <std::integral I>
   void Integer(std::string_view key, const I& v, std::int64_t /*min*/, std::int64_t /*max*/,
                Presence = Presence::kRequired) {
@@ -202,6 +204,13 @@ class Writer {
   template <typename T, typename F = DescribeByLookup>
   void Object(std::string_view key, const T& v, Presence = Presence::kRequired, F describe = {}) {
     Put(key, Written(v, describe));
+  }
+  // An object, or null where the value's `present` member says there is
+  // none (an estimate that could not be made).
+  template <typename T, typename F = DescribeByLookup>
+  void ObjectOrNull(std::string_view key, const T& v, bool T::*present, Presence = Presence::kRequired,
+                    F describe = {}) {
+    Put(key, v.*present ? Written(v, describe) : Json(nullptr));
   }
   template <typename T, typename F = DescribeByLookup>
   void List(std::string_view key, const std::vector<T>& v, Count count, Presence = Presence::kRequired,
@@ -270,6 +279,9 @@ class Reader {
   void Derived(std::string_view key, double /*v*/, std::string_view /*unit*/) {
     if (Present(key, Presence::kOptional)) Field(key).Number();
   }
+  void Derived(std::string_view key, std::string_view /*text*/) {
+    if (Present(key, Presence::kOptional)) ReadText(Field(key), TextRule::kAny);
+  }
   template <std::integral I>
   void Integer(std::string_view key, I& v, std::int64_t min, std::int64_t max,
                Presence presence = Presence::kRequired) {
@@ -334,6 +346,19 @@ class Reader {
   template <typename T, typename F = DescribeByLookup>
   void Object(std::string_view key, T& v, Presence presence = Presence::kRequired, F describe = {}) {
     if (Present(key, presence)) ReadInto(Field(key), v, describe);
+  }
+  template <typename T, typename F = DescribeByLookup>
+  void ObjectOrNull(std::string_view key, T& v, bool T::*present, Presence presence = Presence::kRequired,
+                    F describe = {}) {
+    if (!Present(key, presence)) return;
+    const JsonField f = Field(key);
+    v = T{};
+    if (f.json().is_null()) {
+      v.*present = false;
+      return;
+    }
+    ReadInto(f, v, describe);
+    v.*present = true;
   }
   template <typename T, typename F = DescribeByLookup>
   void List(std::string_view key, std::vector<T>& v, Count count, Presence presence = Presence::kRequired,
@@ -464,6 +489,9 @@ class Documenter {
   void Derived(std::string_view key, double, std::string_view unit) {
     Add(key, "number (derived)", unit, "written, not read", Presence::kOptional);
   }
+  void Derived(std::string_view key, std::string_view) {
+    Add(key, "string (derived)", "", "written, not read", Presence::kOptional);
+  }
   template <std::integral I>
   void Integer(std::string_view key, const I&, std::int64_t min, std::int64_t max, Presence p = Presence::kRequired) {
     FieldDoc& f = Add(key, "integer", "", fmt::format("{} .. {}", min, max), p);
@@ -501,6 +529,11 @@ class Documenter {
   template <typename T, typename F = DescribeByLookup>
   void Object(std::string_view key, const T&, Presence p = Presence::kRequired, F describe = {}) {
     Add(key, "object", "", "", p);
+    Nested<T>(Path(key) + ".", describe);
+  }
+  template <typename T, typename F = DescribeByLookup>
+  void ObjectOrNull(std::string_view key, const T&, bool T::*, Presence p = Presence::kRequired, F describe = {}) {
+    Add(key, "object", "", "or null", p);
     Nested<T>(Path(key) + ".", describe);
   }
   template <typename T, typename F = DescribeByLookup>

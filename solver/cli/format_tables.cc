@@ -1,12 +1,18 @@
 #include "solver/cli/format_tables.h"
 
+#include "hb/backbone_file.h"
 #include "hb/frc_file.h"
+#include "solver/backbone/measured_backbone_io.h"
 
 namespace beamid::cli {
 
 const std::vector<DocumentedFormat>& DocumentedFormats() {
   static const std::vector<DocumentedFormat> formats = {
       {std::string(hb::kFrcFormat), "Frequency response curves (`beamid frc`, PREFIX.json)", hb::FrcFileFields},
+      {std::string(hb::kBackboneFormat), "Model backbone (`beamid backbone` on a model, PREFIX.json)",
+       hb::BackboneFileFields},
+      {std::string(solver::kMeasuredBackboneFormat), "Measured backbone (`beamid backbone --measured`, <output>.json)",
+       solver::MeasuredBackboneFileFields},
   };
   return formats;
 }

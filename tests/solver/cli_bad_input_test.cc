@@ -19,6 +19,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "solver/backbone/measured_backbone_io.h"
 #include "tests/signal/uff58_writer.h"
 #include "tests/support/file_bytes.h"
 #include "tests/support/paper_scenario.h"
@@ -50,6 +51,21 @@ void RemoveStep(const fs::path& campaign_json, const std::string& file) {
   const std::size_t open = content.rfind('{', at), close = content.find('}', at);
   const std::size_t comma = content.rfind(',', open);
   WriteFile(campaign_json, content.erase(comma, close + 1 - comma));
+}
+
+// A measured backbone file of one level, flagged with a jump, whose peak
+// lies at `peak_hz`.
+void WriteMeasuredBackbone(const fs::path& path, double peak_hz) {
+  beamid::solver::MeasuredBackboneFile file;
+  file.inputs = {"low.csv"};
+  file.channel = "acc1";
+  file.response_quantity = "acceleration";
+  beamid::solver::LevelResonance level;
+  level.label = "low";
+  level.peak_frequency_hz = {.value = peak_hz, .std = 0.01, .valid = true};
+  level.flags = {{.kind = beamid::solver::LevelFlagKind::kJump, .quantity = "sweep", .message = "a jump"}};
+  file.levels = {level};
+  beamid::solver::WriteMeasuredBackboneFile(path, file);
 }
 
 // Replaces the value of `column` (0-based) on CSV line `line` (1-based, the
@@ -426,6 +442,17 @@ TEST_F(BadInput, EveryBadInputEndsWithExitTwoAndAMessageThatNamesItAndTheFix) {
       {"a position off the beam", nullptr, "predict {r} --x 5 -o {d}/p.json", {"--x", "outside the beam"}},
       {"a negative thread count", nullptr, "extract {c} --threads -1 -o {d}/p.json", {"--threads"}},
       {"extract without harmonics", nullptr, "extract {c} -H 0 -o {d}/p.json", {"--harmonics"}},
+      // measured backbone files given to report (solver/backbone/measured_backbone_io.h): one level
+      // written by the real writer, then spoiled.
+      {"a measured backbone with a negative peak frequency",
+       [](auto, auto d) { WriteMeasuredBackbone(d / "bb.json", -54.0); },
+       "report {d}/bb.json -o {d}/report.html", {"bb.json", "levels[0].peak.frequency_Hz.value", "-54", "Fix:"}},
+      {"a measured backbone flag of an unknown kind",
+       [](auto, auto d) {
+         WriteMeasuredBackbone(d / "bb.json", 54.0);
+         Replace(d / "bb.json", "\"kind\": \"jump\"", "\"kind\": \"jumped\"");
+       },
+       "report {d}/bb.json -o {d}/report.html", {"bb.json", "levels[0].flags[0].kind", "\"jumped\"", "Fix:"}},
   };
   const fs::path clean = root_ / "clean", result = root_ / "result.json";
   for (std::size_t i = 0; i < rows.size(); ++i) {
