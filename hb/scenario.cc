@@ -232,7 +232,7 @@ void Describe(auto& io, schema::Like<Scenario> auto& s) {
     if (schema::InVariant(e, !sc.BaseExcitation()))
       e.Number("position_m", sc.force_position_m, "m", schema::Positive());
     else
-      e.Refused("position_m", "is given with quantity \"base_acceleration\" (the clamp and the support move together)",
+      e.Refused("position_m", "must be left out with quantity \"base_acceleration\" (the clamp and the support move together)",
                 "remove it");
     // The amplifier's fields belong to a voltage drive only, so that another
     // drive cannot carry a gain that silently does nothing.

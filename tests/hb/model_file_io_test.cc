@@ -131,13 +131,13 @@ std::string WithFormat(const nlohmann::json& format) {
 TEST(ModelFileIo, AScenariosFormatReadsAndAnyOtherIsRefusedNamingTheFileTheFieldAndTheFix) {
   ExpectSame(Filled(), ParseModelFile(WithFormat("beamid-scenario/1"), "m.json"));
   const std::string message = InputErrorOf([] { ParseModelFile(WithFormat("beamid-result/1"), "runs/m.json"); });
-  EXPECT_THAT(message, HasSubstr("runs/m.json: field \"format\" is \"beamid-result/1\", not \"beamid-model/1\""));
+  EXPECT_THAT(message, HasSubstr("runs/m.json: field \"format\" is \"beamid-result/1\", not one of \"beamid-model/1\", \"beamid-scenario/1\""));
   EXPECT_THAT(message, HasSubstr("Fix: "));
   try {
     ParseModelFile(WithFormat(nlohmann::json::array()), "m.json");
     ADD_FAILURE() << "accepted a format that is not a string";
   } catch (const std::invalid_argument& e) {
-    EXPECT_THAT(e.what(), HasSubstr("m.json: format must be a string"));
+    EXPECT_THAT(e.what(), HasSubstr("m.json: field \"format\" must be a string"));
   }
 }
 

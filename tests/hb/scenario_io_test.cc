@@ -313,7 +313,7 @@ TEST(ScenarioFile, AnotherFormatIsRefusedNamingTheFileTheFieldAndTheFix) {
     ParseScenario(WithFormat(1), "s.json");
     ADD_FAILURE() << "accepted a format that is not a string";
   } catch (const std::invalid_argument& e) {
-    EXPECT_THAT(e.what(), HasSubstr("s.json: format must be a string"));
+    EXPECT_THAT(e.what(), HasSubstr("s.json: field \"format\" must be a string"));
   }
 }
 

@@ -319,7 +319,7 @@ TEST_F(BadInput, EveryBadInputEndsWithExitTwoAndAMessageThatNamesItAndTheFix) {
       {"a model with length_m written twice", model_with("\"length_m\": 0.600", "\"length_m\": 0.6, \"length_m\": 6.0"),
        "frc {d}/model.json -o {d}/f", {"model.json", "\"length_m\" is written twice", "beam.length_m", "Fix:"}},
       {"a model with 65 sensors", model_with("{ \"channel\": \"acc1\", \"position_m\": 0.100 },", many_sensors),
-       "frc {d}/model.json -o {d}/f", {"model.json", "sensors", "more than the 64", "Fix:"}},
+       "frc {d}/model.json -o {d}/f", {"model.json", "sensors", "holds 65 entries, not at most 64", "Fix:"}},
       {"a scenario with k1 written twice", scenario_with("\"k1_Nm_rad\": 150", "\"k1_Nm_rad\": 150, \"k1_Nm_rad\": 15"),
        "simulate {d}/s.json -o {d}/sim", {"s.json", "\"k1_Nm_rad\" is written twice", "Fix:"}},
       {"a result with k1.value written twice", result_with([](std::string value) { return "1000, \"value\": " + value; }),
