@@ -587,13 +587,15 @@ class Documenter {
   template <typename T, typename F = DescribeByLookup>
   void Keyed(std::string_view key, const std::map<std::string, T>&, Count count, Presence p = Presence::kRequired,
              F describe = {}) {
-    Add(key, "object", "", "keyed by name, " + count.Text() + " entries", p);
+    Add(key, "object", "", "keyed by name, " + count.Text() + " entries", p).count_min = count.min;
     Nested<T>(Path(key) + ".<name>.", describe);
   }
   template <typename T, typename F = DescribeByLookup>
   void NumbersOr(std::string_view key, const std::vector<double>&, std::string_view unit, Limits limits, Count count,
                  const T&, Presence p = Presence::kRequired, F describe = {}) {
-    Add(key, "[number] or object", unit, fmt::format("{}; {} entries", limits.Text(), count.Text()), p);
+    FieldDoc& f = Add(key, "[number] or object", unit, fmt::format("{}; {} entries", limits.Text(), count.Text()), p);
+    f.limits = limits;
+    f.count_min = count.min;
     Nested<T>(Path(key) + ".", describe);
   }
   void Ignored(std::string_view key) { Add(key, "any", "", "read past, not used", Presence::kOptional); }

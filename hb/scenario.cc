@@ -128,7 +128,8 @@ const char* AmplitudeKey(ExcitationQuantity quantity) {
 // level's "direction" is "down". The writer writes the list in run order.
 struct FrequencyRange {
   double start_hz = 0.0, stop_hz = 0.0, step_hz = 0.0;
-  std::size_t Steps() const { return static_cast<std::size_t>(std::floor((stop_hz - start_hz) / step_hz + 1e-9)) + 1; }
+  // As a double: a range of 1e300 steps must be refused, not overflow.
+  double Steps() const { return std::floor((stop_hz - start_hz) / step_hz + 1e-9) + 1.0; }
 };
 enum class Direction { kUp, kDown };
 constexpr schema::Name<Direction> kDirectionNames[] = {{Direction::kUp, "up"}, {Direction::kDown, "down"}};
@@ -308,12 +309,13 @@ void Describe(auto& io, schema::Like<Scenario> auto& s) {
                   r.Number("stop", f.stop_hz, "Hz", schema::Positive());
                   r.Number("step", f.step_hz, "Hz", schema::Positive());
                   r.Check(f.stop_hz >= f.start_hz, "stop ≥ start (\"direction\": \"down\" sweeps down)", "stop");
-                  r.Check(f.step_hz <= 0.0 || f.Steps() <= kMaxStepsPerLevel,
+                  r.Check(f.step_hz <= 0.0 || f.Steps() <= static_cast<double>(kMaxStepsPerLevel),
                           "at most 100000 steps from start to stop", "step");
                 });
     if constexpr (kReading<decltype(l)>)
       if (range.step_hz > 0.0)
-        for (std::size_t i = 0; i < range.Steps(); ++i) level.frequencies_hz.push_back(range.start_hz + range.step_hz * i);
+        for (std::size_t i = 0; i < static_cast<std::size_t>(range.Steps()); ++i)
+          level.frequencies_hz.push_back(range.start_hz + range.step_hz * static_cast<double>(i));
     l.Check(!level.frequencies_hz.empty(), "frequencies_Hz holds at least one frequency", "frequencies_Hz");
     Direction direction = Direction::kUp;
     if (schema::Writes(l, false)) l.Choice("direction", direction, kDirectionNames, kOptional);

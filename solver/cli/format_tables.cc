@@ -1,12 +1,16 @@
 #include "solver/cli/format_tables.h"
 
 #include "hb/frc_file.h"
+#include "hb/model_file.h"
+#include "hb/scenario.h"
 
 namespace beamid::cli {
 
 const std::vector<DocumentedFormat>& DocumentedFormats() {
   static const std::vector<DocumentedFormat> formats = {
       {std::string(hb::kFrcFormat), "Frequency response curves (`beamid frc`, PREFIX.json)", hb::FrcFileFields},
+      {std::string(hb::kModelFileFormat), "Model file (`frc`, `backbone`; README, Model files)", hb::ModelFileFields},
+      {std::string(hb::kScenarioFormat), "Simulation scenario (`simulate`; docs/simulator.md)", hb::ScenarioFields},
   };
   return formats;
 }

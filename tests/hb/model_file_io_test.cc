@@ -15,6 +15,7 @@
 #include "hb/errors.h"
 #include "hb/version.h"
 #include "tests/support/expect_refused.h"
+#include "tests/support/schema_checks.h"
 #include "tests/support/temp_path.h"
 
 namespace beamid::hb {
@@ -139,6 +140,18 @@ TEST(ModelFileIo, AScenariosFormatReadsAndAnyOtherIsRefusedNamingTheFileTheField
   } catch (const std::invalid_argument& e) {
     EXPECT_THAT(e.what(), HasSubstr("m.json: field \"format\" must be a string"));
   }
+}
+
+// The declaration (hb/json_schema.h) holds for every field: the written text
+// rewrites to the same bytes, and each number out of range, required field
+// taken out and unknown key is refused naming its path and the fix.
+TEST(ModelFileIo, TheDeclarationHoldsForEveryField) {
+  beamid::testing::ExpectDeclarationHolds({
+      .fields = ModelFileFields(),
+      .sample = ModelFileToJson(Filled()),
+      .read = [](const std::string& text) { ParseModelFile(text, "x.json"); },
+      .rewrite = [](const std::string& text) { return ModelFileToJson(ParseModelFile(text, "x.json")); },
+  });
 }
 
 }  // namespace
