@@ -3,6 +3,8 @@
 #include "hb/backbone_file.h"
 #include "hb/frc_file.h"
 #include "solver/backbone/measured_backbone_io.h"
+#include "hb/model_file.h"
+#include "hb/scenario.h"
 
 namespace beamid::cli {
 
@@ -13,6 +15,8 @@ const std::vector<DocumentedFormat>& DocumentedFormats() {
        hb::BackboneFileFields},
       {std::string(solver::kMeasuredBackboneFormat), "Measured backbone (`beamid backbone --measured`, <output>.json)",
        solver::MeasuredBackboneFileFields},
+      {std::string(hb::kModelFileFormat), "Model file (`frc`, `backbone`; README, Model files)", hb::ModelFileFields},
+      {std::string(hb::kScenarioFormat), "Simulation scenario (`simulate`; docs/simulator.md)", hb::ScenarioFields},
   };
   return formats;
 }

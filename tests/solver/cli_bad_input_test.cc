@@ -335,7 +335,7 @@ TEST_F(BadInput, EveryBadInputEndsWithExitTwoAndAMessageThatNamesItAndTheFix) {
       {"a model with length_m written twice", model_with("\"length_m\": 0.600", "\"length_m\": 0.6, \"length_m\": 6.0"),
        "frc {d}/model.json -o {d}/f", {"model.json", "\"length_m\" is written twice", "beam.length_m", "Fix:"}},
       {"a model with 65 sensors", model_with("{ \"channel\": \"acc1\", \"position_m\": 0.100 },", many_sensors),
-       "frc {d}/model.json -o {d}/f", {"model.json", "sensors", "more than the 64", "Fix:"}},
+       "frc {d}/model.json -o {d}/f", {"model.json", "\"sensors\" holds", "not at most 64", "Fix:"}},
       {"a scenario with k1 written twice", scenario_with("\"k1_Nm_rad\": 150", "\"k1_Nm_rad\": 150, \"k1_Nm_rad\": 15"),
        "simulate {d}/s.json -o {d}/sim", {"s.json", "\"k1_Nm_rad\" is written twice", "Fix:"}},
       {"a result with k1.value written twice", result_with([](std::string value) { return "1000, \"value\": " + value; }),
@@ -453,6 +453,22 @@ TEST_F(BadInput, EveryBadInputEndsWithExitTwoAndAMessageThatNamesItAndTheFix) {
          Replace(d / "bb.json", "\"kind\": \"jump\"", "\"kind\": \"jumped\"");
        },
        "report {d}/bb.json -o {d}/report.html", {"bb.json", "levels[0].flags[0].kind", "\"jumped\"", "Fix:"}},
+      // model file and scenario, declared once (hb/json_schema.h): a misspelt key, another variant's field, a
+      // count that is no integer, a frequency range of 1e300 steps, a base-excited scenario as a model
+      {"a model with k3 misspelt", model_with("\"k3_Nm_rad3\"", "\"k3_Nm_rad\""), "frc {d}/model.json -o {d}/f",
+       {"model.json", "\"support.polynomial.k3_Nm_rad\" is not a field here", "Fix:"}},
+      {"an amplifier on a force drive", scenario_with("\"position_m\": 0.57}", "\"position_m\": 0.57, \"amplifier_sag\": 0.2}"),
+       "simulate {d}/s.json -o {d}/sim", {"s.json", "\"excitation.amplifier_sag\" belongs to a voltage drive", "Fix:"}},
+      {"a seed of 1.5", scenario_with("\"noise\": {\"seed\": ", "\"noise\": {\"seed\": 1.5, \"x\": "),
+       "simulate {d}/s.json -o {d}/sim", {"s.json", "\"noise.seed\" must be an integer", "Fix:"}},
+      {"a range of 1e300 steps",
+       scenario_with("\"levels\": [", "\"levels\": [{\"label\": \"huge\", \"force_amplitude_N\": 1, "
+                     "\"frequencies_Hz\": {\"start\": 1, \"stop\": 1e300, \"step\": 1e-300}}, "),
+       "simulate {d}/s.json -o {d}/sim", {"s.json", "levels[0].frequencies_Hz.step", "at most 100000 steps", "Fix:"}},
+      {"a base-excited scenario as a model",
+       scenario_with("\"excitation\": {\"channel\": \"force\", \"position_m\": 0.57}",
+                     "\"excitation\": {\"channel\": \"base\", \"quantity\": \"base_acceleration\"}"),
+       "frc {d}/s.json -o {d}/f", {"s.json", "\"excitation.quantity\"", "drives the beam with a force", "Fix:"}},
   };
   const fs::path clean = root_ / "clean", result = root_ / "result.json";
   for (std::size_t i = 0; i < rows.size(); ++i) {
