@@ -35,6 +35,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -42,6 +43,7 @@
 #include <utility>
 #include <vector>
 
+#include <Eigen/Core>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -94,8 +96,22 @@ constexpr Limits NonNegative() { return {.min = 0.0}; }
 constexpr Limits Probability() { return {.min = 0.0, .max = 1.0}; }
 constexpr Limits Between(double min, double max) { return {.min = min, .max = max}; }
 
-enum class Presence { kRequired, kOptional };
+// kOmittedWhenEmpty: optional, and the writer leaves it out when it is
+// empty (an empty string or list, an optional without value), as files
+// written before the field existed lack it.
+enum class Presence { kRequired, kOptional, kOmittedWhenEmpty };
 constexpr Presence kOptional = Presence::kOptional;
+constexpr Presence kOmittedWhenEmpty = Presence::kOmittedWhenEmpty;
+
+template <typename T>
+bool IsEmpty(const T& v) {
+  if constexpr (requires { v.has_value(); })
+    return !v.has_value();
+  else if constexpr (requires { v.empty(); })
+    return v.empty();
+  else
+    return false;
+}
 
 // A string field's rule. Text from a file can reach a plot's labels and a
 // terminal: a control character is refused everywhere.
@@ -171,8 +187,8 @@ class Writer {
     Put(key, v);
   }
   void Boolean(std::string_view key, const bool& v, Presence = Presence::kRequired) { Put(key, v); }
-  void Text(std::string_view key, const std::string& v, TextRule = TextRule::kAny, Presence = Presence::kRequired) {
-    Put(key, v);
+  void Text(std::string_view key, const std::string& v, TextRule = TextRule::kAny, Presence p = Presence::kRequired) {
+    if (!Omitted(v, p)) Put(key, v);
   }
   template <typename E, std::size_t N>
   void Choice(std::string_view key, const E& v, const Name<E> (&names)[N], Presence = Presence::kRequired) {
@@ -194,18 +210,51 @@ class Writer {
     for (const auto& p : v) list.push_back(Json::array({NumberJson(p.real()), NumberJson(p.imag())}));
     Put(key, std::move(list));
   }
+  // One phasor [re, im]; `parts` is the range of re and im.
+  void Phasor(std::string_view key, const std::complex<double>& v, std::string_view /*unit*/, Limits /*parts*/ = {},
+              Presence = Presence::kRequired) {
+    Put(key, Json::array({NumberJson(v.real()), NumberJson(v.imag())}));
+  }
+  void Phasors(std::string_view key, const Eigen::VectorXcd& v, std::string_view /*unit*/, Limits /*parts*/,
+               Count count, Presence = Presence::kRequired) {
+    CheckCount(key, static_cast<std::size_t>(v.size()), count);
+    Json list = Json::array();
+    for (const auto& p : v) list.push_back(Json::array({NumberJson(p.real()), NumberJson(p.imag())}));
+    Put(key, std::move(list));
+  }
+  // A matrix as a list of rows.
+  void Matrix(std::string_view key, const Eigen::MatrixXd& m, std::string_view /*unit*/, Limits, Count rows,
+              Count columns, Presence = Presence::kRequired) {
+    CheckCount(key, static_cast<std::size_t>(m.rows()), rows);
+    if (m.rows() > 0) CheckCount(key, static_cast<std::size_t>(m.cols()), columns);
+    Json out = Json::array();
+    for (Eigen::Index r = 0; r < m.rows(); ++r) {
+      Json row = Json::array();
+      for (Eigen::Index c = 0; c < m.cols(); ++c) row.push_back(NumberJson(m(r, c)));
+      out.push_back(std::move(row));
+    }
+    Put(key, std::move(out));
+  }
   void Texts(std::string_view key, const std::vector<std::string>& v, Count count, TextRule = TextRule::kAny,
              Presence = Presence::kRequired) {
     CheckCount(key, v.size(), count);
     Put(key, Json(v));
   }
   template <typename T, typename F = DescribeByLookup>
-  void Object(std::string_view key, const T& v, Presence = Presence::kRequired, F describe = {}) {
-    Put(key, Written(v, describe));
+  void Object(std::string_view key, const T& v, Presence p = Presence::kRequired, F describe = {}) {
+    if (!Omitted(v, p)) Put(key, Written(v, describe));
+  }
+  // An object the file may lack (not written without a value).
+  template <typename T, typename F = DescribeByLookup>
+  void Object(std::string_view key, const std::optional<T>& v, Presence p = Presence::kOptional, F describe = {}) {
+    if (v) return Put(key, Written(*v, describe));
+    if (p == Presence::kRequired)
+      throw std::logic_error("schema: required field \"" + std::string(key) + "\" has no value");
   }
   template <typename T, typename F = DescribeByLookup>
-  void List(std::string_view key, const std::vector<T>& v, Count count, Presence = Presence::kRequired,
+  void List(std::string_view key, const std::vector<T>& v, Count count, Presence p = Presence::kRequired,
             F describe = {}) {
+    if (Omitted(v, p)) return;
     CheckCount(key, v.size(), count);
     Json list = Json::array();
     for (const T& element : v) list.push_back(Written(element, describe));
@@ -215,7 +264,8 @@ class Writer {
   // element's own declaration leaves that member out.
   template <typename T, typename F = DescribeByLookup>
   void Keyed(std::string_view key, const std::vector<T>& v, std::string T::*name, Count /*count*/,
-             Presence = Presence::kRequired, F describe = {}) {
+             Presence p = Presence::kRequired, F describe = {}) {
+    if (Omitted(v, p)) return;
     Json object = Json::object();
     for (const T& element : v) object[element.*name] = Written(element, describe);
     Put(key, std::move(object));
@@ -240,6 +290,10 @@ class Writer {
                              " entries, not " + count.Text());
   }
   static Json NumberJson(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+  template <typename T>
+  static bool Omitted(const T& v, Presence p) {
+    return p == Presence::kOmittedWhenEmpty && IsEmpty(v);
+  }
   void Put(std::string_view key, Json value) { out_[std::string(key)] = std::move(value); }
   Json& out_;
 };
@@ -324,6 +378,32 @@ class Reader {
     v.clear();
     for (std::size_t i = 0; i < f.Size(); ++i) v.push_back(f.At(i).Phasor());
   }
+  void Phasor(std::string_view key, std::complex<double>& v, std::string_view /*unit*/, Limits parts = {},
+              Presence presence = Presence::kRequired) {
+    if (Present(key, presence)) v = ReadPhasor(Field(key), parts);
+  }
+  void Phasors(std::string_view key, Eigen::VectorXcd& v, std::string_view /*unit*/, Limits parts, Count count,
+               Presence presence = Presence::kRequired) {
+    if (!Present(key, presence)) return;
+    const JsonField f = Sized(Field(key), count);
+    v.resize(static_cast<Eigen::Index>(f.Size()));
+    for (std::size_t i = 0; i < f.Size(); ++i) v[static_cast<Eigen::Index>(i)] = ReadPhasor(f.At(i), parts);
+  }
+  void Matrix(std::string_view key, Eigen::MatrixXd& m, std::string_view /*unit*/, Limits limits, Count rows,
+              Count columns, Presence presence = Presence::kRequired) {
+    if (!Present(key, presence)) return;
+    const JsonField f = Sized(Field(key), rows);
+    // Every row as long as the first, allocated once the first is checked.
+    for (std::size_t r = 0; r < f.Size(); ++r) {
+      const JsonField row = Sized(f.At(r), columns);
+      if (r == 0) m.resize(static_cast<Eigen::Index>(f.Size()), static_cast<Eigen::Index>(row.Size()));
+      if (row.Size() != static_cast<std::size_t>(m.cols()))
+        row.Fail(fmt::format("holds {} entries, not {} as the first row", row.Size(), m.cols()));
+      for (std::size_t c = 0; c < row.Size(); ++c)
+        m(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = ReadNumber(row.At(c), limits);
+    }
+    if (f.Size() == 0) m.resize(0, 0);
+  }
   void Texts(std::string_view key, std::vector<std::string>& v, Count count, TextRule rule = TextRule::kAny,
              Presence presence = Presence::kRequired) {
     if (!Present(key, presence)) return;
@@ -334,6 +414,11 @@ class Reader {
   template <typename T, typename F = DescribeByLookup>
   void Object(std::string_view key, T& v, Presence presence = Presence::kRequired, F describe = {}) {
     if (Present(key, presence)) ReadInto(Field(key), v, describe);
+  }
+  template <typename T, typename F = DescribeByLookup>
+  void Object(std::string_view key, std::optional<T>& v, Presence presence = Presence::kOptional, F describe = {}) {
+    v.reset();
+    if (Present(key, presence)) ReadInto(Field(key), v.emplace(), describe);
   }
   template <typename T, typename F = DescribeByLookup>
   void List(std::string_view key, std::vector<T>& v, Count count, Presence presence = Presence::kRequired,
@@ -385,7 +470,7 @@ class Reader {
   bool Present(std::string_view key, Presence presence) {
     keys_.emplace_back(key);
     if (field_.Has(std::string(key))) return true;
-    if (presence == Presence::kOptional) return false;
+    if (presence != Presence::kRequired) return false;
     // "completed" where "complete" is declared: the misspelling is the news.
     RefuseKeysOtherThan(declared_keys_());
     Field(key);  // "is missing"
@@ -406,6 +491,10 @@ class Reader {
     const double v = limits.nullable ? f.Number() : f.NumberNotNull();
     if (!limits.Holds(v)) f.Fail(fmt::format("= {} lies outside {}", v, limits.Text()));
     return v;
+  }
+  static std::complex<double> ReadPhasor(const JsonField& f, const Limits& parts) {
+    if (f.Size() != 2) f.Fail("must be [re, im], not " + std::to_string(f.Size()) + " numbers");
+    return {ReadNumber(f.At(0), parts), ReadNumber(f.At(1), parts)};
   }
   static std::string ReadText(const JsonField& f, TextRule rule) {
     std::string text = f.String();
@@ -478,12 +567,30 @@ class Documenter {
                Presence p = Presence::kRequired) {
     Add(key, "[[re, im]]", unit, count.Text() + " entries", p);
   }
+  void Phasor(std::string_view key, const std::complex<double>&, std::string_view unit, Limits parts = {},
+              Presence p = Presence::kRequired) {
+    Add(key, "[re, im]", unit, parts.Text(), p);
+  }
+  void Phasors(std::string_view key, const Eigen::VectorXcd&, std::string_view unit, Limits parts, Count count,
+               Presence p = Presence::kRequired) {
+    Add(key, "[[re, im]]", unit, fmt::format("{}; {} entries", parts.Text(), count.Text()), p);
+  }
+  void Matrix(std::string_view key, const Eigen::MatrixXd&, std::string_view unit, Limits limits, Count rows,
+              Count columns, Presence p = Presence::kRequired) {
+    Add(key, "[[number]]", unit, fmt::format("{}; {} rows of {} entries", limits.Text(), rows.Text(), columns.Text()),
+        p);
+  }
   void Texts(std::string_view key, const std::vector<std::string>&, Count count, TextRule = TextRule::kAny,
              Presence p = Presence::kRequired) {
     Add(key, "[string]", "", count.Text() + " entries", p);
   }
   template <typename T, typename F = DescribeByLookup>
   void Object(std::string_view key, const T&, Presence p = Presence::kRequired, F describe = {}) {
+    Add(key, "object", "", "", p);
+    Nested<T>(Path(key) + ".", describe);
+  }
+  template <typename T, typename F = DescribeByLookup>
+  void Object(std::string_view key, const std::optional<T>&, Presence p = Presence::kOptional, F describe = {}) {
     Add(key, "object", "", "", p);
     Nested<T>(Path(key) + ".", describe);
   }
@@ -507,7 +614,7 @@ class Documenter {
  private:
   std::string Path(std::string_view key) const { return prefix_ + std::string(key); }
   void Add(std::string_view key, std::string type, std::string_view unit, std::string range, Presence p) {
-    out_.push_back({Path(key), std::move(type), std::string(unit), std::move(range), p == Presence::kOptional});
+    out_.push_back({Path(key), std::move(type), std::string(unit), std::move(range), p != Presence::kRequired});
   }
   template <typename T, typename F>
   void Nested(std::string prefix, F& describe) {
