@@ -450,6 +450,8 @@ class Reader {
   // part of this object that breaks it ("" for the object itself).
   void Check(bool ok, std::string_view rule, const std::string& where = {}) const {
     if (ok) return;
+    // A misspelled key may be why the rule is broken: it is the news.
+    RefuseKeysOtherThan(declared_keys_());
     const std::string problem = "breaks the rule: " + std::string(rule);
     if (where.empty()) field_.Fail(problem);
     field_.FailBelow(where, problem);

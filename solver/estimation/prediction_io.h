@@ -25,6 +25,7 @@
 #include <string_view>
 #include <vector>
 
+#include "hb/json_schema.h"
 #include "hb/version.h"
 
 namespace beamid::solver {
@@ -69,6 +70,9 @@ struct PredictionFile {
   std::string compared_quantity;  // "displacement_m", "velocity_m_s" or "acceleration_m_s2"; "" without one
   std::vector<PredictionStep> steps;
 };
+
+// The fields of the file: path, type, unit, range (docs/formats.md).
+std::vector<schema::FieldDoc> PredictionFileFields();
 
 std::string PredictionFileToJson(const PredictionFile& file);
 // `source` names the text in messages (the file it came from).

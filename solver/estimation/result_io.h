@@ -12,10 +12,16 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
+
+#include "hb/json_schema.h"
 
 #include "solver/estimation/result_file.h"
 
 namespace beamid::solver {
+
+// The fields of the file: path, type, unit, range (docs/formats.md).
+std::vector<schema::FieldDoc> ResultFileFields();
 
 std::string ResultFileToJson(const ResultFile& result);
 // `source` names the text in messages (the file it came from).

@@ -252,5 +252,41 @@ TEST(PredictionFile, AFieldOfTheWrongTypeIsRefusedNamingTheFileAndTheField) {
   }
 }
 
+TEST(PredictionFile, AComparisonMustBeWholeAndInTheFilesQuantity) {
+  struct Case {
+    std::function<void(nlohmann::json&)> damage;
+    const char* message;
+  };
+  const Case cases[] = {
+      // measured without its prediction and error
+      {[](nlohmann::json& j) {
+         j["steps"][0]["harmonics"][0].erase("predicted_velocity_m_s");
+         j["steps"][0]["harmonics"][0].erase("relative_error");
+       },
+       "field \"steps[0].harmonics[0]\" breaks the rule: measured_<q>, predicted_<q> and relative_error are there "
+       "together"},
+      // another quantity than the file's compared_quantity
+      {[](nlohmann::json& j) {
+         auto& h = j["steps"][1]["harmonics"][1];
+         h["measured_displacement_m"] = h["measured_velocity_m_s"];
+         h.erase("measured_velocity_m_s");
+       },
+       "field \"steps[1].harmonics[1].measured_displacement_m\" is not a field here"},
+      {[](nlohmann::json& j) { j["compared_quantity"] = "force_N"; },
+       "field \"compared_quantity\" breaks the rule: compared_quantity is displacement_m, velocity_m_s, "
+       "acceleration_m_s2 or \"\""},
+      {[](nlohmann::json& j) { j["model"] = "duffing"; }, "field \"model\" breaks the rule: model names a model family"},
+      {[](nlohmann::json& j) { j["steps"][0]["harmonics"][2]["displacement_std_m"][1] = -1e-9; },
+       "field \"steps[0].harmonics[2].displacement_std_m[1]\" = -1e-09 lies outside ≥ 0"},
+      {[](nlohmann::json& j) { j["steps"][0]["harmonics"][2]["k"] = 0; },
+       "field \"steps[0].harmonics[2].k\" = 0 lies outside 1 .. 50"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.message);
+    EXPECT_THAT(InputErrorOf([&] { PredictionFileFromJson(Damaged(c.damage), "out/p.json"); }),
+                HasSubstr("out/p.json: " + std::string(c.message)));
+  }
+}
+
 }  // namespace
 }  // namespace beamid::solver

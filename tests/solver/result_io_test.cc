@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -430,6 +431,16 @@ TEST(ResultFile, EveryFieldSurvivesTheTextAndBackAndTheTextIsStable) {
     ExpectSame(original, read);
     EXPECT_EQ(ResultFileToJson(read), text);
   }
+}
+
+// The file of a real 3-step run (the fuzz seed; the tests run in the source
+// folder), written by the writer before the declaration: the same text.
+TEST(ResultFile, ARealRunsFileReadsAndIsWrittenBackAsTheSameText) {
+  const std::string seed = "tests/fuzz/seeds/result_json_fuzzer/result.json";
+  std::ifstream in(seed);
+  ASSERT_TRUE(in) << seed;
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(ResultFileToJson(ResultFileFromJson(text, seed)), text);
 }
 
 TEST(ResultFile, WritesTheVersionTheStateOfItsKindAndNullForNaN) {
