@@ -19,6 +19,7 @@
 
 #include "hb/errors.h"
 #include "tests/support/same_value.h"
+#include "tests/support/schema_checks.h"
 #include "tests/support/temp_path.h"
 
 #include "tests/support/expect_refused.h"
@@ -250,6 +251,15 @@ TEST(PredictionFile, AFieldOfTheWrongTypeIsRefusedNamingTheFileAndTheField) {
     EXPECT_THAT(message, HasSubstr("out/p.json: field \"" + std::string(c.field) + "\" " + c.problem));
     EXPECT_THAT(message, HasSubstr("Fix: "));
   }
+}
+
+TEST(PredictionFile, TheDeclarationHoldsForEveryField) {
+  beamid::testing::ExpectDeclarationHolds({
+      .fields = PredictionFileFields(),
+      .sample = PredictionFileToJson(Filled()),
+      .read = [](const std::string& text) { PredictionFileFromJson(text, "x.json"); },
+      .rewrite = [](const std::string& text) { return PredictionFileToJson(PredictionFileFromJson(text, "x.json")); },
+  });
 }
 
 TEST(PredictionFile, AComparisonMustBeWholeAndInTheFilesQuantity) {

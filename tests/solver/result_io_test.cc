@@ -21,6 +21,7 @@
 #include "hb/errors.h"
 #include "solver/estimation/prediction.h"
 #include "tests/support/same_value.h"
+#include "tests/support/schema_checks.h"
 #include "tests/support/temp_path.h"
 
 namespace beamid::solver {
@@ -441,6 +442,18 @@ TEST(ResultFile, ARealRunsFileReadsAndIsWrittenBackAsTheSameText) {
   ASSERT_TRUE(in) << seed;
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_EQ(ResultFileToJson(ResultFileFromJson(text, seed)), text);
+}
+
+TEST(ResultFile, TheDeclarationHoldsForEveryField) {
+  for (const ResultFile& sample : {HarmonicBalanceResult(), MultipleScalesResult()}) {
+    SCOPED_TRACE(sample.model.kind);
+    beamid::testing::ExpectDeclarationHolds({
+        .fields = ResultFileFields(),
+        .sample = ResultFileToJson(sample),
+        .read = [](const std::string& text) { ResultFileFromJson(text, "x.json"); },
+        .rewrite = [](const std::string& text) { return ResultFileToJson(ResultFileFromJson(text, "x.json")); },
+    });
+  }
 }
 
 TEST(ResultFile, WritesTheVersionTheStateOfItsKindAndNullForNaN) {
