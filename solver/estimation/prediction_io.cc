@@ -121,7 +121,7 @@ void Describe(auto& io, schema::Like<PredictionFile> auto& f) {
   io.Number("position_m", f.position_m, "m", schema::NonNegative());
   io.Text("compared_channel", f.compared_channel);
   // Files of the earlier writer lack it: the reader takes it from the keys.
-  io.Text("compared_quantity", f.compared_quantity);
+  io.Text("compared_quantity", f.compared_quantity, TextRule::kAny, kOptional);
   io.Check(KnownQuantity(f.compared_quantity),
            "compared_quantity is displacement_m, velocity_m_s, acceleration_m_s2 or \"\"", "compared_quantity");
   // The documentation names the compared quantity <q>.
