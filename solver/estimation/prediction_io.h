@@ -14,6 +14,8 @@
 // "campaign_sha256" (the identified campaign's content hash, when the result
 // has one); a file without them (an earlier writer's) reads, the quantity
 // taken from the keys.
+// One declaration of its fields (prediction_io.cc, hb/json_schema.h) drives
+// the writer, the reader and the field table of docs/formats.md.
 // JSON has no NaN: a number that is not finite is written as null and read
 // back as NaN. Reading throws InputError naming the file, the field (e.g.
 // "steps[3].harmonics[0].displacement_m") and the fix.

@@ -322,7 +322,8 @@ void Describe(auto& io, schema::Like<ResultFile> auto& f) {
   }
   io.Texts("linear_parameters", f.linear_parameters, kMaxParameters, TextRule::kNotEmpty);
   const auto out_of_range = ParameterOutOfRange(f);
-  io.Check(!out_of_range, out_of_range ? out_of_range->first : "a parameter lies in the physical range identify fits it in",
+  io.Check(!out_of_range,
+           out_of_range ? out_of_range->first : "a parameter lies in the physical range identify fits it in",
            out_of_range ? "parameters." + out_of_range->second + ".value" : std::string());
 
   const schema::Count per_parameter = schema::Count::Exactly(f.parameters.size(), "one per parameter");
@@ -343,7 +344,8 @@ void Describe(auto& io, schema::Like<ResultFile> auto& f) {
              PerHarmonic<Io>(c.harmonics, harmonics.size());
              channel_io.Check(c.harmonics.size() == harmonics.size(), "one entry per fitted harmonic");
              for (std::size_t k = 0; k < harmonics.size(); ++k)
-               channel_io.Keyed(harmonics[k], Entry(c.harmonics, k), &LevelQuality::level, kMaxLevels, Presence::kRequired,
+               channel_io.Keyed(harmonics[k], Entry(c.harmonics, k), &LevelQuality::level, kMaxLevels,
+                                Presence::kRequired,
                                 [](auto& level_io, auto& q) {
                                   level_io.Number("relative_rms_error", q.relative_rms_error, "1",
                                                   schema::NonNegative().OrNull());
