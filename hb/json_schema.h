@@ -44,6 +44,7 @@
 #include <utility>
 #include <vector>
 
+#include <Eigen/Core>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -96,8 +97,22 @@ constexpr Limits NonNegative() { return {.min = 0.0}; }
 constexpr Limits Probability() { return {.min = 0.0, .max = 1.0}; }
 constexpr Limits Between(double min, double max) { return {.min = min, .max = max}; }
 
-enum class Presence { kRequired, kOptional };
+// kOmittedWhenEmpty: optional, and the writer leaves it out when it is
+// empty (an empty string or list, an optional without value), as files
+// written before the field existed lack it.
+enum class Presence { kRequired, kOptional, kOmittedWhenEmpty };
 constexpr Presence kOptional = Presence::kOptional;
+constexpr Presence kOmittedWhenEmpty = Presence::kOmittedWhenEmpty;
+
+template <typename T>
+bool IsEmpty(const T& v) {
+  if constexpr (requires { v.has_value(); })
+    return !v.has_value();
+  else if constexpr (requires { v.empty(); })
+    return v.empty();
+  else
+    return false;
+}
 
 // A string field's rule. Text from a file can reach a plot's labels and a
 // terminal: a control character is refused everywhere.
@@ -175,8 +190,8 @@ class Writer {
     Put(key, v);
   }
   void Boolean(std::string_view key, const bool& v, Presence = Presence::kRequired) { Put(key, v); }
-  void Text(std::string_view key, const std::string& v, TextRule = TextRule::kAny, Presence = Presence::kRequired) {
-    Put(key, v);
+  void Text(std::string_view key, const std::string& v, TextRule = TextRule::kAny, Presence p = Presence::kRequired) {
+    if (!Omitted(v, p)) Put(key, v);
   }
   template <typename E, std::size_t N>
   void Choice(std::string_view key, const E& v, const Name<E> (&names)[N], Presence = Presence::kRequired) {
@@ -198,14 +213,40 @@ class Writer {
     for (const auto& p : v) list.push_back(Json::array({NumberJson(p.real()), NumberJson(p.imag())}));
     Put(key, std::move(list));
   }
+  // One phasor [re, im]; `parts` is the range of re and im.
+  void Phasor(std::string_view key, const std::complex<double>& v, std::string_view /*unit*/, Limits /*parts*/ = {},
+              Presence = Presence::kRequired) {
+    Put(key, Json::array({NumberJson(v.real()), NumberJson(v.imag())}));
+  }
+  void Phasors(std::string_view key, const Eigen::VectorXcd& v, std::string_view /*unit*/, Limits /*parts*/,
+               Count count, Presence = Presence::kRequired) {
+    CheckCount(key, static_cast<std::size_t>(v.size()), count);
+    Json list = Json::array();
+    for (const auto& p : v) list.push_back(Json::array({NumberJson(p.real()), NumberJson(p.imag())}));
+    Put(key, std::move(list));
+  }
+  // A matrix as a list of rows.
+  void Matrix(std::string_view key, const Eigen::MatrixXd& m, std::string_view /*unit*/, Limits, Count rows,
+              Count columns, Presence = Presence::kRequired) {
+    CheckCount(key, static_cast<std::size_t>(m.rows()), rows);
+    if (m.rows() > 0) CheckCount(key, static_cast<std::size_t>(m.cols()), columns);
+    Json out = Json::array();
+    for (Eigen::Index r = 0; r < m.rows(); ++r) {
+      Json row = Json::array();
+      for (Eigen::Index c = 0; c < m.cols(); ++c) row.push_back(NumberJson(m(r, c)));
+      out.push_back(std::move(row));
+    }
+    Put(key, std::move(out));
+  }
   void Texts(std::string_view key, const std::vector<std::string>& v, Count count, TextRule = TextRule::kAny,
-             Presence = Presence::kRequired) {
+             Presence p = Presence::kRequired) {
+    if (Omitted(v, p)) return;
     CheckCount(key, v.size(), count);
     Put(key, Json(v));
   }
   template <typename T, typename F = DescribeByLookup>
-  void Object(std::string_view key, const T& v, Presence = Presence::kRequired, F describe = {}) {
-    Put(key, Written(v, describe));
+  void Object(std::string_view key, const T& v, Presence p = Presence::kRequired, F describe = {}) {
+    if (!Omitted(v, p)) Put(key, Written(v, describe));
   }
   // An object, or null where the value's `present` member says there is
   // none (an estimate that could not be made).
@@ -215,8 +256,9 @@ class Writer {
     Put(key, v.*present ? Written(v, describe) : Json(nullptr));
   }
   template <typename T, typename F = DescribeByLookup>
-  void List(std::string_view key, const std::vector<T>& v, Count count, Presence = Presence::kRequired,
+  void List(std::string_view key, const std::vector<T>& v, Count count, Presence p = Presence::kRequired,
             F describe = {}) {
+    if (Omitted(v, p)) return;
     CheckCount(key, v.size(), count);
     Json list = Json::array();
     for (const T& element : v) list.push_back(Written(element, describe));
@@ -226,7 +268,8 @@ class Writer {
   // element's own declaration leaves that member out.
   template <typename T, typename F = DescribeByLookup>
   void Keyed(std::string_view key, const std::vector<T>& v, std::string T::*name, Count /*count*/,
-             Presence = Presence::kRequired, F describe = {}) {
+             Presence p = Presence::kRequired, F describe = {}) {
+    if (Omitted(v, p)) return;
     Json object = Json::object();
     for (const T& element : v) object[element.*name] = Written(element, describe);
     Put(key, std::move(object));
@@ -279,6 +322,10 @@ class Writer {
                              " entries, not " + count.Text());
   }
   static Json NumberJson(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+  template <typename T>
+  static bool Omitted(const T& v, Presence p) {
+    return p == Presence::kOmittedWhenEmpty && IsEmpty(v);
+  }
   void Put(std::string_view key, Json value) { out_[std::string(key)] = std::move(value); }
   Json& out_;
 };
@@ -365,6 +412,32 @@ class Reader {
     const JsonField f = Sized(Field(key), count);
     v.clear();
     for (std::size_t i = 0; i < f.Size(); ++i) v.push_back(f.At(i).Phasor());
+  }
+  void Phasor(std::string_view key, std::complex<double>& v, std::string_view /*unit*/, Limits parts = {},
+              Presence presence = Presence::kRequired) {
+    if (Present(key, presence)) v = ReadPhasor(Field(key), parts);
+  }
+  void Phasors(std::string_view key, Eigen::VectorXcd& v, std::string_view /*unit*/, Limits parts, Count count,
+               Presence presence = Presence::kRequired) {
+    if (!Present(key, presence)) return;
+    const JsonField f = Sized(Field(key), count);
+    v.resize(static_cast<Eigen::Index>(f.Size()));
+    for (std::size_t i = 0; i < f.Size(); ++i) v[static_cast<Eigen::Index>(i)] = ReadPhasor(f.At(i), parts);
+  }
+  void Matrix(std::string_view key, Eigen::MatrixXd& m, std::string_view /*unit*/, Limits limits, Count rows,
+              Count columns, Presence presence = Presence::kRequired) {
+    if (!Present(key, presence)) return;
+    const JsonField f = Sized(Field(key), rows);
+    // Every row as long as the first, allocated once the first is checked.
+    for (std::size_t r = 0; r < f.Size(); ++r) {
+      const JsonField row = Sized(f.At(r), columns);
+      if (r == 0) m.resize(static_cast<Eigen::Index>(f.Size()), static_cast<Eigen::Index>(row.Size()));
+      if (row.Size() != static_cast<std::size_t>(m.cols()))
+        row.Fail(fmt::format("holds {} entries, not {} as the first row", row.Size(), m.cols()));
+      for (std::size_t c = 0; c < row.Size(); ++c)
+        m(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = ReadNumber(row.At(c), limits);
+    }
+    if (f.Size() == 0) m.resize(0, 0);
   }
   void Texts(std::string_view key, std::vector<std::string>& v, Count count, TextRule rule = TextRule::kAny,
              Presence presence = Presence::kRequired) {
@@ -454,6 +527,8 @@ class Reader {
   // part of this object that breaks it ("" for the object itself).
   void Check(bool ok, std::string_view rule, const std::string& where = {}) const {
     if (ok) return;
+    // A misspelled key may be why the rule is broken: it is the news.
+    RefuseKeysOtherThan(declared_keys_());
     const std::string problem = "breaks the rule: " + std::string(rule);
     if (where.empty()) field_.Fail(problem);
     field_.FailBelow(where, problem);
@@ -474,7 +549,7 @@ class Reader {
   bool Present(std::string_view key, Presence presence) {
     keys_.emplace_back(key);
     if (field_.Has(std::string(key))) return true;
-    if (presence == Presence::kOptional) return false;
+    if (presence != Presence::kRequired) return false;
     // "completed" where "complete" is declared: the misspelling is the news.
     RefuseKeysOtherThan(declared_keys_());
     Field(key);  // "is missing"
@@ -495,6 +570,10 @@ class Reader {
     const double v = limits.nullable ? f.Number() : f.NumberNotNull();
     if (!limits.Holds(v)) f.Fail(fmt::format("= {} lies outside {}", v, limits.Text()));
     return v;
+  }
+  static std::complex<double> ReadPhasor(const JsonField& f, const Limits& parts) {
+    if (f.Size() != 2) f.Fail("must be [re, im], not " + std::to_string(f.Size()) + " numbers");
+    return {ReadNumber(f.At(0), parts), ReadNumber(f.At(1), parts)};
   }
   static std::string ReadText(const JsonField& f, TextRule rule) {
     std::string text = f.String();
@@ -586,6 +665,23 @@ class Documenter {
                Presence p = Presence::kRequired) {
     Add(key, "[[re, im]]", unit, count.Text() + " entries", p).count_min = count.min;
   }
+  void Phasor(std::string_view key, const std::complex<double>&, std::string_view unit, Limits parts = {},
+              Presence p = Presence::kRequired) {
+    Add(key, "[re, im]", unit, parts.Text(), p).limits = parts;
+  }
+  void Phasors(std::string_view key, const Eigen::VectorXcd&, std::string_view unit, Limits parts, Count count,
+               Presence p = Presence::kRequired) {
+    FieldDoc& f = Add(key, "[[re, im]]", unit, fmt::format("{}; {} entries", parts.Text(), count.Text()), p);
+    f.limits = parts;
+    f.count_min = count.min;
+  }
+  void Matrix(std::string_view key, const Eigen::MatrixXd&, std::string_view unit, Limits limits, Count rows,
+              Count columns, Presence p = Presence::kRequired) {
+    FieldDoc& f = Add(key, "[[number]]", unit,
+                      fmt::format("{}; {} rows of {} entries", limits.Text(), rows.Text(), columns.Text()), p);
+    f.limits = limits;
+    f.count_min = rows.min;
+  }
   void Texts(std::string_view key, const std::vector<std::string>&, Count count, TextRule = TextRule::kAny,
              Presence p = Presence::kRequired) {
     Add(key, "[string]", "", count.Text() + " entries", p).count_min = count.min;
@@ -645,7 +741,7 @@ class Documenter {
                     .type = std::move(type),
                     .unit = std::string(unit),
                     .range = std::move(range),
-                    .optional = p == Presence::kOptional});
+                    .optional = p != Presence::kRequired});
     return out_.back();
   }
   template <typename T, typename F>

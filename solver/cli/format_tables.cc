@@ -5,6 +5,8 @@
 #include "solver/backbone/measured_backbone_io.h"
 #include "hb/model_file.h"
 #include "hb/scenario.h"
+#include "solver/estimation/prediction_io.h"
+#include "solver/estimation/result_io.h"
 
 namespace beamid::cli {
 
@@ -17,6 +19,10 @@ const std::vector<DocumentedFormat>& DocumentedFormats() {
        solver::MeasuredBackboneFileFields},
       {std::string(hb::kModelFileFormat), "Model file (`frc`, `backbone`; README, Model files)", hb::ModelFileFields},
       {std::string(hb::kScenarioFormat), "Simulation scenario (`simulate`; docs/simulator.md)", hb::ScenarioFields},
+      // estimation: result.json and the prediction file
+      {std::string(solver::kResultFormat), "Identification result (`beamid identify`, result.json)",
+       solver::ResultFileFields},
+      {std::string(solver::kPredictionFormat), "Prediction (`beamid predict`)", solver::PredictionFileFields},
   };
   return formats;
 }

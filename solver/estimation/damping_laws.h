@@ -52,6 +52,8 @@ struct ModelFormInterval {
 struct DampingLawEnvelope {
   std::vector<DampingLawFit> laws;           // [0]: the fitted law (loss_factor); empty: not computed
   std::vector<ModelFormInterval> intervals;  // the parameters every law shares, in the fit's order
+
+  bool empty() const { return laws.empty(); }  // not computed (result.json then lacks it)
 };
 
 // The laws a damping-law envelope refits.

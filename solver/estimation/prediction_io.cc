@@ -2,173 +2,154 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
-#include <initializer_list>
+#include <iterator>
 #include <limits>
 #include <string_view>
+#include <type_traits>
 
 #include <nlohmann/json.hpp>
 
-#include "hb/json_field.h"
-#include "solver/estimation/model_family.h"
 #include "hb/errors.h"
+#include "hb/json_field.h"
+#include "hb/option_checks.h"
 #include "hb/text_file.h"
+#include "solver/estimation/model_family.h"
 
 namespace beamid::solver {
 namespace {
 
-// Insertion order is kept so that a file read and written again is the same text.
-using Json = nlohmann::ordered_json;
+using schema::kOmittedWhenEmpty;
+using schema::kOptional;
+using schema::Presence;
+using schema::TextRule;
 
-constexpr const char* kFix = "give a prediction file written by 'beamid predict', or repair that field";
+constexpr schema::Format kFormat{kPredictionFormat, "prediction",
+                                 "give a prediction file written by 'beamid predict', or repair that field"};
 constexpr std::string_view kQuantities[] = {"displacement_m", "velocity_m_s", "acceleration_m_s2"};
 
-// ---------------------------------------------------------------- writing
+// Bounds on what a file can make the reader hold: predict writes one step
+// per fitted step and one period of a few hundred samples.
+constexpr std::size_t kMaxSteps = 1'000'000;
+constexpr std::size_t kMaxSamples = 1'000'000;
 
-Json Number(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
-Json Pair(double a, double b) { return Json::array({Number(a), Number(b)}); }
-Json Phasor(std::complex<double> z) { return Pair(z.real(), z.imag()); }
-Json Numbers(const std::vector<double>& values) {
-  Json out = Json::array();
-  for (double v : values) out.push_back(Number(v));
-  return out;
-}
+template <typename Io>
+constexpr bool kWriting = std::is_same_v<std::remove_const_t<Io>, schema::Writer>;
+template <typename Io>
+constexpr bool kDocumenting = std::is_same_v<std::remove_const_t<Io>, schema::Documenter>;
 
-Json StepToJson(const PredictionStep& s, const std::string& quantity) {
-  Json harmonics = Json::array();
-  for (const PredictionHarmonic& h : s.harmonics) {
-    Json j = {{"k", h.k},
-              {"displacement_m", Phasor(h.displacement_m)},
-              {"displacement_std_m", Pair(h.displacement_std_real_m, h.displacement_std_imag_m)},
-              {"acceleration_m_s2", Phasor(h.acceleration_m_s2)},
-              {"acceleration_amplitude_m_s2", Number(h.acceleration_amplitude_m_s2)}};
-    if (h.compared) {
-      j["measured_" + quantity] = Phasor(h.measured);
-      j["predicted_" + quantity] = Phasor(h.predicted);
-      j["relative_error"] = Number(h.relative_error);
-    }
-    harmonics.push_back(j);
+// A value JSON cannot hold (1e400 is refused): on reading, what an absent
+// optional phasor leaves behind.
+constexpr double kAbsent = -std::numeric_limits<double>::infinity();
+
+bool KnownFamily(const std::string& kind) {
+  try {
+    FindModelFamily(kind);
+    return true;
+  } catch (const InputError&) {
+    return false;
   }
-  return {{"level", s.level},
-          {"file", s.file},
-          {"frequency_Hz", Number(s.frequency_hz)},
-          {"converged", s.converged},
-          {"harmonics", harmonics},
-          {"time_s", Numbers(s.time_s)},
-          {"acceleration_m_s2", Numbers(s.acceleration_m_s2)},
-          {"acceleration_std_m_s2", Numbers(s.acceleration_std_m_s2)}};
 }
 
-// ---------------------------------------------------------------- reading
+bool KnownQuantity(const std::string& q) {
+  return q.empty() || std::find(std::begin(kQuantities), std::end(kQuantities), q) != std::end(kQuantities);
+}
 
-using Field = JsonField;
-
-
-// The quantity of the harmonic's measured_<q> key, or "" when it has none.
-std::string ComparedQuantity(const Field& h) {
-  for (std::string_view q : kQuantities)
-    if (h.Has("measured_" + std::string(q))) return std::string(q);
+// The quantity of the first "measured_<q>" key of a harmonic, or "": files of
+// the earlier writer name it only there.
+std::string QuantityOfTheKeys(const nlohmann::ordered_json& root) {
+  const auto steps = root.find("steps");
+  if (steps == root.end() || !steps->is_array()) return "";
+  for (const auto& step : *steps) {
+    if (!step.is_object() || !step.contains("harmonics") || !step["harmonics"].is_array()) continue;
+    for (const auto& h : step["harmonics"]) {
+      if (!h.is_object()) continue;
+      for (std::string_view q : kQuantities)
+        if (h.contains("measured_" + std::string(q))) return std::string(q);
+    }
+  }
   return "";
 }
 
-PredictionStep StepFromJson(const Field& f, std::string& quantity) {
-  f.OnlyKeys({"level", "file", "frequency_Hz", "converged", "harmonics", "time_s", "acceleration_m_s2",
-              "acceleration_std_m_s2"});
-  PredictionStep s;
-  s.level = f.String("level");
-  s.file = f.String("file");
-  s.frequency_hz = f.Positive("frequency_Hz");
-  s.converged = f.Boolean("converged");
-  const Field harmonics = f.At("harmonics");
-  for (std::size_t i = 0; i < harmonics.Size(); ++i) {
-    const Field h = harmonics.At(i);
-    PredictionHarmonic out;
-    const std::string found = ComparedQuantity(h);
-    if (!found.empty() && quantity.empty()) quantity = found;
-    if (!found.empty() && found != quantity)
-      h.Fail("compares " + found + ", not " + quantity + " as the rest of the file",
-             "give a prediction file written by 'beamid predict' (one compared channel)");
-    out.compared = !found.empty();
-    if (out.compared) {
-      h.OnlyKeys({"k", "displacement_m", "displacement_std_m", "acceleration_m_s2", "acceleration_amplitude_m_s2",
-                  "measured_" + found, "predicted_" + found, "relative_error"});
-      out.measured = h.At("measured_" + found).Phasor();
-      out.predicted = h.At("predicted_" + found).Phasor();
-      out.relative_error = h.Number("relative_error");
-    } else {
-      h.OnlyKeys({"k", "displacement_m", "displacement_std_m", "acceleration_m_s2", "acceleration_amplitude_m_s2"});
-    }
-    out.k = h.Count("k", 50);
-    out.displacement_m = h.At("displacement_m").Phasor();
-    const Field std = h.At("displacement_std_m");
-    if (std.Size() != 2) std.Fail("must be [std of re, std of im]");
-    out.displacement_std_real_m = std.At(0).NonNegative();
-    out.displacement_std_imag_m = std.At(1).NonNegative();
-    out.acceleration_m_s2 = h.At("acceleration_m_s2").Phasor();
-    out.acceleration_amplitude_m_s2 = h.Number("acceleration_amplitude_m_s2");
-    s.harmonics.push_back(out);
+// A harmonic; its comparison keys name the file's compared quantity.
+void DescribeHarmonic(auto& io, schema::Like<PredictionHarmonic> auto& h, const std::string& quantity) {
+  using Io = std::remove_reference_t<decltype(io)>;
+  io.Integer("k", h.k, 1, option_checks::kMaxHarmonics);
+  io.Phasor("displacement_m", h.displacement_m, "m", schema::Any().OrNull());
+  std::vector<double> std = {h.displacement_std_real_m, h.displacement_std_imag_m};
+  io.Numbers("displacement_std_m", std, "m", schema::NonNegative().OrNull(),
+             schema::Count::Exactly(2, "2 (std of re, std of im)"));
+  io.Phasor("acceleration_m_s2", h.acceleration_m_s2, "m/s²", schema::Any().OrNull());
+  io.Number("acceleration_amplitude_m_s2", h.acceleration_amplitude_m_s2, "m/s²", schema::NonNegative().OrNull());
+  if constexpr (Io::kReading) {
+    h.displacement_std_real_m = std[0];
+    h.displacement_std_imag_m = std[1];
+    h.measured = h.predicted = {kAbsent, kAbsent};
+    h.relative_error = kAbsent;
   }
-  s.time_s = f.At("time_s").Numbers();
-  s.acceleration_m_s2 = f.At("acceleration_m_s2").Numbers();
-  s.acceleration_std_m_s2 = f.At("acceleration_std_m_s2").Numbers();
-  return s;
+  // The comparison with the channel, in its quantity q, where it measured
+  // the harmonic; written only there.
+  const std::string& q = quantity;
+  if (!q.empty() && (!kWriting<Io> || h.compared)) {
+    io.Phasor("measured_" + q, h.measured, "of <q>", schema::Any().OrNull(), kOptional);
+    io.Phasor("predicted_" + q, h.predicted, "of <q>", schema::Any().OrNull(), kOptional);
+    io.Number("relative_error", h.relative_error, "1", schema::NonNegative().OrNull(), kOptional);
+  }
+  bool together = true;
+  if constexpr (Io::kReading) {
+    const bool measured = h.measured.real() != kAbsent, predicted = h.predicted.real() != kAbsent,
+               error = h.relative_error != kAbsent;
+    together = measured == predicted && predicted == error;
+    h.compared = measured;
+    if (!measured) h.measured = {};
+    if (!predicted) h.predicted = {};
+    if (!error) h.relative_error = 0.0;
+  }
+  io.Check(together, "measured_<q>, predicted_<q> and relative_error are there together or not at all");
 }
 
 }  // namespace
 
-std::string PredictionFileToJson(const PredictionFile& file) {
-  Json steps = Json::array();
-  for (const PredictionStep& s : file.steps) steps.push_back(StepToJson(s, file.compared_quantity));
-  Json root = {{"format", std::string(kPredictionFormat)},
-                     {"command", "predict"},
-                     {"beamid_version", file.beamid_version},
-                     {"result", file.result_file},
-                     {"model", file.model_kind},
-                     {"position_m", Number(file.position_m)},
-                     {"compared_channel", file.compared_channel},
-                     {"compared_quantity", file.compared_quantity},
-                     {"steps", steps}};
-  if (!file.campaign_sha256.empty()) root["campaign_sha256"] = file.campaign_sha256;
-  return root.dump(1) + "\n";
+// The declaration of the prediction file (hb/json_schema.h): its writer,
+// reader and documentation.
+void Describe(auto& io, schema::Like<PredictionFile> auto& f) {
+  io.Constant("format", kPredictionFormat, kOptional);  // the earlier writer had only "command"
+  io.Constant("command", "predict");
+  io.Text("beamid_version", f.beamid_version, TextRule::kAny, kOptional);
+  io.Text("result", f.result_file);
+  io.Text("model", f.model_kind, TextRule::kNotEmpty);
+  io.Check(KnownFamily(f.model_kind), "model names a model family (" + ModelFamilyNames() + ")", "model");
+  io.Number("position_m", f.position_m, "m", schema::NonNegative());
+  io.Text("compared_channel", f.compared_channel);
+  // Files of the earlier writer lack it: the reader takes it from the keys.
+  io.Text("compared_quantity", f.compared_quantity, TextRule::kAny, kOptional);
+  io.Check(KnownQuantity(f.compared_quantity),
+           "compared_quantity is displacement_m, velocity_m_s, acceleration_m_s2 or \"\"", "compared_quantity");
+  // The documentation names the compared quantity <q>.
+  const std::string quantity = kDocumenting<std::remove_reference_t<decltype(io)>> ? "<q>" : f.compared_quantity;
+  io.List("steps", f.steps, kMaxSteps, Presence::kRequired, [&](auto& step_io, auto& s) {
+    step_io.Text("level", s.level);
+    step_io.Text("file", s.file);
+    step_io.Number("frequency_Hz", s.frequency_hz, "Hz", schema::Positive().OrNull());
+    step_io.Boolean("converged", s.converged);
+    step_io.List("harmonics", s.harmonics, option_checks::kMaxHarmonics, Presence::kRequired,
+                 [&](auto& h_io, auto& h) { DescribeHarmonic(h_io, h, quantity); });
+    step_io.Numbers("time_s", s.time_s, "s", schema::Any().OrNull(), kMaxSamples);
+    step_io.Numbers("acceleration_m_s2", s.acceleration_m_s2, "m/s²", schema::Any().OrNull(), kMaxSamples);
+    step_io.Numbers("acceleration_std_m_s2", s.acceleration_std_m_s2, "m/s²", schema::NonNegative().OrNull(),
+                    kMaxSamples);
+  });
+  io.Text("campaign_sha256", f.campaign_sha256, TextRule::kAny, kOmittedWhenEmpty);
 }
 
+std::vector<schema::FieldDoc> PredictionFileFields() { return schema::Fields<PredictionFile>(); }
+
+std::string PredictionFileToJson(const PredictionFile& file) { return schema::ToJson(file); }
+
 PredictionFile PredictionFileFromJson(const std::string& text, const std::string& source) {
-  const Json json = ParseJsonObject(text, source, "prediction", "give a prediction file written by 'beamid predict'");
-  const Field root(json, "", source, kPredictionFormat, kFix);
-  // The earlier writer had no "format", only "command".
-  if (root.Has("format")) {
-    const std::string format = root.String("format");
-    if (format != kPredictionFormat)
-      throw InputError(source + ": field \"format\" is \"" + format + "\", not \"" + std::string(kPredictionFormat) +
-                       "\". Fix: give a prediction file written by 'beamid predict'");
-  }
-  const std::string command = root.String("command");
-  if (command != "predict")
-    throw InputError(source + ": field \"command\" is \"" + command +
-                     "\", not \"predict\". Fix: give a prediction file written by 'beamid predict'");
-  root.OnlyKeys({"format", "command", "beamid_version", "result", "model", "position_m", "compared_channel",
-                 "compared_quantity", "steps", "campaign_sha256"});
+  nlohmann::ordered_json json = ParseJsonObject(text, source, kFormat.what, kFormat.fix);
+  if (!json.contains("compared_quantity")) json["compared_quantity"] = QuantityOfTheKeys(json);
   PredictionFile file;
-  file.beamid_version = root.Has("beamid_version") ? root.String("beamid_version") : "";
-  file.result_file = root.String("result");
-  if (root.Has("campaign_sha256")) file.campaign_sha256 = root.String("campaign_sha256");
-  file.model_kind = root.String("model");
-  try {
-    FindModelFamily(file.model_kind);
-  } catch (const InputError&) {
-    root.At("model").Fail("is \"" + file.model_kind + "\"", "give one of " + ModelFamilyNames());
-  }
-  file.position_m = root.Number("position_m");
-  file.compared_channel = root.String("compared_channel");
-  if (root.Has("compared_quantity")) {
-    const Field q = root.At("compared_quantity");
-    file.compared_quantity = q.String();
-    if (!file.compared_quantity.empty() &&
-        std::find(std::begin(kQuantities), std::end(kQuantities), file.compared_quantity) == std::end(kQuantities))
-      q.Fail("is \"" + file.compared_quantity + "\"", "give displacement_m, velocity_m_s, acceleration_m_s2 or \"\"");
-  }
-  const Field steps = root.At("steps");
-  for (std::size_t i = 0; i < steps.Size(); ++i) file.steps.push_back(StepFromJson(steps.At(i), file.compared_quantity));
+  schema::Reader::ReadInto(JsonField(json, "", source, kFormat.tag, kFormat.fix), file);
   return file;
 }
 

@@ -14,6 +14,8 @@
 // "campaign_sha256" (the identified campaign's content hash, when the result
 // has one); a file without them (an earlier writer's) reads, the quantity
 // taken from the keys.
+// One declaration of its fields (prediction_io.cc, hb/json_schema.h) drives
+// the writer, the reader and the field table of docs/formats.md.
 // JSON has no NaN: a number that is not finite is written as null and read
 // back as NaN. Reading throws InputError naming the file, the field (e.g.
 // "steps[3].harmonics[0].displacement_m") and the fix.
@@ -25,6 +27,7 @@
 #include <string_view>
 #include <vector>
 
+#include "hb/json_schema.h"
 #include "hb/version.h"
 
 namespace beamid::solver {
@@ -69,6 +72,9 @@ struct PredictionFile {
   std::string compared_quantity;  // "displacement_m", "velocity_m_s" or "acceleration_m_s2"; "" without one
   std::vector<PredictionStep> steps;
 };
+
+// The fields of the file: path, type, unit, range (docs/formats.md).
+std::vector<schema::FieldDoc> PredictionFileFields();
 
 std::string PredictionFileToJson(const PredictionFile& file);
 // `source` names the text in messages (the file it came from).

@@ -469,6 +469,26 @@ TEST_F(BadInput, EveryBadInputEndsWithExitTwoAndAMessageThatNamesItAndTheFix) {
        scenario_with("\"excitation\": {\"channel\": \"force\", \"position_m\": 0.57}",
                      "\"excitation\": {\"channel\": \"base\", \"quantity\": \"base_acceleration\"}"),
        "frc {d}/s.json -o {d}/f", {"s.json", "\"excitation.quantity\"", "drives the beam with a force", "Fix:"}},
+      // result.json, read from its declaration (solver/estimation/result_io.cc)
+      {"a result with a misspelled key",
+       [](const fs::path&, const fs::path& d) {
+         std::string result = ReadFile(root_ / "result.json");
+         const std::size_t at = result.find("\"minimum_decisive\"");
+         ASSERT_NE(at, std::string::npos);
+         WriteFile(d / "result.json", result.replace(at, 18, "\"minimum_decsive\""));
+       },
+       "predict {d}/result.json --x 0.3 -o {d}/pred.json",
+       {"result.json", "fit.minimum_decsive", "is not a field here", "Fix:"}},
+      {"a result with a correlation of 2",
+       [](const fs::path&, const fs::path& d) {
+         std::string result = ReadFile(root_ / "result.json");
+         const std::size_t key = result.find("\"correlation\"");
+         ASSERT_NE(key, std::string::npos);
+         const std::size_t row = result.find('[', result.find('[', key) + 1);
+         const std::size_t value = result.find_first_not_of(" \n", row + 1), end = result.find(',', value);
+         WriteFile(d / "result.json", result.replace(value, end - value, "2.0"));
+       },
+       "predict {d}/result.json --x 0.3 -o {d}/pred.json", {"result.json", "correlation[0][0]", "= 2 lies outside", "Fix:"}},
   };
   const fs::path clean = root_ / "clean", result = root_ / "result.json";
   for (std::size_t i = 0; i < rows.size(); ++i) {

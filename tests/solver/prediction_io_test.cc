@@ -19,6 +19,7 @@
 
 #include "hb/errors.h"
 #include "tests/support/same_value.h"
+#include "tests/support/schema_checks.h"
 #include "tests/support/temp_path.h"
 
 #include "tests/support/expect_refused.h"
@@ -249,6 +250,51 @@ TEST(PredictionFile, AFieldOfTheWrongTypeIsRefusedNamingTheFileAndTheField) {
     const std::string message = InputErrorOf([&] { PredictionFileFromJson(Damaged(c.damage), "out/p.json"); });
     EXPECT_THAT(message, HasSubstr("out/p.json: field \"" + std::string(c.field) + "\" " + c.problem));
     EXPECT_THAT(message, HasSubstr("Fix: "));
+  }
+}
+
+TEST(PredictionFile, TheDeclarationHoldsForEveryField) {
+  beamid::testing::ExpectDeclarationHolds({
+      .fields = PredictionFileFields(),
+      .sample = PredictionFileToJson(Filled()),
+      .read = [](const std::string& text) { PredictionFileFromJson(text, "x.json"); },
+      .rewrite = [](const std::string& text) { return PredictionFileToJson(PredictionFileFromJson(text, "x.json")); },
+  });
+}
+
+TEST(PredictionFile, AComparisonMustBeWholeAndInTheFilesQuantity) {
+  struct Case {
+    std::function<void(nlohmann::json&)> damage;
+    const char* message;
+  };
+  const Case cases[] = {
+      // measured without its prediction and error
+      {[](nlohmann::json& j) {
+         j["steps"][0]["harmonics"][0].erase("predicted_velocity_m_s");
+         j["steps"][0]["harmonics"][0].erase("relative_error");
+       },
+       "field \"steps[0].harmonics[0]\" breaks the rule: measured_<q>, predicted_<q> and relative_error are there "
+       "together"},
+      // another quantity than the file's compared_quantity
+      {[](nlohmann::json& j) {
+         auto& h = j["steps"][1]["harmonics"][1];
+         h["measured_displacement_m"] = h["measured_velocity_m_s"];
+         h.erase("measured_velocity_m_s");
+       },
+       "field \"steps[1].harmonics[1].measured_displacement_m\" is not a field here"},
+      {[](nlohmann::json& j) { j["compared_quantity"] = "force_N"; },
+       "field \"compared_quantity\" breaks the rule: compared_quantity is displacement_m, velocity_m_s, "
+       "acceleration_m_s2 or \"\""},
+      {[](nlohmann::json& j) { j["model"] = "duffing"; }, "field \"model\" breaks the rule: model names a model family"},
+      {[](nlohmann::json& j) { j["steps"][0]["harmonics"][2]["displacement_std_m"][1] = -1e-9; },
+       "field \"steps[0].harmonics[2].displacement_std_m[1]\" = -1e-09 lies outside ≥ 0"},
+      {[](nlohmann::json& j) { j["steps"][0]["harmonics"][2]["k"] = 0; },
+       "field \"steps[0].harmonics[2].k\" = 0 lies outside 1 .. 50"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.message);
+    EXPECT_THAT(InputErrorOf([&] { PredictionFileFromJson(Damaged(c.damage), "out/p.json"); }),
+                HasSubstr("out/p.json: " + std::string(c.message)));
   }
 }
 

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -20,6 +21,7 @@
 #include "hb/errors.h"
 #include "solver/estimation/prediction.h"
 #include "tests/support/same_value.h"
+#include "tests/support/schema_checks.h"
 #include "tests/support/temp_path.h"
 
 namespace beamid::solver {
@@ -432,6 +434,28 @@ TEST(ResultFile, EveryFieldSurvivesTheTextAndBackAndTheTextIsStable) {
   }
 }
 
+// The file of a real 3-step run (the fuzz seed; the tests run in the source
+// folder), written by the writer before the declaration: the same text.
+TEST(ResultFile, ARealRunsFileReadsAndIsWrittenBackAsTheSameText) {
+  const std::string seed = "tests/fuzz/seeds/result_json_fuzzer/result.json";
+  std::ifstream in(seed);
+  ASSERT_TRUE(in) << seed;
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(ResultFileToJson(ResultFileFromJson(text, seed)), text);
+}
+
+TEST(ResultFile, TheDeclarationHoldsForEveryField) {
+  for (const ResultFile& sample : {HarmonicBalanceResult(), MultipleScalesResult()}) {
+    SCOPED_TRACE(sample.model.kind);
+    beamid::testing::ExpectDeclarationHolds({
+        .fields = ResultFileFields(),
+        .sample = ResultFileToJson(sample),
+        .read = [](const std::string& text) { ResultFileFromJson(text, "x.json"); },
+        .rewrite = [](const std::string& text) { return ResultFileToJson(ResultFileFromJson(text, "x.json")); },
+    });
+  }
+}
+
 TEST(ResultFile, WritesTheVersionTheStateOfItsKindAndNullForNaN) {
   const std::string hb = ResultFileToJson(HarmonicBalanceResult());
   EXPECT_THAT(hb, HasSubstr("\"beamid_version\": \"9.8.7\""));
@@ -593,7 +617,7 @@ TEST(ResultFile, AWrongFormatOrNoJsonIsRefusedNamingTheFile) {
   std::string message = InputErrorOf([] {
     ResultFileFromJson(R"({"format": "beamid-phasors/1", "steps": []})", "out/phasors.json");
   });
-  EXPECT_THAT(message, HasSubstr("out/phasors.json: not a beamid result (format must be beamid-result/1)"));
+  EXPECT_THAT(message, HasSubstr("out/phasors.json: field \"format\" is \"beamid-phasors/1\", not \"beamid-result/1\""));
   message = InputErrorOf([] { ResultFileFromJson("[1, 2]", "list.json"); });
   EXPECT_THAT(message, HasSubstr("list.json: not a beamid result"));
   message = InputErrorOf([] { ResultFileFromJson(R"({"format": "beamid-result/1",)", "cut.json"); });
@@ -617,7 +641,8 @@ TEST(ResultFile, AMissingFieldIsRefusedNamingTheFileAndTheField) {
       {[](Json& j) { j["quality"]["acc1"].erase("h2"); }, "field \"quality.acc1.h2\" is missing"},
       {[](Json& j) { j["validation"]["acc3"]["steps"][0].erase("h3_predicted"); },
        "field \"validation.acc3.steps[0].h3_predicted\" is missing"},
-      {[](Json& j) { j["parameters"].erase("k3"); }, "field \"parameters\" holds 4 parameters but parameter_order names 5"},
+      {[](Json& j) { j["parameters"].erase("k3"); }, "field \"parameters\" breaks the rule: parameters holds exactly the parameters parameter_order names: it "
+       "holds 4, parameter_order names 5"},
       {[](Json& j) { j["campaign"].erase("name"); }, "field \"campaign.name\" is missing"},
   };
   for (const auto& c : cases) {
@@ -634,21 +659,21 @@ TEST(ResultFile, AFieldOfTheWrongTypeIsRefusedNamingTheFileAndTheField) {
     std::function<void(Json&)> edit;
     const char* message;
   } cases[] = {
-      {[](Json& j) { j["model"]["num_harmonics"] = "seven"; }, "field \"model.num_harmonics\" must be an integer, not a string"},
-      {[](Json& j) { j["model"]["num_fit_harmonics"] = 2.5; }, "field \"model.num_fit_harmonics\" must be an integer, not a number"},
-      {[](Json& j) { j["model"]["num_fit_harmonics"] = 8; }, "field \"model.num_fit_harmonics\" must lie in 1..num_harmonics (7)"},
-      {[](Json& j) { j["model"]["beam"]["length_m"] = -0.6; }, "field \"model.beam\" is not a beam's (beam: length_m"},
+      {[](Json& j) { j["model"]["num_harmonics"] = "seven"; }, "field \"model.num_harmonics\" must be an integer"},
+      {[](Json& j) { j["model"]["num_fit_harmonics"] = 2.5; }, "field \"model.num_fit_harmonics\" must be an integer"},
+      {[](Json& j) { j["model"]["num_fit_harmonics"] = 8; }, "field \"model.num_fit_harmonics\" breaks the rule: num_fit_harmonics <= num_harmonics: 8 > 7"},
+      {[](Json& j) { j["model"]["beam"]["length_m"] = -0.6; }, "field \"model.beam.length_m\" = -0.6 lies outside > 0"},
       {[](Json& j) { j["parameters"]["k1"]["value"] = "150"; }, "field \"parameters.k1.value\" must be a number, not a string"},
       // NaN is allowed for a statistic, never for the model the prediction rebuilds.
       {[](Json& j) { j["model"]["beam"]["length_m"] = nullptr; }, "field \"model.beam.length_m\" must be a number, not null"},
       {[](Json& j) { j["fit"]["starts"][0]["converged"] = 1; }, "field \"fit.starts[0].converged\" must be true or false, not a number"},
       {[](Json& j) { j["fit"]["starts"][1]["states_seeded"] = "guessed"; },
-       "field \"fit.starts[1].states_seeded\" must be \"measured\" or \"feasible\""},
-      {[](Json& j) { j["model"]["kind"] = "duffing"; }, "field \"model.kind\" is 'duffing': unknown model (hb, ms)"},
+       "field \"fit.starts[1].states_seeded\" is \"guessed\", not one of \"measured\", \"feasible\""},
+      {[](Json& j) { j["model"]["kind"] = "duffing"; }, "field \"model.kind\" breaks the rule: kind names a model (hb, ms): 'duffing' is unknown"},
       {[](Json& j) { j["warnings"] = "none"; }, "field \"warnings\" must be an array, not a string"},
       {[](Json& j) { j["quality"] = Json::array(); }, "field \"quality\" must be an object, not an array"},
-      {[](Json& j) { j["covariance"].erase(4); }, "field \"covariance\" must have 5 rows, one per parameter"},
-      {[](Json& j) { j["steps"][0]["force_N"][1] = Json::array({1.0}); }, "field \"steps[0].force_N[1]\" must be a phasor [re, im]"},
+      {[](Json& j) { j["covariance"].erase(4); }, "field \"covariance\" holds 4 entries, not exactly one per parameter"},
+      {[](Json& j) { j["steps"][0]["force_N"][1] = Json::array({1.0}); }, "field \"steps[0].force_N[1]\" must be [re, im], not 1 numbers"},
   };
   for (const auto& c : cases) {
     const std::string text = Edited(hb, c.edit);
@@ -660,8 +685,8 @@ TEST(ResultFile, AFieldOfTheWrongTypeIsRefusedNamingTheFileAndTheField) {
     j["steps"][0]["modal_phasor_m"].push_back(Json::array({1.0, 2.0}));
   });
   EXPECT_THAT(InputErrorOf([&] { ResultFileFromJson(text, "ms.json"); }),
-              HasSubstr("ms.json: field \"steps[0].modal_phasor_m\" must hold 1 phasor(s) for a multiple scales model of 3 "
-                        "harmonics, and force_N the fundamental"));
+              HasSubstr("ms.json: field \"steps[0].modal_phasor_m\" holds 2 entries, not exactly the model's state size "
+                        "(theta_rad: num_harmonics + 1, modal_phasor_m: 1)"));
 }
 
 TEST(ResultFile, AModelPredictCannotRebuildIsRefusedNamingTheFileAndTheField) {
