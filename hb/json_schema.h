@@ -32,6 +32,7 @@
 #include <algorithm>
 #include <concepts>
 #include <functional>
+#include <optional>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -94,8 +95,11 @@ constexpr Limits NonNegative() { return {.min = 0.0}; }
 constexpr Limits Probability() { return {.min = 0.0, .max = 1.0}; }
 constexpr Limits Between(double min, double max) { return {.min = min, .max = max}; }
 
-enum class Presence { kRequired, kOptional };
+// kUnlessEmpty: optional, and the writer leaves out an empty text or list
+// (absent reads as empty), so that a file without it stays as it was.
+enum class Presence { kRequired, kOptional, kUnlessEmpty };
 constexpr Presence kOptional = Presence::kOptional;
+constexpr Presence kUnlessEmpty = Presence::kUnlessEmpty;
 
 // A string field's rule. Text from a file can reach a plot's labels and a
 // terminal: a control character is refused everywhere.
@@ -162,6 +166,10 @@ class Writer {
               Presence = Presence::kRequired) {
     Put(key, NumberJson(v));
   }
+  // Optional: written when it holds a number.
+  void Number(std::string_view key, const std::optional<double>& v, std::string_view /*unit*/, Limits = {}) {
+    if (v) Put(key, NumberJson(*v));
+  }
   // Written for a reader's convenience, computed from other fields, never
   // read back.
   void Derived(std::string_view key, double v, std::string_view /*unit*/) { Put(key, NumberJson(v)); }
@@ -171,7 +179,9 @@ class Writer {
     Put(key, v);
   }
   void Boolean(std::string_view key, const bool& v, Presence = Presence::kRequired) { Put(key, v); }
-  void Text(std::string_view key, const std::string& v, TextRule = TextRule::kAny, Presence = Presence::kRequired) {
+  void Text(std::string_view key, const std::string& v, TextRule = TextRule::kAny,
+            Presence presence = Presence::kRequired) {
+    if (Omitted(v, presence)) return;
     Put(key, v);
   }
   template <typename E, std::size_t N>
@@ -181,21 +191,24 @@ class Writer {
     throw std::logic_error("schema: a value of field \"" + std::string(key) + "\" has no name");
   }
   void Numbers(std::string_view key, const std::vector<double>& v, std::string_view /*unit*/, Limits, Count count,
-               Presence = Presence::kRequired) {
+               Presence presence = Presence::kRequired) {
+    if (Omitted(v, presence)) return;
     CheckCount(key, v.size(), count);
     Json list = Json::array();
     for (double x : v) list.push_back(NumberJson(x));
     Put(key, std::move(list));
   }
   void Phasors(std::string_view key, const std::vector<std::complex<double>>& v, std::string_view /*unit*/,
-               Count count, Presence = Presence::kRequired) {
+               Count count, Presence presence = Presence::kRequired) {
+    if (Omitted(v, presence)) return;
     CheckCount(key, v.size(), count);
     Json list = Json::array();
     for (const auto& p : v) list.push_back(Json::array({NumberJson(p.real()), NumberJson(p.imag())}));
     Put(key, std::move(list));
   }
   void Texts(std::string_view key, const std::vector<std::string>& v, Count count, TextRule = TextRule::kAny,
-             Presence = Presence::kRequired) {
+             Presence presence = Presence::kRequired) {
+    if (Omitted(v, presence)) return;
     CheckCount(key, v.size(), count);
     Put(key, Json(v));
   }
@@ -203,9 +216,16 @@ class Writer {
   void Object(std::string_view key, const T& v, Presence = Presence::kRequired, F describe = {}) {
     Put(key, Written(v, describe));
   }
+  // An object written only when `present` (a flag of the struct); the
+  // reader sets the flag to whether the file holds it.
   template <typename T, typename F = DescribeByLookup>
-  void List(std::string_view key, const std::vector<T>& v, Count count, Presence = Presence::kRequired,
+  void OptionalObject(std::string_view key, const bool& present, const T& v, F describe = {}) {
+    if (present) Put(key, Written(v, describe));
+  }
+  template <typename T, typename F = DescribeByLookup>
+  void List(std::string_view key, const std::vector<T>& v, Count count, Presence presence = Presence::kRequired,
             F describe = {}) {
+    if (Omitted(v, presence)) return;
     CheckCount(key, v.size(), count);
     Json list = Json::array();
     for (const T& element : v) list.push_back(Written(element, describe));
@@ -215,11 +235,13 @@ class Writer {
   // element's own declaration leaves that member out.
   template <typename T, typename F = DescribeByLookup>
   void Keyed(std::string_view key, const std::vector<T>& v, std::string T::*name, Count /*count*/,
-             Presence = Presence::kRequired, F describe = {}) {
+             Presence presence = Presence::kRequired, F describe = {}) {
+    if (Omitted(v, presence)) return;
     Json object = Json::object();
     for (const T& element : v) object[element.*name] = Written(element, describe);
     Put(key, std::move(object));
   }
+  void NamesChannel(const std::string&) const {}
   // A rule between fields: the writer's caller broke it (a bug, not input).
   void Check(bool ok, std::string_view rule, const std::string& = {}) const {
     if (!ok) throw std::logic_error("schema: a written value breaks the rule: " + std::string(rule));
@@ -240,6 +262,10 @@ class Writer {
                              " entries, not " + count.Text());
   }
   static Json NumberJson(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+  template <typename C>
+  static bool Omitted(const C& v, Presence presence) {
+    return presence == Presence::kUnlessEmpty && v.empty();
+  }
   void Put(std::string_view key, Json value) { out_[std::string(key)] = std::move(value); }
   Json& out_;
 };
@@ -254,9 +280,13 @@ class Reader {
   // only when a required key is missing, to tell a misspelling from an
   // absence.
   Reader(JsonField field, std::function<std::vector<std::string>()> declared_keys)
-      : field_(std::move(field)), declared_keys_(std::move(declared_keys)) {
+      : field_(std::move(field)), declared_keys_(std::move(declared_keys)), channel_(field_.channel()) {
     field_.Object();
   }
+
+  // This object describes the channel `name` (read just before): every
+  // later complaint about it, or below it, names the channel too.
+  void NamesChannel(const std::string& name) { channel_ = name; }
 
   void Constant(std::string_view key, std::string_view value, Presence presence = Presence::kRequired) {
     if (!Present(key, presence)) return;
@@ -266,6 +296,9 @@ class Reader {
   void Number(std::string_view key, double& v, std::string_view /*unit*/, Limits limits = {},
               Presence presence = Presence::kRequired) {
     if (Present(key, presence)) v = ReadNumber(Field(key), limits);
+  }
+  void Number(std::string_view key, std::optional<double>& v, std::string_view /*unit*/, Limits limits = {}) {
+    if (Present(key, Presence::kOptional)) v = ReadNumber(Field(key), limits);
   }
   void Derived(std::string_view key, double /*v*/, std::string_view /*unit*/) {
     if (Present(key, Presence::kOptional)) Field(key).Number();
@@ -336,6 +369,11 @@ class Reader {
     if (Present(key, presence)) ReadInto(Field(key), v, describe);
   }
   template <typename T, typename F = DescribeByLookup>
+  void OptionalObject(std::string_view key, bool& present, T& v, F describe = {}) {
+    present = Present(key, Presence::kOptional);
+    if (present) ReadInto(Field(key), v, describe);
+  }
+  template <typename T, typename F = DescribeByLookup>
   void List(std::string_view key, std::vector<T>& v, Count count, Presence presence = Presence::kRequired,
             F describe = {}) {
     if (!Present(key, presence)) return;
@@ -366,8 +404,8 @@ class Reader {
   void Check(bool ok, std::string_view rule, const std::string& where = {}) const {
     if (ok) return;
     const std::string problem = "breaks the rule: " + std::string(rule);
-    if (where.empty()) field_.Fail(problem);
-    field_.FailBelow(where, problem);
+    if (where.empty()) Here().Fail(problem);
+    Here().FailBelow(where, problem);
   }
 
   // Refuses a key the declaration did not name (a misspelling, or another
@@ -385,14 +423,14 @@ class Reader {
   bool Present(std::string_view key, Presence presence) {
     keys_.emplace_back(key);
     if (field_.Has(std::string(key))) return true;
-    if (presence == Presence::kOptional) return false;
+    if (presence != Presence::kRequired) return false;
     // "completed" where "complete" is declared: the misspelling is the news.
     RefuseKeysOtherThan(declared_keys_());
     Field(key);  // "is missing"
     return false;
   }
   void RefuseKeysOtherThan(const std::vector<std::string>& known) const {
-    for (const auto& [key, value] : field_.Members()) {
+    for (const auto& [key, value] : Here().Members()) {
       if (std::find(known.begin(), known.end(), key) != known.end()) continue;
       std::string list;
       for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
@@ -401,7 +439,8 @@ class Reader {
   }
   template <typename T, typename F>
   static std::vector<std::string> DeclaredKeys(F& describe);
-  JsonField Field(std::string_view key) const { return field_.At(std::string(key)); }
+  JsonField Here() const { return field_.Named(channel_); }
+  JsonField Field(std::string_view key) const { return Here().At(std::string(key)); }
   static double ReadNumber(const JsonField& f, const Limits& limits) {
     const double v = limits.nullable ? f.Number() : f.NumberNotNull();
     if (!limits.Holds(v)) f.Fail(fmt::format("= {} lies outside {}", v, limits.Text()));
@@ -428,6 +467,7 @@ class Reader {
   JsonField field_;
   std::function<std::vector<std::string>()> declared_keys_;
   std::vector<std::string> keys_;
+  std::string channel_;  // NamesChannel's, or the enclosing object's
 };
 
 // ---- documenting --------------------------------------------------------
@@ -452,6 +492,9 @@ class Documenter {
   void Number(std::string_view key, const double&, std::string_view unit, Limits limits = {},
               Presence p = Presence::kRequired) {
     Add(key, "number", unit, limits.Text(), p);
+  }
+  void Number(std::string_view key, const std::optional<double>&, std::string_view unit, Limits limits = {}) {
+    Add(key, "number", unit, limits.Text(), Presence::kOptional);
   }
   void Derived(std::string_view key, double, std::string_view unit) {
     Add(key, "number", unit, "written, not read", Presence::kOptional);
@@ -488,6 +531,11 @@ class Documenter {
     Nested<T>(Path(key) + ".", describe);
   }
   template <typename T, typename F = DescribeByLookup>
+  void OptionalObject(std::string_view key, const bool&, const T&, F describe = {}) {
+    Add(key, "object", "", "", Presence::kOptional);
+    Nested<T>(Path(key) + ".", describe);
+  }
+  template <typename T, typename F = DescribeByLookup>
   void List(std::string_view key, const std::vector<T>&, Count count, Presence p = Presence::kRequired,
             F describe = {}) {
     Add(key, "[object]", "", count.Text() + " entries", p);
@@ -499,6 +547,7 @@ class Documenter {
     Add(key, "object", "", "keyed by name, " + count.Text() + " entries", p);
     Nested<T>(Path(key) + ".<name>.", describe);
   }
+  void NamesChannel(const std::string&) const {}
   void Check(bool, std::string_view rule, const std::string& = {}) {
     out_.push_back({.path = prefix_.empty() ? "(file)" : prefix_.substr(0, prefix_.size() - 1), .type = "rule",
                     .range = std::string(rule)});
@@ -507,7 +556,7 @@ class Documenter {
  private:
   std::string Path(std::string_view key) const { return prefix_ + std::string(key); }
   void Add(std::string_view key, std::string type, std::string_view unit, std::string range, Presence p) {
-    out_.push_back({Path(key), std::move(type), std::string(unit), std::move(range), p == Presence::kOptional});
+    out_.push_back({Path(key), std::move(type), std::string(unit), std::move(range), p != Presence::kRequired});
   }
   template <typename T, typename F>
   void Nested(std::string prefix, F& describe) {

@@ -16,12 +16,17 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <vector>
 
+#include "hb/json_schema.h"
 #include "signal/phasor_set.h"
 
 namespace beamid::signal {
 
 inline constexpr std::string_view kPhasorFormat = "beamid-phasors/1";
+
+// The fields of the JSON file: path, type, unit, range (docs/formats.md).
+std::vector<schema::FieldDoc> PhasorSetFields();
 
 std::string PhasorSetToJson(const PhasorSet& set);
 PhasorSet PhasorSetFromJson(std::string_view json_text, const std::string& source);
