@@ -51,13 +51,13 @@ void Describe(auto& io, schema::Like<CampaignFile> auto& f) {
             [](auto& channel_io, auto& c) { DescribeChannel(channel_io, c, ChannelRole::kExcitation); });
   io.List("sensors", f.sensors, static_cast<std::size_t>(kMaxPointsOnBeam), schema::Presence::kRequired,
           [](auto& channel_io, auto& c) { DescribeChannel(channel_io, c, ChannelRole::kSensor); });
-  io.Check(!f.sensors.empty(), "list at least one response channel", "sensors");
+  io.Check(!f.sensors.empty(), "sensors lists at least one response channel", "sensors");
   io.List("steps", f.steps, kMaxSteps, schema::Presence::kRequired, [](auto& step_io, auto& s) {
     step_io.Text("file", s.file, TextRule::kNotEmpty);
     step_io.Number("frequency_Hz", s.frequency_hz, "Hz", schema::Positive());
     step_io.Text("level", s.level, TextRule::kNotEmpty);
   });
-  io.Check(!f.steps.empty(), "list one entry per recording", "steps");
+  io.Check(!f.steps.empty(), "steps lists at least one recording", "steps");
   io.Number("sample_rate_Hz", f.sample_rate_hz, "Hz", schema::Positive());
   io.Texts("ignore_channels", f.ignore_channels, static_cast<std::size_t>(kMaxPointsOnBeam), TextRule::kNotEmpty,
            schema::kUnlessEmpty);

@@ -17,6 +17,7 @@
 #include "signal/phasor_estimator.h"
 #include "signal/phasor_set_io.h"
 #include "signal/recording.h"
+#include "tests/support/schema_checks.h"
 
 namespace beamid::signal {
 namespace {
@@ -446,6 +447,39 @@ TEST_F(CampaignReaderTest, AnExcitationQuantityOrSensitivityThatMakesNoSenseIsRe
   Write("campaign.json",
         WithExcitation(R"({"channel": "force", "position_m": 0.57, "quantity": "voltage", "unit": "V", "sensitivity_N_per_V": -2})"));
   ExpectNames(ExpectError(), CampaignFile(), "force", R"(field "excitation.sensitivity_N_per_V" = -2 lies outside > 0)");
+}
+
+// The declaration's generic checks (tests/support/schema_checks.h) on a
+// campaign.json written by the simulator's writer (hb/campaign_file.h)
+// with every optional field, read by the reader of the commands.
+TEST(CampaignFileTest, TheDeclarationHolds) {
+  hb::CampaignFile file{.name = "declaration",
+                        .excitation = {.channel = "drive", .position_m = 0.57, .quantity = "voltage", .unit = "mV",
+                                       .sensitivity_N_per_V = 12.5},
+                        .steps = {{.file = "low/step_000.csv", .frequency_hz = 50.0, .level = "low"}},
+                        .sample_rate_hz = 5120.0,
+                        .ignore_channels = {"acc2"}};
+  file.sensors.push_back({.channel = "acc1", .position_m = 0.1, .quantity = "acceleration", .unit = "g",
+                          .mass_kg = 0.004});
+  file.sensors.push_back({.channel = "acc2", .position_m = 0.3, .quantity = "acceleration", .unit = "m/s^2"});
+  beamid::testing::ExpectDeclarationHolds({
+      .fields = hb::CampaignFileFields(),
+      .sample = hb::CampaignFileToJson(file),
+      .read = [](const std::string& text) { ParseCampaign(text, "folder", "folder/campaign.json"); },
+      .rewrite =
+          [](const std::string& text) {
+            return hb::CampaignFileToJson(hb::CampaignFileFromJson(text, "folder/campaign.json"));
+          },
+  });
+}
+
+// A range complaint about a channel's field names the channel, as the
+// engineer knows it, besides the field's path.
+TEST_F(CampaignReaderTest, ARangeComplaintInASensorNamesItsChannel) {
+  std::string json = CampaignJson();
+  json.replace(json.find("\"mass_kg\": 0.004"), 16, "\"mass_kg\": -1");
+  Write("campaign.json", json);
+  ExpectNames(ExpectError(), CampaignFile(), "vel2", R"(field "sensors[1].mass_kg" = -1 lies outside ≥ 0)");
 }
 
 }  // namespace
