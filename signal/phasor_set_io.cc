@@ -69,6 +69,7 @@ void Describe(auto& io, schema::Like<ChannelPhasors> auto& c) {
   Role role = RoleOf(c.quantity);
   std::string unit(SiUnit(c.quantity));
   io.Text("channel", c.channel, schema::TextRule::kNotEmpty);
+  io.NamesChannel(c.channel);
   io.Choice("role", role, kRoles);
   io.Choice("quantity", c.quantity, kQuantities);
   io.Check(role == RoleOf(c.quantity), "the role is \"excitation\" for a force, voltage or base_acceleration, "
