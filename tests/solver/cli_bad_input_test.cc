@@ -426,6 +426,32 @@ TEST_F(BadInput, EveryBadInputEndsWithExitTwoAndAMessageThatNamesItAndTheFix) {
       {"a position off the beam", nullptr, "predict {r} --x 5 -o {d}/p.json", {"--x", "outside the beam"}},
       {"a negative thread count", nullptr, "extract {c} --threads -1 -o {d}/p.json", {"--threads"}},
       {"extract without harmonics", nullptr, "extract {c} -H 0 -o {d}/p.json", {"--harmonics"}},
+      // campaign.json and phasors, each read by its one declaration
+      // (hb/campaign_file.h, signal/phasor_set_io.cc): the field's path, the
+      // channel the field belongs to, and the fix
+      {"a misspelt key of a sensor in campaign.json",
+       [](auto m, auto) { Replace(m / "campaign.json", "\"position_m\": 0.3,", "\"postion_m\": 0.3,"); },
+       "extract {m} -o {d}/p.json",
+       {"campaign.json", "channel 'acc2'", "field \"sensors[1].postion_m\" is not a field here", "Fix:", "position_m"}},
+      {"a negative sensor mass in campaign.json",
+       [](auto m, auto) {
+         Replace(m / "campaign.json", "\"position_m\": 0.3,", "\"position_m\": 0.3, \"mass_kg\": -0.004,");
+       },
+       "identify {m} -o {d}/r.json",
+       {"campaign.json", "channel 'acc2'", "field \"sensors[1].mass_kg\" = -0.004 lies outside ≥ 0", "Fix:"}},
+      {"phasors with a misspelt key",
+       [](auto m, auto d) {
+         ASSERT_EQ(Beamid("-q extract " + m.string() + " -o " + (d / "p.json").string()).exit_code, 0);
+         Replace(d / "p.json", "\"num_harmonics\": ", "\"num_harmonic\": 3, \"num_harmonics\": ");
+       },
+       "identify {m} --phasors {d}/p.json -o {d}/r.json", {"p.json", "field \"num_harmonic\" is not a field here", "Fix:"}},
+      {"phasors that call a response the excitation",
+       [](auto m, auto d) {
+         ASSERT_EQ(Beamid("-q extract " + m.string() + " -o " + (d / "p.json").string()).exit_code, 0);
+         Replace(d / "p.json", "\"role\": \"response\"", "\"role\": \"excitation\"");
+       },
+       "identify {m} --phasors {d}/p.json -o {d}/r.json",
+       {"p.json", "channel 'acc1'", "field \"steps[0].channels[1].role\" breaks the rule", "Fix:"}},
   };
   const fs::path clean = root_ / "clean", result = root_ / "result.json";
   for (std::size_t i = 0; i < rows.size(); ++i) {
