@@ -58,16 +58,16 @@ Json NoiseJson(const ChannelNoise& n) {
 // campaign.json's excitation: the force transducer, or with a voltage drive
 // the amplifier's input voltage and its nominal gain g0 (what an engineer
 // reads off the amplifier; the sag near resonance is concealed).
-Json CampaignExcitationJson(const Scenario& s) {
+CampaignChannel CampaignExcitation(const Scenario& s) {
   if (s.BaseExcitation())
-    return {{"channel", s.force_channel}, {"position_m", 0.0}, {"quantity", "base_acceleration"}, {"unit", "m/s^2"}};
+    return {.channel = s.force_channel, .position_m = 0.0, .quantity = "base_acceleration", .unit = "m/s^2"};
   if (!s.VoltageDrive())
-    return {{"channel", s.force_channel}, {"position_m", s.force_position_m}, {"quantity", "force"}, {"unit", "N"}};
-  return {{"channel", s.force_channel},
-          {"position_m", s.force_position_m},
-          {"quantity", "voltage"},
-          {"unit", "V"},
-          {"sensitivity_N_per_V", s.amplifier.gain_N_per_V}};
+    return {.channel = s.force_channel, .position_m = s.force_position_m, .quantity = "force", .unit = "N"};
+  return {.channel = s.force_channel,
+          .position_m = s.force_position_m,
+          .quantity = "voltage",
+          .unit = "V",
+          .sensitivity_N_per_V = s.amplifier.gain_N_per_V};
 }
 
 void WriteFile(const std::filesystem::path& path, const std::string& text, std::uintmax_t& bytes) {
@@ -82,7 +82,6 @@ CampaignWriter::CampaignWriter(const SteppedSineSimulation& simulation, const st
     : simulation_(simulation),
       directory_(directory),
       noise_(simulation.scenario().seed),
-      campaign_steps_(std::make_unique<Json>(Json::array())),
       truth_steps_(std::make_unique<Json>(Json::array())),
       early_records_(std::make_unique<Json>(Json::array())) {
   const Scenario& s = simulation_.scenario();
@@ -124,7 +123,7 @@ void CampaignWriter::Write(const SimulatedStep& step) {
   }
   WriteFile(directory_ / step.file, csv, bytes_written_);
 
-  campaign_steps_->push_back({{"file", step.file}, {"frequency_Hz", step.nominal_frequency_hz}, {"level", step.level}});
+  campaign_steps_.push_back({.file = step.file, .frequency_hz = step.nominal_frequency_hz, .level = step.level});
 
   Json channels = Json::object();
   channels[s.force_channel] = PhasorsJson(step.channel_phasors[0]);
@@ -178,25 +177,20 @@ void CampaignWriter::Finish() {
   const Scenario& s = simulation_.scenario();
   const TimeSimulator& sim = simulation_.simulator();
 
-  Json sensors = Json::array();
+  CampaignFile campaign{.name = s.name,
+                        .beam = s.nominal_beam,
+                        .excitation = CampaignExcitation(s),
+                        .steps = campaign_steps_,
+                        .sample_rate_hz = s.timing.sample_rate_hz};
   for (const ScenarioSensor& sensor : s.sensors) {
     // Where the test plan says the sensor is, which need not be where it is.
-    Json j = {{"channel", sensor.channel},
-              {"position_m", sensor.StatedPosition_m()},
-              {"quantity", sensor.quantity},
-              {"unit", sensor.unit}};
-    if (sensor.mass_kg > 0.0) j["mass_kg"] = sensor.mass_kg;
-    sensors.push_back(j);
+    CampaignChannel c{.channel = sensor.channel,
+                      .position_m = sensor.StatedPosition_m(),
+                      .quantity = sensor.quantity,
+                      .unit = sensor.unit};
+    if (sensor.mass_kg > 0.0) c.mass_kg = sensor.mass_kg;
+    campaign.sensors.push_back(c);
   }
-  const Json campaign = {
-      {"format", "stepped-sine-campaign/1"},
-      {"beamid_version", kVersion},
-      {"name", s.name},
-      {"beam", BeamJson(s.nominal_beam, false)},
-      {"excitation", CampaignExcitationJson(s)},
-      {"sensors", sensors},
-      {"sample_rate_Hz", s.timing.sample_rate_hz},
-      {"steps", *campaign_steps_}};
 
   const std::unique_ptr<SupportLaw> law = s.MakeSupportLaw();
   Json parameters = Json::array();
@@ -289,7 +283,7 @@ void CampaignWriter::Finish() {
                                       {"daq_clock_error_relative", s.timing.daq_clock_error_relative}};
   WriteFile(directory_ / "truth.json", truth.dump(1) + "\n", bytes_written_);
   // Last: a folder with campaign.json is a complete campaign.
-  WriteFile(directory_ / "campaign.json", campaign.dump(2) + "\n", bytes_written_);
+  WriteFile(directory_ / "campaign.json", CampaignFileToJson(campaign), bytes_written_);
 }
 
 }  // namespace beamid::hb

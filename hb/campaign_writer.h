@@ -1,5 +1,6 @@
 // Writes a simulated stepped-sine test to disk: the campaign exactly as
-// docs/campaign-format.md defines it (campaign.json with the
+// docs/campaign-format.md defines it (campaign.json, by its one declaration
+// hb/campaign_file.h, with the
 // NOMINAL beam, one CSV per step with time_s and every channel in its written
 // unit, noise added by hb/noise.h) and, beside it, truth.json: the true
 // physics and the noise-free harmonic phasors of every step
@@ -13,6 +14,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "hb/campaign_file.h"
 #include "hb/noise.h"
 #include "hb/scenario.h"
 #include "hb/stepped_sine.h"
@@ -45,7 +47,7 @@ class CampaignWriter {
   const SteppedSineSimulation& simulation_;
   std::filesystem::path directory_;
   MeasurementNoise noise_;
-  std::unique_ptr<nlohmann::json> campaign_steps_;
+  std::vector<CampaignStep> campaign_steps_;
   std::unique_ptr<nlohmann::json> truth_steps_;
   std::unique_ptr<nlohmann::json> early_records_;  // truth.json's measurement_artefacts.early_records
   std::uintmax_t bytes_written_ = 0;

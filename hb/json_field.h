@@ -41,9 +41,19 @@ class JsonField {
 
   const nlohmann::ordered_json& json() const { return value_; }
 
+  // This field and those below it describe a channel of a test: every
+  // complaint names it too (InputError::channel), since a list's index
+  // ("sensors[2]") is not how the engineer knows the sensor.
+  JsonField Named(std::string channel) const {
+    JsonField named = *this;
+    named.channel_ = std::move(channel);
+    return named;
+  }
+  const std::string& channel() const { return channel_; }
+
   [[noreturn]] void Fail(const std::string& problem, std::string_view fix = {}) const {
-    throw InputError(source_ + ": field \"" + path_ + "\" " + problem + ". Fix: " +
-                     std::string(fix.empty() ? fix_ : fix));
+    // The file travels apart too (InputError::file), for a caller that acts on it.
+    throw InputError(source_, channel_, "field \"" + path_ + "\" " + problem, std::string(fix.empty() ? fix_ : fix));
   }
 
   // A complaint about a field below this one ("curves[0].points[1]"), which
@@ -51,6 +61,7 @@ class JsonField {
   [[noreturn]] void FailBelow(const std::string& sub_path, const std::string& problem) const {
     JsonField(value_, path_.empty() ? sub_path : path_ + (sub_path.starts_with('[') ? "" : ".") + sub_path, source_,
               format_, fix_)
+        .Named(channel_)
         .Fail(problem);
   }
 
@@ -72,10 +83,12 @@ class JsonField {
     const nlohmann::ordered_json& object = Object().value_;
     const std::string path = Child(key);
     const auto it = object.find(key);
-    if (it == object.end()) JsonField(object, path, source_, format_, fix_).Fail("is missing");
-    return JsonField(*it, path, source_, format_, fix_);
+    if (it == object.end()) JsonField(object, path, source_, format_, fix_).Named(channel_).Fail("is missing");
+    return JsonField(*it, path, source_, format_, fix_).Named(channel_);
   }
-  JsonField At(std::size_t i) const { return JsonField(value_[i], path_ + "[" + std::to_string(i) + "]", source_, format_, fix_); }
+  JsonField At(std::size_t i) const {
+    return JsonField(value_[i], path_ + "[" + std::to_string(i) + "]", source_, format_, fix_).Named(channel_);
+  }
   std::size_t Size() const { return Array().value_.size(); }
   // An array's elements, and an object's members in the file's order.
   std::vector<JsonField> Elements() const {
@@ -187,7 +200,7 @@ class JsonField {
   }
   std::string Child(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
   JsonField Child(const nlohmann::ordered_json& value, const std::string& key) const {
-    return JsonField(value, Child(key), source_, format_, fix_);
+    return JsonField(value, Child(key), source_, format_, fix_).Named(channel_);
   }
 
   [[noreturn]] void Expected(const std::string& what) const {
@@ -201,6 +214,7 @@ class JsonField {
   const std::string& source_;
   std::string_view format_;
   std::string_view fix_;
+  std::string channel_;
 };
 
 // The text of a file as one JSON object, parsed strictly (hb/strict_json.h:

@@ -179,6 +179,10 @@ class Writer {
               Presence = Presence::kRequired) {
     Put(key, NumberJson(v));
   }
+  // Optional: written when it holds a number.
+  void Number(std::string_view key, const std::optional<double>& v, std::string_view /*unit*/, Limits = {}) {
+    if (v) Put(key, NumberJson(*v));
+  }
   // Written for a reader's convenience, computed from other fields, never
   // read back.
   void Derived(std::string_view key, double v, std::string_view /*unit*/) { Put(key, NumberJson(v)); }
@@ -200,14 +204,16 @@ class Writer {
     throw std::logic_error("schema: a value of field \"" + std::string(key) + "\" has no name");
   }
   void Numbers(std::string_view key, const std::vector<double>& v, std::string_view /*unit*/, Limits, Count count,
-               Presence = Presence::kRequired) {
+               Presence p = Presence::kRequired) {
+    if (Omitted(v, p)) return;
     CheckCount(key, v.size(), count);
     Json list = Json::array();
     for (double x : v) list.push_back(NumberJson(x));
     Put(key, std::move(list));
   }
   void Phasors(std::string_view key, const std::vector<std::complex<double>>& v, std::string_view /*unit*/,
-               Count count, Presence = Presence::kRequired) {
+               Count count, Presence p = Presence::kRequired) {
+    if (Omitted(v, p)) return;
     CheckCount(key, v.size(), count);
     Json list = Json::array();
     for (const auto& p : v) list.push_back(Json::array({NumberJson(p.real()), NumberJson(p.imag())}));
@@ -302,6 +308,13 @@ class Writer {
   // A key this variant of the format does not take (a voltage drive's
   // amplifier with a force drive): never written.
   void Refused(std::string_view /*key*/, std::string_view /*problem*/, std::string_view /*fix*/) {}
+  // An object written only when `present` (a flag of the struct); the
+  // reader sets the flag to whether the file holds it.
+  template <typename T, typename F = DescribeByLookup>
+  void OptionalObject(std::string_view key, const bool& present, const T& v, F describe = {}) {
+    if (present) Put(key, Written(v, describe));
+  }
+  void NamesChannel(const std::string&) const {}
   // A rule between fields: the writer's caller broke it (a bug, not input).
   void Check(bool ok, std::string_view rule, const std::string& = {}) const {
     if (!ok) throw std::logic_error("schema: a written value breaks the rule: " + std::string(rule));
@@ -340,9 +353,13 @@ class Reader {
   // only when a required key is missing, to tell a misspelling from an
   // absence.
   Reader(JsonField field, std::function<std::vector<std::string>()> declared_keys)
-      : field_(std::move(field)), declared_keys_(std::move(declared_keys)) {
+      : field_(std::move(field)), declared_keys_(std::move(declared_keys)), channel_(field_.channel()) {
     field_.Object();
   }
+
+  // This object describes the channel `name` (read just before): every
+  // later complaint about it, or below it, names the channel too.
+  void NamesChannel(const std::string& name) { channel_ = name; }
 
   void Constant(std::string_view key, std::string_view value, Presence presence = Presence::kRequired) {
     if (!Present(key, presence)) return;
@@ -352,6 +369,9 @@ class Reader {
   void Number(std::string_view key, double& v, std::string_view /*unit*/, Limits limits = {},
               Presence presence = Presence::kRequired) {
     if (Present(key, presence)) v = ReadNumber(Field(key), limits);
+  }
+  void Number(std::string_view key, std::optional<double>& v, std::string_view /*unit*/, Limits limits = {}) {
+    if (Present(key, Presence::kOptional)) v = ReadNumber(Field(key), limits);
   }
   void Derived(std::string_view key, double /*v*/, std::string_view /*unit*/) {
     if (Present(key, Presence::kOptional)) Field(key).Number();
@@ -464,6 +484,11 @@ class Reader {
     v.*present = true;
   }
   template <typename T, typename F = DescribeByLookup>
+  void OptionalObject(std::string_view key, bool& present, T& v, F describe = {}) {
+    present = Present(key, Presence::kOptional);
+    if (present) ReadInto(Field(key), v, describe);
+  }
+  template <typename T, typename F = DescribeByLookup>
   void List(std::string_view key, std::vector<T>& v, Count count, Presence presence = Presence::kRequired,
             F describe = {}) {
     if (!Present(key, presence)) return;
@@ -530,8 +555,8 @@ class Reader {
     // A misspelled key may be why the rule is broken: it is the news.
     RefuseKeysOtherThan(declared_keys_());
     const std::string problem = "breaks the rule: " + std::string(rule);
-    if (where.empty()) field_.Fail(problem);
-    field_.FailBelow(where, problem);
+    if (where.empty()) Here().Fail(problem);
+    Here().FailBelow(where, problem);
   }
 
   // Refuses a key the declaration did not name (a misspelling, or another
@@ -556,7 +581,7 @@ class Reader {
     return false;
   }
   void RefuseKeysOtherThan(const std::vector<std::string>& known) const {
-    for (const auto& [key, value] : field_.Members()) {
+    for (const auto& [key, value] : Here().Members()) {
       if (std::find(known.begin(), known.end(), key) != known.end()) continue;
       std::string list;
       for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
@@ -565,7 +590,8 @@ class Reader {
   }
   template <typename T, typename F>
   static std::vector<std::string> DeclaredKeys(F& describe);
-  JsonField Field(std::string_view key) const { return field_.At(std::string(key)); }
+  JsonField Here() const { return field_.Named(channel_); }
+  JsonField Field(std::string_view key) const { return Here().At(std::string(key)); }
   static double ReadNumber(const JsonField& f, const Limits& limits) {
     const double v = limits.nullable ? f.Number() : f.NumberNotNull();
     if (!limits.Holds(v)) f.Fail(fmt::format("= {} lies outside {}", v, limits.Text()));
@@ -596,6 +622,7 @@ class Reader {
   JsonField field_;
   std::function<std::vector<std::string>()> declared_keys_;
   std::vector<std::string> keys_;
+  std::string channel_;  // NamesChannel's, or the enclosing object's
 };
 
 // ---- documenting --------------------------------------------------------
@@ -628,6 +655,9 @@ class Documenter {
   void Number(std::string_view key, const double&, std::string_view unit, Limits limits = {},
               Presence p = Presence::kRequired) {
     Add(key, "number", unit, limits.Text(), p).limits = limits;
+  }
+  void Number(std::string_view key, const std::optional<double>&, std::string_view unit, Limits limits = {}) {
+    Add(key, "number", unit, limits.Text(), Presence::kOptional).limits = limits;
   }
   void Derived(std::string_view key, double, std::string_view unit) {
     Add(key, "number (derived)", unit, "written, not read", Presence::kOptional);
@@ -729,6 +759,12 @@ class Documenter {
   }
   void Ignored(std::string_view key) { Add(key, "any", "", "read past, not used", Presence::kOptional); }
   void Refused(std::string_view, std::string_view, std::string_view) {}
+  template <typename T, typename F = DescribeByLookup>
+  void OptionalObject(std::string_view key, const bool&, const T&, F describe = {}) {
+    Add(key, "object", "", "", Presence::kOptional);
+    Nested<T>(Path(key) + ".", describe);
+  }
+  void NamesChannel(const std::string&) const {}
   void Check(bool, std::string_view rule, const std::string& = {}) {
     out_.push_back({.path = prefix_.empty() ? "(file)" : prefix_.substr(0, prefix_.size() - 1), .type = "rule",
                     .range = std::string(rule)});

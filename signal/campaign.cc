@@ -1,16 +1,9 @@
 #include "signal/campaign.h"
 
 #include <algorithm>
-#include <cmath>
-#include <fstream>
-#include <initializer_list>
 #include <set>
-#include <sstream>
 
-#include <nlohmann/json.hpp>
-
-#include "hb/input_limits.h"
-#include "hb/strict_json.h"
+#include "hb/campaign_file.h"
 #include "hb/text_file.h"
 #include "signal/campaign_hash.h"
 #include "signal/input_error.h"
@@ -19,89 +12,30 @@
 namespace beamid::signal {
 namespace {
 
-using nlohmann::json;
-
-// Validation context: the file and the path of the JSON entry being read
-// (e.g. "sensors[2]"), so every message points at the offending entry.
-class Reader {
+// What the words of a channel mean, once hb/campaign_file.h has read the
+// file's shape: `where` ("sensors[2]") and the channel name every complaint.
+class Meaning {
  public:
-  explicit Reader(std::string source) : source_(std::move(source)) {}
+  explicit Meaning(std::string source) : source_(std::move(source)) {}
 
   [[noreturn]] void Fail(const std::string& where, const std::string& channel, const std::string& problem,
                          const std::string& fix) const {
     throw InputError(source_, channel, (where.empty() ? "" : where + ": ") + problem, fix);
   }
 
-  void RequireObject(const json& value, const std::string& where) const {
-    if (!value.is_object()) Fail(where, "", "must be a JSON object {...}", "see the campaign format spec");
-  }
-
-  void OnlyKeys(const json& object, const std::string& where, std::initializer_list<std::string_view> keys) const {
-    for (const auto& [key, unused] : object.items()) {
-      bool known = false;
-      for (auto k : keys) known = known || key == k;
-      if (known) continue;
-      std::string accepted;
-      for (auto k : keys) accepted += (accepted.empty() ? "" : ", ") + std::string(k);
-      Fail(where, "", "unknown key '" + key + "'", "use only the keys " + accepted + " (check the spelling)");
-    }
-  }
-
-  const json& Member(const json& object, const std::string& where, const std::string& key) const {
-    auto it = object.find(key);
-    if (it == object.end()) Fail(where, "", "missing key '" + key + "'", "add \"" + key + "\"");
-    return *it;
-  }
-
-  std::string String(const json& object, const std::string& where, const std::string& key) const {
-    const json& value = Member(object, where, key);
-    if (!value.is_string() || value.get<std::string>().empty())
-      Fail(where, "", "'" + key + "' must be a non-empty string", "write it as \"" + key + "\": \"...\"");
-    std::string text = value.get<std::string>();
-    // Names and labels end up in file names, CSV columns, plot titles and
-    // reports: a line break or another control character has no place there
-    // (the value itself is not repeated, so that the message stays one line).
-    for (std::size_t i = 0; i < text.size(); ++i) {
-      const auto byte = static_cast<unsigned char>(text[i]);
-      if (byte < 0x20 || byte == 0x7F)
-        Fail(where, "",
-             "'" + key + "' holds a control character (byte " + std::to_string(byte) + " at position " +
-                 std::to_string(i + 1) + ": a line break, tab or the like)",
-             "write \"" + key + "\" without line breaks, tabs or other control characters");
-    }
-    return text;
-  }
-
-  // A finite number, > 0 (or >= 0 when zero_allowed).
-  double Number(const json& object, const std::string& where, const std::string& key, bool zero_allowed = false,
-                const std::string& channel = "") const {
-    const json& value = Member(object, where, key);
-    if (!value.is_number())
-      Fail(where, channel, "'" + key + "' must be a number", "write a plain number in SI, e.g. \"" + key + "\": 0.5");
-    double x = value.get<double>();
-    if (!std::isfinite(x) || x < 0.0 || (!zero_allowed && x == 0.0))
-      Fail(where, channel, "'" + key + "' = " + internal::FormatNumber(x) + " is not physical",
-           std::string("give a ") + (zero_allowed ? "non-negative" : "positive") + " value");
-    return x;
-  }
-
-  ChannelSpec Channel(const json& entry, const std::string& where, bool is_excitation, double length_m) const {
-    RequireObject(entry, where);
-    if (is_excitation)
-      OnlyKeys(entry, where, {"channel", "position_m", "quantity", "unit", "sensitivity_N_per_V"});
-    else
-      OnlyKeys(entry, where, {"channel", "position_m", "quantity", "unit", "mass_kg"});
+  ChannelSpec Channel(const hb::CampaignChannel& entry, const std::string& where, bool is_excitation,
+                      double length_m) const {
     ChannelSpec spec;
-    spec.channel = String(entry, where, "channel");
+    spec.channel = entry.channel;
     if (spec.channel == "time_s")
       Fail(where, spec.channel, "'time_s' is the time column, not a channel", "rename the channel");
-    spec.position_m = Number(entry, where, "position_m", /*zero_allowed=*/true, spec.channel);
+    spec.position_m = entry.position_m;
     if (spec.position_m > length_m)
       Fail(where, spec.channel,
            "position_m = " + internal::FormatNumber(spec.position_m) + " lies beyond the beam end (length_m = " +
                internal::FormatNumber(length_m) + ")",
            "measure x from the clamp, in metres");
-    std::string quantity_name = String(entry, where, "quantity");
+    const std::string& quantity_name = entry.quantity;
     auto quantity = ParseQuantity(quantity_name);
     if (is_excitation && (!quantity || !IsExcitationQuantity(*quantity)))
       Fail(where, spec.channel, "the excitation quantity is '" + quantity_name + "'",
@@ -111,21 +45,18 @@ class Reader {
       Fail(where, spec.channel, "unknown sensor quantity '" + quantity_name + "'",
            "use \"acceleration\", \"velocity\" or \"displacement\"");
     spec.quantity = *quantity;
-    spec.unit = String(entry, where, "unit");
+    spec.unit = entry.unit;
     auto factor = UnitToSiFactor(spec.quantity, spec.unit);
     if (!factor)
       Fail(where, spec.channel,
            "unit '" + spec.unit + "' is not accepted for a " + std::string(QuantityName(spec.quantity)),
            "use one of " + AcceptedUnits(spec.quantity) + " (all accepted units: N, V, mV, m/s^2, g, m/s, mm/s, m, mm)");
     spec.to_si_factor = *factor;
-    if (entry.contains("sensitivity_N_per_V")) {
-      if (spec.quantity != Quantity::kVoltage)
-        Fail(where, spec.channel, "'sensitivity_N_per_V' is given for a " + quantity_name + " excitation",
-             "give it only with \"quantity\": \"voltage\"");
-      spec.sensitivity_N_per_V = Number(entry, where, "sensitivity_N_per_V", /*zero_allowed=*/false, spec.channel);
-    }
-    if (!is_excitation && entry.contains("mass_kg"))
-      spec.mass_kg = Number(entry, where, "mass_kg", /*zero_allowed=*/true, spec.channel);
+    if (entry.sensitivity_N_per_V && spec.quantity != Quantity::kVoltage)
+      Fail(where, spec.channel, "'sensitivity_N_per_V' is given for a " + quantity_name + " excitation",
+           "give it only with \"quantity\": \"voltage\"");
+    spec.sensitivity_N_per_V = entry.sensitivity_N_per_V;
+    spec.mass_kg = entry.mass_kg;
     return spec;
   }
 
@@ -169,91 +100,48 @@ std::vector<const ChannelSpec*> Campaign::Channels() const {
 }
 
 Campaign ParseCampaign(std::string_view json_text, const std::filesystem::path& folder, const std::string& source) {
-  Reader reader(source);
-  // Strict: a key written twice, at any depth, would silently take one of
-  // its values; a number beyond double's range is refused too.
-  const json root = ParseStrictJson<json>(json_text, source, "see docs/campaign-format.md");
-  reader.RequireObject(root, "");
-  reader.OnlyKeys(root, "", {"format", "beamid_version", "name", "beam", "excitation", "sensors", "steps", "sample_rate_Hz",
-                             "ignore_channels"});
+  // The file's shape: strict JSON (a key written twice, at any depth, would
+  // silently take one of its values), no unknown key, every number in range.
+  const hb::CampaignFile file = hb::CampaignFileFromJson(std::string(json_text), source);
+  const Meaning meaning(source);
 
   Campaign campaign;
   campaign.folder = folder;
-  std::string format = reader.String(root, "", "format");
-  if (format != kCampaignFormat)
-    reader.Fail("", "", "format '" + format + "' is not supported",
-                "this beamid reads \"format\": \"" + std::string(kCampaignFormat) + "\"");
-  if (root.contains("name")) campaign.name = reader.String(root, "", "name");
-
-  const json& beam = reader.Member(root, "", "beam");
-  reader.RequireObject(beam, "beam");
-  reader.OnlyKeys(beam, "beam", {"length_m", "width_m", "thickness_m", "youngs_modulus_Pa", "density_kg_m3"});
-  campaign.beam.length_m = reader.Number(beam, "beam", "length_m");
-  campaign.beam.width_m = reader.Number(beam, "beam", "width_m");
-  campaign.beam.thickness_m = reader.Number(beam, "beam", "thickness_m");
-  campaign.beam.youngs_modulus_Pa = reader.Number(beam, "beam", "youngs_modulus_Pa");
-  campaign.beam.density_kg_m3 = reader.Number(beam, "beam", "density_kg_m3");
+  campaign.name = file.name;
+  campaign.beam = file.beam;
   try {
     campaign.beam.Validate();
   } catch (const std::invalid_argument& e) {
-    reader.Fail("beam", "", e.what(), "give the beam's nominal values in SI (m, Pa, kg/m³)");
+    meaning.Fail("beam", "", e.what(), "give the beam's nominal values in SI (m, Pa, kg/m³)");
   }
 
-  campaign.excitation =
-      reader.Channel(reader.Member(root, "", "excitation"), "excitation", true, campaign.beam.length_m);
-
-  const json& sensors = reader.Member(root, "", "sensors");
-  if (!sensors.is_array() || sensors.empty())
-    reader.Fail("", "", "'sensors' must be a non-empty array", "list at least one response channel");
-  if (sensors.size() > static_cast<std::size_t>(hb::kMaxPointsOnBeam))
-    reader.Fail("", "", "'sensors' lists " + std::to_string(sensors.size()) + " channels, more than the " +
-                            std::to_string(hb::kMaxPointsOnBeam) + " beamid analyses",
-                "give at most " + std::to_string(hb::kMaxPointsOnBeam) + " sensors");
+  campaign.excitation = meaning.Channel(file.excitation, "excitation", true, campaign.beam.length_m);
   std::set<std::string> names{campaign.excitation.channel};
-  for (std::size_t i = 0; i < sensors.size(); ++i) {
+  for (std::size_t i = 0; i < file.sensors.size(); ++i) {
     std::string where = "sensors[" + std::to_string(i) + "]";
-    campaign.sensors.push_back(reader.Channel(sensors[i], where, false, campaign.beam.length_m));
+    campaign.sensors.push_back(meaning.Channel(file.sensors[i], where, false, campaign.beam.length_m));
     if (!names.insert(campaign.sensors.back().channel).second)
-      reader.Fail(where, campaign.sensors.back().channel, "the channel name is used twice",
-                  "give every channel its own column name");
+      meaning.Fail(where, campaign.sensors.back().channel, "the channel name is used twice",
+                   "give every channel its own column name");
   }
 
-  const json& steps = reader.Member(root, "", "steps");
-  if (!steps.is_array() || steps.empty())
-    reader.Fail("", "", "'steps' must be a non-empty array", "list one entry per recording");
-  for (std::size_t i = 0; i < steps.size(); ++i) {
-    std::string where = "steps[" + std::to_string(i) + "]";
-    reader.RequireObject(steps[i], where);
-    reader.OnlyKeys(steps[i], where, {"file", "frequency_Hz", "level"});
-    Step step;
-    step.file = reader.String(steps[i], where, "file");
-    step.frequency_hz = reader.Number(steps[i], where, "frequency_Hz");
-    step.level = reader.String(steps[i], where, "level");
-    campaign.steps.push_back(std::move(step));
-  }
-  if (root.contains("sample_rate_Hz")) campaign.sample_rate_hz = reader.Number(root, "", "sample_rate_Hz");
-  if (root.contains("ignore_channels")) {
-    const json& ignored = root.at("ignore_channels");
-    if (!ignored.is_array())
-      reader.Fail("", "", "'ignore_channels' must be an array of sensor channel names",
-                  "write e.g. \"ignore_channels\": [\"acc4\"]");
-    for (std::size_t i = 0; i < ignored.size(); ++i) {
-      const std::string where = "ignore_channels[" + std::to_string(i) + "]";
-      if (!ignored[i].is_string())
-        reader.Fail(where, "", "must be a sensor's channel name (a string)", "write the name in quotes");
-      const std::string name = ignored[i].get<std::string>();
-      if (name == campaign.excitation.channel)
-        reader.Fail(where, name, "the excitation cannot be ignored: every step is referenced to it",
-                    "remove it from ignore_channels");
-      const bool known = std::any_of(campaign.sensors.begin(), campaign.sensors.end(),
-                                     [&](const ChannelSpec& sensor) { return sensor.channel == name; });
-      if (!known)
-        reader.Fail(where, name, "names no sensor of the campaign", "use a channel name listed under \"sensors\"");
-      if (std::find(campaign.ignored_channels.begin(), campaign.ignored_channels.end(), name) !=
-          campaign.ignored_channels.end())
-        reader.Fail(where, name, "the channel is listed twice", "list it once");
-      campaign.ignored_channels.push_back(name);
-    }
+  for (const hb::CampaignStep& step : file.steps)
+    campaign.steps.push_back({.file = step.file, .frequency_hz = step.frequency_hz, .level = step.level});
+  campaign.sample_rate_hz = file.sample_rate_hz;
+  for (std::size_t i = 0; i < file.ignore_channels.size(); ++i) {
+    const std::string where = "ignore_channels[" + std::to_string(i) + "]";
+    const std::string& name = file.ignore_channels[i];
+    if (name == campaign.excitation.channel)
+      meaning.Fail(where, name, "the excitation cannot be ignored: every step is referenced to it",
+                   "remove it from ignore_channels");
+    const bool known = std::any_of(campaign.sensors.begin(), campaign.sensors.end(),
+                                   [&](const ChannelSpec& sensor) { return sensor.channel == name; });
+    if (!known)
+      meaning.Fail(where, name, "names no sensor of the campaign", "use a channel name listed under \"sensors\"");
+    if (std::find(campaign.ignored_channels.begin(), campaign.ignored_channels.end(), name) !=
+        campaign.ignored_channels.end())
+      meaning.Fail(where, name, "the channel is listed twice", "list it once");
+    campaign.ignored_channels.push_back(name);
   }
   return campaign;
 }

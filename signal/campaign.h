@@ -18,11 +18,12 @@
 #include <vector>
 
 #include "hb/beam_properties.h"
+#include "hb/campaign_file.h"
 #include "signal/quantity.h"
 
 namespace beamid::signal {
 
-inline constexpr std::string_view kCampaignFormat = "stepped-sine-campaign/1";
+inline constexpr std::string_view kCampaignFormat = hb::kCampaignFileFormat;
 
 // One channel of the recordings: the excitation or a response sensor.
 struct ChannelSpec {

@@ -7,6 +7,9 @@
 #include "hb/scenario.h"
 #include "solver/estimation/prediction_io.h"
 #include "solver/estimation/result_io.h"
+#include "hb/campaign_file.h"
+#include "hb/frc_file.h"
+#include "signal/phasor_set_io.h"
 
 namespace beamid::cli {
 
@@ -23,6 +26,9 @@ const std::vector<DocumentedFormat>& DocumentedFormats() {
       {std::string(solver::kResultFormat), "Identification result (`beamid identify`, result.json)",
        solver::ResultFileFields},
       {std::string(solver::kPredictionFormat), "Prediction (`beamid predict`)", solver::PredictionFileFields},
+      {std::string(hb::kCampaignFileFormat), "A stepped-sine campaign (`campaign.json`, docs/campaign-format.md)",
+       hb::CampaignFileFields},
+      {std::string(signal::kPhasorFormat), "Phasors (`beamid extract -o`)", signal::PhasorSetFields},
   };
   return formats;
 }

@@ -8,6 +8,7 @@
 
 #include "signal/input_error.h"
 #include "signal/phasor_set_io.h"
+#include "tests/support/schema_checks.h"
 
 namespace beamid::signal {
 namespace {
@@ -145,13 +146,61 @@ TEST(PhasorSetIoTest, BadFilesNameTheFile) {
     FAIL();
   } catch (const InputError& e) {
     EXPECT_EQ(e.file(), "some.json");
-    EXPECT_NE(std::string(e.what()).find("is not supported"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(R"(field "format" is "stepped-sine-campaign/1", not "beamid-phasors/1")"), std::string::npos) << e.what();
   }
   try {
     PhasorSetFromJson(R"({"format": "beamid-phasors/1", "campaign": "x"})", "other.json");
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("other.json: not a valid phasors file"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(R"(other.json: field "num_harmonics" is missing)"), std::string::npos) << e.what();
+  }
+}
+
+// The declaration's generic checks (tests/support/schema_checks.h) on a
+// file that holds every optional field: notes, an unsettled step, a
+// skipped step.
+TEST(PhasorSetIoTest, TheDeclarationHolds) {
+  PhasorSet set = Example();
+  for (StepPhasors& step : set.steps) {
+    step.quality.notes = {"a note"};
+    step.quality.unsettled = true;
+    step.quality.unsettled_change_relative = 0.02;
+    step.quality.unsettled_channel = "acc1";
+  }
+  set.skipped.push_back({.file = "low/step_009.csv", .level = "low", .nominal_frequency_hz = 52.0, .reason = "clipped"});
+  beamid::testing::ExpectDeclarationHolds({
+      .fields = PhasorSetFields(),
+      .sample = PhasorSetToJson(set),
+      .read = [](const std::string& text) { PhasorSetFromJson(text, "p.json"); },
+      .rewrite = [](const std::string& text) { return PhasorSetToJson(PhasorSetFromJson(text, "p.json")); },
+  });
+}
+
+// The force comes first, every response after it: a file that lists them
+// otherwise names the rule and the list.
+TEST(PhasorSetIoTest, AResponseListedBeforeTheForceIsRefused) {
+  nlohmann::ordered_json json = nlohmann::ordered_json::parse(PhasorSetToJson(Example()));
+  auto& channels = json["steps"][1]["channels"];
+  std::swap(channels[0], channels[1]);
+  try {
+    PhasorSetFromJson(json.dump(1), "p.json");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "p.json");
+    EXPECT_NE(std::string(e.what()).find(R"(field "steps[1].channels" breaks the rule: the excitation channel comes first)"),
+              std::string::npos)
+        << e.what();
+  }
+  // A harmonic beyond num_harmonics.
+  json = nlohmann::ordered_json::parse(PhasorSetToJson(Example()));
+  json["steps"][0]["channels"][2]["harmonics"][1]["k"] = 3;
+  try {
+    PhasorSetFromJson(json.dump(1), "p.json");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(R"(field "steps[0].channels[2].harmonics[1].k" breaks the rule)"),
+              std::string::npos)
+        << e.what();
   }
 }
 

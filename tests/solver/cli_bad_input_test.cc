@@ -198,7 +198,7 @@ TEST_F(BadInput, EveryBadInputEndsWithExitTwoAndAMessageThatNamesItAndTheFix) {
        [](auto m, auto) { Replace(m / "campaign.json", "\"length_m\": 0.6", "\"length_m\": 1e400"); },
        "extract {m} -o {d}/p.json", {"campaign.json", "1e400", "Fix:"}},
       {"a beam of 1e300 m", [](auto m, auto) { Replace(m / "campaign.json", "\"length_m\": 0.6", "\"length_m\": 1e300"); },
-       "identify {m} -o {d}/r.json", {"campaign.json", "length_m", "1 mm to 100 m", "Fix:"}},
+       "identify {m} -o {d}/r.json", {"campaign.json", "\"beam.length_m\" = 1e+300 lies outside 0.001 .. 100", "Fix:"}},
       {"a step file outside the campaign folder",
        [](auto m, auto) { Replace(m / "campaign.json", "low/step_000.csv", "../../../../etc/passwd"); },
        "extract {m} -o {d}/p.json", {"campaign.json", "lies outside the campaign folder", "Fix:"}},
@@ -401,16 +401,16 @@ TEST_F(BadInput, EveryBadInputEndsWithExitTwoAndAMessageThatNamesItAndTheFix) {
       {"a line break in a level label",
        [](auto m, auto) { Replace(m / "campaign.json", "\"level\": \"low\"", "\"level\": \"low\\nset output 'x'\""); },
        "diagnose {m} -o {d}/d.json --curves {d}/c",
-       {"campaign.json", "steps[0]", "'level' holds a control character", "Fix:", "without line breaks"}},
+       {"campaign.json", "\"steps[0].level\" holds the control character 0x0A", "Fix:", "one line of printable text"}},
       {"a tab in a channel name",
        [](auto m, auto) { Replace(m / "campaign.json", "\"channel\": \"acc1\"", "\"channel\": \"acc\\t1\""); },
-       "report {r} --campaign {m} -o {d}/report.html", {"campaign.json", "sensors[0]", "'channel' holds a control character", "Fix:"}},
+       "report {r} --campaign {m} -o {d}/report.html", {"campaign.json", "\"sensors[0].channel\" holds the control character 0x09", "Fix:"}},
       {"a DEL in a step's file name",
        [](auto m, auto) { Replace(m / "campaign.json", "low/step_001.csv", "low/step\\u007f_001.csv"); },
-       "extract {m} -o {d}/p.json", {"campaign.json", "steps[1]", "'file' holds a control character", "Fix:"}},
+       "extract {m} -o {d}/p.json", {"campaign.json", "\"steps[1].file\" holds the control character 0x7F", "Fix:"}},
       {"an escape character in a unit",
        [](auto m, auto) { Replace(m / "campaign.json", "\"unit\": \"m/s^2\"", "\"unit\": \"m/s^2\\u001b[0m\""); },
-       "extract {m} -o {d}/p.json", {"campaign.json", "'unit' holds a control character", "Fix:"}},
+       "extract {m} -o {d}/p.json", {"campaign.json", "channel 'acc1'", "\"sensors[0].unit\" holds the control character 0x1B", "Fix:"}},
       {"a line break in a scenario's sensor name",
        scenario_with("{\"channel\": \"acc1\"", "{\"channel\": \"acc1\\n\""), "simulate {d}/s.json -o {d}/sim",
        {"s.json", "sensors[0].channel", "control character", "Fix:"}},
@@ -489,6 +489,32 @@ TEST_F(BadInput, EveryBadInputEndsWithExitTwoAndAMessageThatNamesItAndTheFix) {
          WriteFile(d / "result.json", result.replace(value, end - value, "2.0"));
        },
        "predict {d}/result.json --x 0.3 -o {d}/pred.json", {"result.json", "correlation[0][0]", "= 2 lies outside", "Fix:"}},
+      // campaign.json and phasors, each read by its one declaration
+      // (hb/campaign_file.h, signal/phasor_set_io.cc): the field's path, the
+      // channel the field belongs to, and the fix
+      {"a misspelt key of a sensor in campaign.json",
+       [](auto m, auto) { Replace(m / "campaign.json", "\"position_m\": 0.3,", "\"postion_m\": 0.3,"); },
+       "extract {m} -o {d}/p.json",
+       {"campaign.json", "channel 'acc2'", "field \"sensors[1].postion_m\" is not a field here", "Fix:", "position_m"}},
+      {"a negative sensor mass in campaign.json",
+       [](auto m, auto) {
+         Replace(m / "campaign.json", "\"position_m\": 0.3,", "\"position_m\": 0.3, \"mass_kg\": -0.004,");
+       },
+       "identify {m} -o {d}/r.json",
+       {"campaign.json", "channel 'acc2'", "field \"sensors[1].mass_kg\" = -0.004 lies outside ≥ 0", "Fix:"}},
+      {"phasors with a misspelt key",
+       [](auto m, auto d) {
+         ASSERT_EQ(Beamid("-q extract " + m.string() + " -o " + (d / "p.json").string()).exit_code, 0);
+         Replace(d / "p.json", "\"num_harmonics\": ", "\"num_harmonic\": 3, \"num_harmonics\": ");
+       },
+       "identify {m} --phasors {d}/p.json -o {d}/r.json", {"p.json", "field \"num_harmonic\" is not a field here", "Fix:"}},
+      {"phasors that call a response the excitation",
+       [](auto m, auto d) {
+         ASSERT_EQ(Beamid("-q extract " + m.string() + " -o " + (d / "p.json").string()).exit_code, 0);
+         Replace(d / "p.json", "\"role\": \"response\"", "\"role\": \"excitation\"");
+       },
+       "identify {m} --phasors {d}/p.json -o {d}/r.json",
+       {"p.json", "channel 'acc1'", "field \"steps[0].channels[1].role\" breaks the rule", "Fix:"}},
   };
   const fs::path clean = root_ / "clean", result = root_ / "result.json";
   for (std::size_t i = 0; i < rows.size(); ++i) {

@@ -104,12 +104,12 @@ TEST(StrictJsonFormats, ValuesOutsideTheirRangeAreRefusedNamingTheField) {
   EXPECT_THAT(InputErrorOf([&] {
                 signal::PhasorSetFromJson(SeedWith(phasors, "\"std_re\": 6.97", "\"std_re\": -6.97"), "p.json");
               }),
-              HasSubstr("p.json: channel 'force': steps[0].channels[0].harmonics[0].std_re = -6.97"));
+              HasSubstr("p.json: channel 'force': field \"steps[0].channels[0].harmonics[0].std_re\" = -6.97"));
   EXPECT_THAT(InputErrorOf([&] {
                 signal::PhasorSetFromJson(SeedWith(phasors, "\"frequency_Hz\": 53.6", "\"frequency_Hz\": -53.6"),
                                           "p.json");
               }),
-              HasSubstr("steps[0].frequency_Hz = -53.6"));
+              HasSubstr("field \"steps[0].frequency_Hz\" = -53.6"));
   const std::string diagnosis = "tests/fuzz/seeds/diagnosis_json_fuzzer/diagnosis.json";
   EXPECT_NO_THROW(solver::DiagnosisFileFromJson(SeedWith(diagnosis, "", ""), "d.json"));
   EXPECT_THAT(InputErrorOf([&] {
