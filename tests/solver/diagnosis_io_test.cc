@@ -178,8 +178,10 @@ DiagnosisFile FullFile(bool with_location) {
   pair.extra_parameters = {"jenkins_stiffness", "jenkins_slip_moment"};
   r.combinations = {pair};
   r.selected = {"support_friction"};
-  r.verdict = "cause named";
-  r.ranked_by = "held-out channels";
+  r.verdict = solver::DiagnosisVerdict::kCauseNamed;
+  r.ranked_by = solver::RankedBy::kHeldOutChannels;
+  r.blame = Blame::kModel;
+  r.recording_findings = {"step 3 of \"high\": cut before it settled"};
   r.rest_within_noise = false;  // not the default
   r.suggestion = MeasurementSuggestion{.first = "added_mass",
                                        .second = "modulus_error",
@@ -360,6 +362,8 @@ void ExpectSameFile(const DiagnosisFile& a, const DiagnosisFile& b) {
   EXPECT_EQ(x.selected, y.selected);
   EXPECT_EQ(x.verdict, y.verdict);
   EXPECT_EQ(x.ranked_by, y.ranked_by);
+  EXPECT_EQ(x.blame, y.blame);
+  EXPECT_EQ(x.recording_findings, y.recording_findings);
   EXPECT_EQ(x.rest_within_noise, y.rest_within_noise);
   ASSERT_EQ(x.suggestion.has_value(), y.suggestion.has_value());
   if (x.suggestion) {
@@ -596,7 +600,7 @@ TEST(DiagnosisFile, ReadsTheFirstLayout) {
   EXPECT_EQ(file.result_file, "result.json");
   EXPECT_EQ(file.embedded_result_json, "");
   const DiagnosisResult& r = file.diagnosis;
-  EXPECT_EQ(r.verdict, "cause named");
+  EXPECT_EQ(r.verdict, solver::DiagnosisVerdict::kCauseNamed);
   EXPECT_EQ(r.selected, std::vector<std::string>{"clamp_compliance"});
   ASSERT_EQ(r.base.parameters.size(), 2u);
   EXPECT_EQ(r.base.parameters[1].name, "k1");
@@ -714,6 +718,24 @@ TEST(DiagnosisFile, RefusesAnUnknownField) {
   j = good;
   j["verdicts"] = "unexplained";
   ExpectRefused(j, "d.json", "verdicts");
+}
+
+// The outcomes travel by name: a name the diagnosis does not give is refused.
+TEST(DiagnosisFile, RefusesAnOutcomeItDoesNotName) {
+  const nlohmann::json good = nlohmann::json::parse(DiagnosisFileToJson(FullFile(true)));
+  const nlohmann::json read_back =
+      nlohmann::json::parse(DiagnosisFileToJson(DiagnosisFileFromJson(good.dump(), "d.json")));
+  EXPECT_EQ(read_back["verdict"], "cause named");
+  EXPECT_EQ(read_back["ranked_by"], "held-out channels");
+  EXPECT_EQ(read_back["blame"], "the model");
+  for (const char* key : {"verdict", "ranked_by", "blame"}) {
+    nlohmann::json j = good;
+    j[key] = "the weather";
+    ExpectRefused(j, "d.json", key);
+  }
+  nlohmann::json j = good;
+  j["blame"] = "";  // nothing named: nobody to blame
+  EXPECT_EQ(DiagnosisFileFromJson(j.dump(), "d.json").diagnosis.blame, Blame::kNone);
 }
 
 TEST(DiagnosisFile, RefusesWhatIsNotADiagnosis) {

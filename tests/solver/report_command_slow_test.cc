@@ -165,7 +165,7 @@ TEST_F(ReportCommand, RendersADiagnosisSummary) {
   file.result_file = "result.json";
   DiagnosisResult& d = file.diagnosis;
   d.selected = {"support_friction"};
-  d.verdict = "cause named";
+  d.verdict = solver::DiagnosisVerdict::kCauseNamed;
   d.summary = "SUMMARY-TEXT";
   d.base.chi_square = 5000;
   MisfitLocation location;
