@@ -228,8 +228,8 @@ void Describe(auto& io, schema::Like<MisfitGroupTest> auto& g) {
   io.Text("channel", g.channel);  // "" = all channels
   io.Integer("harmonic", g.harmonic, 0, kMaxModelHarmonics);  // 0 = all harmonics
   io.Text("level", g.level);      // "" = all levels
-  io.Text("part", g.part, TextRule::kNotEmpty);
-  io.Text("band", g.band, TextRule::kNotEmpty);
+  io.Choice("part", g.part, kResidualPartNames);
+  io.Choice("band", g.band, kFrequencyBandNames);
   io.Number("chi2", g.chi2, "1", schema::NonNegative());
   io.Integer("dof", g.dof, 0, kMaxCount);
   io.Number("p_value", g.p_value, "1", schema::Probability());

@@ -307,7 +307,7 @@ std::string DiagnosisSection(const DiagnosisResult& diagnosis) {
       rows += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
                           g.channel.empty() ? "all" : HtmlEscape(g.channel),
                           g.harmonic == 0 ? std::string("all") : std::to_string(g.harmonic),
-                          g.level.empty() ? "all" : HtmlEscape(g.level), HtmlEscape(g.part), HtmlEscape(g.band),
+                          g.level.empty() ? "all" : HtmlEscape(g.level), ToString(g.part), ToString(g.band),
                           Number(g.chi2), g.dof, Number(g.adjusted_p_value));
     }
     html += fmt::format("<h3>Residual groups beyond the noise ({} of {})</h3>\n", significant, location.groups.size());

@@ -61,11 +61,11 @@ MisfitLocation Location() {
   m.p_value = 1.234e-300;
   m.significant = true;
   m.num_groups_tested = 2;
-  m.groups.push_back({.channel = "acc1", .harmonic = 3, .level = "high", .part = "in_phase",
-                      .band = "near_resonance", .chi2 = 91.5 / 7.0, .dof = 9, .p_value = 0.1 / 3.0,
+  m.groups.push_back({.channel = "acc1", .harmonic = 3, .level = "high", .part = ResidualPart::kInPhase,
+                      .band = FrequencyBand::kNearResonance, .chi2 = 91.5 / 7.0, .dof = 9, .p_value = 0.1 / 3.0,
                       .adjusted_p_value = 0.7 / 3.0, .significant = false, .excess_chi2 = 4.0 / 7.0,
                       .growth_exponent = kNaN});
-  m.groups.push_back({.channel = "", .harmonic = 0, .level = "", .part = "both", .band = "all",
+  m.groups.push_back({.channel = "", .harmonic = 0, .level = "", .part = ResidualPart::kBoth, .band = FrequencyBand::kAll,
                       .chi2 = 1e5 / 3.0, .dof = 300, .p_value = 5e-310, .adjusted_p_value = 1e-308,
                       .significant = true, .excess_chi2 = 1e5 / 3.0 - 300.0, .growth_exponent = 2.0 / 3.0});
   m.in_phase_fraction = 0.1 / 3.0;
@@ -178,8 +178,8 @@ DiagnosisFile FullFile(bool with_location) {
   pair.extra_parameters = {"jenkins_stiffness", "jenkins_slip_moment"};
   r.combinations = {pair};
   r.selected = {"support_friction"};
-  r.verdict = solver::DiagnosisVerdict::kCauseNamed;
-  r.ranked_by = solver::RankedBy::kHeldOutChannels;
+  r.verdict = DiagnosisVerdict::kCauseNamed;
+  r.ranked_by = RankedBy::kHeldOutChannels;
   r.blame = Blame::kModel;
   r.recording_findings = {"step 3 of \"high\": cut before it settled"};
   r.rest_within_noise = false;  // not the default
@@ -600,7 +600,7 @@ TEST(DiagnosisFile, ReadsTheFirstLayout) {
   EXPECT_EQ(file.result_file, "result.json");
   EXPECT_EQ(file.embedded_result_json, "");
   const DiagnosisResult& r = file.diagnosis;
-  EXPECT_EQ(r.verdict, solver::DiagnosisVerdict::kCauseNamed);
+  EXPECT_EQ(r.verdict, DiagnosisVerdict::kCauseNamed);
   EXPECT_EQ(r.selected, std::vector<std::string>{"clamp_compliance"});
   ASSERT_EQ(r.base.parameters.size(), 2u);
   EXPECT_EQ(r.base.parameters[1].name, "k1");

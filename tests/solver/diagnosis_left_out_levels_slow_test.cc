@@ -48,7 +48,7 @@ TEST(DiagnosisOnLeftOutLevels, ModulusErrorValidatedWithoutAHeldOutSensor) {
   s["beam"]["youngs_modulus_Pa"] = 2.0e11;
   s["nominal_beam"] = {{"youngs_modulus_Pa", 2.1e11}};
   const DiagnosisResult result = DiagnoseWithoutHeldOutChannel(s, "modulus");
-  EXPECT_EQ(result.ranked_by, solver::RankedBy::kLevelsLeftOut);
+  EXPECT_EQ(result.ranked_by, RankedBy::kLevelsLeftOut);
   ASSERT_FALSE(result.selected.empty());
   ASSERT_TRUE(result.verdict == DiagnosisVerdict::kCauseNamed ||
               result.verdict == DiagnosisVerdict::kCausesIndistinguishable)
@@ -69,7 +69,7 @@ TEST(DiagnosisOnLeftOutLevels, ModulusErrorValidatedWithoutAHeldOutSensor) {
 
 TEST(DiagnosisOnLeftOutLevels, BasePhysicsPredictsTheLeftOutLevelsWithinTheNoise) {
   const DiagnosisResult result = DiagnoseWithoutHeldOutChannel(testing::PaperSetUpScenario(), "base");
-  EXPECT_EQ(result.verdict, solver::DiagnosisVerdict::kNoSignificantDiscrepancy);
+  EXPECT_EQ(result.verdict, DiagnosisVerdict::kNoSignificantDiscrepancy);
   ASSERT_TRUE(std::isfinite(result.base.held_out_chi_square));
   ASSERT_GT(result.base.held_out_num_residuals, 0);
   // χ² of n residuals the fit did not see: mean n, σ √(2n); 2n is far beyond.
