@@ -573,6 +573,14 @@ struct FieldDoc {
   std::string unit;  // "Hz", "" where none
   std::string range;  // "> 0", "0 .. 50", "\"measured\" | \"feasible\"", ""
   bool optional = false;
+  // What the reader holds the value to, for the generic checks of a format
+  // (tests/support/schema_checks.h): a number's (or a number list's)
+  // limits, an integer's range, a list's count, a string's choices.
+  Limits limits{};
+  std::int64_t integer_min = 0;
+  std::int64_t integer_max = 0;
+  std::size_t count_min = 0;
+  std::vector<std::string> choices;
 };
 
 class Documenter {
@@ -582,18 +590,20 @@ class Documenter {
   Documenter(std::vector<FieldDoc>& out, std::string prefix) : out_(out), prefix_(std::move(prefix)) {}
 
   void Constant(std::string_view key, std::string_view value, Presence p = Presence::kRequired) {
-    Add(key, "string", "", "\"" + std::string(value) + "\"", p);
+    Add(key, "string", "", "\"" + std::string(value) + "\"", p).choices = {std::string(value)};
   }
   void Number(std::string_view key, const double&, std::string_view unit, Limits limits = {},
               Presence p = Presence::kRequired) {
-    Add(key, "number", unit, limits.Text(), p);
+    Add(key, "number", unit, limits.Text(), p).limits = limits;
   }
   void Derived(std::string_view key, double, std::string_view unit) {
-    Add(key, "number", unit, "written, not read", Presence::kOptional);
+    Add(key, "number (derived)", unit, "written, not read", Presence::kOptional);
   }
   template <std::integral I>
   void Integer(std::string_view key, const I&, std::int64_t min, std::int64_t max, Presence p = Presence::kRequired) {
-    Add(key, "integer", "", fmt::format("{} .. {}", min, max), p);
+    FieldDoc& f = Add(key, "integer", "", fmt::format("{} .. {}", min, max), p);
+    f.integer_min = min;
+    f.integer_max = max;
   }
   void Boolean(std::string_view key, const bool&, Presence p = Presence::kRequired) { Add(key, "boolean", "", "", p); }
   void Text(std::string_view key, const std::string&, TextRule rule = TextRule::kAny, Presence p = Presence::kRequired) {
@@ -602,20 +612,26 @@ class Documenter {
   template <typename E, std::size_t N>
   void Choice(std::string_view key, const E&, const Name<E> (&names)[N], Presence p = Presence::kRequired) {
     std::string range;
-    for (const Name<E>& n : names) range += (range.empty() ? "\"" : " | \"") + std::string(n.name) + "\"";
-    Add(key, "string", "", range, p);
+    std::vector<std::string> choices;
+    for (const Name<E>& n : names) {
+      range += (range.empty() ? "\"" : " | \"") + std::string(n.name) + "\"";
+      choices.emplace_back(n.name);
+    }
+    Add(key, "string", "", range, p).choices = std::move(choices);
   }
   void Numbers(std::string_view key, const std::vector<double>&, std::string_view unit, Limits limits, Count count,
                Presence p = Presence::kRequired) {
-    Add(key, "[number]", unit, fmt::format("{}; {} entries", limits.Text(), count.Text()), p);
+    FieldDoc& f = Add(key, "[number]", unit, fmt::format("{}; {} entries", limits.Text(), count.Text()), p);
+    f.limits = limits;
+    f.count_min = count.min;
   }
   void Phasors(std::string_view key, const std::vector<std::complex<double>>&, std::string_view unit, Count count,
                Presence p = Presence::kRequired) {
-    Add(key, "[[re, im]]", unit, count.Text() + " entries", p);
+    Add(key, "[[re, im]]", unit, count.Text() + " entries", p).count_min = count.min;
   }
   void Texts(std::string_view key, const std::vector<std::string>&, Count count, TextRule = TextRule::kAny,
              Presence p = Presence::kRequired) {
-    Add(key, "[string]", "", count.Text() + " entries", p);
+    Add(key, "[string]", "", count.Text() + " entries", p).count_min = count.min;
   }
   template <typename T, typename F = DescribeByLookup>
   void Object(std::string_view key, const T&, Presence p = Presence::kRequired, F describe = {}) {
@@ -625,7 +641,7 @@ class Documenter {
   template <typename T, typename F = DescribeByLookup>
   void List(std::string_view key, const std::vector<T>&, Count count, Presence p = Presence::kRequired,
             F describe = {}) {
-    Add(key, "[object]", "", count.Text() + " entries", p);
+    Add(key, "[object]", "", count.Text() + " entries", p).count_min = count.min;
     Nested<T>(Path(key) + "[].", describe);
   }
   template <typename T, typename F = DescribeByLookup>
@@ -657,7 +673,7 @@ class Documenter {
   }
   template <typename T, std::size_t N>
   void Row(std::string_view key, const T&, const Column<T> (&columns)[N], Presence p = Presence::kRequired) {
-    Add(key, "[" + ColumnNames(columns) + "]", ColumnUnits(columns), ColumnRanges(columns), p);
+    Add(key, "[" + ColumnNames(columns) + "]", ColumnUnits(columns), ColumnRanges(columns), p).count_min = N;
   }
   template <typename T, std::size_t N>
   void Rows(std::string_view key, const std::vector<T>&, const Column<T> (&columns)[N], Count count,
@@ -672,8 +688,13 @@ class Documenter {
 
  private:
   std::string Path(std::string_view key) const { return prefix_ + std::string(key); }
-  void Add(std::string_view key, std::string type, std::string_view unit, std::string range, Presence p) {
-    out_.push_back({Path(key), std::move(type), std::string(unit), std::move(range), p != Presence::kRequired});
+  FieldDoc& Add(std::string_view key, std::string type, std::string_view unit, std::string range, Presence p) {
+    out_.push_back({.path = Path(key),
+                    .type = std::move(type),
+                    .unit = std::string(unit),
+                    .range = std::move(range),
+                    .optional = p != Presence::kRequired});
+    return out_.back();
   }
   template <typename T, typename F>
   void Nested(std::string prefix, F& describe) {

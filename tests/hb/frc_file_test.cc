@@ -22,6 +22,7 @@
 #include "hb/errors.h"
 #include "tests/support/csv_text.h"
 #include "tests/support/same_value.h"
+#include "tests/support/schema_checks.h"
 #include "tests/support/expect_refused.h"
 #include "tests/support/temp_path.h"
 
@@ -243,6 +244,15 @@ TEST(FrcFile, PointsNamingOtherSensorsAreRefused) {
   text.replace(second, 6, "\"acc2\"");
   const std::string message = InputErrorOf([&] { FrcFileFromJson(text, "x.json"); });
   EXPECT_THAT(message, HasSubstr("curves[0].points[1].sensors"));
+}
+
+TEST(FrcFile, TheDeclarationHoldsForEveryField) {
+  beamid::testing::ExpectDeclarationHolds({
+      .fields = FrcFileFields(),
+      .sample = FrcFileToJson(Filled()),
+      .read = [](const std::string& text) { FrcFileFromJson(text, "x.json"); },
+      .rewrite = [](const std::string& text) { return FrcFileToJson(FrcFileFromJson(text, "x.json")); },
+  });
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <fstream>
 #include <functional>
 #include <limits>
 #include <random>
@@ -20,6 +21,7 @@
 
 #include "hb/errors.h"
 #include "tests/support/same_value.h"
+#include "tests/support/schema_checks.h"
 #include "tests/support/temp_path.h"
 
 namespace beamid::solver {
@@ -529,6 +531,38 @@ TEST(DiagnosisFile, DoublesOfAnyBitPatternReadBackExactly) {
   EXPECT_THROW(CandidateRefitFromText("{\"chi_square\": \"many\", \"seconds\": 1, \"values\": [], \"std\": [], "
                                       "\"scaled_at\": [], \"x\": []}"),
                std::runtime_error);
+}
+
+// The declaration's generic checks (tests/support/schema_checks.h) on files
+// with every field set: the text survives reading and writing, and every
+// number out of range, integer, boolean, choice, required field and unknown
+// key is refused naming its path. Without a location, the file holds its
+// error alone.
+TEST(DiagnosisFile, TheDeclarationHolds) {
+  for (bool with_location : {true, false}) {
+    SCOPED_TRACE(with_location ? "with a location" : "locating failed");
+    testing::ExpectDeclarationHolds(
+        {.fields = DiagnosisFileFields(),
+         .sample = DiagnosisFileToJson(FullFile(with_location)),
+         .read = [](const std::string& text) { DiagnosisFileFromJson(text, "run/diagnosis.json"); },
+         .rewrite = [](const std::string& text) {
+           return DiagnosisFileToJson(DiagnosisFileFromJson(text, "run/diagnosis.json"));
+         }});
+  }
+}
+
+// A file that `beamid diagnose` wrote before the declaration (the fuzzer's
+// seed, from a real run) reads, and is written again byte for byte: the
+// declaration writes the layout the earlier writer wrote.
+TEST(DiagnosisFile, AFileOfTheEarlierWriterIsWrittenAgainTheSame) {
+  const std::string path = "tests/fuzz/seeds/diagnosis_json_fuzzer/diagnosis.json";
+  std::ifstream in(path, std::ios::binary);
+  ASSERT_TRUE(in) << path << " is missing (the test runs from the source folder)";
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const DiagnosisFile file = DiagnosisFileFromJson(text, path);
+  EXPECT_EQ(file.diagnosis.verdict, DiagnosisVerdict::kNoSignificantDiscrepancy);
+  EXPECT_EQ(file.diagnosis.blame, Blame::kNone);
+  EXPECT_EQ(DiagnosisFileToJson(file), text);
 }
 
 // ---------------------------------------------------------------- the first layout
