@@ -278,7 +278,7 @@ void Describe(auto& io, schema::Like<LevelShare> auto& l) {
 void Describe(auto& io, schema::Like<MeasurementSuggestion> auto& m) {
   // The two candidates, as a pair of texts.
   std::vector<std::string> names{m.first, m.second};
-  io.Texts("candidates", names, Count::Exactly(2, "2, the two candidates"), TextRule::kNotEmpty);
+  io.Texts("candidates", names, Count::Exactly(2, "2"), TextRule::kNotEmpty);
   if constexpr (std::remove_cvref_t<decltype(io)>::kReading) {
     m.first = names[0];
     m.second = names[1];
