@@ -1,8 +1,9 @@
 // The files of `beamid backbone` on a model (format "beamid-backbone/1"):
 // PREFIX.json and PREFIX.csv, the model's backbone by phase resonance
 // (hb/backbone.h) with the corrected multiple-scales backbone beside it, and
-// their one reader and writer. (The measured backbone of `backbone
-// --measured` is another format: solver/backbone/measured_backbone_io.h.)
+// their one reader and writer, driven by one declaration (hb/json_schema.h).
+// (The measured backbone of `backbone --measured` is another format:
+// solver/backbone/measured_backbone_io.h.)
 // JSON keys, as earlier files have them: format, command ("backbone"),
 // beamid_version, model (the model file's name), definition (a description),
 // harmonics (H), complete, points [{theta_amplitude_rad, frequency_Hz,
@@ -25,6 +26,7 @@
 #include <string_view>
 #include <vector>
 
+#include "hb/json_schema.h"
 #include "hb/version.h"
 
 namespace beamid::hb {
@@ -39,13 +41,21 @@ struct BackboneFileSensor {
   double position_m = 0.0;
 };
 
+struct BackboneFileSensorPhasors {
+  std::vector<std::complex<double>> displacement_m;  // k = 0..H
+  // As the file holds them in every point; the writer takes them from
+  // BackboneFile::sensors, the reader checks them against the first point's.
+  std::string channel;
+  double position_m = 0.0;
+};
+
 struct BackboneFilePoint {
   double theta_amplitude_rad = 0.0;
   double frequency_hz = 0.0;
   double force_N = 0.0;  // signed (hb/backbone.h)
   double multiple_scales_frequency_hz = 0.0;  // NaN when there is none (null in the JSON, empty in the CSV)
-  std::vector<std::complex<double>> theta_rad;                    // Θ_0..Θ_H
-  std::vector<std::vector<std::complex<double>>> displacement_m;  // per BackboneFile::sensors, k = 0..H
+  std::vector<std::complex<double>> theta_rad;     // Θ_0..Θ_H
+  std::vector<BackboneFileSensorPhasors> sensors;  // one per BackboneFile::sensors
 };
 
 struct BackboneFile {
@@ -58,6 +68,9 @@ struct BackboneFile {
   std::vector<BackboneFileSensor> sensors;
   std::vector<BackboneFilePoint> points;
 };
+
+// The fields of the JSON file: path, type, unit, range (docs/formats.md).
+std::vector<schema::FieldDoc> BackboneFileFields();
 
 // Throws std::invalid_argument when a point's sensors do not match `sensors`.
 std::string BackboneFileToJson(const BackboneFile& file);

@@ -14,7 +14,6 @@ namespace beamid::hb {
 namespace {
 
 using internal::CsvNumber;
-using internal::SamePosition;
 
 constexpr schema::Format kFormat{kFrcFormat, "frequency response file", "give the PREFIX.json of 'beamid frc'"};
 
@@ -35,19 +34,16 @@ void CheckShape(const FrcFile& file, const FrcPoint& p) {
 }
 
 // The first point that names other sensors than the file's first point
-// (other names, order or positions; NaN, unknown, equals NaN), as its path
-// "curves[c].points[p].sensors", or "".
+// (other names, order or positions; NaN, unknown, equals NaN), as the path
+// of what differs ("curves[c].points[p].sensors..."), or "".
 std::string PointWithOtherSensors(const FrcFile& f) {
   const FrcPoint* first = nullptr;
   for (std::size_t c = 0; c < f.curves.size(); ++c)
     for (std::size_t j = 0; j < f.curves[c].points.size(); ++j) {
       const FrcPoint& p = f.curves[c].points[j];
       if (first == nullptr) first = &p;
-      bool same = p.sensors.size() == first->sensors.size();
-      for (std::size_t i = 0; same && i < p.sensors.size(); ++i)
-        same = p.sensors[i].channel == first->sensors[i].channel &&
-               SamePosition(p.sensors[i].position_m, first->sensors[i].position_m);
-      if (!same) return fmt::format("curves[{}].points[{}].sensors", c, j);
+      const std::string other = internal::OtherSensors(first->sensors, p.sensors);
+      if (!other.empty()) return fmt::format("curves[{}].points[{}].{}", c, j, other);
     }
   return {};
 }

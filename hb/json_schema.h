@@ -35,6 +35,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <optional>
 #include <span>
 #include <string>
@@ -208,6 +209,8 @@ class Writer {
   // Written for a reader's convenience, computed from other fields, never
   // read back.
   void Derived(std::string_view key, double v, std::string_view /*unit*/) { Put(key, NumberJson(v)); }
+  // A text for a reader (a description that is the same in every file).
+  void Derived(std::string_view key, std::string_view text) { Put(key, std::string(text)); }
   template <std::integral I>
   void Integer(std::string_view key, const I& v, std::int64_t /*min*/, std::int64_t /*max*/,
                Presence = Presence::kRequired) {
@@ -249,6 +252,13 @@ class Writer {
   void Object(std::string_view key, const T& v, Presence = Presence::kRequired, F describe = {}) {
     Put(key, Written(v, describe));
   }
+  // An object, or null where the value's `present` member says there is
+  // none (an estimate that could not be made).
+  template <typename T, typename F = DescribeByLookup>
+  void ObjectOrNull(std::string_view key, const T& v, bool T::*present, Presence = Presence::kRequired,
+                    F describe = {}) {
+    Put(key, v.*present ? Written(v, describe) : Json(nullptr));
+  }
   template <typename T, typename F = DescribeByLookup>
   void List(std::string_view key, const std::vector<T>& v, Count count, Presence p = Presence::kRequired,
             F describe = {}) {
@@ -267,18 +277,37 @@ class Writer {
     for (const T& element : v) object[element.*name] = Written(element, describe);
     Put(key, std::move(object));
   }
+  // An object that a file may leave out (std::nullopt): written when it holds a value.
+  template <typename T, typename F = DescribeByLookup>
+  void Object(std::string_view key, const std::optional<T>& v, Presence = Presence::kOptional, F describe = {}) {
+    if (v) Put(key, Written(*v, describe));
+  }
+  // An object keyed by name ({"acc1": {...}, ...}) held as a map.
+  template <typename T, typename F = DescribeByLookup>
+  void Keyed(std::string_view key, const std::map<std::string, T>& v, Count count, Presence = Presence::kRequired,
+             F describe = {}) {
+    CheckCount(key, v.size(), count);
+    Json object = Json::object();
+    for (const auto& [name, element] : v) object[name] = Written(element, describe);
+    Put(key, std::move(object));
+  }
+  // A list of numbers that a file may also spell as an object (a range
+  // {start, stop, step}) from which the declaration computes the list; the
+  // writer writes the list.
+  template <typename T, typename F = DescribeByLookup>
+  void NumbersOr(std::string_view key, const std::vector<double>& v, std::string_view unit, Limits limits, Count count,
+                 const T& /*alternative*/, Presence presence = Presence::kRequired, F /*describe*/ = {}) {
+    Numbers(key, v, unit, limits, count, presence);
+  }
+  // A key of another format that this one reads past (a scenario's fields in
+  // a model file): never written.
+  void Ignored(std::string_view /*key*/) {}
+  // A key this variant of the format does not take (a voltage drive's
+  // amplifier with a force drive): never written.
+  void Refused(std::string_view /*key*/, std::string_view /*problem*/, std::string_view /*fix*/) {}
   // A rule between fields: the writer's caller broke it (a bug, not input).
   void Check(bool ok, std::string_view rule, const std::string& = {}) const {
     if (!ok) throw std::logic_error("schema: a written value breaks the rule: " + std::string(rule));
-  }
-  // An object that may be absent.
-  template <typename T, typename F = DescribeByLookup>
-  void Object(std::string_view key, const std::optional<T>& v, Presence p = Presence::kWhenSet, F describe = {}) {
-    if (!v) {
-      if (p == Presence::kRequired) throw std::logic_error("schema: object \"" + std::string(key) + "\" is absent");
-      return;
-    }
-    Put(key, Written(*v, describe));
   }
   // The fields of an optional struct in this object, all or none.
   template <typename T, typename F = DescribeByLookup>
@@ -361,6 +390,9 @@ class Reader {
   void Derived(std::string_view key, double /*v*/, std::string_view /*unit*/) {
     if (Present(key, Presence::kOptional)) Field(key).Number();
   }
+  void Derived(std::string_view key, std::string_view /*text*/) {
+    if (Present(key, Presence::kOptional)) ReadText(Field(key), TextRule::kAny);
+  }
   template <std::integral I>
   void Integer(std::string_view key, I& v, std::int64_t min, std::int64_t max,
                Presence presence = Presence::kRequired) {
@@ -427,6 +459,19 @@ class Reader {
     if (Present(key, presence)) ReadInto(Field(key), v, describe);
   }
   template <typename T, typename F = DescribeByLookup>
+  void ObjectOrNull(std::string_view key, T& v, bool T::*present, Presence presence = Presence::kRequired,
+                    F describe = {}) {
+    if (!Present(key, presence)) return;
+    const JsonField f = Field(key);
+    v = T{};
+    if (f.json().is_null()) {
+      v.*present = false;
+      return;
+    }
+    ReadInto(f, v, describe);
+    v.*present = true;
+  }
+  template <typename T, typename F = DescribeByLookup>
   void List(std::string_view key, std::vector<T>& v, Count count, Presence presence = Presence::kRequired,
             F describe = {}) {
     if (!Present(key, presence)) return;
@@ -452,6 +497,40 @@ class Reader {
       v.push_back(std::move(element));
     }
   }
+  template <typename T, typename F = DescribeByLookup>
+  void Object(std::string_view key, std::optional<T>& v, Presence presence = Presence::kOptional, F describe = {}) {
+    if (!Present(key, presence)) return;
+    v.emplace();
+    ReadInto(Field(key), *v, describe);
+  }
+  template <typename T, typename F = DescribeByLookup>
+  void Keyed(std::string_view key, std::map<std::string, T>& v, Count count, Presence presence = Presence::kRequired,
+             F describe = {}) {
+    if (!Present(key, presence)) return;
+    const JsonField f = Field(key).Object();
+    const std::size_t size = f.json().size();
+    if (size < count.min || size > count.max) f.Fail(fmt::format("holds {} entries, not {}", size, count.Text()));
+    v.clear();
+    for (auto& [member, value] : f.Members()) {
+      if (member.empty()) value.Fail("is an empty name", "name it");
+      CheckText(value, member, TextRule::kNotEmpty);
+      ReadInto(value, v[member], describe);
+    }
+  }
+  // Reads the object spelling into `alternative` (and leaves `v` for the
+  // declaration to compute), or the list into `v`.
+  template <typename T, typename F = DescribeByLookup>
+  void NumbersOr(std::string_view key, std::vector<double>& v, std::string_view unit, Limits limits, Count count,
+                 T& alternative, Presence presence = Presence::kRequired, F describe = {}) {
+    if (!Present(key, presence)) return;
+    if (Field(key).json().is_object()) return ReadInto(Field(key), alternative, describe);
+    keys_.pop_back();  // Numbers declares the key again
+    Numbers(key, v, unit, limits, count, presence);
+  }
+  void Ignored(std::string_view key) { keys_.emplace_back(key); }
+  void Refused(std::string_view key, std::string_view problem, std::string_view fix) const {
+    if (field_.Has(std::string(key))) Field(key).Fail(std::string(problem), fix);
+  }
   // A rule between fields, checked once they are read: `where` names the
   // part of this object that breaks it ("" for the object itself).
   void Check(bool ok, std::string_view rule, const std::string& where = {}) const {
@@ -461,12 +540,6 @@ class Reader {
     field_.FailBelow(where, problem);
   }
 
-  template <typename T, typename F = DescribeByLookup>
-  void Object(std::string_view key, std::optional<T>& v, Presence presence = Presence::kWhenSet, F describe = {}) {
-    if (!Present(key, presence)) return;
-    v.emplace();
-    ReadInto(Field(key), *v, describe);
-  }
   // Present when any of T's keys is: then all of them are required.
   template <typename T, typename F = DescribeByLookup>
   void Inline(std::optional<T>& v, F describe = {}) {
@@ -599,6 +672,9 @@ class Documenter {
   void Derived(std::string_view key, double, std::string_view unit) {
     Add(key, "number (derived)", unit, "written, not read", Presence::kOptional);
   }
+  void Derived(std::string_view key, std::string_view) {
+    Add(key, "string (derived)", "", "written, not read", Presence::kOptional);
+  }
   template <std::integral I>
   void Integer(std::string_view key, const I&, std::int64_t min, std::int64_t max, Presence p = Presence::kRequired) {
     FieldDoc& f = Add(key, "integer", "", fmt::format("{} .. {}", min, max), p);
@@ -639,6 +715,11 @@ class Documenter {
     Nested<T>(Path(key) + ".", describe);
   }
   template <typename T, typename F = DescribeByLookup>
+  void ObjectOrNull(std::string_view key, const T&, bool T::*, Presence p = Presence::kRequired, F describe = {}) {
+    Add(key, "object", "", "or null", p);
+    Nested<T>(Path(key) + ".", describe);
+  }
+  template <typename T, typename F = DescribeByLookup>
   void List(std::string_view key, const std::vector<T>&, Count count, Presence p = Presence::kRequired,
             F describe = {}) {
     Add(key, "[object]", "", count.Text() + " entries", p).count_min = count.min;
@@ -651,7 +732,7 @@ class Documenter {
     Nested<T>(Path(key) + ".<name>.", describe);
   }
   template <typename T, typename F = DescribeByLookup>
-  void Object(std::string_view key, const std::optional<T>&, Presence p = Presence::kWhenSet, F describe = {}) {
+  void Object(std::string_view key, const std::optional<T>&, Presence p = Presence::kOptional, F describe = {}) {
     Add(key, "object", "", "", p);
     Nested<T>(Path(key) + ".", describe);
   }
@@ -681,6 +762,22 @@ class Documenter {
     Add(key, "[[" + ColumnNames(columns) + "]]", ColumnUnits(columns),
         ColumnRanges(columns) + "; " + count.Text() + " entries", p);
   }
+  template <typename T, typename F = DescribeByLookup>
+  void Keyed(std::string_view key, const std::map<std::string, T>&, Count count, Presence p = Presence::kRequired,
+             F describe = {}) {
+    Add(key, "object", "", "keyed by name, " + count.Text() + " entries", p).count_min = count.min;
+    Nested<T>(Path(key) + ".<name>.", describe);
+  }
+  template <typename T, typename F = DescribeByLookup>
+  void NumbersOr(std::string_view key, const std::vector<double>&, std::string_view unit, Limits limits, Count count,
+                 const T&, Presence p = Presence::kRequired, F describe = {}) {
+    FieldDoc& f = Add(key, "[number] or object", unit, fmt::format("{}; {} entries", limits.Text(), count.Text()), p);
+    f.limits = limits;
+    f.count_min = count.min;
+    Nested<T>(Path(key) + ".", describe);
+  }
+  void Ignored(std::string_view key) { Add(key, "any", "", "read past, not used", Presence::kOptional); }
+  void Refused(std::string_view, std::string_view, std::string_view) {}
   void Check(bool, std::string_view rule, const std::string& = {}) {
     out_.push_back({.path = prefix_.empty() ? "(file)" : prefix_.substr(0, prefix_.size() - 1), .type = "rule",
                     .range = std::string(rule)});
@@ -716,6 +813,27 @@ std::vector<std::string> Reader::DeclaredKeys(F& describe) {
   for (const FieldDoc& f : fields)
     if (f.type != "rule" && f.path.find_first_of(".[") == std::string::npos) keys.push_back(f.path);
   return keys;
+}
+
+// ---- variants -----------------------------------------------------------
+
+// A field the writer leaves out while it holds its default (`written`
+// false: no Rayleigh damping, no artefact); the reader takes it when present
+// and the documentation lists it.
+template <typename Io>
+constexpr bool Writes(const Io&, bool written) {
+  if constexpr (std::is_same_v<Io, Writer>) return written;
+  return true;
+}
+
+// A field of one variant of the format (a voltage drive's amplifier): the
+// writer and the reader take it in that variant (`in_variant`), the
+// documentation lists it always, so that the reader also knows it as one of
+// the object's keys.
+template <typename Io>
+constexpr bool InVariant(const Io&, bool in_variant) {
+  if constexpr (std::is_same_v<Io, Documenter>) return true;
+  return in_variant;
 }
 
 // ---- the three uses -----------------------------------------------------

@@ -1,10 +1,11 @@
 // The physical model of the beam and its support as read from a JSON model
 // file (format "beamid-model/1", described in the README, "Model files"):
 // the beam, the support law, the linear attachments, where the force acts
-// and where the sensors sit. This file holds the format's one reader and
-// writer. A simulation scenario (docs/simulator.md, "beamid-scenario/1") is
-// also a valid model file: its test-running fields (levels, timing, noise, …)
-// are accepted and ignored.
+// and where the sensors sit. The format is declared once (hb/json_schema.h);
+// that declaration is its reader, its writer and its field table. A
+// simulation scenario (docs/simulator.md, "beamid-scenario/1") is also a
+// valid model file: its test-running fields (levels, timing, noise, …) are
+// accepted and ignored.
 #pragma once
 
 #include <filesystem>
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "hb/beam_properties.h"
+#include "hb/json_schema.h"
 #include "hb/linear_attachments.h"
 #include "hb/support_law.h"
 
@@ -23,10 +25,13 @@ namespace beamid::hb {
 struct ModelSensor {
   std::string channel;
   double position_m = 0.0;
+  // A scenario's sensor mass as the file gives it; the reader moves it to
+  // ModelFile::attachments.point_masses (the beam carries it) and leaves 0.
+  double mass_kg = 0.0;
 };
 
 struct ModelFile {
-  std::string name;
+  std::string name = "beam model";
   BeamProperties beam;
   PolynomialSupportLaw::Coefficients polynomial;
   std::optional<JenkinsSupportLaw::Parameters_> jenkins;
@@ -44,10 +49,13 @@ struct ModelFile {
 // "beamid-scenario/1"; another value is refused.
 inline constexpr std::string_view kModelFileFormat = "beamid-model/1";
 
-// Throws std::invalid_argument naming the file, the field and what to fix
-// (InputError for a wrong "format"); "beamid_version" is accepted and ignored.
+// Throws InputError (a std::invalid_argument) naming the file, the field and
+// what to fix; "beamid_version" is accepted and ignored.
 ModelFile ParseModelFile(const std::string& json_text, const std::string& source);
 ModelFile ReadModelFile(const std::filesystem::path& file);
+
+// The fields of the JSON file: path, type, unit, range (docs/formats.md).
+std::vector<schema::FieldDoc> ModelFileFields();
 
 // Every field the reader reads, with "format" and "beamid_version", so that
 // reading the text gives the same ModelFile back. The sensors' masses are

@@ -3,29 +3,21 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <fstream>
 #include <set>
-#include <sstream>
 #include <stdexcept>
+#include <type_traits>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "hb/errors.h"
-#include "hb/strict_json.h"
+#include "hb/input_limits.h"
+#include "hb/internal/model_sections.h"
+#include "hb/json_schema.h"
 #include "hb/text_file.h"
 #include "hb/version.h"
-#include "hb/internal/json_object_reader.h"
-#include "hb/internal/json_object_writer.h"
 
 namespace beamid::hb {
-namespace {
-
-using Json = nlohmann::json;
-using internal::ObjectReader;
-using internal::OrderedJson;
-using internal::ReadBeam;
-
-}  // namespace
 
 double UnitToSi(const std::string& quantity, const std::string& unit) {
   if (quantity == "acceleration" && unit == "m/s^2") return 1.0;
@@ -36,49 +28,7 @@ double UnitToSi(const std::string& quantity, const std::string& unit) {
   if (quantity == "displacement" && unit == "mm") return 1e-3;
   return 0.0;
 }
-
 namespace {
-
-ChannelNoise ReadNoise(ObjectReader& r) {
-  ChannelNoise n;
-  n.relative_rms = r.NonNegative("relative_rms", 0.0);
-  n.absolute = r.NonNegative("absolute", 0.0);
-  const double bits = r.NonNegative("adc_bits", 0.0);
-  if (bits != std::floor(bits) || bits > 32) r.FailField("adc_bits", "must be an integer from 0 to 32");
-  n.adc_bits = static_cast<int>(bits);
-  n.adc_range = r.NonNegative("adc_range", 0.0);
-  if (n.adc_bits > 0 && !(n.adc_range > 0.0)) r.FailField("adc_range", "must be positive when adc_bits is set");
-  n.pink_rms = r.NonNegative("pink_rms", 0.0);
-  return n;
-}
-
-std::vector<double> ReadFrequencies(ObjectReader& level) {
-  const Json& spec = level.Raw("frequencies_Hz");
-  const std::string path = level.PathOf("frequencies_Hz");
-  std::vector<double> f;
-  if (spec.is_array()) {
-    if (spec.size() > 100000) throw std::invalid_argument(level.source() + ": " + path + " lists more than 100000 steps");
-    for (const Json& v : spec) {
-      if (!v.is_number()) throw std::invalid_argument(level.source() + ": " + path + " must hold numbers");
-      f.push_back(v.get<double>());
-    }
-  } else {
-    ObjectReader range(spec, level.source(), path);
-    const double start = range.Positive("start", 0.0), stop = range.Positive("stop", 0.0);
-    const double step = range.Positive("step", 0.0);
-    if (stop < start) range.FailField("stop", "must not be below start (use \"direction\": \"down\" to sweep down)");
-    const int count = static_cast<int>(std::floor((stop - start) / step + 1e-9)) + 1;
-    if (count > 100000) range.FailField("step", "gives more than 100000 steps");
-    for (int i = 0; i < count; ++i) f.push_back(start + step * i);
-  }
-  if (f.empty()) throw std::invalid_argument(level.source() + ": " + path + " holds no frequency");
-  for (double x : f)
-    if (!(x > 0.0 && std::isfinite(x))) throw std::invalid_argument(level.source() + ": " + path + " must be positive");
-  const std::string direction = level.String("direction", "up");
-  if (direction == "down") std::reverse(f.begin(), f.end());
-  else if (direction != "up") level.FailField("direction", "must be \"up\" or \"down\"");
-  return f;
-}
 
 bool IsSafeLabel(const std::string& label) {
   if (label.empty() || label.size() > 64) return false;
@@ -136,298 +86,308 @@ int Scenario::NumSteps() const {
   for (const ScenarioLevel& level : levels) n += static_cast<int>(level.frequencies_hz.size());
   return n;
 }
-
 namespace {
 
-// ---------------------------------------------------------------- reading, one helper per section
+constexpr schema::Format kFormat{kScenarioFormat, "simulation scenario",
+                                 "give a simulation scenario (docs/simulator.md)"};
 
-Json ParseJson(const std::string& json_text, const std::string& source) {
-  return ParseStrictJson<Json>(json_text, source, "see docs/simulator.md");
+// Bounds on what a file can make the simulator run: far above any test's.
+constexpr std::size_t kMaxLevels = 1'000;
+constexpr std::size_t kMaxStepsPerLevel = 100'000;
+constexpr std::size_t kMaxModes = 1'000;
+constexpr std::size_t kMaxDistortionHarmonics = 100;
+
+template <typename Io>
+constexpr bool kReading = std::remove_cvref_t<Io>::kReading;
+
+constexpr schema::Name<ExcitationQuantity> kQuantityNames[] = {{ExcitationQuantity::kForce, "force"},
+                                                               {ExcitationQuantity::kVoltage, "voltage"},
+                                                               {ExcitationQuantity::kBaseAcceleration,
+                                                                "base_acceleration"}};
+
+// The level's amplitude: one field per excitation quantity.
+struct Amplitude {
+  ExcitationQuantity quantity;
+  const char* key;
+  const char* unit;
+  double ScenarioLevel::*value;
+};
+constexpr Amplitude kAmplitudes[] = {
+    {ExcitationQuantity::kForce, "force_amplitude_N", "N", &ScenarioLevel::force_amplitude_N},
+    {ExcitationQuantity::kVoltage, "voltage_amplitude_V", "V", &ScenarioLevel::voltage_amplitude_V},
+    {ExcitationQuantity::kBaseAcceleration, "base_acceleration_amplitude_m_s2", "m/s²",
+     &ScenarioLevel::base_acceleration_amplitude_m_s2}};
+
+const char* AmplitudeKey(ExcitationQuantity quantity) {
+  for (const Amplitude& a : kAmplitudes)
+    if (a.quantity == quantity) return a.key;
+  return "";
 }
 
-// Checked first, so that another kind of file (a model file has no levels)
-// is named as such instead of by its first missing field.
-void ReadFormat(ObjectReader& top) {
-  top.String("beamid_version", "");  // the writer's stamp: for the reader of the file, not for beamid
-  const std::string format = top.String("format", std::string(kScenarioFormat));
-  if (format != kScenarioFormat)
-    throw InputError(top.source() + ": field \"format\" is \"" + format + "\", not \"" + std::string(kScenarioFormat) +
-                     "\". Fix: give a simulation scenario (docs/simulator.md), or remove \"format\"");
+// "frequencies_Hz" may also be written as a range, run upwards unless the
+// level's "direction" is "down". The writer writes the list in run order.
+struct FrequencyRange {
+  double start_hz = 0.0, stop_hz = 0.0, step_hz = 0.0;
+  // As a double: a range of 1e300 steps must be refused, not overflow.
+  double Steps() const { return std::floor((stop_hz - start_hz) / step_hz + 1e-9) + 1.0; }
+};
+enum class Direction { kUp, kDown };
+constexpr schema::Name<Direction> kDirectionNames[] = {{Direction::kUp, "up"}, {Direction::kDown, "down"}};
+
+std::string DefaultUnit(const std::string& quantity) {
+  return quantity == "velocity" ? "m/s" : quantity == "displacement" ? "m" : "m/s^2";
 }
 
-void ReadBeams(ObjectReader& top, Scenario& s) {
-  {
-    ObjectReader beam(top.Raw("beam"), top.source(), "beam");
-    // The true beam is spelled out: a default would hide a forgotten field.
-    for (const char* key : {"length_m", "width_m", "thickness_m", "youngs_modulus_Pa", "density_kg_m3"})
-      if (!beam.Has(key)) beam.FailField(key, "is required (the true beam)");
-    ReadBeam(beam, s.beam, true);
-  }
-  s.nominal_beam = s.beam;
-  s.nominal_beam.loss_factor = 0.0;
-  s.nominal_beam.rayleigh_mass_1_s = 0.0;
-  s.nominal_beam.rayleigh_stiffness_s = 0.0;
-  if (top.Has("nominal_beam")) {
-    ObjectReader nominal(top.Raw("nominal_beam"), top.source(), "nominal_beam");
-    ReadBeam(nominal, s.nominal_beam, false);
-  }
-}
-
-void ReadDampingAndMesh(ObjectReader& top, Scenario& s) {
-  if (top.Has("damping")) {
-    ObjectReader d(top.Raw("damping"), top.source(), "damping");
-    s.damping_reference_frequency_hz = d.NonNegative("reference_frequency_Hz", 0.0);
-    if (d.Has("modal_damping_ratios")) {
-      const Json& ratios = d.Array("modal_damping_ratios");
-      for (std::size_t j = 0; j < ratios.size(); ++j) {
-        const std::string key = "modal_damping_ratios[" + std::to_string(j) + "]";
-        if (!ratios[j].is_number() || !(ratios[j].get<double>() >= 0.0 && ratios[j].get<double>() < 1.0))
-          d.FailField(key, "must be a damping ratio in [0, 1)");
-        s.modal_damping_ratios.push_back(ratios[j].get<double>());
-      }
-    }
-  }
-  if (top.Has("mesh")) {
-    ObjectReader m(top.Raw("mesh"), top.source(), "mesh");
-    const double n = m.Positive("min_elements", 40);
-    if (n != std::floor(n) || n > 2000) m.FailField("min_elements", "must be an integer from 1 to 2000");
-    s.mesh_min_elements = static_cast<int>(n);
-  }
-}
-
-// "quantity": "force" (default) | "voltage" | "base_acceleration".
-ExcitationQuantity ReadExcitationQuantity(ObjectReader& e) {
-  const std::string quantity = e.String("quantity", "force");
-  for (ExcitationQuantity q : {ExcitationQuantity::kForce, ExcitationQuantity::kVoltage, ExcitationQuantity::kBaseAcceleration})
-    if (quantity == ExcitationQuantityName(q)) return q;
-  e.FailField("quantity", "must be \"force\" (the level's amplitude is the force), \"voltage\" (the amplifier's input) "
-                          "or \"base_acceleration\" (the clamp and the support move together)");
-}
-
-// The amplifier's fields belong to a voltage drive only, so that another
-// drive cannot carry a gain that silently does nothing.
-void ReadAmplifier(ObjectReader& e, bool voltage_drive, ScenarioAmplifier& amplifier) {
-  if (!voltage_drive) {
-    for (const char* key : {"amplifier_gain_N_per_V", "amplifier_sag"})
-      if (e.Has(key)) e.FailField(key, "belongs to a voltage drive; remove it or set excitation.quantity to \"voltage\"");
-    return;
-  }
-  if (!e.Has("amplifier_gain_N_per_V"))
-    e.FailField("amplifier_gain_N_per_V", "is required with excitation.quantity \"voltage\" (the amplifier's gain g0 in N/V)");
-  amplifier.gain_N_per_V = e.Positive("amplifier_gain_N_per_V", 0.0);
-  amplifier.sag = e.NonNegative("amplifier_sag", 0.0);
-  if (!(amplifier.sag < 1.0)) e.FailField("amplifier_sag", "must lie in [0, 1): the gain at f1 is g0·(1 − sag)");
-}
-
-void ReadExcitation(ObjectReader& top, Scenario& s) {
-  ObjectReader e(top.Raw("excitation"), top.source(), "excitation");
-  s.force_channel = e.String("channel", "force");
-  s.excitation_quantity = ReadExcitationQuantity(e);
-  if (s.BaseExcitation()) {
-    // The base moves clamp and support at once: there is no point of action.
-    if (e.Has("position_m"))
-      e.FailField("position_m", "must be left out with quantity \"base_acceleration\" (the clamp and the support move together)");
-    s.force_position_m = 0.0;
-  } else {
-    s.force_position_m = e.Positive("position_m", 0.0);
-  }
-  ReadAmplifier(e, s.VoltageDrive(), s.amplifier);
-  if (!e.Has("distortion")) return;
-  const Json& list = e.Array("distortion");
-  for (size_t i = 0; i < list.size(); ++i) {
-    ObjectReader h(list[i], top.source(), "excitation.distortion[" + std::to_string(i) + "]");
-    const double k = h.Number("harmonic");
-    if (k != std::floor(k) || k < 2 || k > 20) h.FailField("harmonic", "must be an integer from 2 to 20");
-    s.force_distortion.push_back({static_cast<int>(k), h.NonNegative("amplitude_ratio", 0.0), h.Number("phase_rad", 0.0)});
-  }
-}
-
-ScenarioSensor ReadSensor(ObjectReader& r) {
-  ScenarioSensor sensor;
-  sensor.channel = r.String("channel", "");
-  sensor.position_m = r.Positive("position_m", 0.0);
-  sensor.quantity = r.String("quantity", "acceleration");
-  const std::string default_unit =
-      sensor.quantity == "velocity" ? "m/s" : sensor.quantity == "displacement" ? "m" : "m/s^2";
-  sensor.unit = r.String("unit", default_unit);
-  sensor.mass_kg = r.NonNegative("mass_kg", 0.0);
-  // The measurement artefacts (the position is checked against the beam in
-  // CheckPositionsAndChannels).
-  sensor.gain_error_relative = r.Number("gain_error_relative", 0.0);
-  if (!(sensor.gain_error_relative > -1.0))
-    r.FailField("gain_error_relative", "must be above -1: the channel records (1 + gain_error_relative)·signal "
-                                       "(0.05 reads 5 % high)");
-  sensor.delay_s = r.NonNegative("delay_s", 0.0);
-  if (sensor.delay_s > kMaxSensorDelay_s)
-    r.FailField("delay_s", "must not exceed " + std::to_string(kMaxSensorDelay_s) +
-                               " s (an anti-alias filter's delay, a few samples)");
-  if (r.Has("stated_position_m")) sensor.stated_position_m = r.Number("stated_position_m");
-  if (sensor.quantity != "acceleration" && sensor.quantity != "velocity" && sensor.quantity != "displacement")
-    r.FailField("quantity", "must be acceleration, velocity or displacement");
-  if (UnitToSi(sensor.quantity, sensor.unit) == 0.0)
-    r.FailField("unit", "'" + sensor.unit + "' is not a unit of " + sensor.quantity + " (m/s^2, g, m/s, mm/s, m, mm)");
-  return sensor;
-}
-
-void ReadSensorsAndHiddenPositions(ObjectReader& top, Scenario& s) {
-  const Json& sensors = top.PointList("sensors");
-  if (sensors.empty()) top.FailField("sensors", "must list at least one sensor");
-  for (size_t i = 0; i < sensors.size(); ++i) {
-    ObjectReader r(sensors[i], top.source(), "sensors[" + std::to_string(i) + "]");
-    s.sensors.push_back(ReadSensor(r));
-  }
-  if (!top.Has("hidden_positions_m")) return;
-  for (const Json& v : top.PointList("hidden_positions_m")) {
-    if (!v.is_number()) top.FailField("hidden_positions_m", "must hold numbers");
-    s.hidden_positions_m.push_back(v.get<double>());
-  }
-}
-
-// The one amplitude field of the scenario's excitation quantity; another
-// quantity's field is refused (it would be silently ignored).
-void ReadLevelAmplitude(ObjectReader& r, ExcitationQuantity quantity, ScenarioLevel& level) {
-  struct Field {
-    ExcitationQuantity quantity;
-    const char* key;
-    double* value;
-  };
-  const Field fields[] = {{ExcitationQuantity::kForce, "force_amplitude_N", &level.force_amplitude_N},
-                          {ExcitationQuantity::kVoltage, "voltage_amplitude_V", &level.voltage_amplitude_V},
-                          {ExcitationQuantity::kBaseAcceleration, "base_acceleration_amplitude_m_s2",
-                           &level.base_acceleration_amplitude_m_s2}};
-  const char* wanted = "";
-  for (const Field& f : fields)
-    if (f.quantity == quantity) wanted = f.key;
-  // Another drive's field first: its message names the one to give instead.
-  for (const Field& f : fields)
-    if (f.quantity != quantity && r.Has(f.key))
-      r.FailField(f.key, std::string("is not the drive with excitation.quantity \"") + ExcitationQuantityName(quantity) +
-                             "\"; give " + wanted);
-  for (const Field& f : fields) {
-    if (f.quantity != quantity) continue;
-    if (quantity != ExcitationQuantity::kForce && !r.Has(f.key))
-      r.FailField(f.key, std::string("is required with excitation.quantity \"") + ExcitationQuantityName(quantity) + "\"");
-    *f.value = r.Positive(f.key, 0.0);
-  }
-}
-
-void ReadLevels(ObjectReader& top, Scenario& s) {
-  const Json& levels = top.Array("levels");
-  if (levels.empty()) top.FailField("levels", "must list at least one level");
-  for (size_t i = 0; i < levels.size(); ++i) {
-    ObjectReader r(levels[i], top.source(), "levels[" + std::to_string(i) + "]");
-    ScenarioLevel level;
-    level.label = r.String("label", "");
-    if (!IsSafeLabel(level.label))
-      r.FailField("label", "must be 1-64 letters, digits, '_' or '-' (it names the level's folder)");
-    ReadLevelAmplitude(r, s.excitation_quantity, level);
-    level.frequencies_hz = ReadFrequencies(r);
-    s.levels.push_back(std::move(level));
-  }
-}
-
-// timing.early_records: each names one step of a level that the scenario runs.
-void ReadEarlyRecords(ObjectReader& t, const std::vector<ScenarioLevel>& levels, std::vector<EarlyRecord>& out) {
-  if (!t.Has("early_records")) return;
-  const Json& list = t.Array("early_records");
-  for (size_t i = 0; i < list.size(); ++i) {
-    ObjectReader r(list[i], t.source(), "timing.early_records[" + std::to_string(i) + "]");
-    EarlyRecord early;
-    if (!r.Has("level")) r.FailField("level", "is required (the label of the level whose step is recorded early)");
-    early.level = r.String("level", "");
-    early.frequency_hz = r.Number("frequency_Hz");
-    early.settle_s = r.Number("settle_s");
-    if (!(early.settle_s > 0.0 && early.settle_s <= 3600.0))
-      r.FailField("settle_s", "must lie in (0, 3600] s: the time integrated after the frequency change before the "
-                              "recording starts");
-    const auto level = std::find_if(levels.begin(), levels.end(), [&](const ScenarioLevel& l) { return l.label == early.level; });
+// The first early record that names no step, or a step another one names,
+// as its path below "timing" and the rule it breaks; empty when none.
+struct Problem {
+  std::string where, rule;
+};
+Problem EarlyRecordProblem(const std::vector<EarlyRecord>& records, const std::vector<ScenarioLevel>& levels) {
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    const EarlyRecord& early = records[i];
+    const std::string at = fmt::format("early_records[{}]", i);
+    const auto level =
+        std::find_if(levels.begin(), levels.end(), [&](const ScenarioLevel& l) { return l.label == early.level; });
     if (level == levels.end()) {
       std::string labels;
       for (const ScenarioLevel& l : levels) labels += (labels.empty() ? "" : ", ") + l.label;
-      r.FailField("level", "'" + early.level + "' is not a level of the scenario; give one of: " + labels);
+      return {at + ".level", "'" + early.level + "' is not a level of the scenario; give one of: " + labels};
     }
     const auto steps = std::count_if(level->frequencies_hz.begin(), level->frequencies_hz.end(),
                                      [&](double f) { return SameNominalFrequency(early.frequency_hz, f); });
     if (steps == 0) {
       const auto [lowest, highest] = std::minmax_element(level->frequencies_hz.begin(), level->frequencies_hz.end());
-      r.FailField("frequency_Hz", "= " + std::to_string(early.frequency_hz) + " Hz is not a step of level '" +
-                                      early.level + "' (its " + std::to_string(level->frequencies_hz.size()) +
-                                      " steps run from " + std::to_string(*lowest) + " to " + std::to_string(*highest) +
-                                      " Hz); give one step's nominal frequency (to 1e-9 relative)");
+      return {at + ".frequency_Hz",
+              fmt::format("{} Hz is not a step of level '{}' (its {} steps run from {} to {} Hz); give one step's "
+                          "nominal frequency (to 1e-9 relative)",
+                          early.frequency_hz, early.level, level->frequencies_hz.size(), *lowest, *highest)};
     }
     if (steps > 1)
-      r.FailField("frequency_Hz", "= " + std::to_string(early.frequency_hz) + " Hz is run " + std::to_string(steps) +
-                                      " times by level '" + early.level + "'; an early record must name one step");
-    for (size_t j = 0; j < out.size(); ++j)
-      if (out[j].level == early.level && SameNominalFrequency(early.frequency_hz, out[j].frequency_hz))
-        r.FailField("frequency_Hz", "names the step of timing.early_records[" + std::to_string(j) + "] again");
-    out.push_back(std::move(early));
+      return {at + ".frequency_Hz", fmt::format("{} Hz is run {} times by level '{}'; an early record must name one step",
+                                                early.frequency_hz, steps, early.level)};
+    for (std::size_t j = 0; j < i; ++j)
+      if (records[j].level == early.level && SameNominalFrequency(early.frequency_hz, records[j].frequency_hz))
+        return {at + ".frequency_Hz", fmt::format("names the step of timing.early_records[{}] again", j)};
   }
+  return {};
 }
 
-void ReadTiming(ObjectReader& top, const std::vector<ScenarioLevel>& levels, ScenarioTiming& timing) {
-  if (!top.Has("timing")) return;
-  ObjectReader t(top.Raw("timing"), top.source(), "timing");
-  timing.sample_rate_hz = t.Positive("sample_rate_Hz", timing.sample_rate_hz);
-  timing.max_time_step_s = t.Positive("max_time_step_s", timing.max_time_step_s);
-  timing.settle_min_s = t.NonNegative("settle_min_s", timing.settle_min_s);
-  timing.settle_max_s = t.Positive("settle_max_s", timing.settle_max_s);
-  timing.settle_tolerance = t.Positive("settle_tolerance", timing.settle_tolerance);
-  timing.transient_s = t.NonNegative("transient_s", timing.transient_s);
-  timing.record_s = t.Positive("record_s", timing.record_s);
-  timing.restart_each_level = t.Bool("restart_each_level", timing.restart_each_level);
-  timing.excitation_stop_fraction = t.NonNegative("excitation_stop_fraction", timing.excitation_stop_fraction);
-  if (timing.excitation_stop_fraction != 0.0) {
+}  // namespace
+
+// The measurement noise of a channel (noise.default, noise.channels.<name>).
+void Describe(auto& io, schema::Like<ChannelNoise> auto& n) {
+  using schema::kOptional;
+  io.Number("relative_rms", n.relative_rms, "1", schema::NonNegative(), kOptional);
+  io.Number("absolute", n.absolute, "the channel's unit", schema::NonNegative(), kOptional);
+  io.Integer("adc_bits", n.adc_bits, 0, 32, kOptional);
+  io.Number("adc_range", n.adc_range, "the channel's unit", schema::NonNegative(), kOptional);
+  io.Check(n.adc_bits == 0 || n.adc_range > 0.0, "adc_range > 0 when adc_bits is set", "adc_range");
+  io.Number("pink_rms", n.pink_rms, "the channel's unit", schema::NonNegative(), kOptional);
+}
+
+// The declaration of the JSON file (hb/json_schema.h): its writer, reader
+// and documentation. What depends on the excitation quantity (the
+// amplifier, the levels' amplitude field, the sensors' quantity) follows it;
+// the frequencies of a level are a list or a range.
+void Describe(auto& io, schema::Like<Scenario> auto& s) {
+  using schema::kOptional;
+  using schema::Presence;
+  using schema::TextRule;
+  // Checked first, so that another kind of file (a model file has no
+  // levels) is named as such instead of by its first missing field.
+  io.Constant("format", kScenarioFormat, kOptional);
+  std::string version(kVersion);  // the writer's stamp: for the reader of the file, not for beamid
+  io.Text("beamid_version", version, TextRule::kAny, kOptional);
+  io.Text("name", s.name, TextRule::kAny, kOptional);
+  // The true beam is spelled out: a default would hide a forgotten field.
+  io.Object("beam", s.beam, Presence::kRequired,
+            [](auto& b, auto& beam) { internal::DescribeBeam(b, beam, Presence::kRequired); });
+  // The nominal beam (written to campaign.json) is the true one, undamped,
+  // except where it says otherwise.
+  if constexpr (kReading<decltype(io)>) {
+    s.nominal_beam = s.beam;
+    s.nominal_beam.loss_factor = s.nominal_beam.rayleigh_mass_1_s = s.nominal_beam.rayleigh_stiffness_s = 0.0;
+  }
+  io.Object("nominal_beam", s.nominal_beam, kOptional,
+            [](auto& b, auto& beam) { internal::DescribeBeam(b, beam, kOptional); });
+  io.Object("support", s, Presence::kRequired, [](auto& support, auto& sc) {
+    internal::DescribeSupport(support, sc.polynomial, sc.jenkins, sc.one_sided_stiffness_Nm_rad);
+  });
+  io.Object("attachments", s.attachments, kOptional,
+            [](auto& a, auto& attachments) { internal::DescribeAttachments(a, attachments); });
+  io.Object("damping", s, kOptional, [](auto& d, auto& sc) {
+    d.Number("reference_frequency_Hz", sc.damping_reference_frequency_hz, "Hz", schema::NonNegative(), kOptional);
+    if (schema::Writes(d, !sc.modal_damping_ratios.empty()))
+      d.Numbers("modal_damping_ratios", sc.modal_damping_ratios, "1", schema::Between(0.0, 1.0), kMaxModes, kOptional);
+    d.Check(std::all_of(sc.modal_damping_ratios.begin(), sc.modal_damping_ratios.end(), [](double z) { return z < 1.0; }),
+            "every modal damping ratio < 1", "modal_damping_ratios");
+  });
+  io.Object("mesh", s.mesh_min_elements, kOptional,
+            [](auto& m, auto& n) { m.Integer("min_elements", n, 1, 2000, kOptional); });
+  io.Object("excitation", s, Presence::kRequired, [](auto& e, auto& sc) {
+    e.Text("channel", sc.force_channel, TextRule::kNotEmpty, kOptional);
+    if (schema::Writes(e, sc.excitation_quantity != ExcitationQuantity::kForce))
+      e.Choice("quantity", sc.excitation_quantity, kQuantityNames, kOptional);
+    // The base moves clamp and support at once: there is no point of action.
+    if (schema::InVariant(e, !sc.BaseExcitation()))
+      e.Number("position_m", sc.force_position_m, "m", schema::Positive());
+    else
+      e.Refused("position_m", "must be left out with quantity \"base_acceleration\" (the clamp and the support move together)",
+                "remove it");
+    // The amplifier's fields belong to a voltage drive only, so that another
+    // drive cannot carry a gain that silently does nothing.
+    if (schema::InVariant(e, sc.VoltageDrive())) {
+      e.Number("amplifier_gain_N_per_V", sc.amplifier.gain_N_per_V, "N/V", schema::Positive());
+      e.Number("amplifier_sag", sc.amplifier.sag, "1", schema::Between(0.0, 1.0), kOptional);
+      e.Check(sc.amplifier.sag < 1.0, "amplifier_sag < 1 (the gain at f1 is g0·(1 − sag))", "amplifier_sag");
+    } else {
+      for (const char* key : {"amplifier_gain_N_per_V", "amplifier_sag"})
+        e.Refused(key, "belongs to a voltage drive", "remove it or set excitation.quantity to \"voltage\"");
+    }
+    e.List("distortion", sc.force_distortion, kMaxDistortionHarmonics, kOptional, [](auto& h, auto& harmonic) {
+      h.Integer("harmonic", harmonic.harmonic, 2, 20);
+      h.Number("amplitude_ratio", harmonic.amplitude_ratio, "1", schema::NonNegative(), kOptional);
+      h.Number("phase_rad", harmonic.phase_rad, "rad", schema::Any(), kOptional);
+    });
+  });
+  io.List("sensors", s.sensors, kMaxPointsOnBeam, Presence::kRequired, [&s](auto& r, auto& sensor) {
+    r.Text("channel", sensor.channel, TextRule::kNotEmpty);
+    r.Check(sensor.channel != "time_s" && sensor.channel.find(',') == std::string::npos,
+            "a channel is named without commas, other than time_s", "channel");
+    r.Number("position_m", sensor.position_m, "m", schema::Positive());
+    r.Text("quantity", sensor.quantity, TextRule::kNotEmpty, kOptional);
+    r.Check(sensor.quantity == "acceleration" || sensor.quantity == "velocity" || sensor.quantity == "displacement",
+            "quantity is acceleration, velocity or displacement", "quantity");
+    // Absolute velocity and displacement would need the base's integrated
+    // motion, whose constants a real rig does not define.
+    r.Check(!s.BaseExcitation() || sensor.quantity == "acceleration",
+            "quantity is acceleration with excitation.quantity \"base_acceleration\" (the sensors record absolute "
+            "acceleration)",
+            "quantity");
+    if constexpr (kReading<decltype(r)>) sensor.unit = DefaultUnit(sensor.quantity);
+    r.Text("unit", sensor.unit, TextRule::kNotEmpty, kOptional);
+    r.Check(UnitToSi(sensor.quantity, sensor.unit) != 0.0,
+            "unit is one of the quantity's (acceleration: m/s^2, g; velocity: m/s, mm/s; displacement: m, mm)",
+            "unit");
+    r.Number("mass_kg", sensor.mass_kg, "kg", schema::NonNegative(), kOptional);
+    // The measurement artefacts, only when set: a scenario without them stays
+    // a model file (hb/model_file.h). The stated position is checked against
+    // the beam with the other positions.
+    if (schema::Writes(r, sensor.gain_error_relative != 0.0))
+      r.Number("gain_error_relative", sensor.gain_error_relative, "1", schema::Limits{.min = -1.0, .min_open = true},
+               kOptional);
+    if (schema::Writes(r, sensor.delay_s != 0.0))
+      r.Number("delay_s", sensor.delay_s, "s", schema::Between(0.0, kMaxSensorDelay_s), kOptional);
+    double stated_m = sensor.stated_position_m.value_or(std::nan(""));
+    if (schema::Writes(r, sensor.stated_position_m.has_value()))
+      r.Number("stated_position_m", stated_m, "m", schema::Positive(), kOptional);
+    if constexpr (kReading<decltype(r)>)
+      if (!std::isnan(stated_m)) sensor.stated_position_m = stated_m;
+  });
+  io.Check(!s.sensors.empty(), "lists at least one sensor", "sensors");
+  io.Numbers("hidden_positions_m", s.hidden_positions_m, "m", schema::NonNegative(), kMaxPointsOnBeam, kOptional);
+  io.List("levels", s.levels, kMaxLevels, Presence::kRequired, [&s](auto& l, auto& level) {
+    l.Text("label", level.label, TextRule::kNotEmpty);
+    l.Check(IsSafeLabel(level.label), "a label is 1-64 letters, digits, '_' or '-' (it names the level's folder)",
+            "label");
+    // The one amplitude field of the excitation quantity; another quantity's
+    // field is refused (it would be silently ignored), naming the one to give.
+    for (const Amplitude& a : kAmplitudes)
+      if (!schema::InVariant(l, a.quantity == s.excitation_quantity))
+        l.Refused(a.key,
+                  fmt::format("is not the drive with excitation.quantity \"{}\"",
+                              ExcitationQuantityName(s.excitation_quantity)),
+                  fmt::format("give {}", AmplitudeKey(s.excitation_quantity)));
+    for (const Amplitude& a : kAmplitudes)
+      if (schema::InVariant(l, a.quantity == s.excitation_quantity))
+        l.Number(a.key, level.*a.value, a.unit, schema::Positive());
+    FrequencyRange range;
+    l.NumbersOr("frequencies_Hz", level.frequencies_hz, "Hz", schema::Positive(), kMaxStepsPerLevel, range,
+                Presence::kRequired, [](auto& r, auto& f) {
+                  r.Number("start", f.start_hz, "Hz", schema::Positive());
+                  r.Number("stop", f.stop_hz, "Hz", schema::Positive());
+                  r.Number("step", f.step_hz, "Hz", schema::Positive());
+                  r.Check(f.stop_hz >= f.start_hz, "stop ≥ start (\"direction\": \"down\" sweeps down)", "stop");
+                  r.Check(f.step_hz <= 0.0 || f.Steps() <= static_cast<double>(kMaxStepsPerLevel),
+                          "at most 100000 steps from start to stop", "step");
+                });
+    if constexpr (kReading<decltype(l)>)
+      if (range.step_hz > 0.0)
+        for (std::size_t i = 0; i < static_cast<std::size_t>(range.Steps()); ++i)
+          level.frequencies_hz.push_back(range.start_hz + range.step_hz * static_cast<double>(i));
+    l.Check(!level.frequencies_hz.empty(), "frequencies_Hz holds at least one frequency", "frequencies_Hz");
+    Direction direction = Direction::kUp;
+    if (schema::Writes(l, false)) l.Choice("direction", direction, kDirectionNames, kOptional);
+    if constexpr (kReading<decltype(l)>)
+      if (direction == Direction::kDown) std::reverse(level.frequencies_hz.begin(), level.frequencies_hz.end());
+  });
+  io.Check(!s.levels.empty(), "lists at least one level", "levels");
+  io.Object("timing", s.timing, kOptional, [&s](auto& t, auto& timing) {
+    // Limits that keep one simulated step within memory and minutes: a time
+    // step no finer than 1e-7 s, at most 2^24 samples per record.
+    t.Number("sample_rate_Hz", timing.sample_rate_hz, "Hz", schema::Positive(), kOptional);
+    t.Number("max_time_step_s", timing.max_time_step_s, "s", schema::Limits{.min = 1e-7}, kOptional);
+    t.Number("settle_min_s", timing.settle_min_s, "s", schema::NonNegative(), kOptional);
+    t.Number("settle_max_s", timing.settle_max_s, "s", schema::Limits{.min = 0.0, .max = 3600.0, .min_open = true},
+             kOptional);
+    t.Check(timing.settle_max_s >= timing.settle_min_s, "settle_max_s ≥ settle_min_s", "settle_max_s");
+    t.Number("settle_tolerance", timing.settle_tolerance, "1", schema::Positive(), kOptional);
+    t.Number("transient_s", timing.transient_s, "s", schema::NonNegative(), kOptional);
+    t.Number("record_s", timing.record_s, "s", schema::Positive(), kOptional);
+    t.Check(timing.record_s * timing.sample_rate_hz <= 16777216.0,
+            "record_s · sample_rate_Hz ≤ 16777216 samples per record (record shorter)", "record_s");
+    t.Boolean("restart_each_level", timing.restart_each_level, kOptional);
+    t.Number("excitation_stop_fraction", timing.excitation_stop_fraction, "1", schema::Between(0.0, 1.0), kOptional);
     // The truth is fitted over the steady part before the stop, so the stop
     // must leave some of it (and happen before the file ends).
     const double earliest = timing.transient_s / (timing.transient_s + timing.record_s);
-    if (!(timing.excitation_stop_fraction > earliest && timing.excitation_stop_fraction < 1.0))
-      t.FailField("excitation_stop_fraction", "must be 0 (never) or lie between transient_s/(transient_s + record_s) = " +
-                                                  std::to_string(earliest) +
-                                                  " and 1, so that the force stops inside the steady record");
-  }
-  timing.daq_clock_error_relative = t.Number("daq_clock_error_relative", timing.daq_clock_error_relative);
-  if (!(std::abs(timing.daq_clock_error_relative) <= kMaxDaqClockError))
-    t.FailField("daq_clock_error_relative", "must lie within ±" + std::to_string(kMaxDaqClockError) +
-                                                " (the acquisition's clock runs (1 + this) fast against the stated "
-                                                "sample_rate_Hz; 0.002 is 2000 ppm, a rate stated 0.2 % low)");
-  if (timing.settle_max_s < timing.settle_min_s) t.FailField("settle_max_s", "must not be below settle_min_s");
-  // Limits that keep one simulated step within memory and minutes: at
-  // most 2^24 samples per record, and a time step no finer than 1e-7 s.
-  if (timing.record_s * timing.sample_rate_hz > 16777216.0)
-    t.FailField("record_s", "times sample_rate_Hz gives more than 16777216 samples per record; record shorter");
-  if (timing.max_time_step_s < 1e-7) t.FailField("max_time_step_s", "must be at least 1e-7 s");
-  if (timing.settle_max_s > 3600.0) t.FailField("settle_max_s", "must not exceed 3600 s");
-  ReadEarlyRecords(t, levels, timing.early_records);
+    t.Check(timing.excitation_stop_fraction == 0.0 ||
+                (timing.excitation_stop_fraction > earliest && timing.excitation_stop_fraction < 1.0),
+            "excitation_stop_fraction is 0 (never) or lies between transient_s/(transient_s + record_s) and 1, so that "
+            "the force stops inside the steady record",
+            "excitation_stop_fraction");
+    // The acquisition's clock runs (1 + this) fast against the stated
+    // sample_rate_Hz; 0.002 is 2000 ppm, a rate stated 0.2 % low.
+    if (schema::Writes(t, timing.daq_clock_error_relative != 0.0))
+      t.Number("daq_clock_error_relative", timing.daq_clock_error_relative, "1",
+               schema::Between(-kMaxDaqClockError, kMaxDaqClockError), kOptional);
+    if (schema::Writes(t, !timing.early_records.empty()))
+      t.List("early_records", timing.early_records, kMaxLevels * kMaxStepsPerLevel, kOptional,
+             [](auto& r, auto& early) {
+               r.Text("level", early.level, TextRule::kNotEmpty);
+               r.Number("frequency_Hz", early.frequency_hz, "Hz", schema::Positive());
+               // From the frequency change to the recording's first sample.
+               r.Number("settle_s", early.settle_s, "s", schema::Limits{.min = 0.0, .max = 3600.0, .min_open = true});
+             });
+    const Problem problem = EarlyRecordProblem(timing.early_records, s.levels);
+    t.Check(problem.where.empty(),
+            problem.where.empty() ? "an early record names one step of a level of the scenario, and no step twice"
+                                  : problem.rule,
+            problem.where);
+  });
+  io.Object("noise", s, kOptional, [](auto& n, auto& sc) {
+    n.Integer("seed", sc.seed, 0, 9'000'000'000'000'000, kOptional);
+    n.Number("clock_offset_ppm", sc.clock_offset_ppm, "ppm", schema::Between(-1e4, 1e4), kOptional);
+    n.Number("amplitude_creep_relative", sc.amplitude_creep_relative, "1", schema::Between(-2.0, 2.0), kOptional);
+    // The scale 1 + creep·(t/T − 1/2) must stay positive over the whole file,
+    // whose transient (t < 0) continues the line.
+    const double reach = sc.timing.transient_s / sc.timing.record_s + 0.5;
+    n.Check(std::abs(sc.amplitude_creep_relative) * reach < 1.0,
+            "|amplitude_creep_relative|·(transient_s/record_s + 1/2) < 1 (the scale 1 + creep·(t/T − 1/2) stays "
+            "positive over the transient and the record)",
+            "amplitude_creep_relative");
+    n.Object("default", sc.default_noise, kOptional);
+    n.Keyed("channels", sc.channel_noise, kMaxPointsOnBeam + 1, kOptional);
+  });
 }
 
-void ReadNoiseSection(ObjectReader& top, Scenario& s) {
-  if (!top.Has("noise")) return;
-  ObjectReader n(top.Raw("noise"), top.source(), "noise");
-  const double seed = n.NonNegative("seed", 1.0);
-  if (seed != std::floor(seed) || seed > 9.0e15) n.FailField("seed", "must be a non-negative integer");
-  s.seed = static_cast<std::uint64_t>(seed);
-  s.clock_offset_ppm = n.Number("clock_offset_ppm", 0.0);
-  if (std::abs(s.clock_offset_ppm) > 1e4) n.FailField("clock_offset_ppm", "must lie within ±10000 ppm");
-  s.amplitude_creep_relative = n.Number("amplitude_creep_relative", 0.0);
-  // The scale 1 + creep·(t/T − 1/2) must stay positive over the whole file,
-  // whose transient (t < 0) continues the line.
-  const double reach = s.timing.transient_s / s.timing.record_s + 0.5;
-  if (!(std::abs(s.amplitude_creep_relative) * reach < 1.0))
-    n.FailField("amplitude_creep_relative", "must lie within ±" + std::to_string(1.0 / reach) +
-                                                " (the scale 1 + creep·(t/T − 1/2) must stay positive over the transient and the record)");
-  if (n.Has("default")) {
-    ObjectReader d(n.Raw("default"), top.source(), "noise.default");
-    s.default_noise = ReadNoise(d);
-  }
-  if (n.Has("channels")) {
-    const Json& channels = n.Raw("channels");
-    if (!channels.is_object()) n.FailField("channels", "must map channel names to noise settings");
-    for (const auto& [channel, spec] : channels.items()) {
-      ObjectReader c(spec, top.source(), "noise.channels." + channel);
-      s.channel_noise[channel] = ReadNoise(c);
-    }
-  }
+std::vector<schema::FieldDoc> ScenarioFields() { return schema::Fields<Scenario>(); }
+
+namespace {
+
+[[noreturn]] void Fail(const std::string& source, const std::string& problem, const std::string& fix) {
+  throw InputError(source + ": " + problem + ". Fix: " + fix);
 }
 
 // ---------------------------------------------------------------- consistency of the whole
@@ -437,7 +397,7 @@ void ValidateBeams(const Scenario& s, const std::string& source) {
     s.beam.Validate();
     s.nominal_beam.Validate();
   } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(source + ": " + e.what() + ". Fix: give the beam in SI (m, Pa, kg/m³)");
+    Fail(source, e.what(), "give the beam in SI (m, Pa, kg/m³)");
   }
 }
 
@@ -445,189 +405,62 @@ void CheckPositionsAndChannels(const Scenario& s, const std::string& source) {
   const double length = s.beam.length_m;
   auto inside = [&](double x, const std::string& what, bool allow_ends) {
     if (!(x >= 0.0 && x <= length) || (!allow_ends && (x <= 0.0 || x >= length)))
-      throw std::invalid_argument(source + ": " + what + " = " + std::to_string(x) + " m lies outside the beam (0, " +
-                                  std::to_string(length) + ") m");
+      Fail(source, fmt::format("{} = {} m lies outside the beam (0, {}) m", what, x, length),
+           "give a position on the beam (beam.length_m)");
   };
   if (!s.BaseExcitation()) inside(s.force_position_m, "excitation.position_m", false);
   std::set<std::string> channels{s.force_channel};
-  if (s.force_channel.empty() || s.force_channel == "time_s")
-    throw std::invalid_argument(source + ": excitation.channel must be a name other than time_s");
+  if (s.force_channel == "time_s")
+    Fail(source, "excitation.channel is time_s, the time column's name", "name the channel otherwise");
   for (size_t i = 0; i < s.sensors.size(); ++i) {
     const ScenarioSensor& sensor = s.sensors[i];
-    inside(sensor.position_m, "sensor " + sensor.channel + " position_m", false);
+    inside(sensor.position_m, fmt::format("sensors[{}].position_m", i), false);
     // The test plan may place a sensor at the support's end (x = L), not at the clamp.
     if (sensor.stated_position_m && !(*sensor.stated_position_m > 0.0 && *sensor.stated_position_m <= length))
-      throw std::invalid_argument(source + ": sensors[" + std::to_string(i) + "].stated_position_m = " +
-                                  std::to_string(*sensor.stated_position_m) + " m lies outside the beam (0, " +
-                                  std::to_string(length) + "] m; give where the test plan says sensor " +
-                                  sensor.channel + " is");
-    // Absolute velocity and displacement would need the base's integrated
-    // motion, whose constants a real rig does not define.
-    if (s.BaseExcitation() && sensor.quantity != "acceleration")
-      throw std::invalid_argument(source + ": sensor " + sensor.channel + " quantity must be acceleration with "
-                                  "excitation.quantity \"base_acceleration\" (the sensors record absolute acceleration)");
-    if (sensor.channel.empty() || sensor.channel == "time_s" || sensor.channel.find(',') != std::string::npos)
-      throw std::invalid_argument(source + ": sensor channel '" + sensor.channel +
-                                  "' must be a non-empty name without commas, other than time_s");
+      Fail(source,
+           fmt::format("sensors[{}].stated_position_m = {} m lies outside the beam (0, {}] m", i,
+                       *sensor.stated_position_m, length),
+           "give where the test plan says sensor " + sensor.channel + " is");
     if (!channels.insert(sensor.channel).second)
-      throw std::invalid_argument(source + ": channel name '" + sensor.channel + "' is used twice");
+      Fail(source, fmt::format("sensors[{}].channel: channel name '{}' is used twice", i, sensor.channel),
+           "give every channel its own name");
   }
   for (double x : s.hidden_positions_m) inside(x, "hidden_positions_m", true);
   for (const PointMass& m : s.attachments.point_masses) inside(m.position_m, "attachments point mass position_m", true);
   for (const auto& [channel, noise] : s.channel_noise)
     if (!channels.count(channel))
-      throw std::invalid_argument(source + ": noise.channels names '" + channel + "', which is not a channel");
+      Fail(source, "noise.channels names '" + channel + "', which is not a channel",
+           "name the excitation's channel or a sensor's");
 }
 
 void CheckLevelsAndFrequencies(const Scenario& s, const std::string& source) {
   std::set<std::string> labels;
-  for (const ScenarioLevel& level : s.levels)
-    if (!labels.insert(level.label).second)
-      throw std::invalid_argument(source + ": level label '" + level.label + "' is used twice");
+  for (std::size_t i = 0; i < s.levels.size(); ++i)
+    if (!labels.insert(s.levels[i].label).second)
+      Fail(source, fmt::format("levels[{}].label: level label '{}' is used twice", i, s.levels[i].label),
+           "give every level its own label");
   const double nyquist_hz = 0.5 * s.timing.sample_rate_hz;
   for (const ScenarioLevel& level : s.levels)
     for (double f : level.frequencies_hz)
       if (5.0 * f >= nyquist_hz)
-        throw std::invalid_argument(source + ": level " + level.label + " runs " + std::to_string(f) +
-                                    " Hz, whose 5th harmonic is above the Nyquist frequency of sample_rate_Hz; "
-                                    "raise timing.sample_rate_Hz");
+        Fail(source,
+             fmt::format("level {} runs {} Hz, whose 5th harmonic is above the Nyquist frequency of sample_rate_Hz",
+                         level.label, f),
+             "raise timing.sample_rate_Hz");
   double max_frequency_hz = 0.0;
   for (const ScenarioLevel& level : s.levels)
     for (double f : level.frequencies_hz) max_frequency_hz = std::max(max_frequency_hz, f);
   for (const ForceHarmonic& h : s.force_distortion)
     if (h.harmonic * max_frequency_hz >= nyquist_hz)
-      throw std::invalid_argument(source + ": excitation.distortion harmonic " + std::to_string(h.harmonic) +
-                                  " exceeds the Nyquist frequency; raise timing.sample_rate_Hz");
-}
-
-// ---------------------------------------------------------------- writing, one helper per section
-
-OrderedJson NoiseToJson(const ChannelNoise& n) {
-  OrderedJson out = OrderedJson::object();
-  out["relative_rms"] = n.relative_rms;
-  out["absolute"] = n.absolute;
-  out["adc_bits"] = n.adc_bits;
-  out["adc_range"] = n.adc_range;
-  out["pink_rms"] = n.pink_rms;
-  return out;
-}
-
-OrderedJson ExcitationToJson(const Scenario& s) {
-  OrderedJson distortion = OrderedJson::array();
-  for (const ForceHarmonic& h : s.force_distortion) {
-    OrderedJson j = OrderedJson::object();
-    j["harmonic"] = h.harmonic;
-    j["amplitude_ratio"] = h.amplitude_ratio;
-    j["phase_rad"] = h.phase_rad;
-    distortion.push_back(j);
-  }
-  OrderedJson out = OrderedJson::object();
-  out["channel"] = s.force_channel;
-  if (!s.BaseExcitation()) out["position_m"] = s.force_position_m;
-  // The quantity and the amplifier's fields only when not a force drive: the
-  // reader refuses the amplifier otherwise (and a force drive's file stays a
-  // model file).
-  if (s.excitation_quantity != ExcitationQuantity::kForce) out["quantity"] = ExcitationQuantityName(s.excitation_quantity);
-  if (s.VoltageDrive()) {
-    out["amplifier_gain_N_per_V"] = s.amplifier.gain_N_per_V;
-    out["amplifier_sag"] = s.amplifier.sag;
-  }
-  out["distortion"] = distortion;
-  return out;
-}
-
-OrderedJson SensorsToJson(const std::vector<ScenarioSensor>& sensors) {
-  OrderedJson out = OrderedJson::array();
-  for (const ScenarioSensor& sensor : sensors) {
-    OrderedJson j = OrderedJson::object();
-    j["channel"] = sensor.channel;
-    j["position_m"] = sensor.position_m;
-    j["quantity"] = sensor.quantity;
-    j["unit"] = sensor.unit;
-    j["mass_kg"] = sensor.mass_kg;
-    // The artefacts only when set: a scenario without them stays a model
-    // file (hb/model_file.h), whose sensors know no such fields.
-    if (sensor.gain_error_relative != 0.0) j["gain_error_relative"] = sensor.gain_error_relative;
-    if (sensor.delay_s != 0.0) j["delay_s"] = sensor.delay_s;
-    if (sensor.stated_position_m) j["stated_position_m"] = *sensor.stated_position_m;
-    out.push_back(j);
-  }
-  return out;
-}
-
-// The frequencies as the list in run order: the reader's range and
-// "direction" are only ways of spelling that list.
-OrderedJson LevelsToJson(const std::vector<ScenarioLevel>& levels, ExcitationQuantity quantity) {
-  OrderedJson out = OrderedJson::array();
-  for (const ScenarioLevel& level : levels) {
-    OrderedJson j = OrderedJson::object();
-    j["label"] = level.label;
-    if (quantity == ExcitationQuantity::kVoltage) j["voltage_amplitude_V"] = level.voltage_amplitude_V;
-    else if (quantity == ExcitationQuantity::kBaseAcceleration)
-      j["base_acceleration_amplitude_m_s2"] = level.base_acceleration_amplitude_m_s2;
-    else j["force_amplitude_N"] = level.force_amplitude_N;
-    j["frequencies_Hz"] = level.frequencies_hz;
-    out.push_back(j);
-  }
-  return out;
-}
-
-OrderedJson TimingToJson(const ScenarioTiming& t) {
-  OrderedJson out = OrderedJson::object();
-  out["sample_rate_Hz"] = t.sample_rate_hz;
-  out["max_time_step_s"] = t.max_time_step_s;
-  out["settle_min_s"] = t.settle_min_s;
-  out["settle_max_s"] = t.settle_max_s;
-  out["settle_tolerance"] = t.settle_tolerance;
-  out["transient_s"] = t.transient_s;
-  out["record_s"] = t.record_s;
-  out["restart_each_level"] = t.restart_each_level;
-  out["excitation_stop_fraction"] = t.excitation_stop_fraction;
-  if (t.daq_clock_error_relative != 0.0) out["daq_clock_error_relative"] = t.daq_clock_error_relative;
-  if (!t.early_records.empty()) {
-    OrderedJson early = OrderedJson::array();
-    for (const EarlyRecord& e : t.early_records) {
-      OrderedJson j = OrderedJson::object();
-      j["level"] = e.level;
-      j["frequency_Hz"] = e.frequency_hz;
-      j["settle_s"] = e.settle_s;
-      early.push_back(j);
-    }
-    out["early_records"] = early;
-  }
-  return out;
-}
-
-OrderedJson NoiseSectionToJson(const Scenario& s) {
-  OrderedJson channels = OrderedJson::object();
-  for (const auto& [channel, noise] : s.channel_noise) channels[channel] = NoiseToJson(noise);
-  OrderedJson out = OrderedJson::object();
-  out["seed"] = s.seed;
-  out["clock_offset_ppm"] = s.clock_offset_ppm;
-  out["amplitude_creep_relative"] = s.amplitude_creep_relative;
-  out["default"] = NoiseToJson(s.default_noise);
-  out["channels"] = channels;
-  return out;
+      Fail(source, fmt::format("excitation.distortion harmonic {} exceeds the Nyquist frequency", h.harmonic),
+           "raise timing.sample_rate_Hz");
 }
 
 }  // namespace
 
 Scenario ParseScenario(const std::string& json_text, const std::string& source) {
-  const Json root = ParseJson(json_text, source);
-  Scenario s;
-  // `top` refuses its unknown fields when it goes, after the checks of the whole.
-  ObjectReader top(root, source, "");
-  ReadFormat(top);
-  s.name = top.String("name", "simulated stepped-sine campaign");
-  ReadBeams(top, s);
-  internal::ReadSupport(top, "docs/simulator.md", s.polynomial, s.jenkins, s.one_sided_stiffness_Nm_rad);
-  internal::ReadAttachments(top, "docs/simulator.md", s.attachments);
-  ReadDampingAndMesh(top, s);
-  ReadExcitation(top, s);
-  ReadSensorsAndHiddenPositions(top, s);
-  ReadLevels(top, s);
-  ReadTiming(top, s.levels, s.timing);
-  ReadNoiseSection(top, s);
+  Scenario s = schema::FromJson<Scenario>(json_text, source, kFormat);
+  if (s.BaseExcitation()) s.force_position_m = 0.0;
   ValidateBeams(s, source);
   CheckPositionsAndChannels(s, source);
   CheckLevelsAndFrequencies(s, source);
@@ -639,24 +472,10 @@ Scenario ReadScenario(const std::filesystem::path& file) {
 }
 
 std::string ScenarioToJson(const Scenario& s) {
-  OrderedJson root = OrderedJson::object();
-  root["format"] = std::string(kScenarioFormat);
-  root["beamid_version"] = kVersion;
-  root["name"] = s.name;
-  root["beam"] = internal::BeamToJson(s.beam);
-  root["nominal_beam"] = internal::BeamToJson(s.nominal_beam);
-  root["support"] = internal::SupportToJson(s.polynomial, s.jenkins, s.one_sided_stiffness_Nm_rad);
-  root["attachments"] = internal::AttachmentsToJson(s.attachments);
-  root["damping"] = {{"reference_frequency_Hz", s.damping_reference_frequency_hz}};
-  if (!s.modal_damping_ratios.empty()) root["damping"]["modal_damping_ratios"] = s.modal_damping_ratios;
-  root["mesh"] = {{"min_elements", s.mesh_min_elements}};
-  root["excitation"] = ExcitationToJson(s);
-  root["sensors"] = SensorsToJson(s.sensors);
-  root["hidden_positions_m"] = s.hidden_positions_m;
-  root["levels"] = LevelsToJson(s.levels, s.excitation_quantity);
-  root["timing"] = TimingToJson(s.timing);
-  root["noise"] = NoiseSectionToJson(s);
-  return root.dump(2) + "\n";
+  nlohmann::ordered_json json;
+  schema::Writer writer(json);
+  Describe(writer, s);
+  return json.dump(2) + "\n";
 }
 
 void WriteScenarioFile(const std::filesystem::path& path, const Scenario& scenario) {

@@ -3,7 +3,8 @@
 // run and recorded (levels, frequency steps, timing, sensors, noise). The
 // JSON format (format "beamid-scenario/1") is documented in docs/simulator.md;
 // `beamid simulate` turns a scenario into a campaign (docs/campaign-format.md)
-// plus a truth file. This file holds the format's one reader and writer.
+// plus a truth file. The format is declared once (hb/json_schema.h); that
+// declaration is its reader, its writer and its field table.
 //
 // Everything is SI except where a field names its unit (frequencies in Hz,
 // clock offset in ppm, noise of a channel in the channel's written unit).
@@ -19,6 +20,7 @@
 #include <vector>
 
 #include "hb/beam_properties.h"
+#include "hb/json_schema.h"
 #include "hb/linear_attachments.h"
 #include "hb/support_law.h"
 
@@ -163,7 +165,7 @@ struct ScenarioAmplifier {
 inline constexpr double kAmplifierSagBandRelative = 0.02;
 
 struct Scenario {
-  std::string name;
+  std::string name = "simulated stepped-sine campaign";
   BeamProperties beam;          // the true beam (loss_factor: structural damping η)
   BeamProperties nominal_beam;  // written to campaign.json
   PolynomialSupportLaw::Coefficients polynomial;
@@ -221,10 +223,14 @@ double UnitToSi(const std::string& quantity, const std::string& unit);
 // written before the key) reads as this version; another value is refused.
 inline constexpr std::string_view kScenarioFormat = "beamid-scenario/1";
 
-// Parses and validates a scenario. Throws std::invalid_argument naming
-// `source` (the file), the field and what to fix; unknown fields are errors
-// (a typo must not silently fall back to a default). A "format" other than
-// kScenarioFormat is an InputError; "beamid_version" is accepted and ignored.
+// The fields of the JSON file: path, type, unit, range (docs/formats.md).
+std::vector<schema::FieldDoc> ScenarioFields();
+
+// Parses and validates a scenario. Throws InputError (a
+// std::invalid_argument) naming `source` (the file), the field and what to
+// fix; unknown fields are errors (a typo must not silently fall back to a
+// default), and so is a "format" other than kScenarioFormat;
+// "beamid_version" is accepted and ignored.
 Scenario ParseScenario(const std::string& json_text, const std::string& source);
 Scenario ReadScenario(const std::filesystem::path& file);
 

@@ -1,5 +1,6 @@
 // The file of `beamid backbone --measured` (format
-// "beamid-measured-backbone/1", <output>.json) and its one reader and writer:
+// "beamid-measured-backbone/1", <output>.json) and its one reader and writer,
+// driven by one declaration (hb/json_schema.h):
 // the measured backbone per level, the chosen single-mode fit with its
 // candidates and its curve against amplitude, the damping trend, and the
 // identified model's backbone at the sensor when --result was given.
@@ -33,9 +34,11 @@
 // damping_ratio_verdict (on ζ alone)}, model_backbone [{amplitude_m, frequency_Hz}], warnings.
 // An estimate is {value, std}, or null when it could not be made. JSON has no
 // NaN: a number that is not finite is written as null and read back as NaN.
-// Reading checks every field and throws InputError naming the file, the field
-// (e.g. "levels[2].peak.frequency_Hz") and the fix; a key the format does not
-// have is refused; a file without beamid_version reads (version ""), one
+// The descriptions (amplitude, model, parameter_order, excitation's unit and
+// frf) are written for a reader and not read back. Reading checks every
+// field, its type and range (MeasuredBackboneFileFields) and throws
+// InputError naming the file, the field (e.g. "levels[2].peak.frequency_Hz")
+// and the fix; a key the format does not have is refused; a file without beamid_version reads (version ""), one
 // without jumps, flags, in_global_fit, noise_relative_rms or excitation
 // (older files) reads as no jumps, no flags, in the fit, 0, a force.
 #pragma once
@@ -45,6 +48,7 @@
 #include <string_view>
 #include <vector>
 
+#include "hb/json_schema.h"
 #include "hb/version.h"
 #include "solver/backbone/measured_backbone.h"
 
@@ -95,6 +99,9 @@ struct MeasuredBackboneFile {
   std::vector<MeasuredBackboneModelPoint> model_backbone;  // empty without --result
   std::vector<std::string> warnings;
 };
+
+// The fields of the JSON file: path, type, unit, range (docs/formats.md).
+std::vector<schema::FieldDoc> MeasuredBackboneFileFields();
 
 std::string MeasuredBackboneFileToJson(const MeasuredBackboneFile& file);
 // `source` names the text in messages (the file it came from).

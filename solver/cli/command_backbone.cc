@@ -92,9 +92,9 @@ void RunBackbone(const BackboneCommandOptions& options, const GlobalOptions& glo
                                 .force_N = p.force_amplitude_N,
                                 .multiple_scales_frequency_hz = ms_hz,
                                 .theta_rad = {p.theta_rad.begin(), p.theta_rad.end()},
-                                .displacement_m = {}};
+                                .sensors = {}};
     for (std::size_t i = 0; i < positions.size(); ++i)
-      point.displacement_m.emplace_back(y.row(i).begin(), y.row(i).end());
+      point.sensors.push_back({.displacement_m = {y.row(i).begin(), y.row(i).end()}});
     file.points.push_back(std::move(point));
   }
   WriteTextFile(options.output + ".csv", hb::BackboneFileToCsv(file));

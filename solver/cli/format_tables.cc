@@ -1,6 +1,10 @@
 #include "solver/cli/format_tables.h"
 
+#include "hb/backbone_file.h"
 #include "hb/frc_file.h"
+#include "solver/backbone/measured_backbone_io.h"
+#include "hb/model_file.h"
+#include "hb/scenario.h"
 #include "solver/diagnosis/diagnosis_io.h"
 
 namespace beamid::cli {
@@ -8,6 +12,12 @@ namespace beamid::cli {
 const std::vector<DocumentedFormat>& DocumentedFormats() {
   static const std::vector<DocumentedFormat> formats = {
       {std::string(hb::kFrcFormat), "Frequency response curves (`beamid frc`, PREFIX.json)", hb::FrcFileFields},
+      {std::string(hb::kBackboneFormat), "Model backbone (`beamid backbone` on a model, PREFIX.json)",
+       hb::BackboneFileFields},
+      {std::string(solver::kMeasuredBackboneFormat), "Measured backbone (`beamid backbone --measured`, <output>.json)",
+       solver::MeasuredBackboneFileFields},
+      {std::string(hb::kModelFileFormat), "Model file (`frc`, `backbone`; README, Model files)", hb::ModelFileFields},
+      {std::string(hb::kScenarioFormat), "Simulation scenario (`simulate`; docs/simulator.md)", hb::ScenarioFields},
       {std::string(solver::kDiagnosisFormat), "Diagnosis (`beamid diagnose`, diagnosis.json)",
        solver::DiagnosisFileFields},
   };

@@ -56,7 +56,7 @@ IdentifyOptions CandidateRefitOptions(const DiagnosisOptions& options, int model
   refit.family = options.family;
   refit.num_workers = 1;
   refit.ipopt.max_iterations = options.refit_max_iterations;
-  refit.ipopt.max_cpu_seconds = options.refit_max_cpu_seconds;
+  refit.first_start_min_iterations = 0;
   refit.continuation_iterations = 0;  // a refit that wanders is cut short on purpose
   // A refit starts from the base fit, whose states already lie on the
   // measured branch; seeded states converge slowly with the
@@ -518,7 +518,6 @@ void DiagnosisOptions::Validate() const {
   ipopt.Validate();
   RequireAtLeast("DiagnosisOptions.refit_max_iterations", refit_max_iterations, 1);
   RequireInRange("DiagnosisOptions.max_pair_partners", max_pair_partners, 0, 16);
-  RequireNonNegative("DiagnosisOptions.refit_max_cpu_seconds", refit_max_cpu_seconds);
 }
 
 BaseFit FitBase(const FitData& fit, const DiagnosisOptions& options) {

@@ -76,9 +76,9 @@ struct DiagnosisOptions {
   int num_workers = 0;              // 0: one per hardware core
   IpoptOptions ipopt;     // the base fit's
   // Each candidate refit starts at the base optimum and needs < 40
-  // iterations when the candidate fits; a start that wanders is cut short.
+  // iterations when the candidate fits; a start that wanders is cut short
+  // (by iterations, not time: the verdict must not depend on the machine).
   int refit_max_iterations = 80;
-  double refit_max_cpu_seconds = 4.0;
   // When the named cause leaves a misfit beyond acceptable_reduced_chi_square,
   // it is refitted together with each of this many other candidates (those
   // whose own refit converged, best BIC first, then those whose refit from the
@@ -228,7 +228,7 @@ DiagnosisResult Diagnose(const FitData& fit, const FitData& validation, const Fi
 FitSummary SummarizeFit(const ModelStructure& structure, int harmonics, double chi_square, int num_residuals,
                         const std::vector<double>& values, const std::vector<double>& std, int extra_parameters = 0);
 // The options of a candidate's refit from the base optimum (Ipopt capped at
-// refit_max_iterations and refit_max_cpu_seconds, no continuation).
+// refit_max_iterations, no continuation).
 IdentifyOptions CandidateRefitOptions(const DiagnosisOptions& options, int model_harmonics);
 // The likelihood-ratio test of a refit (outcome->fit, test_dof) against
 // reference_chi_square (header), Bonferroni over num_candidates; fills

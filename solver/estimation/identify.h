@@ -34,6 +34,15 @@ struct IdentifyOptions {
   const ModelFamily* family = &HarmonicBalanceFamily();
   ModelOptions model;
   IpoptOptions ipopt;
+  // The first start (the direct estimate, or the caller's own start: the
+  // one a single-start fit rests on, which from a factor 3 away may need ~400
+  // iterations) and the branch repairs run for at least this many
+  // iterations; the further starts are exploratory and keep
+  // ipopt.max_iterations (a start on another branch of the response stalls
+  // rather than converges), as do the diagnosis's refits, cut short on
+  // purpose (0 here). An iteration count, not a time limit, so that
+  // the answer does not depend on the machine or its load.
+  int first_start_min_iterations = 1000;
   // Further starts besides the direct estimate (0: only that one).
   int num_starts = 0;
   // Space-filling starts cover [value/spread, value·spread] around the direct

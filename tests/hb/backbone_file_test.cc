@@ -25,6 +25,7 @@
 #include "hb/errors.h"
 #include "tests/support/csv_text.h"
 #include "tests/support/same_value.h"
+#include "tests/support/schema_checks.h"
 #include "tests/support/expect_refused.h"
 #include "tests/support/temp_path.h"
 
@@ -56,7 +57,7 @@ BackboneFile Filled() {
     p.multiple_scales_frequency_hz = j == 2 ? kNaN : 54.01 + j;  // none at the last point
     p.theta_rad = {{1e-7, j == 1 ? kNaN : -2e-8}, {3e-6, -4e-5 * (j + 1)}, {5e-8, 6e-9}};
     for (std::size_t s = 0; s < f.sensors.size(); ++s)
-      p.displacement_m.push_back({{-0.0, 1e-9}, {2e-4 * (s + 1), -3e-4 + j}, {4e-6, 5e-6}});
+      p.sensors.push_back({.displacement_m = {{-0.0, 1e-9}, {2e-4 * (s + 1), -3e-4 + j}, {4e-6, 5e-6}}});
     f.points.push_back(p);
   }
   return f;
@@ -83,9 +84,9 @@ void ExpectSame(const BackboneFile& a, const BackboneFile& b) {
     EXPECT_TRUE(Same(x.force_N, y.force_N));
     EXPECT_TRUE(Same(x.multiple_scales_frequency_hz, y.multiple_scales_frequency_hz));
     EXPECT_TRUE(Same(x.theta_rad, y.theta_rad));
-    ASSERT_EQ(x.displacement_m.size(), y.displacement_m.size());
-    for (std::size_t s = 0; s < x.displacement_m.size(); ++s)
-      EXPECT_TRUE(Same(x.displacement_m[s], y.displacement_m[s]));
+    ASSERT_EQ(x.sensors.size(), y.sensors.size());
+    for (std::size_t s = 0; s < x.sensors.size(); ++s)
+      EXPECT_TRUE(Same(x.sensors[s].displacement_m, y.sensors[s].displacement_m));
   }
 }
 
@@ -136,7 +137,7 @@ TEST(BackboneFile, TheCsvHeaderAndRowsAreTheStructsValues) {
   EXPECT_EQ(row[2], G9(p.force_N));
   EXPECT_EQ(row[3], G9(p.multiple_scales_frequency_hz));
   const double omega = 2 * std::numbers::pi * p.frequency_hz;
-  const double disp = std::abs(p.displacement_m[1][1]);
+  const double disp = std::abs(p.sensors[1].displacement_m[1]);
   EXPECT_EQ(row[6], G9(disp));
   EXPECT_EQ(row[7], G9(disp * omega * omega));
   // No multiple-scales frequency: an empty cell.
@@ -145,7 +146,7 @@ TEST(BackboneFile, TheCsvHeaderAndRowsAreTheStructsValues) {
 
 TEST(BackboneFile, APointThatDoesNotMatchTheSensorsIsNotWritten) {
   BackboneFile f = Filled();
-  f.points[2].displacement_m.pop_back();
+  f.points[2].sensors.pop_back();
   EXPECT_THROW(BackboneFileToJson(f), std::invalid_argument);
   EXPECT_THROW(BackboneFileToCsv(f), std::invalid_argument);
 }
@@ -175,8 +176,16 @@ TEST(BackboneFile, AFileOfTheEarlierWriterReads) {
   EXPECT_EQ(f.sensors[1].position_m, 0.4);
   ASSERT_EQ(f.points.size(), 1u);
   EXPECT_TRUE(std::isnan(f.points[0].multiple_scales_frequency_hz));
-  EXPECT_EQ(f.points[0].displacement_m[1][1], std::complex<double>(3e-4, -4e-4));
+  EXPECT_EQ(f.points[0].sensors[1].displacement_m[1], std::complex<double>(3e-4, -4e-4));
   EXPECT_EQ(f.points[0].force_N, 0.01);
+}
+
+TEST(BackboneFile, AFileOlderThanTheVersionKeyReadsWithNone) {
+  std::string text = kEarlierFile;
+  const std::string line = " \"beamid_version\": \"0.9.0\",\n";
+  ASSERT_NE(text.find(line), std::string::npos);
+  text.erase(text.find(line), line.size());
+  EXPECT_EQ(BackboneFileFromJson(text, "old.json").beamid_version, "");
 }
 
 std::string Damaged(const std::string& from, const std::string& to) {
@@ -217,6 +226,15 @@ TEST(BackboneFile, PointsAtOtherSensorPositionsAreRefused) {
   text.replace(second, 19, "\"position_m\": 0.457");
   const std::string message = InputErrorOf([&] { BackboneFileFromJson(text, "x.json"); });
   EXPECT_THAT(message, HasSubstr("points[1].sensors.acc3.position_m"));
+}
+
+TEST(BackboneFile, TheDeclarationHoldsForEveryField) {
+  beamid::testing::ExpectDeclarationHolds({
+      .fields = BackboneFileFields(),
+      .sample = BackboneFileToJson(Filled()),
+      .read = [](const std::string& text) { BackboneFileFromJson(text, "x.json"); },
+      .rewrite = [](const std::string& text) { return BackboneFileToJson(BackboneFileFromJson(text, "x.json")); },
+  });
 }
 
 }  // namespace

@@ -105,14 +105,14 @@ TEST(BaseExcitation, TheReaderRefusesWhatAMovingBaseCannotHold) {
     }
   };
   refused(R"("quantity": "base_acceleration"})", R"("quantity": "base_acceleration", "position_m": 0.3})",
-          "excitation.position_m must be left out");
+          "excitation.position_m\" must be left out");
   refused(R"("position_m": 0.1, "unit": "g"})", R"("position_m": 0.1, "quantity": "velocity", "unit": "m/s"})",
-          "sensor acc1 quantity must be acceleration");
+          "sensors[1].quantity\" breaks the rule: quantity is acceleration with excitation.quantity");
   refused(R"("label": "below", "base_acceleration_amplitude_m_s2": 2.0)", R"("label": "below", "force_amplitude_N": 2.0)",
-          "levels[0].force_amplitude_N is not the drive with excitation.quantity \"base_acceleration\"; "
-          "give base_acceleration_amplitude_m_s2");
+          "levels[0].force_amplitude_N\" is not the drive with excitation.quantity \"base_acceleration\". "
+          "Fix: give base_acceleration_amplitude_m_s2");
   refused(R"("label": "below", "base_acceleration_amplitude_m_s2": 2.0, )", R"("label": "below", )",
-          "levels[0].base_acceleration_amplitude_m_s2 is required");
+          "levels[0].base_acceleration_amplitude_m_s2\" is missing");
   // The written scenario reads back as the same base excitation.
   const Scenario s = ParseScenario(kScenario, "base.json");
   const Scenario read = ParseScenario(ScenarioToJson(s), "written.json");

@@ -15,6 +15,7 @@
 #include "hb/errors.h"
 #include "hb/version.h"
 #include "tests/support/expect_refused.h"
+#include "tests/support/schema_checks.h"
 #include "tests/support/temp_path.h"
 
 namespace beamid::hb {
@@ -131,14 +132,26 @@ std::string WithFormat(const nlohmann::json& format) {
 TEST(ModelFileIo, AScenariosFormatReadsAndAnyOtherIsRefusedNamingTheFileTheFieldAndTheFix) {
   ExpectSame(Filled(), ParseModelFile(WithFormat("beamid-scenario/1"), "m.json"));
   const std::string message = InputErrorOf([] { ParseModelFile(WithFormat("beamid-result/1"), "runs/m.json"); });
-  EXPECT_THAT(message, HasSubstr("runs/m.json: field \"format\" is \"beamid-result/1\", not \"beamid-model/1\""));
+  EXPECT_THAT(message, HasSubstr("runs/m.json: field \"format\" is \"beamid-result/1\", not one of \"beamid-model/1\", \"beamid-scenario/1\""));
   EXPECT_THAT(message, HasSubstr("Fix: "));
   try {
     ParseModelFile(WithFormat(nlohmann::json::array()), "m.json");
     ADD_FAILURE() << "accepted a format that is not a string";
   } catch (const std::invalid_argument& e) {
-    EXPECT_THAT(e.what(), HasSubstr("m.json: format must be a string"));
+    EXPECT_THAT(e.what(), HasSubstr("m.json: field \"format\" must be a string"));
   }
+}
+
+// The declaration (hb/json_schema.h) holds for every field: the written text
+// rewrites to the same bytes, and each number out of range, required field
+// taken out and unknown key is refused naming its path and the fix.
+TEST(ModelFileIo, TheDeclarationHoldsForEveryField) {
+  beamid::testing::ExpectDeclarationHolds({
+      .fields = ModelFileFields(),
+      .sample = ModelFileToJson(Filled()),
+      .read = [](const std::string& text) { ParseModelFile(text, "x.json"); },
+      .rewrite = [](const std::string& text) { return ModelFileToJson(ParseModelFile(text, "x.json")); },
+  });
 }
 
 }  // namespace

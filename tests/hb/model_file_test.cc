@@ -53,7 +53,7 @@ TEST(ModelFile, ReadsEveryFieldInSi) {
 }
 
 TEST(ModelFile, NamesTheFieldAndTheFixInEveryError) {
-  ExpectError(Replace(kValid, "\"k3_Nm_rad3\"", "\"k3\""), "support.polynomial has an unknown field 'k3'");
+  ExpectError(Replace(kValid, "\"k3_Nm_rad3\"", "\"k3\""), "field \"support.polynomial.k3\" is not a field here");
   ExpectError(Replace(kValid, "\"k1_Nm_rad\": 150.43", "\"k1_Nm_rad\": -1"), "support.polynomial.k1_Nm_rad");
   ExpectError(Replace(kValid, "\"thickness_m\": 0.005", "\"thickness_m\": \"thin\""), "beam.thickness_m");
   ExpectError(Replace(kValid, "\"position_m\": 0.57}", "\"position_m\": 0.8}"), "beyond the beam");

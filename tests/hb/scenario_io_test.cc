@@ -18,6 +18,7 @@
 #include "hb/model_file.h"
 #include "hb/version.h"
 #include "tests/support/expect_refused.h"
+#include "tests/support/schema_checks.h"
 #include "tests/support/temp_path.h"
 
 namespace beamid::hb {
@@ -313,7 +314,29 @@ TEST(ScenarioFile, AnotherFormatIsRefusedNamingTheFileTheFieldAndTheFix) {
     ParseScenario(WithFormat(1), "s.json");
     ADD_FAILURE() << "accepted a format that is not a string";
   } catch (const std::invalid_argument& e) {
-    EXPECT_THAT(e.what(), HasSubstr("s.json: format must be a string"));
+    EXPECT_THAT(e.what(), HasSubstr("s.json: field \"format\" must be a string"));
+  }
+}
+
+// The declaration (hb/json_schema.h) holds for every field, in each variant
+// (force drive with every artefact, voltage drive, base excitation): the
+// written text rewrites to the same bytes, and each number out of range,
+// required field taken out and unknown key is refused naming its path and
+// the fix.
+TEST(ScenarioFile, TheDeclarationHoldsForEveryFieldOfEveryVariant) {
+  Scenario base = Filled();
+  base.excitation_quantity = ExcitationQuantity::kBaseAcceleration;
+  base.force_position_m = 0.0;
+  for (ScenarioSensor& sensor : base.sensors) sensor.quantity = "acceleration", sensor.unit = "g";
+  for (ScenarioLevel& level : base.levels) std::swap(level.base_acceleration_amplitude_m_s2, level.force_amplitude_N);
+  for (const Scenario& sample : {FilledArtefacts(), FilledVoltage(), base}) {
+    SCOPED_TRACE(ExcitationQuantityName(sample.excitation_quantity));
+    beamid::testing::ExpectDeclarationHolds({
+        .fields = ScenarioFields(),
+        .sample = ScenarioToJson(sample),
+        .read = [](const std::string& text) { ParseScenario(text, "x.json"); },
+        .rewrite = [](const std::string& text) { return ScenarioToJson(ParseScenario(text, "x.json")); },
+    });
   }
 }
 

@@ -65,7 +65,6 @@ TEST(DiagnosisOptions, AcceptsTheDefaultsAndTheLibrarysCandidates) {
   o.num_workers = 1;
   o.model_harmonics = 1;
   o.refit_max_iterations = 1;
-  o.refit_max_cpu_seconds = 0.0;
   EXPECT_NO_THROW(o.Validate());
 }
 

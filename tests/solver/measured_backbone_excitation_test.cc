@@ -82,6 +82,8 @@ TEST(MeasuredBackboneExcitation, AVoltageDriveGivesTheForceDrivesNumbersLabelled
     ExpectSameWithinSigma(per_volt.levels[l].damping_ratio, force.levels[l].damping_ratio, "ζ");
   }
   MeasuredBackboneFile file;
+  file.channel = "acc";  // the reader refuses an unnamed channel and quantity
+  file.response_quantity = "acceleration";
   file.excitation_quantity = per_volt.excitation_quantity;
   const std::string text = MeasuredBackboneFileToJson(file);
   EXPECT_NE(text.find("displacement per drive voltage [m/V]"), std::string::npos);

@@ -20,6 +20,7 @@
 
 #include "hb/errors.h"
 #include "tests/support/same_value.h"
+#include "tests/support/schema_checks.h"
 #include "tests/support/temp_path.h"
 
 #include "tests/support/expect_refused.h"
@@ -331,6 +332,8 @@ TEST(MeasuredBackboneFile, AFileInTheEarlierLayoutReads) {
   ASSERT_EQ(f.single_mode_fit.curve.size(), 1u);
   EXPECT_EQ(f.single_mode_fit.curve[0].frequency_std_hz, 0.01);
   EXPECT_EQ(f.damping_trend.verdict, "no significant trend");
+  // Before the damping rate, the one verdict was on ζ.
+  EXPECT_EQ(f.damping_trend.damping_ratio_verdict, "no significant trend");
   ASSERT_EQ(f.model_backbone.size(), 1u);
   EXPECT_EQ(f.model_backbone[0].frequency_hz, 31.0);
 }
@@ -393,6 +396,21 @@ TEST(MeasuredBackboneFile, AFieldOfTheWrongTypeIsRefusedNamingTheFileAndTheField
     EXPECT_THAT(message, HasSubstr("out/b.json: field \"" + std::string(c.field) + "\" " + c.problem));
     EXPECT_THAT(message, HasSubstr("Fix: "));
   }
+}
+
+TEST(MeasuredBackboneFile, TheDeclarationHoldsForEveryField) {
+  // The checks damage the first level: it gets the jumps and flags of the others.
+  MeasuredBackboneFile sample = Filled();
+  sample.levels[0].jumps = sample.levels[2].jumps;
+  sample.levels[0].flags = sample.levels[1].flags;
+  beamid::testing::ExpectDeclarationHolds({
+      .fields = MeasuredBackboneFileFields(),
+      .sample = MeasuredBackboneFileToJson(sample),
+      .read = [](const std::string& text) { MeasuredBackboneFileFromJson(text, "x.json"); },
+      .rewrite = [](const std::string& text) {
+        return MeasuredBackboneFileToJson(MeasuredBackboneFileFromJson(text, "x.json"));
+      },
+  });
 }
 
 }  // namespace

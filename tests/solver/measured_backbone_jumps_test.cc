@@ -221,6 +221,8 @@ TEST(MeasuredBackboneJumps, TheOptionsKeepAJumpingLevelInTheFitAndTheFileKeepsTh
       << Flags(left_out.levels[0]) << Flags(left_out.levels[1]);
 
   MeasuredBackboneFile file;
+  file.channel = "acc";  // the reader refuses an unnamed channel and quantity
+  file.response_quantity = "acceleration";
   file.levels = left_out.levels;
   const MeasuredBackboneFile back = MeasuredBackboneFileFromJson(MeasuredBackboneFileToJson(file), "test");
   ASSERT_EQ(back.levels[2].jumps.size(), 1u);
