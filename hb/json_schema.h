@@ -67,7 +67,7 @@ struct Limits {
   // null (JSON's only way to say "no number") reads as NaN.
   bool nullable = false;
 
-  Limits OrNull() const {
+  constexpr Limits OrNull() const {
     Limits l = *this;
     l.nullable = true;
     return l;
@@ -114,6 +114,16 @@ bool IsEmpty(const T& v) {
     return false;
 }
 
+// One number of a fixed-length array held in a member (Row, Rows): a
+// parameter's ci95 [low, high], a position's [position_m, gain].
+template <typename T>
+struct Column {
+  double T::*member;
+  std::string_view name;  // in the documentation: "[low, high]"
+  std::string_view unit;
+  Limits limits = {};
+};
+
 // A string field's rule. Text from a file can reach a plot's labels and a
 // terminal: a control character is refused everywhere.
 enum class TextRule { kAny, kNotEmpty };
@@ -124,6 +134,15 @@ struct Name {
   E value;
   std::string_view name;
 };
+
+// The name of an enumeration's value, as a Choice writes it ("" when the
+// list has none).
+template <typename E, std::size_t N>
+constexpr std::string_view NameOf(E value, const Name<E> (&names)[N]) {
+  for (const Name<E>& n : names)
+    if (n.value == value) return n.name;
+  return {};
+}
 
 // How a format names itself in messages.
 struct Format {
@@ -162,6 +181,26 @@ struct DescribeByLookup {
     Describe(io, value);
   }
 };
+
+// "low, high"; "m, 1"; "any; ≥ 0".
+template <typename T, std::size_t N>
+std::string ColumnNames(const Column<T> (&columns)[N]) {
+  std::string text;
+  for (const Column<T>& c : columns) text += (text.empty() ? "" : ", ") + std::string(c.name);
+  return text;
+}
+template <typename T, std::size_t N>
+std::string ColumnUnits(const Column<T> (&columns)[N]) {
+  std::string text;
+  for (const Column<T>& c : columns) text += (text.empty() ? "" : ", ") + std::string(c.unit.empty() ? "–" : c.unit);
+  return text;
+}
+template <typename T, std::size_t N>
+std::string ColumnRanges(const Column<T> (&columns)[N]) {
+  std::string text;
+  for (const Column<T>& c : columns) text += (text.empty() ? "" : "; ") + c.limits.Text();
+  return text;
+}
 
 // ---- writing ------------------------------------------------------------
 
@@ -319,6 +358,34 @@ class Writer {
   void Check(bool ok, std::string_view rule, const std::string& = {}) const {
     if (!ok) throw std::logic_error("schema: a written value breaks the rule: " + std::string(rule));
   }
+  // The fields of an optional struct in this object, all or none.
+  template <typename T, typename F = DescribeByLookup>
+  void Inline(const std::optional<T>& v, F describe = {}) {
+    if (v) describe(*this, *v);
+  }
+  // A JSON value kept as its text (another format's object, which its own
+  // reader reads).
+  void Verbatim(std::string_view key, const std::string& json_text, Presence p = Presence::kRequired) {
+    if (Omitted(json_text, p)) return;
+    Put(key, ParseStrictJson<Json>(json_text, "schema: verbatim field \"" + std::string(key) + "\"", ""));
+  }
+  void Phasor(std::string_view key, const std::complex<double>& v, std::string_view unit, Presence p) {
+    Phasor(key, v, unit, Limits{}, p);
+  }
+  // A fixed-length array of numbers held in members of this struct.
+  template <typename T, std::size_t N>
+  void Row(std::string_view key, const T& v, const Column<T> (&columns)[N], Presence = Presence::kRequired) {
+    Put(key, RowJson(v, columns));
+  }
+  // A list of such arrays, one per element.
+  template <typename T, std::size_t N>
+  void Rows(std::string_view key, const std::vector<T>& v, const Column<T> (&columns)[N], Count count,
+            Presence = Presence::kRequired) {
+    CheckCount(key, v.size(), count);
+    Json list = Json::array();
+    for (const T& element : v) list.push_back(RowJson(element, columns));
+    Put(key, std::move(list));
+  }
 
  private:
   template <typename T, typename F>
@@ -335,6 +402,12 @@ class Writer {
                              " entries, not " + count.Text());
   }
   static Json NumberJson(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+  template <typename T, std::size_t N>
+  static Json RowJson(const T& v, const Column<T> (&columns)[N]) {
+    Json row = Json::array();
+    for (const Column<T>& c : columns) row.push_back(NumberJson(v.*(c.member)));
+    return row;
+  }
   template <typename T>
   static bool Omitted(const T& v, Presence p) {
     return p == Presence::kOmittedWhenEmpty && IsEmpty(v);
@@ -559,6 +632,38 @@ class Reader {
     Here().FailBelow(where, problem);
   }
 
+  // Present when any of T's keys is: then all of them are required.
+  template <typename T, typename F = DescribeByLookup>
+  void Inline(std::optional<T>& v, F describe = {}) {
+    const std::vector<std::string> keys = DeclaredKeys<T>(describe);
+    bool present = false;
+    for (const std::string& k : keys) present = present || field_.Has(k);
+    if (!present) {
+      keys_.insert(keys_.end(), keys.begin(), keys.end());
+      return;
+    }
+    v.emplace();
+    describe(*this, *v);
+  }
+  void Verbatim(std::string_view key, std::string& json_text, Presence presence = Presence::kRequired) {
+    if (Present(key, presence)) json_text = Field(key).json().dump();
+  }
+  void Phasor(std::string_view key, std::complex<double>& v, std::string_view unit, Presence p) {
+    Phasor(key, v, unit, Limits{}, p);
+  }
+  template <typename T, std::size_t N>
+  void Row(std::string_view key, T& v, const Column<T> (&columns)[N], Presence presence = Presence::kRequired) {
+    if (Present(key, presence)) ReadRow(Field(key), v, columns);
+  }
+  template <typename T, std::size_t N>
+  void Rows(std::string_view key, std::vector<T>& v, const Column<T> (&columns)[N], Count count,
+            Presence presence = Presence::kRequired) {
+    if (!Present(key, presence)) return;
+    const JsonField f = Sized(Field(key), count);
+    v.assign(f.Size(), T{});
+    for (std::size_t i = 0; i < f.Size(); ++i) ReadRow(f.At(i), v[i], columns);
+  }
+
   // Refuses a key the declaration did not name (a misspelling, or another
   // file's field).
   void Finish() const { RefuseKeysOtherThan(keys_); }
@@ -612,6 +717,11 @@ class Reader {
       if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F)
         f.Fail(fmt::format("holds the control character 0x{:02X}", static_cast<unsigned char>(c)),
                "remove it: names and labels are one line of printable text");
+  }
+  template <typename T, std::size_t N>
+  static void ReadRow(const JsonField& f, T& v, const Column<T> (&columns)[N]) {
+    if (f.Size() != N) f.Fail(fmt::format("holds {} numbers, not {} ({})", f.Size(), N, ColumnNames(columns)));
+    for (std::size_t c = 0; c < N; ++c) v.*(columns[c].member) = ReadNumber(f.At(c), columns[c].limits);
   }
   static const JsonField& Sized(const JsonField& f, const Count& count) {
     if (f.Size() < count.min || f.Size() > count.max)
@@ -742,6 +852,31 @@ class Documenter {
   void Object(std::string_view key, const std::optional<T>&, Presence p = Presence::kOptional, F describe = {}) {
     Add(key, "object", "", "", p);
     Nested<T>(Path(key) + ".", describe);
+  }
+  template <typename T, typename F = DescribeByLookup>
+  void Inline(const std::optional<T>&, F describe = {}) {
+    const std::size_t first = out_.size();
+    const T element{};
+    describe(*this, element);
+    for (std::size_t i = first; i < out_.size(); ++i)
+      if (out_[i].type != "rule" && out_[i].path.find_first_of(".[", prefix_.size()) == std::string::npos)
+        out_[i].optional = true;
+  }
+  void Verbatim(std::string_view key, const std::string&, Presence p = Presence::kRequired) {
+    Add(key, "any", "", "kept as written", p);
+  }
+  void Phasor(std::string_view key, const std::complex<double>& v, std::string_view unit, Presence p) {
+    Phasor(key, v, unit, Limits{}, p);
+  }
+  template <typename T, std::size_t N>
+  void Row(std::string_view key, const T&, const Column<T> (&columns)[N], Presence p = Presence::kRequired) {
+    Add(key, "[" + ColumnNames(columns) + "]", ColumnUnits(columns), ColumnRanges(columns), p).count_min = N;
+  }
+  template <typename T, std::size_t N>
+  void Rows(std::string_view key, const std::vector<T>&, const Column<T> (&columns)[N], Count count,
+            Presence p = Presence::kRequired) {
+    Add(key, "[[" + ColumnNames(columns) + "]]", ColumnUnits(columns),
+        ColumnRanges(columns) + "; " + count.Text() + " entries", p);
   }
   template <typename T, typename F = DescribeByLookup>
   void Keyed(std::string_view key, const std::map<std::string, T>&, Count count, Presence p = Presence::kRequired,

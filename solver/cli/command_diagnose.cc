@@ -176,8 +176,9 @@ void RunDiagnose(const DiagnoseCommandOptions& options, const GlobalOptions& glo
     DrawCurves(script, png, csv, global);
   }
   if (!global.quiet) {
-    fmt::print("diagnosed {} steps in {:.2f} s: {}{}\n", fit.steps.size(), result.seconds, result.verdict,
-               result.blame.empty() ? "" : " (to blame: " + result.blame + ")");
+    fmt::print("diagnosed {} steps in {:.2f} s: {}{}\n", fit.steps.size(), result.seconds,
+               solver::ToString(result.verdict),
+               result.blame == solver::Blame::kNone ? "" : " (to blame: " + solver::ToString(result.blame) + ")");
     fmt::print("  {:<30} {:>6} {:>12} {:>9} {:>11} {:>10}  {} / {}\n", "candidate", "score", "chi-square", "drop",
                "BIC", "p", "held-out h1", "chi-square");
     // Without a held-out channel there is no held-out error: say so, not "nan %".

@@ -10,6 +10,7 @@
 #include "hb/campaign_file.h"
 #include "hb/frc_file.h"
 #include "signal/phasor_set_io.h"
+#include "solver/diagnosis/diagnosis_io.h"
 
 namespace beamid::cli {
 
@@ -29,6 +30,8 @@ const std::vector<DocumentedFormat>& DocumentedFormats() {
       {std::string(hb::kCampaignFileFormat), "A stepped-sine campaign (`campaign.json`, docs/campaign-format.md)",
        hb::CampaignFileFields},
       {std::string(signal::kPhasorFormat), "Phasors (`beamid extract -o`)", signal::PhasorSetFields},
+      {std::string(solver::kDiagnosisFormat), "Diagnosis (`beamid diagnose`, diagnosis.json)",
+       solver::DiagnosisFileFields},
   };
   return formats;
 }

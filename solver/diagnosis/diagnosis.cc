@@ -105,7 +105,7 @@ std::string WriteSummary(const DiagnosisResult& r) {
   for (const auto& f : r.recording_findings) out << "The extraction flagged: " << f << ". ";
   if (r.location)
     for (const auto& f : r.location->findings) out << f << (f.empty() || f.back() == '.' ? " " : ". ");
-  if (r.verdict == "causes indistinguishable") {
+  if (r.verdict == DiagnosisVerdict::kCausesIndistinguishable) {
     const CandidateOutcome &a = r.candidates[0], &b = r.candidates[1];
     out << fmt::format(
         "{}: {} or {}; these data cannot tell them apart (chi-square {:.4g} and {:.4g}{}). Both explain "
@@ -120,7 +120,7 @@ std::string WriteSummary(const DiagnosisResult& r) {
         r.base.chi_square);
     out << "Identified with " << a.name << ": " << DescribeParameters(r.final_fit, r.final_extra_parameters) << ".";
     if (r.suggestion) out << " " << r.suggestion->text;
-  } else if (r.verdict == "combination named") {
+  } else if (r.verdict == DiagnosisVerdict::kCombinationNamed) {
     const CandidateOutcome& first = r.candidates.front();
     const auto pair = std::find_if(r.combinations.begin(), r.combinations.end(), [&](const CandidateOutcome& c) {
       return c.name == r.selected[0] + " + " + r.selected[1];
@@ -138,7 +138,7 @@ std::string WriteSummary(const DiagnosisResult& r) {
                           100.0 * r.final_fit.held_out_h1_relative_error)
             : std::string());
     out << "Identified: " << DescribeParameters(r.final_fit, r.final_extra_parameters) << ".";
-  } else if (r.verdict == "cause named") {
+  } else if (r.verdict == DiagnosisVerdict::kCauseNamed) {
     const CandidateOutcome& best = r.candidates.front();
     out << fmt::format(
         "{}: {} ({}). Refitted with it, the weighted residual drops {:.3g}x (chi-square {:.4g} -> {:.4g}, "
@@ -149,17 +149,18 @@ std::string WriteSummary(const DiagnosisResult& r) {
     if (std::isfinite(r.base.held_out_h1_relative_error))
       out << fmt::format("{}: first-harmonic error {:.3g} % -> {:.3g} %, chi-square of the harmonics "
                          "the model predicts {:.4g} -> {:.4g}. ",
-                         r.ranked_by == "levels left out in turn" ? "Levels left out in turn" : "Held-out channels",
+                         r.ranked_by == RankedBy::kLevelsLeftOut ? "Levels left out in turn" : "Held-out channels",
                          100.0 * r.base.held_out_h1_relative_error, 100.0 * r.final_fit.held_out_h1_relative_error,
                          r.base.held_out_chi_square, r.final_fit.held_out_chi_square);
-    if (r.ranked_by != "in-sample BIC" && r.candidates.size() > 1 && r.candidates[1].significant &&
+    if (r.ranked_by != RankedBy::kInSampleBic && r.candidates.size() > 1 && r.candidates[1].significant &&
         r.candidates[1].fit.bic < best.fit.bic)
       out << fmt::format("The {} decide: {} fits the data it saw better (BIC {:.5g}) but predicts "
                          "what it did not see worse (chi-square {:.4g} against {:.4g}). ",
-                         r.ranked_by, r.candidates[1].name, r.candidates[1].fit.bic, r.candidates[1].fit.held_out_chi_square,
+                         ToString(r.ranked_by), r.candidates[1].name, r.candidates[1].fit.bic,
+                         r.candidates[1].fit.held_out_chi_square,
                          best.fit.held_out_chi_square);
     out << "Identified: " << DescribeParameters(r.final_fit, r.final_extra_parameters) << ".";
-  } else if (r.verdict == "unexplained") {
+  } else if (r.verdict == DiagnosisVerdict::kUnexplained) {
     out << "No candidate explains the misfit significantly: unexplained";
     if (r.location && !r.location->findings.empty()) out << " (see the location above)";
     out << ".";
@@ -167,14 +168,15 @@ std::string WriteSummary(const DiagnosisResult& r) {
     out << "No significant discrepancy: the base model fits within the noise and no candidate improves it "
            "significantly.";
   }
-  if (r.verdict == "cause named" || r.verdict == "combination named") {
+  if (r.verdict == DiagnosisVerdict::kCauseNamed || r.verdict == DiagnosisVerdict::kCombinationNamed) {
     std::string checks;
     for (const auto& name : r.selected)
       for (const auto& c : r.candidates)
         if (c.name == name && !c.rig_check.empty()) checks += (checks.empty() ? "" : "; ") + c.rig_check;
     if (!checks.empty()) out << " On the rig: " << checks << ".";
   }
-  if (r.verdict == "cause named" || r.verdict == "causes indistinguishable" || r.verdict == "combination named")
+  if (r.verdict == DiagnosisVerdict::kCauseNamed || r.verdict == DiagnosisVerdict::kCausesIndistinguishable ||
+      r.verdict == DiagnosisVerdict::kCombinationNamed)
     out << (r.rest_within_noise
                 ? fmt::format(" The rest of the misfit lies within the noise (reduced chi-square {:.3g}).",
                               r.final_fit.reduced_chi_square)
@@ -742,7 +744,7 @@ int ChoosePair(const std::vector<CandidateOutcome>& pairs, const FitSummary& fir
 
 Verdict DecideVerdict(const FitSummary& base, const std::optional<MisfitLocation>& location,
                       const std::vector<CandidateOutcome>& candidates, const DiagnosisOptions& options,
-                      const std::string& validated_on) {
+                      RankedBy validated_on) {
   Verdict v;
   v.ranking.resize(candidates.size());
   for (int c = 0; c < static_cast<int>(v.ranking.size()); ++c) v.ranking[c] = c;
@@ -771,21 +773,21 @@ Verdict DecideVerdict(const FitSummary& base, const std::optional<MisfitLocation
   }
   if (num_significant > 0) {
     v.cause = v.ranking.front();
-    v.verdict = "cause named";
-    v.ranked_by = held_out ? validated_on : "in-sample BIC";
+    v.verdict = DiagnosisVerdict::kCauseNamed;
+    v.ranked_by = held_out ? validated_on : RankedBy::kInSampleBic;
     v.selected = {candidates[v.cause].name};
     if (num_significant > 1) {
       const FitSummary &a = candidates[v.cause].fit, &b = candidates[v.ranking[1]].fit;
       if (!SeparatedInSample(a, b) && !SeparatedHeldOut(a, b)) {
         v.tied_with = v.ranking[1];
-        v.verdict = "causes indistinguishable";
+        v.verdict = DiagnosisVerdict::kCausesIndistinguishable;
         v.selected.push_back(candidates[v.tied_with].name);
       }
     }
   } else {
     const bool misfit =
         base.reduced_chi_square > options.acceptable_reduced_chi_square && (!location || location->significant);
-    v.verdict = misfit ? "unexplained" : "no significant discrepancy";
+    v.verdict = misfit ? DiagnosisVerdict::kUnexplained : DiagnosisVerdict::kNoSignificantDiscrepancy;
     v.selected = {"none"};
   }
   return v;
@@ -861,14 +863,14 @@ DiagnosisResult Diagnose(const FitData& fit, const FitData& validation, const Fi
     for (int c : BestSignificant(refits.outcomes, kLevelValidatedCandidates))
       if (refits.models[c]) ApplyHeldOut(ValidateOnLeftOutLevels(*refits.models[c], options), &refits.outcomes[c].fit);
   }
-  const std::string validated_on = by_levels ? "levels left out in turn" : "held-out channels";
+  const RankedBy validated_on = by_levels ? RankedBy::kLevelsLeftOut : RankedBy::kHeldOutChannels;
   const Verdict verdict = DecideVerdict(result.base, result.location, refits.outcomes, options, validated_on);
   for (int c : verdict.ranking) result.candidates.push_back(refits.outcomes[c]);
   result.verdict = verdict.verdict;
   result.ranked_by = verdict.ranked_by;
   result.selected = verdict.selected;
   const bool named = verdict.cause >= 0;
-  if (named) result.blame = refits.outcomes[verdict.cause].measurement ? "the recording" : "the model";
+  if (named) result.blame = refits.outcomes[verdict.cause].measurement ? Blame::kRecording : Blame::kModel;
   result.final_fit = named ? refits.outcomes[verdict.cause].fit : result.base;
   result.rest_within_noise = result.final_fit.reduced_chi_square <= options.acceptable_reduced_chi_square;
   if (named) result.final_extra_parameters = refits.outcomes[verdict.cause].extra_parameters;
@@ -892,7 +894,7 @@ DiagnosisResult Diagnose(const FitData& fit, const FitData& validation, const Fi
     const int chosen = ChoosePair(pairs.outcomes, refits.outcomes[verdict.cause].fit);
     if (chosen >= 0) {
       const CandidateOutcome& pair = pairs.outcomes[chosen];
-      result.verdict = "combination named";
+      result.verdict = DiagnosisVerdict::kCombinationNamed;
       result.selected = {refits.outcomes[verdict.cause].name,
                          pair.name.substr(refits.outcomes[verdict.cause].name.size() + 3)};
       result.final_fit = pair.fit;

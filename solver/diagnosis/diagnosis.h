@@ -37,10 +37,14 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <ostream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <Eigen/Core>
+
+#include "hb/json_schema.h"
 
 #include "solver/diagnosis/candidate_physics.h"
 #include "solver/diagnosis/fitted_model.h"
@@ -127,6 +131,47 @@ struct CandidateOutcome {
   bool measurement = false;
 };
 
+// What a diagnosis concludes, by the names diagnosis.json and its summary
+// give them.
+enum class DiagnosisVerdict {
+  kCauseNamed,
+  kCombinationNamed,
+  kCausesIndistinguishable,
+  kNoSignificantDiscrepancy,
+  kUnexplained,
+};
+inline constexpr schema::Name<DiagnosisVerdict> kDiagnosisVerdictNames[] = {
+    {DiagnosisVerdict::kCauseNamed, "cause named"},
+    {DiagnosisVerdict::kCombinationNamed, "combination named"},
+    {DiagnosisVerdict::kCausesIndistinguishable, "causes indistinguishable"},
+    {DiagnosisVerdict::kNoSignificantDiscrepancy, "no significant discrepancy"},
+    {DiagnosisVerdict::kUnexplained, "unexplained"},
+};
+
+// Who is to blame for the named cause: a measurement artefact or missing
+// physics; "" when none is named.
+enum class Blame { kNone, kRecording, kModel };
+inline constexpr schema::Name<Blame> kBlameNames[] = {
+    {Blame::kNone, ""}, {Blame::kRecording, "the recording"}, {Blame::kModel, "the model"}};
+
+// How the named cause was chosen: the held-out channels (they decided, or
+// confirmed the in-sample ranking), the levels left out in turn (no held-out
+// channel: ValidateOnLeftOutLevels) or the in-sample BIC (neither); "" when
+// none is named.
+enum class RankedBy { kNone, kHeldOutChannels, kLevelsLeftOut, kInSampleBic };
+inline constexpr schema::Name<RankedBy> kRankedByNames[] = {{RankedBy::kNone, ""},
+                                                            {RankedBy::kHeldOutChannels, "held-out channels"},
+                                                            {RankedBy::kLevelsLeftOut, "levels left out in turn"},
+                                                            {RankedBy::kInSampleBic, "in-sample BIC"}};
+
+inline std::string ToString(DiagnosisVerdict v) { return std::string(schema::NameOf(v, kDiagnosisVerdictNames)); }
+inline std::string ToString(Blame b) { return std::string(schema::NameOf(b, kBlameNames)); }
+inline std::string ToString(RankedBy r) { return std::string(schema::NameOf(r, kRankedByNames)); }
+// For the tests' messages.
+inline std::ostream& operator<<(std::ostream& out, DiagnosisVerdict v) { return out << ToString(v); }
+inline std::ostream& operator<<(std::ostream& out, Blame b) { return out << ToString(b); }
+inline std::ostream& operator<<(std::ostream& out, RankedBy r) { return out << ToString(r); }
+
 // Measured and modelled first harmonics of one channel at one step (the
 // per-level response curves).
 struct ResponsePoint {
@@ -145,19 +190,12 @@ struct DiagnosisResult {
   std::string location_error;
   std::vector<CandidateOutcome> candidates;  // ranked: significant first, by BIC
   std::vector<std::string> selected;         // {"none"} when no cause is named; two for a pair or a tie
-  // Who is to blame for the named cause: "the recording" (a measurement
-  // artefact), "the model" (missing physics), or "" when none is named.
-  std::string blame;
+  Blame blame = Blame::kNone;
   // What the extraction flagged in the fitted steps (records cut before they
   // settled), whatever the verdict: the recording to check first.
   std::vector<std::string> recording_findings;
-  // "cause named" | "combination named" | "causes indistinguishable" |
-  // "no significant discrepancy" | "unexplained"
-  std::string verdict;
-  // How the named cause was chosen: "held-out channels" (they decided, or
-  // confirmed the in-sample ranking), "levels left out in turn" (no
-  // held-out channel: ValidateOnLeftOutLevels) or "in-sample BIC" (neither).
-  std::string ranked_by;
+  DiagnosisVerdict verdict = DiagnosisVerdict::kNoSignificantDiscrepancy;
+  RankedBy ranked_by = RankedBy::kNone;
   // After the selected model, the rest of the misfit lies within the noise
   // (reduced χ² ≤ acceptable_reduced_chi_square); false: only part explained.
   bool rest_within_noise = true;
@@ -285,18 +323,18 @@ struct Verdict {
   std::vector<int> ranking;  // indices into the candidates, best first
   int cause = -1;            // index of the named cause; -1 when none
   int tied_with = -1;        // index of the candidate the data cannot tell from it; -1 when none
-  std::string verdict;       // as DiagnosisResult::verdict
-  std::string ranked_by;     // as DiagnosisResult::ranked_by
+  DiagnosisVerdict verdict = DiagnosisVerdict::kNoSignificantDiscrepancy;
+  RankedBy ranked_by = RankedBy::kNone;
   std::vector<std::string> selected;
 };
 // Whether the data separate two fits (header), in sample or on the held-out channels.
 bool SeparatedInSample(const FitSummary& a, const FitSummary& b);
 bool SeparatedHeldOut(const FitSummary& a, const FitSummary& b);
-// validated_on: what the held-out fields measure ("held-out channels" or
-// "levels left out in turn"), the ranked_by when they decide.
+// validated_on: what the held-out fields measure (the held-out channels or
+// the levels left out in turn), the ranked_by when they decide.
 Verdict DecideVerdict(const FitSummary& base, const std::optional<MisfitLocation>& location,
                       const std::vector<CandidateOutcome>& candidates, const DiagnosisOptions& options,
-                      const std::string& validated_on = "held-out channels");
+                      RankedBy validated_on = RankedBy::kHeldOutChannels);
 
 // CSV of the response curves: level, frequency, channel, held_out, then
 // amplitude and phase of measured, base and final first harmonics.

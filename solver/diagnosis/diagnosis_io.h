@@ -17,13 +17,19 @@
 // high]}} in the model's order, model_harmonics, chi_square,
 // degrees_of_freedom, num_residuals, reduced_chi_square, aic, bic,
 // held_out_chi_square, held_out_h1_relative_error.
+// verdict, ranked_by and blame are the names of DiagnosisVerdict, RankedBy
+// and Blame (solver/diagnosis/diagnosis.h).
+// The fields are declared once (hb/json_schema.h, in diagnosis_io.cc): the
+// declaration writes the file, reads it (a key the format does not have, a
+// number outside its range, an unknown verdict are refused, naming the
+// field) and lists its fields (DiagnosisFileFields, docs/formats.md).
 // Numbers are written with the digits that read back to the same double;
 // JSON has no NaN, so a NaN (e.g. a held-out error without held-out
-// channels) is written as null and read back as NaN. A file of an earlier
-// version, without beamid_version, campaign, campaign_sha256, extra_parameter_names, response
-// or a loop step's omega_rad_s, still reads (version "", names from the
-// extra_parameters keys, no response points, ω from frequency_hz). A key the
-// format does not have is refused.
+// channels) is written as null and read back as NaN where the field allows
+// it. A file of an earlier version, without beamid_version, campaign,
+// campaign_sha256, extra_parameter_names, response or a loop step's
+// omega_rad_s, still reads (version "", names from the extra_parameters
+// keys, no response points, ω from frequency_hz).
 #pragma once
 
 #include <filesystem>
@@ -31,6 +37,7 @@
 #include <string_view>
 #include <vector>
 
+#include "hb/json_schema.h"
 #include "hb/version.h"
 #include "solver/diagnosis/diagnosis.h"
 
@@ -51,6 +58,9 @@ struct DiagnosisFile {
   std::string embedded_result_json;
   std::string beamid_version = kVersion;  // "" in files older than the key
 };
+
+// The fields of the file: path, type, unit, range (docs/formats.md).
+std::vector<schema::FieldDoc> DiagnosisFileFields();
 
 std::string DiagnosisFileToJson(const DiagnosisFile& file);
 // source names the text in errors (its file). Throws InputError naming the

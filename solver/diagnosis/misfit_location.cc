@@ -243,15 +243,15 @@ void AddChannelHarmonicGroups(const FitData& data, const std::vector<Pair>& pair
         GrowthExponent(pairs, measured.response2, measured.response_count, num_levels, in_group);
   AddGroup(pairs, group, in_group, BothParts, 2, groups);
   const auto with_parts = [&](const Pair& p) { return in_group(p) && p.has_parts; };
-  AddGroup(pairs, {.channel = name, .harmonic = k, .part = "in_phase"}, with_parts,
+  AddGroup(pairs, {.channel = name, .harmonic = k, .part = ResidualPart::kInPhase}, with_parts,
            [](const Pair& p) { return p.in_phase; }, 1, groups);
-  AddGroup(pairs, {.channel = name, .harmonic = k, .part = "quadrature"}, with_parts,
+  AddGroup(pairs, {.channel = name, .harmonic = k, .part = ResidualPart::kQuadrature}, with_parts,
            [](const Pair& p) { return p.quadrature; }, 1, groups);
   for (int l = 0; l < num_levels; ++l)
     AddGroup(pairs, {.channel = name, .harmonic = k, .level = data.levels[l]},
              [&](const Pair& p) { return in_group(p) && p.level == l; }, BothParts, 2, groups);
   for (bool near : {true, false})
-    AddGroup(pairs, {.channel = name, .harmonic = k, .band = near ? "near_resonance" : "away"},
+    AddGroup(pairs, {.channel = name, .harmonic = k, .band = near ? FrequencyBand::kNearResonance : FrequencyBand::kAway},
              [&](const Pair& p) { return in_group(p) && p.near_resonance == near; }, BothParts, 2, groups);
 }
 
@@ -294,15 +294,15 @@ void SignatureFeatures(const FitData& data, int fitted_harmonics, MisfitLocation
   out->channel_excess_chi2.assign(data.channels.size(), 0.0);
   double in_phase = 0.0, quadrature = 0.0, near = 0.0, away = 0.0;
   for (const auto& g : out->groups) {
-    const bool by_harmonic = g.level.empty() && g.band == "all";
-    if (by_harmonic && g.part == "both") {
+    const bool by_harmonic = g.level.empty() && g.band == FrequencyBand::kAll;
+    if (by_harmonic && g.part == ResidualPart::kBoth) {
       out->harmonic_excess_chi2[g.harmonic - 1] += g.excess_chi2;
       out->channel_excess_chi2[ChannelIndex(data, g.channel)] += g.excess_chi2;
     }
-    if (by_harmonic && g.part == "in_phase") in_phase += g.excess_chi2;
-    if (by_harmonic && g.part == "quadrature") quadrature += g.excess_chi2;
-    if (g.band == "near_resonance") near += g.excess_chi2;
-    if (g.band == "away") away += g.excess_chi2;
+    if (by_harmonic && g.part == ResidualPart::kInPhase) in_phase += g.excess_chi2;
+    if (by_harmonic && g.part == ResidualPart::kQuadrature) quadrature += g.excess_chi2;
+    if (g.band == FrequencyBand::kNearResonance) near += g.excess_chi2;
+    if (g.band == FrequencyBand::kAway) away += g.excess_chi2;
   }
   double total = 0.0, even = 0.0, beyond = 0.0;
   for (int k = 1; k <= k_max; ++k) {
@@ -349,7 +349,7 @@ double LevelGrowthExponent(const FitData& data, const std::vector<Pair>& pairs, 
   std::vector<std::vector<bool>> carries(data.channels.size(), std::vector<bool>(data.num_fit_harmonics + 1, false));
   bool any = false;
   for (const auto& g : groups) {
-    if (!g.significant || g.part != "both" || !g.level.empty() || g.band != "all") continue;
+    if (!g.significant || g.part != ResidualPart::kBoth || !g.level.empty() || g.band != FrequencyBand::kAll) continue;
     carries[ChannelIndex(data, g.channel)][g.harmonic] = any = true;
   }
   return GrowthExponent(pairs, measured.response2, measured.response_count, num_levels,
@@ -411,10 +411,10 @@ std::string GroupFinding(const MisfitGroupTest& g, const std::vector<MisfitGroup
                      " for " + std::to_string(g.dof) + ", " + PValue(g.p_value) + ")";
   if (g.harmonic > fitted_harmonics)
     text += ", beyond the " + std::to_string(fitted_harmonics) + " harmonics the model fits";
-  text += PartPhrase(g, find([](const auto& h) { return h.part == "in_phase"; }),
-                     find([](const auto& h) { return h.part == "quadrature"; }));
-  text += BandPhrase(find([](const auto& h) { return h.band == "near_resonance"; }),
-                     find([](const auto& h) { return h.band == "away"; }));
+  text += PartPhrase(g, find([](const auto& h) { return h.part == ResidualPart::kInPhase; }),
+                     find([](const auto& h) { return h.part == ResidualPart::kQuadrature; }));
+  text += BandPhrase(find([](const auto& h) { return h.band == FrequencyBand::kNearResonance; }),
+                     find([](const auto& h) { return h.band == FrequencyBand::kAway; }));
   return text + LevelPhrase(g, groups, num_levels) + ".";
 }
 
@@ -433,7 +433,7 @@ std::vector<std::string> ResidualFindings(const MisfitLocation& out, const FitDa
   const double total = TotalExcess(out);
   std::vector<const MisfitGroupTest*> main_groups;
   for (const auto& g : out.groups)
-    if (g.significant && g.part == "both" && g.level.empty() && g.band == "all" &&
+    if (g.significant && g.part == ResidualPart::kBoth && g.level.empty() && g.band == FrequencyBand::kAll &&
         g.excess_chi2 >= options.finding_min_share * total)
       main_groups.push_back(&g);
   std::sort(main_groups.begin(), main_groups.end(), [](auto* a, auto* b) { return a->excess_chi2 > b->excess_chi2; });

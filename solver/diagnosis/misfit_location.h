@@ -35,6 +35,7 @@
 
 #include <Eigen/Core>
 
+#include "hb/json_schema.h"
 #include "hb/linear_beam.h"
 #include "solver/estimation/fit_data.h"
 #include "solver/diagnosis/support_loops.h"
@@ -70,13 +71,24 @@ struct MisfitLocationOptions {
   void Validate() const;
 };
 
+// Which part of each residual pair a group tests, and which steps, by the
+// names diagnosis.json gives them.
+enum class ResidualPart { kBoth, kInPhase, kQuadrature };
+inline constexpr schema::Name<ResidualPart> kResidualPartNames[] = {
+    {ResidualPart::kBoth, "both"}, {ResidualPart::kInPhase, "in_phase"}, {ResidualPart::kQuadrature, "quadrature"}};
+enum class FrequencyBand { kAll, kNearResonance, kAway };
+inline constexpr schema::Name<FrequencyBand> kFrequencyBandNames[] = {
+    {FrequencyBand::kAll, "all"}, {FrequencyBand::kNearResonance, "near_resonance"}, {FrequencyBand::kAway, "away"}};
+inline std::string ToString(ResidualPart p) { return std::string(schema::NameOf(p, kResidualPartNames)); }
+inline std::string ToString(FrequencyBand b) { return std::string(schema::NameOf(b, kFrequencyBandNames)); }
+
 // One tested group of standardised residuals.
 struct MisfitGroupTest {
   std::string channel;          // "" = all channels
   int harmonic = 0;             // 0 = all harmonics
   std::string level;            // "" = all levels
-  std::string part = "both";    // "in_phase" | "quadrature" | "both"
-  std::string band = "all";     // "near_resonance" | "away" | "all"
+  ResidualPart part = ResidualPart::kBoth;
+  FrequencyBand band = FrequencyBand::kAll;
   double chi2 = 0.0;            // Σ|r|² (or its part)
   int dof = 0;                  // 2 per pair for "both", 1 per pair for a part
   double p_value = 1.0;         // P(χ²(dof) ≥ chi2)

@@ -277,12 +277,14 @@ std::string DiagnosisSection(const DiagnosisResult& diagnosis) {
   std::string html = "<section id=\"diagnosis\"><h2>Diagnosis</h2>\n";
   std::string selected;
   for (const auto& name : diagnosis.selected) selected += (selected.empty() ? "" : ", ") + HtmlEscape(name);
-  html += "<p><b>Verdict:</b> " + HtmlEscape(diagnosis.verdict) +
-          (diagnosis.blame.empty() ? "" : " — to blame: <b>" + HtmlEscape(diagnosis.blame) + "</b>") + "</p>\n";
+  html += "<p><b>Verdict:</b> " + HtmlEscape(ToString(diagnosis.verdict)) +
+          (diagnosis.blame == Blame::kNone ? ""
+                                            : " — to blame: <b>" + HtmlEscape(ToString(diagnosis.blame)) + "</b>") +
+          "</p>\n";
   // An engineer checks the recording before the model: its findings first.
   std::string recording;
   for (const auto& c : diagnosis.candidates)
-    if (c.measurement && diagnosis.blame == "the recording" && c.name == diagnosis.selected.front())
+    if (c.measurement && diagnosis.blame == Blame::kRecording && c.name == diagnosis.selected.front())
       recording += "<li>" + HtmlEscape(c.name) + ": " + HtmlEscape(c.rig_check) + "</li>";
   for (const auto& f : diagnosis.recording_findings) recording += "<li>" + HtmlEscape(f) + "</li>";
   if (!recording.empty()) html += "<h3>The recording</h3>\n<ul class=\"warning\">" + recording + "</ul>\n";
@@ -305,7 +307,7 @@ std::string DiagnosisSection(const DiagnosisResult& diagnosis) {
       rows += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
                           g.channel.empty() ? "all" : HtmlEscape(g.channel),
                           g.harmonic == 0 ? std::string("all") : std::to_string(g.harmonic),
-                          g.level.empty() ? "all" : HtmlEscape(g.level), HtmlEscape(g.part), HtmlEscape(g.band),
+                          g.level.empty() ? "all" : HtmlEscape(g.level), ToString(g.part), ToString(g.band),
                           Number(g.chi2), g.dof, Number(g.adjusted_p_value));
     }
     html += fmt::format("<h3>Residual groups beyond the noise ({} of {})</h3>\n", significant, location.groups.size());

@@ -84,7 +84,7 @@ void BM_DiagnoseIncompleteModel(benchmark::State& state) {
     const auto result = solver::Diagnose(data.fit, data.validation, data.located, {});
     std::string named;
     for (const auto& s : result.selected) named += (named.empty() ? "" : " + ") + s;
-    state.SetLabel(file.substr(file.rfind('/') + 1) + ": " + result.verdict + ": " + named);
+    state.SetLabel(file.substr(file.rfind('/') + 1) + ": " + solver::ToString(result.verdict) + ": " + named);
     state.counters["steps"] = static_cast<double>(data.fit.steps.size());
     state.counters["chi2_base"] = result.base.chi_square;
     state.counters["chi2_final"] = result.final_fit.chi_square;
@@ -119,8 +119,8 @@ void BM_DiagnoseRecordingFault(benchmark::State& state) {
     const auto result = solver::Diagnose(data.fit, data.validation, data.located, {});
     std::string named;
     for (const auto& s : result.selected) named += (named.empty() ? "" : " + ") + s;
-    state.SetLabel(file.substr(file.rfind('/') + 1) + ": " + result.verdict + ": " + named +
-                   (result.blame.empty() ? "" : " (" + result.blame + ")"));
+    state.SetLabel(file.substr(file.rfind('/') + 1) + ": " + solver::ToString(result.verdict) + ": " + named +
+                   (result.blame == solver::Blame::kNone ? "" : " (" + solver::ToString(result.blame) + ")"));
     state.counters["identify_s"] = identify_s;
     state.counters["diagnose_s"] = result.seconds;
     state.counters["chi2_base"] = result.base.chi_square;

@@ -182,6 +182,15 @@ TEST_F(BadInput, EveryBadInputEndsWithExitTwoAndAMessageThatNamesItAndTheFix) {
   std::string many_sensors;
   for (int i = 0; i < 65; ++i)
     many_sensors += "{\"channel\": \"s" + std::to_string(i) + "\", \"position_m\": 0.1},";
+  // The fuzzer's seed diagnosis.json (a real run's) with the first `text` replaced.
+  const auto diagnosis_with = [](const std::string& text, const std::string& replacement) {
+    return [=](const fs::path&, const fs::path& d) {
+      std::string diagnosis = ReadFile("tests/fuzz/seeds/diagnosis_json_fuzzer/diagnosis.json");
+      const std::size_t at = diagnosis.find(text);
+      ASSERT_NE(at, std::string::npos) << text;
+      WriteFile(d / "d.json", diagnosis.replace(at, text.size(), replacement));
+    };
+  };
   // The identified result with k1's value (the first parameter's) replaced by edit(value).
   const auto result_with = [](std::function<std::string(std::string)> edit) {
     return [=](const fs::path&, const fs::path& d) {
@@ -515,6 +524,14 @@ TEST_F(BadInput, EveryBadInputEndsWithExitTwoAndAMessageThatNamesItAndTheFix) {
        },
        "identify {m} --phasors {d}/p.json -o {d}/r.json",
        {"p.json", "channel 'acc1'", "field \"steps[0].channels[1].role\" breaks the rule", "Fix:"}},
+      // diagnosis.json (solver/diagnosis/diagnosis_io.h) as report reads it: a real file (the fuzzer's seed), spoilt.
+      {"a diagnosis whose verdict is none the diagnosis gives",
+       diagnosis_with("\"verdict\": \"no significant discrepancy\"", "\"verdict\": \"the weather\""),
+       "report {d}/d.json -o {d}/report.html", {"d.json", "\"verdict\"", "\"the weather\"", "not one of", "Fix:"}},
+      {"a diagnosis with a p-value above 1", diagnosis_with("\"p_value\": 1.0", "\"p_value\": 1.5"),
+       "report {d}/d.json -o {d}/report.html", {"d.json", "p_value\"", "lies outside 0 .. 1", "Fix:"}},
+      {"a diagnosis with a misspelt key", diagnosis_with("\"rest_within_noise\"", "\"rest_within_nois\""),
+       "report {d}/d.json -o {d}/report.html", {"d.json", "\"rest_within_nois\"", "is not a field here", "Fix:"}},
   };
   const fs::path clean = root_ / "clean", result = root_ / "result.json";
   for (std::size_t i = 0; i < rows.size(); ++i) {

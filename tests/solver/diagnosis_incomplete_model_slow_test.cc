@@ -69,7 +69,7 @@ TEST(DiagnosisOfAnIncompleteModel, FrictionAloneLeavesAMisfitAndThePairWithClamp
   s["timing"]["settle_min_s"] = 1.0;
   s["timing"]["settle_tolerance"] = 5e-4;
   const DiagnosisResult result = DiagnoseScenario(s, "friction_and_clamp");
-  ASSERT_EQ(result.verdict, "combination named");
+  ASSERT_EQ(result.verdict, DiagnosisVerdict::kCombinationNamed);
   ASSERT_EQ(result.selected.size(), 2u);
   EXPECT_EQ(result.selected[0], "support_friction");
   EXPECT_EQ(result.selected[1], "clamp_compliance");

@@ -10,6 +10,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <fstream>
 #include <functional>
 #include <limits>
 #include <random>
@@ -20,6 +21,7 @@
 
 #include "hb/errors.h"
 #include "tests/support/same_value.h"
+#include "tests/support/schema_checks.h"
 #include "tests/support/temp_path.h"
 
 namespace beamid::solver {
@@ -61,11 +63,11 @@ MisfitLocation Location() {
   m.p_value = 1.234e-300;
   m.significant = true;
   m.num_groups_tested = 2;
-  m.groups.push_back({.channel = "acc1", .harmonic = 3, .level = "high", .part = "in_phase",
-                      .band = "near_resonance", .chi2 = 91.5 / 7.0, .dof = 9, .p_value = 0.1 / 3.0,
+  m.groups.push_back({.channel = "acc1", .harmonic = 3, .level = "high", .part = ResidualPart::kInPhase,
+                      .band = FrequencyBand::kNearResonance, .chi2 = 91.5 / 7.0, .dof = 9, .p_value = 0.1 / 3.0,
                       .adjusted_p_value = 0.7 / 3.0, .significant = false, .excess_chi2 = 4.0 / 7.0,
                       .growth_exponent = kNaN});
-  m.groups.push_back({.channel = "", .harmonic = 0, .level = "", .part = "both", .band = "all",
+  m.groups.push_back({.channel = "", .harmonic = 0, .level = "", .part = ResidualPart::kBoth, .band = FrequencyBand::kAll,
                       .chi2 = 1e5 / 3.0, .dof = 300, .p_value = 5e-310, .adjusted_p_value = 1e-308,
                       .significant = true, .excess_chi2 = 1e5 / 3.0 - 300.0, .growth_exponent = 2.0 / 3.0});
   m.in_phase_fraction = 0.1 / 3.0;
@@ -178,8 +180,10 @@ DiagnosisFile FullFile(bool with_location) {
   pair.extra_parameters = {"jenkins_stiffness", "jenkins_slip_moment"};
   r.combinations = {pair};
   r.selected = {"support_friction"};
-  r.verdict = "cause named";
-  r.ranked_by = "held-out channels";
+  r.verdict = DiagnosisVerdict::kCauseNamed;
+  r.ranked_by = RankedBy::kHeldOutChannels;
+  r.blame = Blame::kModel;
+  r.recording_findings = {"step 3 of \"high\": cut before it settled"};
   r.rest_within_noise = false;  // not the default
   r.suggestion = MeasurementSuggestion{.first = "added_mass",
                                        .second = "modulus_error",
@@ -360,6 +364,8 @@ void ExpectSameFile(const DiagnosisFile& a, const DiagnosisFile& b) {
   EXPECT_EQ(x.selected, y.selected);
   EXPECT_EQ(x.verdict, y.verdict);
   EXPECT_EQ(x.ranked_by, y.ranked_by);
+  EXPECT_EQ(x.blame, y.blame);
+  EXPECT_EQ(x.recording_findings, y.recording_findings);
   EXPECT_EQ(x.rest_within_noise, y.rest_within_noise);
   ASSERT_EQ(x.suggestion.has_value(), y.suggestion.has_value());
   if (x.suggestion) {
@@ -527,6 +533,38 @@ TEST(DiagnosisFile, DoublesOfAnyBitPatternReadBackExactly) {
                std::runtime_error);
 }
 
+// The declaration's generic checks (tests/support/schema_checks.h) on files
+// with every field set: the text survives reading and writing, and every
+// number out of range, integer, boolean, choice, required field and unknown
+// key is refused naming its path. Without a location, the file holds its
+// error alone.
+TEST(DiagnosisFile, TheDeclarationHolds) {
+  for (bool with_location : {true, false}) {
+    SCOPED_TRACE(with_location ? "with a location" : "locating failed");
+    testing::ExpectDeclarationHolds(
+        {.fields = DiagnosisFileFields(),
+         .sample = DiagnosisFileToJson(FullFile(with_location)),
+         .read = [](const std::string& text) { DiagnosisFileFromJson(text, "run/diagnosis.json"); },
+         .rewrite = [](const std::string& text) {
+           return DiagnosisFileToJson(DiagnosisFileFromJson(text, "run/diagnosis.json"));
+         }});
+  }
+}
+
+// A file that `beamid diagnose` wrote before the declaration (the fuzzer's
+// seed, from a real run) reads, and is written again byte for byte: the
+// declaration writes the layout the earlier writer wrote.
+TEST(DiagnosisFile, AFileOfTheEarlierWriterIsWrittenAgainTheSame) {
+  const std::string path = "tests/fuzz/seeds/diagnosis_json_fuzzer/diagnosis.json";
+  std::ifstream in(path, std::ios::binary);
+  ASSERT_TRUE(in) << path << " is missing (the test runs from the source folder)";
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const DiagnosisFile file = DiagnosisFileFromJson(text, path);
+  EXPECT_EQ(file.diagnosis.verdict, DiagnosisVerdict::kNoSignificantDiscrepancy);
+  EXPECT_EQ(file.diagnosis.blame, Blame::kNone);
+  EXPECT_EQ(DiagnosisFileToJson(file), text);
+}
+
 // ---------------------------------------------------------------- the first layout
 
 // As `beamid diagnose` wrote it before beamid_version: keys sorted, the
@@ -596,7 +634,7 @@ TEST(DiagnosisFile, ReadsTheFirstLayout) {
   EXPECT_EQ(file.result_file, "result.json");
   EXPECT_EQ(file.embedded_result_json, "");
   const DiagnosisResult& r = file.diagnosis;
-  EXPECT_EQ(r.verdict, "cause named");
+  EXPECT_EQ(r.verdict, DiagnosisVerdict::kCauseNamed);
   EXPECT_EQ(r.selected, std::vector<std::string>{"clamp_compliance"});
   ASSERT_EQ(r.base.parameters.size(), 2u);
   EXPECT_EQ(r.base.parameters[1].name, "k1");
@@ -714,6 +752,24 @@ TEST(DiagnosisFile, RefusesAnUnknownField) {
   j = good;
   j["verdicts"] = "unexplained";
   ExpectRefused(j, "d.json", "verdicts");
+}
+
+// The outcomes travel by name: a name the diagnosis does not give is refused.
+TEST(DiagnosisFile, RefusesAnOutcomeItDoesNotName) {
+  const nlohmann::json good = nlohmann::json::parse(DiagnosisFileToJson(FullFile(true)));
+  const nlohmann::json read_back =
+      nlohmann::json::parse(DiagnosisFileToJson(DiagnosisFileFromJson(good.dump(), "d.json")));
+  EXPECT_EQ(read_back["verdict"], "cause named");
+  EXPECT_EQ(read_back["ranked_by"], "held-out channels");
+  EXPECT_EQ(read_back["blame"], "the model");
+  for (const char* key : {"verdict", "ranked_by", "blame"}) {
+    nlohmann::json j = good;
+    j[key] = "the weather";
+    ExpectRefused(j, "d.json", key);
+  }
+  nlohmann::json j = good;
+  j["blame"] = "";  // nothing named: nobody to blame
+  EXPECT_EQ(DiagnosisFileFromJson(j.dump(), "d.json").diagnosis.blame, Blame::kNone);
 }
 
 TEST(DiagnosisFile, RefusesWhatIsNotADiagnosis) {

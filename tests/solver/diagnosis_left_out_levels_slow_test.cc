@@ -30,8 +30,8 @@ DiagnosisResult DiagnoseWithoutHeldOutChannel(const nlohmann::json& scenario, co
   const FitData fit = campaign.Fit({"acc1", "acc2", "acc3"});
   std::filesystem::remove_all(campaign.folder);
   DiagnosisResult result = Diagnose(fit, FitData{}, FitData{}, options);
-  std::printf("%s: verdict '%s', ranked by %s, selected %s, %.1f s\n", name.c_str(), result.verdict.c_str(),
-              result.ranked_by.c_str(), result.selected.front().c_str(), result.seconds);
+  std::printf("%s: verdict '%s', ranked by %s, selected %s, %.1f s\n", name.c_str(), ToString(result.verdict).c_str(),
+              ToString(result.ranked_by).c_str(), result.selected.front().c_str(), result.seconds);
   std::printf("  base: chi2 %.4g, left-out levels chi2 %.4g over %d (h1 %.3f %%)\n", result.base.chi_square,
               result.base.held_out_chi_square, result.base.held_out_num_residuals,
               100 * result.base.held_out_h1_relative_error);
@@ -48,9 +48,11 @@ TEST(DiagnosisOnLeftOutLevels, ModulusErrorValidatedWithoutAHeldOutSensor) {
   s["beam"]["youngs_modulus_Pa"] = 2.0e11;
   s["nominal_beam"] = {{"youngs_modulus_Pa", 2.1e11}};
   const DiagnosisResult result = DiagnoseWithoutHeldOutChannel(s, "modulus");
-  EXPECT_EQ(result.ranked_by, "levels left out in turn");
+  EXPECT_EQ(result.ranked_by, RankedBy::kLevelsLeftOut);
   ASSERT_FALSE(result.selected.empty());
-  ASSERT_TRUE(result.verdict == "cause named" || result.verdict == "causes indistinguishable") << result.verdict;
+  ASSERT_TRUE(result.verdict == DiagnosisVerdict::kCauseNamed ||
+              result.verdict == DiagnosisVerdict::kCausesIndistinguishable)
+      << result.verdict;
   EXPECT_TRUE(result.selected.front() == "modulus_error" ||
               (result.selected.size() > 1 && result.selected[1] == "modulus_error"))
       << result.summary;
@@ -67,7 +69,7 @@ TEST(DiagnosisOnLeftOutLevels, ModulusErrorValidatedWithoutAHeldOutSensor) {
 
 TEST(DiagnosisOnLeftOutLevels, BasePhysicsPredictsTheLeftOutLevelsWithinTheNoise) {
   const DiagnosisResult result = DiagnoseWithoutHeldOutChannel(testing::PaperSetUpScenario(), "base");
-  EXPECT_EQ(result.verdict, "no significant discrepancy");
+  EXPECT_EQ(result.verdict, DiagnosisVerdict::kNoSignificantDiscrepancy);
   ASSERT_TRUE(std::isfinite(result.base.held_out_chi_square));
   ASSERT_GT(result.base.held_out_num_residuals, 0);
   // χ² of n residuals the fit did not see: mean n, σ √(2n); 2n is far beyond.

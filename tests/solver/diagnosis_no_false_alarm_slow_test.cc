@@ -31,11 +31,11 @@ TEST(DiagnosisOnBasePhysics, RaisesNoFalseAlarmOverTenNoiseRealisations) {
     std::filesystem::remove_all(campaign.folder);
     const CandidateOutcome& best = result.candidates.front();
     std::printf("realisation %d: %s; base reduced chi2 %.3g; best candidate %s (drop %.3gx, p %.2g), %.2f s\n", r,
-                result.verdict.c_str(), result.base.reduced_chi_square, best.name.c_str(), best.residual_drop,
+                ToString(result.verdict).c_str(), result.base.reduced_chi_square, best.name.c_str(), best.residual_drop,
                 best.p_value, result.seconds);
-    EXPECT_EQ(result.verdict, "no significant discrepancy") << result.summary;
+    EXPECT_EQ(result.verdict, DiagnosisVerdict::kNoSignificantDiscrepancy) << result.summary;
     EXPECT_EQ(result.selected, std::vector<std::string>{"none"});
-    EXPECT_EQ(result.blame, "") << "a clean recording blamed";
+    EXPECT_EQ(result.blame, Blame::kNone) << "a clean recording blamed";
     EXPECT_TRUE(std::any_of(result.candidates.begin(), result.candidates.end(),
                             [](const CandidateOutcome& c) { return c.measurement && c.converged; }))
         << "the recording's faults were not tried";

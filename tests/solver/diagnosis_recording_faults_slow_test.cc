@@ -80,8 +80,8 @@ DiagnosisResult DiagnoseCampaign(const FaultyCampaign& c, const std::string& nam
   DiagnosisOptions options;
   options.num_workers = 2;
   const DiagnosisResult result = Diagnose(c.fit, c.validation, c.located, options);
-  std::printf("%s: %s (to blame: %s), %.1f s\n  %s\n", name.c_str(), result.verdict.c_str(), result.blame.c_str(),
-              result.seconds, result.summary.c_str());
+  std::printf("%s: %s (to blame: %s), %.1f s\n  %s\n", name.c_str(), ToString(result.verdict).c_str(),
+              ToString(result.blame).c_str(), result.seconds, result.summary.c_str());
   for (const auto& candidate : result.candidates)
     std::printf("  candidate %s: %s, chi-square %.6g, %s, %.2f s\n", candidate.name.c_str(), candidate.status.c_str(),
                 candidate.fit.chi_square, candidate.significant ? "significant" : "not significant", candidate.seconds);
@@ -97,7 +97,7 @@ ParameterEstimate ExpectSensorFaultNamed(const std::string& example, const std::
   std::printf("  chi-square %.4g -> %.4g; %s = %.6g ± %.2g (truth %.6g)\n", result.base.chi_square,
               result.final_fit.chi_square, parameter.c_str(), testing::FinalParameter(result, parameter).value,
               testing::FinalParameter(result, parameter).std, truth);
-  testing::ExpectNamed(result, cause, testing::HeldOut::kFirstHarmonic, "the recording");
+  testing::ExpectNamed(result, cause, testing::HeldOut::kFirstHarmonic, Blame::kRecording);
   EXPECT_TRUE(result.rest_within_noise) << result.final_fit.reduced_chi_square;
   testing::ExpectWithinInterval(result, parameter, truth);
   ExpectSupportWithinIntervals(result.final_fit.parameters, c.scenario);
@@ -141,7 +141,7 @@ TEST(RecordingFaults, AStepRecordedBeforeItSettledIsWeighedByWhatIsLeftOfItsTran
     // And the diagnosis names that step as the recording's fault, no physics.
     const DiagnosisResult result = DiagnoseCampaign(unweighed, "unsettled step, unweighed");
     const std::string step = "outlying_step(high 55 Hz)";
-    testing::ExpectNamed(result, step, testing::HeldOut::kFirstHarmonic, "the recording");
+    testing::ExpectNamed(result, step, testing::HeldOut::kFirstHarmonic, Blame::kRecording);
     EXPECT_NE(result.summary.find("re-record high 55 Hz (" + early_file + ")"), std::string::npos);
     ExpectSupportWithinIntervals(result.final_fit.parameters, c.scenario);
   }

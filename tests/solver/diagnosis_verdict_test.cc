@@ -44,10 +44,10 @@ TEST(DiagnosisVerdict, TheHeldOutChannelsOverruleTheInSampleRankingWhenTheySepar
   const std::vector<CandidateOutcome> candidates = {Candidate("added_mass", 1300.0, 18000.0),
                                                     Candidate("modulus_error", 1380.0, 1000.0)};
   const Verdict v = DecideVerdict(MisfittingBase(), std::nullopt, candidates, {});
-  EXPECT_EQ(v.verdict, "cause named");
+  EXPECT_EQ(v.verdict, DiagnosisVerdict::kCauseNamed);
   EXPECT_EQ(v.selected, std::vector<std::string>{"modulus_error"});
   EXPECT_EQ(v.ranking.front(), 1);
-  EXPECT_EQ(v.ranked_by, "held-out channels");
+  EXPECT_EQ(v.ranked_by, RankedBy::kHeldOutChannels);
   EXPECT_EQ(v.tied_with, -1);
 }
 
@@ -56,7 +56,7 @@ TEST(DiagnosisVerdict, TwoCandidatesNeitherChannelSetSeparatesAreNamedTogether) 
   const std::vector<CandidateOutcome> candidates = {Candidate("added_mass", 300.0, 260.0),
                                                     Candidate("modulus_error", 302.0, 257.0)};
   const Verdict v = DecideVerdict(MisfittingBase(), std::nullopt, candidates, {});
-  EXPECT_EQ(v.verdict, "causes indistinguishable");
+  EXPECT_EQ(v.verdict, DiagnosisVerdict::kCausesIndistinguishable);
   ASSERT_EQ(v.selected.size(), 2u);
   EXPECT_EQ(v.selected[0], "added_mass");  // the better BIC first: the held-out gap is not decisive
   EXPECT_EQ(v.selected[1], "modulus_error");
@@ -67,7 +67,7 @@ TEST(DiagnosisVerdict, AnInSampleGapAloneStillNamesOneCause) {
   const std::vector<CandidateOutcome> candidates = {Candidate("added_mass", 300.0, 260.0),
                                                     Candidate("modulus_error", 340.0, 258.0)};
   const Verdict v = DecideVerdict(MisfittingBase(), std::nullopt, candidates, {});
-  EXPECT_EQ(v.verdict, "cause named");
+  EXPECT_EQ(v.verdict, DiagnosisVerdict::kCauseNamed);
   EXPECT_EQ(v.selected, std::vector<std::string>{"added_mass"});
 }
 
@@ -75,12 +75,12 @@ TEST(DiagnosisVerdict, WithoutHeldOutChannelsTheInSampleBicRanksAndATieIsStillSa
   std::vector<CandidateOutcome> candidates = {Candidate("clamp_compliance", 310.0, kNaN),
                                               Candidate("added_mass", 300.0, kNaN)};
   Verdict v = DecideVerdict(MisfittingBase(), std::nullopt, candidates, {});
-  EXPECT_EQ(v.ranked_by, "in-sample BIC");
+  EXPECT_EQ(v.ranked_by, RankedBy::kInSampleBic);
   EXPECT_EQ(v.selected, std::vector<std::string>{"added_mass"});
   candidates[0].fit.chi_square = 303.0;
   candidates[0].fit.bic = 303.0 + 5.0 * std::log(505.0);
   v = DecideVerdict(MisfittingBase(), std::nullopt, candidates, {});
-  EXPECT_EQ(v.verdict, "causes indistinguishable");
+  EXPECT_EQ(v.verdict, DiagnosisVerdict::kCausesIndistinguishable);
 }
 
 TEST(DiagnosisVerdict, ASingleSignificantCandidateIsNamedAloneAndNoneLeavesTheBaseUnexplained) {
@@ -88,11 +88,11 @@ TEST(DiagnosisVerdict, ASingleSignificantCandidateIsNamedAloneAndNoneLeavesTheBa
                                               Candidate("added_mass", 301.0, 201.0)};
   candidates[1].significant = false;
   Verdict v = DecideVerdict(MisfittingBase(), std::nullopt, candidates, {});
-  EXPECT_EQ(v.verdict, "cause named");
+  EXPECT_EQ(v.verdict, DiagnosisVerdict::kCauseNamed);
   EXPECT_EQ(v.selected, std::vector<std::string>{"support_friction"});
   candidates[0].significant = false;
   v = DecideVerdict(MisfittingBase(), std::nullopt, candidates, {});
-  EXPECT_EQ(v.verdict, "unexplained");
+  EXPECT_EQ(v.verdict, DiagnosisVerdict::kUnexplained);
   EXPECT_EQ(v.selected, std::vector<std::string>{"none"});
 }
 

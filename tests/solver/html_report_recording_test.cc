@@ -76,9 +76,9 @@ TEST(HtmlReportRecording, CirclesAndListsTheFlaggedStepsWithTheParametersWithout
 TEST(HtmlReportRecording, ADiagnosisThatBlamesTheRecordingSaysWhatToDoBeforeTheCandidates) {
   ReportInput input = Input();
   DiagnosisResult d;
-  d.verdict = "cause named";
+  d.verdict = DiagnosisVerdict::kCauseNamed;
   d.selected = {"sensor_gain(acc2)"};
-  d.blame = "the recording";
+  d.blame = Blame::kRecording;
   d.summary = "A fault of the recording, not of the model: sensor_gain(acc2).";
   d.location_error = "not located";
   CandidateOutcome gain{.name = "sensor_gain(acc2)", .rig_check = "check acc2's calibration: it reads 5.0 % high",

@@ -68,7 +68,7 @@ TEST(MeasurementSuggestion, TheSuggestedAccelerometerSeparatesTwoCausesThatTiedA
 
   const DiagnosisResult tie = Diagnose(fit, FitData{}, located, options);
   std::printf("two sensors: %s\n", tie.summary.c_str());
-  ASSERT_EQ(tie.verdict, "causes indistinguishable");
+  ASSERT_EQ(tie.verdict, DiagnosisVerdict::kCausesIndistinguishable);
   ASSERT_EQ(tie.selected.size(), 2u);
   ASSERT_TRUE(tie.suggestion.has_value());
   const MeasurementSuggestion& s = *tie.suggestion;
@@ -86,14 +86,14 @@ TEST(MeasurementSuggestion, TheSuggestedAccelerometerSeparatesTwoCausesThatTiedA
   const DiagnosisResult added = Diagnose(fit, campaign.Fit({ProbeAt(s.best.position_m)}), located, options);
   std::printf("with %s at %.3f m held out: %s\n", ProbeAt(s.best.position_m).c_str(), s.best.position_m,
               added.summary.c_str());
-  EXPECT_EQ(added.verdict, "cause named");
+  EXPECT_EQ(added.verdict, DiagnosisVerdict::kCauseNamed);
   EXPECT_EQ(added.selected, std::vector<std::string>{"added_mass"});
-  EXPECT_EQ(added.ranked_by, "held-out channels");
+  EXPECT_EQ(added.ranked_by, RankedBy::kHeldOutChannels);
 
   const DiagnosisResult useless_added = Diagnose(fit, campaign.Fit({ProbeAt(useless->position_m)}), located, options);
   std::printf("with %s at %.3f m held out: %s\n", ProbeAt(useless->position_m).c_str(), useless->position_m,
-              useless_added.verdict.c_str());
-  EXPECT_EQ(useless_added.verdict, "causes indistinguishable");
+              ToString(useless_added.verdict).c_str());
+  EXPECT_EQ(useless_added.verdict, DiagnosisVerdict::kCausesIndistinguishable);
   std::filesystem::remove_all(campaign.folder);
 }
 

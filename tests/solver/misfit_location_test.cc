@@ -227,7 +227,7 @@ TEST(LocateMisfit, ReportsContentInHarmonicsFourAndFiveAsBeyondTheFittedOnes) {
   for (const auto& f : location.findings) said = said || Contains(f, "harmonic truncation");
   EXPECT_TRUE(said);
   for (const auto& g : location.groups) {
-    if (g.part == "both" && g.level.empty() && g.band == "all") {
+    if (g.part == ResidualPart::kBoth && g.level.empty() && g.band == FrequencyBand::kAll) {
       const bool injected = (g.channel == "acc1" && g.harmonic == 4) || (g.channel == "acc3" && g.harmonic == 5);
       EXPECT_EQ(g.significant, injected) << g.channel << " harmonic " << g.harmonic << " p " << g.p_value;
     }

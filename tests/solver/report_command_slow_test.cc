@@ -165,13 +165,13 @@ TEST_F(ReportCommand, RendersADiagnosisSummary) {
   file.result_file = "result.json";
   DiagnosisResult& d = file.diagnosis;
   d.selected = {"support_friction"};
-  d.verdict = "cause named";
+  d.verdict = DiagnosisVerdict::kCauseNamed;
   d.summary = "SUMMARY-TEXT";
   d.base.chi_square = 5000;
   MisfitLocation location;
   location.findings = {"FINDING-TEXT"};
   MisfitGroupTest beyond, within;
-  beyond.channel = "acc2", beyond.harmonic = 1, beyond.level = "high", beyond.part = "quadrature";
+  beyond.channel = "acc2", beyond.harmonic = 1, beyond.level = "high", beyond.part = ResidualPart::kQuadrature;
   beyond.chi2 = 812.0, beyond.significant = true;
   within.channel = "acc1", within.harmonic = 3, within.level = "low", within.chi2 = 3.1;
   location.groups = {beyond, within};

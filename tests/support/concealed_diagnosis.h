@@ -25,7 +25,7 @@ inline solver::DiagnosisResult DiagnoseScenario(const nlohmann::json& scenario, 
   solver::DiagnosisResult result = solver::Diagnose(campaign.Fit({"acc1", "acc2"}), campaign.Fit({"acc3"}),
                                                     campaign.Fit({"acc1", "acc2"}, 5), options);
   std::filesystem::remove_all(campaign.folder);
-  std::printf("%s: verdict '%s', selected %s, %.2f s\n", name.c_str(), result.verdict.c_str(),
+  std::printf("%s: verdict '%s', selected %s, %.2f s\n", name.c_str(), ToString(result.verdict).c_str(),
               result.selected.front().c_str(), result.seconds);
   std::printf("  base: chi2 %.4g (reduced %.3g), held-out acc3 h1 %.3f %%, chi2 %.4g\n", result.base.chi_square,
               result.base.reduced_chi_square, 100 * result.base.held_out_h1_relative_error,
@@ -48,11 +48,11 @@ inline solver::DiagnosisResult DiagnoseScenario(const nlohmann::json& scenario, 
 // moves the first).
 enum class HeldOut { kFirstHarmonic, kHarmonicsChiSquare };
 
-// blame: "the model" for missing physics (never taken for a fault of the
-// recording), "the recording" for a measurement artefact.
+// blame: the model for missing physics (never taken for a fault of the
+// recording), the recording for a measurement artefact.
 inline void ExpectNamed(const solver::DiagnosisResult& result, const std::string& cause,
-                        HeldOut held_out = HeldOut::kFirstHarmonic, const std::string& blame = "the model") {
-  ASSERT_EQ(result.verdict, "cause named");
+                        HeldOut held_out = HeldOut::kFirstHarmonic, solver::Blame blame = solver::Blame::kModel) {
+  ASSERT_EQ(result.verdict, solver::DiagnosisVerdict::kCauseNamed);
   EXPECT_EQ(result.blame, blame);
   ASSERT_FALSE(result.selected.empty());
   EXPECT_EQ(result.selected.front(), cause);
