@@ -46,6 +46,9 @@ function(beamid_add_test source)
     set(label slow)
   else()
     set(label fast)
+    # beamid_fast_tests (tests/CMakeLists.txt) builds only these: the
+    # sanitizer CI job runs the fast tests and need not compile the slow ones.
+    set_property(GLOBAL APPEND PROPERTY BEAMID_FAST_TESTS ${target})
   endif()
   # A suite that builds its data once (SetUpTestSuite: a simulated campaign,
   # an identification) runs as one ctest test: one process per test case
