@@ -251,8 +251,8 @@ class Writer {
     Put(key, std::move(list));
   }
   void Phasors(std::string_view key, const std::vector<std::complex<double>>& v, std::string_view /*unit*/,
-               Count count, Presence p = Presence::kRequired) {
-    if (Omitted(v, p)) return;
+               Count count, Presence presence = Presence::kRequired) {
+    if (Omitted(v, presence)) return;
     CheckCount(key, v.size(), count);
     Json list = Json::array();
     for (const auto& p : v) list.push_back(Json::array({NumberJson(p.real()), NumberJson(p.imag())}));
