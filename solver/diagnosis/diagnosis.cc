@@ -557,11 +557,19 @@ HeldOutCheck ValidateOnHeldOut(const FittedModel& model, const FitData& validati
   return check;
 }
 
+// Iterations of the first start of a refit on the levels not left out.
+constexpr int kLeftOutRefitMinIterations = 400;
+
 HeldOutCheck ValidateOnLeftOutLevels(const FittedModel& model, const DiagnosisOptions& options) {
   const FitData& data = model.data;
   HeldOutCheck check;
   if (data.levels.size() < 2) return check;
-  const IdentifyOptions refit = CandidateRefitOptions(options, model.model_harmonics);
+  IdentifyOptions refit = CandidateRefitOptions(options, model.model_harmonics);
+  // The model refitted to its own data less one level starts at its
+  // optimum but, when it misses the data (the base model of a diagnosis),
+  // far from the optimum of the rest: it is owed the first start's budget
+  // of an identification, not a candidate's.
+  refit.first_start_min_iterations = kLeftOutRefitMinIterations;
   double chi2 = 0.0, error2 = 0.0, norm2 = 0.0;
   int num_residuals = 0;
   for (const std::string& level : data.levels) {

@@ -223,11 +223,11 @@ TEST_F(GradedChecksTest, ReadingProblemsOfChannelsNotUsedAreNotesOrWarningsAndLe
 
 TEST_F(GradedChecksTest, IgnoreChannelsAndAnalyseRefuseWhatMakesNoSense) {
   for (const auto& [extra, expected] : std::vector<std::pair<std::string, std::string>>{
-           {R"(, "ignore_channels": "acc2")", "'ignore_channels' must be an array"},
+           {R"(, "ignore_channels": "acc2")", "field \"ignore_channels\" must be an array"},
            {R"(, "ignore_channels": ["acc9"])", "ignore_channels[0]: names no sensor"},
            {R"(, "ignore_channels": ["force"])", "the excitation cannot be ignored"},
            {R"(, "ignore_channels": ["acc2", "acc2"])", "ignore_channels[1]: the channel is listed twice"},
-           {R"(, "ignore_channels": [3])", "ignore_channels[0]: must be a sensor's channel name"}}) {
+           {R"(, "ignore_channels": [3])", "field \"ignore_channels[0]\" must be a string"}}) {
     Write(samples_, extra);
     const std::string message = beamid::testing::InputErrorOf([&] { ReadCampaign(folder_); });
     EXPECT_NE(message.find(expected), std::string::npos) << extra << " -> " << message;
