@@ -40,6 +40,11 @@ function(beamid_add_test source)
   set(target ${folder}_${name})
   add_executable(${target} ${source})
   target_compile_options(${target} PRIVATE ${BEAMID_WARNINGS} -Werror)
+  # Under the sanitizers the tests' own code is compiled at -O1 (its work
+  # runs in the libraries, at -O2): it halves their compile time.
+  if(BEAMID_SANITIZE)
+    target_compile_options(${target} PRIVATE -O1)
+  endif()
   target_include_directories(${target} PRIVATE ${PROJECT_SOURCE_DIR})
   target_link_libraries(${target} PRIVATE ${ARG_LIBS} GTest::gtest GTest::gtest_main)
   if(name MATCHES "_slow_test$")
