@@ -48,6 +48,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "hb/enum_names.h"
 #include "hb/errors.h"
 #include "hb/json_field.h"
 
@@ -127,22 +128,6 @@ struct Column {
 // A string field's rule. Text from a file can reach a plot's labels and a
 // terminal: a control character is refused everywhere.
 enum class TextRule { kAny, kNotEmpty };
-
-// An enumeration written by name.
-template <typename E>
-struct Name {
-  E value;
-  std::string_view name;
-};
-
-// The name of an enumeration's value, as a Choice writes it ("" when the
-// list has none).
-template <typename E, std::size_t N>
-constexpr std::string_view NameOf(E value, const Name<E> (&names)[N]) {
-  for (const Name<E>& n : names)
-    if (n.value == value) return n.name;
-  return {};
-}
 
 // How a format names itself in messages.
 struct Format {

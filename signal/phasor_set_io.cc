@@ -29,15 +29,6 @@ constexpr std::size_t kMaxMessages = 10'000;
 enum class Role { kExcitation, kResponse };
 constexpr schema::Name<Role> kRoles[] = {{Role::kExcitation, "excitation"}, {Role::kResponse, "response"}};
 
-constexpr schema::Name<Quantity> kQuantities[] = {
-    {Quantity::kForce, "force"},
-    {Quantity::kAcceleration, "acceleration"},
-    {Quantity::kVelocity, "velocity"},
-    {Quantity::kDisplacement, "displacement"},
-    {Quantity::kVoltage, "voltage"},
-    {Quantity::kBaseAcceleration, "base_acceleration"},
-};
-
 // The phasors' unit is their channel's SI unit ("unit").
 constexpr std::string_view kChannelUnit = "the channel's";
 
@@ -71,7 +62,7 @@ void Describe(auto& io, schema::Like<ChannelPhasors> auto& c) {
   io.Text("channel", c.channel, schema::TextRule::kNotEmpty);
   io.NamesChannel(c.channel);
   io.Choice("role", role, kRoles);
-  io.Choice("quantity", c.quantity, kQuantities);
+  io.Choice("quantity", c.quantity, kQuantityNames);
   io.Check(role == RoleOf(c.quantity), "the role is \"excitation\" for a force, voltage or base_acceleration, "
                                        "\"response\" for the others", "role");
   io.Text("unit", unit);

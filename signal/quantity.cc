@@ -28,25 +28,15 @@ constexpr std::array<UnitEntry, 11> kUnits = {{
     {Quantity::kBaseAcceleration, "g", kStandardGravity_m_s2},
 }};
 
-constexpr std::array<std::pair<Quantity, std::string_view>, 6> kNames = {{
-    {Quantity::kForce, "force"},
-    {Quantity::kAcceleration, "acceleration"},
-    {Quantity::kVelocity, "velocity"},
-    {Quantity::kDisplacement, "displacement"},
-    {Quantity::kVoltage, "voltage"},
-    {Quantity::kBaseAcceleration, "base_acceleration"},
-}};
-
 }  // namespace
 
 std::string_view QuantityName(Quantity quantity) {
-  for (const auto& [q, name] : kNames)
-    if (q == quantity) return name;
-  return "unknown";
+  const std::string_view name = schema::NameOf(quantity, kQuantityNames);
+  return name.empty() ? "unknown" : name;
 }
 
 std::optional<Quantity> ParseQuantity(std::string_view name) {
-  for (const auto& [q, n] : kNames)
+  for (const auto& [q, n] : kQuantityNames)
     if (n == name) return q;
   return std::nullopt;
 }

@@ -12,9 +12,19 @@
 #include <string>
 #include <string_view>
 
+#include "hb/enum_names.h"
+
 namespace beamid::signal {
 
 enum class Quantity { kForce, kAcceleration, kVelocity, kDisplacement, kVoltage, kBaseAcceleration };
+inline constexpr schema::Name<Quantity> kQuantityNames[] = {
+    {Quantity::kForce, "force"},
+    {Quantity::kAcceleration, "acceleration"},
+    {Quantity::kVelocity, "velocity"},
+    {Quantity::kDisplacement, "displacement"},
+    {Quantity::kVoltage, "voltage"},
+    {Quantity::kBaseAcceleration, "base_acceleration"},
+};
 
 // "force", "acceleration", "velocity", "displacement", "voltage",
 // "base_acceleration" (the campaign's words).

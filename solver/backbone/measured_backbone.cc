@@ -864,17 +864,16 @@ MeasuredBackbone Analyse(const std::vector<signal::FirstHarmonicLevel>& levels, 
     trend.slope_per_m = linear.DampingSlope_per_m(trend.amplitude_m);
     trend.slope_std_per_m = linear.DampingSlopeStd_per_m(trend.amplitude_m);
     trend.z = trend.slope_per_m / trend.slope_std_per_m;
-    trend.damping_ratio_verdict = trend.z > options.trend_significance    ? "rises"
-                                  : trend.z < -options.trend_significance ? "falls"
-                                                                          : "no significant trend";
+    const auto judged = [&](double z) {
+      return z > options.trend_significance ? Trend::kRises : z < -options.trend_significance ? Trend::kFalls : Trend::kNone;
+    };
+    trend.damping_ratio_verdict = judged(trend.z);
     // ζω_n = q0 + q1·a/a_ref: its slope is q1/a_ref, the last parameter.
     const int q1 = static_cast<int>(linear.parameters.size()) - 1;
     trend.damping_rate_slope_per_s_m = linear.parameters[q1] / linear.reference_amplitude_m;
     trend.damping_rate_slope_std_per_s_m = std::sqrt(linear.covariance(q1, q1)) / linear.reference_amplitude_m;
     trend.damping_rate_z = trend.damping_rate_slope_per_s_m / trend.damping_rate_slope_std_per_s_m;
-    trend.verdict = trend.damping_rate_z > options.trend_significance    ? "rises beyond a constant damper"
-                    : trend.damping_rate_z < -options.trend_significance ? "falls below a constant damper"
-                                                                         : "consistent with a constant damper";
+    trend.verdict = judged(trend.damping_rate_z);
   }
   return result;
 }

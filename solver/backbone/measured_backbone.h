@@ -51,6 +51,7 @@
 #include <string_view>
 #include <vector>
 
+#include "hb/enum_names.h"
 #include "signal/first_harmonic_level.h"
 #include "solver/backbone/single_mode_fit.h"
 #include "solver/backbone/sweep_jumps.h"
@@ -214,6 +215,16 @@ struct BackboneModelCandidate {
 // constant viscous damper keeps ζω_n constant, so its ζ = ζω_n/ω_n rises
 // wherever the frequency falls (a softening support) and falls where it
 // rises; only a rate that changes with amplitude is damping that does.
+enum class Trend { kNotJudged, kRises, kFalls, kNone };
+// The verdict on ζω_n, as files and reports word it; files written before
+// the damping rate judged ζ alone with the words of the second table.
+inline constexpr schema::Name<Trend> kDampingRateTrendNames[] = {
+    {Trend::kRises, "rises beyond a constant damper"}, {Trend::kFalls, "falls below a constant damper"},
+    {Trend::kNone, "consistent with a constant damper"}, {Trend::kNotJudged, ""}};
+// The verdict on ζ alone.
+inline constexpr schema::Name<Trend> kDampingRatioTrendNames[] = {
+    {Trend::kRises, "rises"}, {Trend::kFalls, "falls"}, {Trend::kNone, "no significant trend"}, {Trend::kNotJudged, ""}};
+
 struct DampingTrend {
   double amplitude_m = 0.0;
   // dζ/da at `amplitude_m`, its σ and z = slope/σ.
@@ -224,11 +235,10 @@ struct DampingTrend {
   double damping_rate_slope_per_s_m = 0.0;
   double damping_rate_slope_std_per_s_m = 0.0;
   double damping_rate_z = 0.0;
-  // On ζω_n: "rises beyond a constant damper", "falls below a constant
-  // damper" or "consistent with a constant damper".
-  std::string verdict;
-  // On ζ alone: "rises", "falls" or "no significant trend".
-  std::string damping_ratio_verdict;
+  // On ζω_n (kDampingRateTrendNames) and on ζ alone (kDampingRatioTrendNames);
+  // kNotJudged when the cross-level fit failed.
+  Trend verdict = Trend::kNotJudged;
+  Trend damping_ratio_verdict = Trend::kNotJudged;
 };
 
 struct MeasuredBackbone {

@@ -179,6 +179,12 @@ void Describe(auto& io, schema::Like<MeasuredBackboneFit> auto& fit) {
   io.List("curve", fit.curve, kMaxCurvePoints);
 }
 
+// The damping-rate verdict's words, then (read only) those of files written
+// before the damping rate, whose one verdict was on ζ (see the reader).
+constexpr schema::Name<Trend> kVerdictNamesOfAnyVersion[] = {
+    kDampingRateTrendNames[0],  kDampingRateTrendNames[1],  kDampingRateTrendNames[2],  kDampingRateTrendNames[3],
+    kDampingRatioTrendNames[0], kDampingRatioTrendNames[1], kDampingRatioTrendNames[2]};
+
 void Describe(auto& io, schema::Like<DampingTrend> auto& t) {
   io.Number("amplitude_m", t.amplitude_m, "m", schema::NonNegative());
   io.Number("slope_per_m", t.slope_per_m, "1/m", schema::Any().OrNull());
@@ -189,8 +195,8 @@ void Describe(auto& io, schema::Like<DampingTrend> auto& t) {
   io.Number("damping_rate_slope_std_per_s_m", t.damping_rate_slope_std_per_s_m, "1/(s m)",
             schema::NonNegative().OrNull(), kOptional);
   io.Number("damping_rate_z", t.damping_rate_z, "1", schema::Any().OrNull(), kOptional);
-  io.Text("verdict", t.verdict);
-  io.Text("damping_ratio_verdict", t.damping_ratio_verdict, TextRule::kAny, kOptional);
+  io.Choice("verdict", t.verdict, kVerdictNamesOfAnyVersion);
+  io.Choice("damping_ratio_verdict", t.damping_ratio_verdict, kDampingRatioTrendNames, kOptional);
 }
 
 void Describe(auto& io, schema::Like<MeasuredBackboneModelPoint> auto& p) {
@@ -229,7 +235,10 @@ MeasuredBackboneFile MeasuredBackboneFileFromJson(const std::string& text, const
   // Files written before the damping rate have one verdict, on ζ; the
   // writer always writes both or neither.
   DampingTrend& t = file.damping_trend;
-  if (t.damping_ratio_verdict.empty()) t.damping_ratio_verdict = t.verdict;
+  if (t.damping_ratio_verdict == Trend::kNotJudged && t.verdict != Trend::kNotJudged) {
+    t.damping_ratio_verdict = t.verdict;
+    t.verdict = Trend::kNotJudged;
+  }
   return file;
 }
 

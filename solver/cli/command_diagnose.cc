@@ -189,9 +189,11 @@ void RunDiagnose(const DiagnoseCommandOptions& options, const GlobalOptions& glo
     fmt::print("  {:<30} {:>6} {:>12.5g} {:>9} {:>11.5g} {:>10}  {}\n", "(base)", "", result.base.chi_square, "",
                result.base.bic, "", held_out(result.base));
     for (const auto& c : result.candidates)
-      if (!c.converged)
-        fmt::print("  {:<30} {:>6.2f}  {}\n", c.name, c.signature_score,
-                   c.status.starts_with("not refitted") ? c.status : "refit failed (" + c.status + ")");
+      if (c.status == solver::RefitStatus::kNotRefitted)
+        fmt::print("  {:<30} {:>6.2f}  not refitted: {}\n", c.name, c.signature_score, c.status_message);
+      else if (c.status == solver::RefitStatus::kFailed)
+        fmt::print("  {:<30} {:>6.2f}  refit failed{}\n", c.name, c.signature_score,
+                   c.status_message.empty() ? "" : " (" + c.status_message + ")");
       else
         fmt::print("  {:<30} {:>6.2f} {:>12.5g} {:>8.3g}x {:>11.5g} {:>10.2g}  {}  ({:.1f} s){}\n", c.name,
                    c.signature_score, c.fit.chi_square, c.residual_drop, c.fit.bic, c.p_value, held_out(c.fit),

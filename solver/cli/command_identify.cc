@@ -54,6 +54,12 @@ void PrintRobustFit(const solver::RobustFitResult& robust, const solver::Identif
                ordinary.parameters[j].value, robust.fit.parameters[j].unit);
 }
 
+void PrintParameters(const std::vector<solver::ParameterEstimate>& parameters) {
+  for (const auto& p : parameters)
+    fmt::print("  {:<10} = {:>12.6g} ± {:<10.3g} {}   (95 %: {:.6g} … {:.6g})\n", p.name, p.value, p.std, p.unit,
+               p.lower_95, p.upper_95);
+}
+
 // Each law's misfit, then every shared parameter's interval over the accepted laws.
 void PrintDampingLaws(const solver::DampingLawEnvelope& envelope) {
   if (envelope.laws.empty()) return;
@@ -64,9 +70,6 @@ void PrintDampingLaws(const solver::DampingLawEnvelope& envelope) {
                  law.accepted ? "fits: accepted" : "rejected by the data");
     else
       fmt::print("    {:<23} {}\n", law.law, law.status);
-  if (!envelope.laws.front().accepted)
-    fmt::print("  warning: the data rule out the loss factor this fit assumes: quote the model-form intervals below, "
-               "not the statistical ones above\n");
   fmt::print("  model-form 95 % intervals (envelope over the accepted damping laws):\n");
   for (const auto& i : envelope.intervals)
     fmt::print("    {:<10} {:.6g} … {:.6g} {}{}\n", i.name, i.lower_95, i.upper_95, i.unit,
@@ -124,7 +127,7 @@ void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& glo
   // Only for a fit within the noise: the parameters of a model that misses
   // the data are not to be quoted with any interval (diagnose first), and
   // refits of it under other laws ran for minutes.
-  if (options.damping_envelope && family.Name() == "hb" && result.verdict.within_noise) {
+  if (options.damping_envelope && family.Kind() == solver::ModelKind::kHarmonicBalance && result.verdict.within_noise) {
     progress.Update(0.95, "refitting under the other beam damping laws");
     damping_laws = solver::FitDampingLaws(robust.data, structure, result, identify);
   }
@@ -163,10 +166,20 @@ void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& glo
                family.Description(), fit.steps.size(), fit.channels.size(),
                fit.num_fit_harmonics, result.seconds, result.starts_at_best,
                result.starts.size());
-    for (const auto& p : result.parameters)
-      fmt::print("  {:<10} = {:>12.6g} ± {:<10.3g} {}   (95 %: {:.6g} … {:.6g})\n", p.name, p.value, p.std, p.unit,
-                 p.lower_95, p.upper_95);
-    fmt::print("  reduced chi-square {:.3g} ({} residuals)\n", result.reduced_chi_square, result.degrees_of_freedom);
+    // The answer first: the parameters under the damping law the data accept.
+    const solver::DampingLawFit* answer = solver::AnswerLaw(damping_laws);
+    const bool law_rejected = answer != nullptr && answer != &damping_laws.laws.front();
+    if (law_rejected)
+      fmt::print("  the data reject the loss factor the fit assumes; under the {} law, which they accept:\n",
+                 answer->law);
+    PrintParameters(law_rejected ? answer->parameters : result.parameters);
+    if (law_rejected) {
+      fmt::print("  under the rejected loss factor (reduced chi-square {:.3g} against {:.3g}):\n",
+                 result.reduced_chi_square, answer->reduced_chi_square);
+      PrintParameters(result.parameters);
+    }
+    fmt::print("  reduced chi-square {:.3g} (chi-square {:.4g} over {} degrees of freedom)\n", result.reduced_chi_square,
+               result.chi_square, result.degrees_of_freedom);
     for (const auto& s : result_file.unsettled_steps)
       fmt::print("  step {} {:.4g} Hz ({}) was recorded before it settled: its uncertainty includes a {:.2f} % change "
                  "between the halves of its analysed part; re-record it with a longer settle\n",

@@ -85,7 +85,7 @@ void RunPredict(const PredictOptions& options, const GlobalOptions& global) {
   solver::PredictionFile file{.beamid_version = kVersion,
                               .result_file = options.result_file,
                               .campaign_sha256 = result.campaign.sha256,
-                              .model_kind = model.family->Name(),
+                              .model_kind = model.family->Kind(),
                               .position_m = options.position_m,
                               .compared_channel = compared,
                               .compared_quantity = compared.empty() ? "" : quantity,

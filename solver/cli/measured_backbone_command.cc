@@ -235,8 +235,9 @@ void RunMeasuredBackbone(const MeasuredBackboneCommandOptions& options, const Gl
   if (fit.ok) fmt::print("  single-mode fit (AICc): {}, reduced χ² {:.3g}\n", fit.FormName(), fit.ReducedChiSquare());
   fmt::print("  damping against amplitude: {} (ζω_n: slope {:.3g} ± {:.2g} /(s·m), {:+.1f} σ; ζ alone {}: slope "
              "{:.3g} ± {:.2g} per m, {:+.1f} σ, which a constant damper also gives where the frequency changes)\n",
-             trend.verdict, trend.damping_rate_slope_per_s_m, trend.damping_rate_slope_std_per_s_m, trend.damping_rate_z,
-             trend.damping_ratio_verdict, trend.slope_per_m, trend.slope_std_per_m, trend.z);
+             schema::NameOf(trend.verdict, solver::kDampingRateTrendNames), trend.damping_rate_slope_per_s_m,
+             trend.damping_rate_slope_std_per_s_m, trend.damping_rate_z,
+             schema::NameOf(trend.damping_ratio_verdict, solver::kDampingRatioTrendNames), trend.slope_per_m, trend.slope_std_per_m, trend.z);
   fmt::print("wrote {0}.json, {0}.csv and {0}_curves.csv\n", options.output);
 }
 

@@ -283,7 +283,9 @@ CandidatePhysics SupportAsymmetry() {
       .signature =
           [](const MisfitLocation& l) {
             if (!l.significant) return 0.0;
-            return Mean({std::min(1.0, 2.0 * l.even_harmonic_fraction), l.loops.asymmetric ? 1.0 : 0.0});
+            // Even harmonics the recordings lack are the base model's own, not the support's.
+            const double even = l.measured_even_harmonics ? std::min(1.0, 2.0 * l.even_harmonic_fraction) : 0.0;
+            return Mean({even, l.loops.asymmetric ? 1.0 : 0.0});
           },
   };
 }

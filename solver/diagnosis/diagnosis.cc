@@ -227,7 +227,7 @@ constexpr int kLevelValidatedCandidates = 3;
 std::vector<int> BestSignificant(const std::vector<CandidateOutcome>& outcomes, int count) {
   std::vector<int> chosen;
   for (int c = 0; c < static_cast<int>(outcomes.size()); ++c)
-    if (outcomes[c].significant && outcomes[c].converged) chosen.push_back(c);
+    if (outcomes[c].significant && outcomes[c].Refitted()) chosen.push_back(c);
   std::stable_sort(chosen.begin(), chosen.end(),
                    [&](int a, int b) { return outcomes[a].fit.bic < outcomes[b].fit.bic; });
   if (static_cast<int>(chosen.size()) > count) chosen.resize(static_cast<std::size_t>(count));
@@ -444,10 +444,9 @@ CandidateOutcome DescribeCandidate(const RefitRun& run, int c, const std::option
   for (int k = 0; k < static_cast<int>(run.jobs.size()); ++k)
     if (run.jobs[k].candidate == c) outcome.seconds += run.outcomes[k].refit.seconds;
   if (run.best_job[c] < 0) {
-    outcome.status = "failed";
+    outcome.status = RefitStatus::kFailed;
     for (int k = 0; k < static_cast<int>(run.jobs.size()); ++k)
-      if (run.jobs[k].candidate == c && !run.outcomes[k].error.empty())
-        outcome.status = "failed: " + run.outcomes[k].error;
+      if (run.jobs[k].candidate == c && !run.outcomes[k].error.empty()) outcome.status_message = run.outcomes[k].error;
   }
   return outcome;
 }
@@ -458,8 +457,7 @@ std::unique_ptr<FittedModel> TestCandidate(const FitData& fit, const FitSummary&
                                            CandidateOutcome* outcome) {
   const CandidateRefit& o = run.outcomes[run.best_job[c]].refit;
   const CandidateExtension& extension = run.extensions[c];
-  outcome->converged = true;
-  outcome->status = "solved";
+  outcome->status = RefitStatus::kRefitted;
   outcome->fit =
       SummarizeFit(extension.structure, extension.model_harmonics, o.chi_square, fit.NumResiduals(), o.values, o.std);
   auto model = std::make_unique<FittedModel>(
@@ -676,7 +674,8 @@ CandidateRefits RefitCandidates(const FitData& fit, const BaseFit& base, const s
       test(c);
     } else {
       refits.outcomes[c] = DescribeCandidate(run, c, location);
-      refits.outcomes[c].status = "not refitted: " + explained_by + " already fits within the noise";
+      refits.outcomes[c].status = RefitStatus::kNotRefitted;
+      refits.outcomes[c].status_message = explained_by + " already fits within the noise";
     }
   }
   return refits;
@@ -721,10 +720,10 @@ std::vector<std::string> PairPartners(const std::vector<CandidateOutcome>& ranke
   // ones by signature score.
   std::vector<const CandidateOutcome*> order;
   for (const CandidateOutcome& c : ranked)
-    if (c.name != cause && c.converged && !c.extra_parameters.empty()) order.push_back(&c);
+    if (c.name != cause && c.Refitted() && !c.extra_parameters.empty()) order.push_back(&c);
   std::vector<const CandidateOutcome*> failed;
   for (const CandidateOutcome& c : ranked)
-    if (c.name != cause && !c.converged && !c.extra_parameters.empty()) failed.push_back(&c);
+    if (c.name != cause && !c.Refitted() && !c.extra_parameters.empty()) failed.push_back(&c);
   std::stable_sort(failed.begin(), failed.end(), [](const CandidateOutcome* a, const CandidateOutcome* b) {
     return a->signature_score > b->signature_score;
   });
@@ -759,8 +758,8 @@ Verdict DecideVerdict(const FitSummary& base, const std::optional<MisfitLocation
   std::stable_sort(v.ranking.begin(), v.ranking.end(), [&](int a, int b) {
     const CandidateOutcome &x = candidates[a], &y = candidates[b];
     if (x.significant != y.significant) return x.significant;
-    if (x.converged != y.converged) return x.converged;
-    if (x.converged && x.fit.bic != y.fit.bic) return x.fit.bic < y.fit.bic;
+    if (x.Refitted() != y.Refitted()) return x.Refitted();
+    if (x.Refitted() && x.fit.bic != y.fit.bic) return x.fit.bic < y.fit.bic;
     return x.signature_score > y.signature_score;
   });
   int num_significant = 0;

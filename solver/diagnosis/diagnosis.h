@@ -112,14 +112,20 @@ struct FitSummary {
   int held_out_num_residuals = 0;  // of held_out_chi_square (0: unknown)
 };
 
+// What became of a candidate's refit; CandidateOutcome::status_message says why.
+enum class RefitStatus { kRefitted, kFailed, kNotRefitted };
+inline constexpr schema::Name<RefitStatus> kRefitStatusNames[] = {
+    {RefitStatus::kRefitted, "refitted"}, {RefitStatus::kFailed, "failed"}, {RefitStatus::kNotRefitted, "not_refitted"}};
+
 struct CandidateOutcome {
   std::string name;
   std::string description;
   std::string rig_check;            // what to check on the rig when it is named
   double signature_score = 0.0;     // match with the located misfit, 0..1
   std::vector<std::string> extra_parameters;
-  bool converged = false;
-  std::string status;
+  RefitStatus status = RefitStatus::kFailed;
+  std::string status_message;       // why it failed or was not refitted; "" when refitted
+  bool Refitted() const { return status == RefitStatus::kRefitted; }
   FitSummary fit;
   double likelihood_ratio = 0.0;    // Λ
   int test_dof = 0;                 // q

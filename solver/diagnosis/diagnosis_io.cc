@@ -62,6 +62,9 @@ struct CandidateEntry {
   CandidateOutcome outcome;
   double residual_before = 0.0;
   std::vector<ParameterEstimate> extra;
+  // Files older than "refit" said "status": "solved", "failed: …" or "not
+  // refitted: …" (never written now).
+  std::string older_status;
 };
 
 void Describe(auto& io, schema::Like<CandidateEntry> auto& e) {
@@ -71,13 +74,15 @@ void Describe(auto& io, schema::Like<CandidateEntry> auto& e) {
   io.Text("rig_check", c.rig_check, TextRule::kAny, kOptional);
   io.Boolean("measurement", c.measurement, kOptional);
   io.Number("score", c.signature_score, "1", schema::Probability());
-  io.Boolean("converged", c.converged);
-  io.Text("status", c.status);
+  io.Choice("refit", c.status, kRefitStatusNames, kOptional);
+  io.Text("refit_message", c.status_message, TextRule::kAny, kOmittedWhenEmpty);
+  io.Ignored("converged");  // older files; "refit" or "status" tells it
+  io.Text("status", e.older_status, TextRule::kAny, kOmittedWhenEmpty);
   io.Boolean("significant", c.significant);
   io.Keyed("extra_parameters", e.extra, &ParameterEstimate::name, kMaxParameters, Presence::kRequired, kParameter);
   io.Texts("extra_parameter_names", c.extra_parameters, kMaxParameters, TextRule::kNotEmpty, kOptional);
   io.Derived("residual_before", e.residual_before, "1");
-  io.Derived("residual_after", c.converged ? c.fit.chi_square : std::numeric_limits<double>::quiet_NaN(), "1");
+  io.Derived("residual_after", c.Refitted() ? c.fit.chi_square : std::numeric_limits<double>::quiet_NaN(), "1");
   io.Number("residual_drop", c.residual_drop, "1", NonNegativeOrNull());
   io.Number("likelihood_ratio", c.likelihood_ratio, "1", AnyOrNull());
   io.Integer("test_dof", c.test_dof, 0, kMaxParameters);
@@ -95,6 +100,17 @@ CandidateEntry Entry(const CandidateOutcome& c, double residual_before) {
 }
 
 CandidateOutcome Outcome(CandidateEntry e) {
+  if (!e.older_status.empty()) {
+    const auto after = [&](std::string_view prefix) {
+      return e.older_status.starts_with(prefix) ? e.older_status.substr(prefix.size()) : e.older_status;
+    };
+    e.outcome.status = e.older_status == "solved"                  ? RefitStatus::kRefitted
+                       : e.older_status.starts_with("not refitted") ? RefitStatus::kNotRefitted
+                                                                   : RefitStatus::kFailed;
+    if (e.outcome.status == RefitStatus::kNotRefitted) e.outcome.status_message = after("not refitted: ");
+    if (e.outcome.status == RefitStatus::kFailed && e.older_status != "failed")
+      e.outcome.status_message = after("failed: ");
+  }
   // Older files: the names only as the keys of extra_parameters (which
   // holds no more than the names, so it is empty when they are).
   if (e.outcome.extra_parameters.empty())
@@ -250,6 +266,9 @@ void Describe(auto& io, schema::Like<MisfitLocation> auto& m) {
   io.Number("fundamental_fraction", m.fundamental_fraction, "1", schema::Probability());
   io.Number("even_harmonic_fraction", m.even_harmonic_fraction, "1", schema::Probability());
   io.Number("beyond_fitted_fraction", m.beyond_fitted_fraction, "1", schema::Probability());
+  // Files older than the test of the measured even harmonics lack both.
+  io.Number("measured_even_harmonics_p_value", m.measured_even_harmonics_p_value, "1", schema::Probability(), kOptional);
+  io.Boolean("measured_even_harmonics", m.measured_even_harmonics, kOptional);
   io.Numbers("harmonic_excess_chi2", m.harmonic_excess_chi2, "1", NonNegativeOrNull(), kMaxModelHarmonics);
   io.Numbers("channel_excess_chi2", m.channel_excess_chi2, "1", NonNegativeOrNull(), kMaxEntries);
   io.Number("level_growth_exponent", m.level_growth_exponent, "1", AnyOrNull());

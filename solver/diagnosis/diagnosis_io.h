@@ -7,8 +7,8 @@
 // campaign {folder, name}, campaign_sha256 (the campaign's content hash,
 // signal/campaign_hash.h), result_file (or "result": a path or the result
 // object), selected, verdict, summary, base, final {extension, fit,
-// extra_parameter_names}, candidates [{name, description, score, converged,
-// status, significant, extra_parameters {name: {value, std, unit, ci95}},
+// extra_parameter_names}, candidates [{name, description, score, refit
+// (RefitStatus), refit_message, significant, extra_parameters {name: {value, std, unit, ci95}},
 // extra_parameter_names, residual_before, residual_after, residual_drop,
 // likelihood_ratio, test_dof, p_value, seconds, fit}], location (the
 // MisfitLocation with its loops, or {error}), response [{level,

@@ -503,8 +503,7 @@ CandidateRefits RefitMeasurementArtefacts(const FitData& fit, const FitData& val
                                               .std = f.artefact_std,
                                               .lower_95 = f.artefact_value - 1.96 * f.artefact_std,
                                               .upper_95 = f.artefact_value + 1.96 * f.artefact_std});
-          outcome.converged = true;
-          outcome.status = "solved";
+          outcome.status = RefitStatus::kRefitted;
           TestAgainstReference(base.summary.chi_square, base.summary, num_candidates, options, &outcome);
           model = std::make_unique<FittedModel>(
               CorrectedData(fit, artefact), *refit.family, structure, base.model.model_harmonics, f.scaled_at,
@@ -519,7 +518,7 @@ CandidateRefits RefitMeasurementArtefacts(const FitData& fit, const FitData& val
           outcome.fit.held_out_h1_relative_error = held_out.h1_relative_error;
           outcome.fit.held_out_num_residuals = held_out.num_residuals;
         } catch (const std::exception& e) {
-          outcome.status = std::string("failed: ") + e.what();
+          outcome.status_message = e.what();
         }
         outcome.rig_check = ArtefactRigCheck(fit, artefact);
         out.outcomes[static_cast<std::size_t>(a)] = std::move(outcome);

@@ -37,6 +37,7 @@ struct Pair {
   bool near_resonance = false;
   bool has_parts = false;
   double chi2 = 0.0, in_phase = 0.0, quadrature = 0.0;
+  double measured_chi2 = 0.0;  // the measured phasor against none, |L⁻¹Y_measured|² (noise only)
   // Unstandardised, on the channel's level-independent scale σ_c:
   double scaled_error2 = 0.0, scaled_noise2 = 0.0;
 };
@@ -182,6 +183,7 @@ Pair StandardisedPair(const FitStep& s, const Eigen::MatrixXcd& model, int l, in
   }
   const Eigen::Vector2d r = whitening * ReIm(error);
   Pair p{.channel = c, .harmonic = k, .level = l};
+  p.measured_chi2 = (s.whitening[c][k - 1] * ReIm(s.measured(c, k - 1))).squaredNorm();
   p.near_resonance = std::abs(s.measured(c, 0)) >= measured.peak(l, c) / std::numbers::sqrt2;
   p.chi2 = r.squaredNorm();
   // The direction a change of stiffness moves the response (header).
@@ -317,6 +319,20 @@ void SignatureFeatures(const FitData& data, int fitted_harmonics, MisfitLocation
   out->beyond_fitted_fraction = Share(beyond, total);
 }
 
+// Whether the recordings themselves carry even harmonics: their phasors of
+// harmonics 2, 4, … against none, χ²(2 per pair). A misfit in the even
+// harmonics says the support is asymmetric only if they do; otherwise it is
+// the model's own even-order terms that the recordings lack.
+void MeasuredEvenHarmonics(const std::vector<Pair>& pairs, double family_significance, MisfitLocation* out) {
+  double chi2 = 0.0;
+  int dof = 0;
+  for (const Pair& p : pairs)
+    if (p.harmonic % 2 == 0) chi2 += p.measured_chi2, dof += 2;
+  if (dof == 0) return;
+  out->measured_even_harmonics_p_value = ChiSquareUpperTail(chi2, dof);
+  out->measured_even_harmonics = out->measured_even_harmonics_p_value < family_significance;
+}
+
 // The misfit's excess χ² summed over the harmonics (the findings' whole).
 double TotalExcess(const MisfitLocation& location) {
   double total = 0.0;
@@ -423,8 +439,11 @@ std::string GroupFinding(const MisfitGroupTest& g, const std::vector<MisfitGroup
 // largest first, then harmonic truncation and asymmetry.
 std::vector<std::string> ResidualFindings(const MisfitLocation& out, const FitData& data, int fitted_harmonics,
                                           const MisfitLocationOptions& options) {
+  // Not the fit's χ²: each residual's variance here adds the model's own error.
   const std::string overall = "chi-square " + Number(out.chi2, "%.1f") + " for " + std::to_string(out.dof) +
-                              " degrees of freedom (" + PValue(out.p_value) + ")";
+                              " degrees of freedom with the model's own error of " +
+                              Number(100.0 * options.model_relative_error, "%.2g") + " % of the fundamental allowed (" +
+                              PValue(out.p_value) + ")";
   if (!out.significant)
     return {"No significant discrepancy: " + overall +
             "; no channel, harmonic, level or band of the residuals exceeds the noise at the " +
@@ -442,9 +461,15 @@ std::vector<std::string> ResidualFindings(const MisfitLocation& out, const FitDa
   if (out.beyond_fitted_fraction >= options.finding_min_share && fitted_harmonics < data.num_fit_harmonics)
     findings.push_back(Percent(out.beyond_fitted_fraction) + " of the misfit is in harmonics above " +
                        std::to_string(fitted_harmonics) + ", which the model does not fit (harmonic truncation).");
-  if (out.even_harmonic_fraction >= options.finding_min_share)
-    findings.push_back(Percent(out.even_harmonic_fraction) +
-                       " of the misfit is in even harmonics (2, 4): the support is not symmetric.");
+  if (out.even_harmonic_fraction >= options.finding_min_share) {
+    const std::string share = Percent(out.even_harmonic_fraction) + " of the misfit is in even harmonics (2, 4)";
+    const std::string evidence = " (" + PValue(out.measured_even_harmonics_p_value) + " against none)";
+    findings.push_back(out.measured_even_harmonics
+                           ? share + ", which the recordings carry" + evidence + ": the support is not symmetric."
+                           : share + " that the model makes and the recordings do not carry" + evidence +
+                                 ": the model's even-order stiffness (k2) is spurious, not a sign of an asymmetric "
+                                 "support.");
+  }
   return findings;
 }
 
@@ -491,6 +516,7 @@ MisfitLocation LocateMisfit(const FitData& data, const std::vector<Eigen::Matrix
   out.groups = GroupTests(data, pairs, measured);
   TestFamily(pairs, options, &out);
   SignatureFeatures(data, fitted_harmonics, &out);
+  MeasuredEvenHarmonics(pairs, options.family_significance, &out);
   LevelAmplitudes(pairs, measured, num_levels, &out);
   if (num_levels >= 2) out.level_growth_exponent = LevelGrowthExponent(data, pairs, measured, out.groups);
   if (options.analyse_loops)

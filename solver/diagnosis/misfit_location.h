@@ -117,6 +117,12 @@ struct MisfitLocation {
   double fundamental_fraction = 0.0;     // harmonic 1 / all harmonics, channel×harmonic groups
   double even_harmonic_fraction = 0.0;   // harmonics 2, 4 / all
   double beyond_fitted_fraction = 0.0;   // harmonics > fitted_harmonics / all
+  // The measured even harmonics (2, 4, …) of every channel against none:
+  // significant at the family significance means the recordings carry them,
+  // so that an even-harmonic misfit is the support's asymmetry and not the
+  // model's spurious even-order terms.
+  double measured_even_harmonics_p_value = 1.0;
+  bool measured_even_harmonics = false;
   std::vector<double> harmonic_excess_chi2;  // [k−1], over all channels
   std::vector<double> channel_excess_chi2;   // [c] in data.channels order
   // Slope of log A_l vs log R_l over the levels l, where

@@ -42,6 +42,15 @@ DampingLawFit DampingLawFitOf(const std::string& law, const std::vector<Paramete
           .reduced_chi_square = chi_square / std::max(1, degrees_of_freedom)};
 }
 
+const DampingLawFit* AnswerLaw(const DampingLawEnvelope& envelope) {
+  if (envelope.laws.empty()) return nullptr;
+  if (envelope.laws.front().accepted) return &envelope.laws.front();
+  const DampingLawFit* answer = nullptr;
+  for (const auto& law : envelope.laws)
+    if (law.accepted && (answer == nullptr || law.chi_square < answer->chi_square)) answer = &law;
+  return answer;
+}
+
 void JudgeDampingLaws(DampingLawEnvelope* envelope) {
   auto& laws = envelope->laws;
   envelope->intervals.clear();

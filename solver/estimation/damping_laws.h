@@ -70,6 +70,11 @@ DampingLawEnvelope FitDampingLaws(const FitData& data, const ModelStructure& fit
 DampingLawFit DampingLawFitOf(const std::string& law, const std::vector<ParameterEstimate>& parameters,
                               double chi_square, int degrees_of_freedom);
 
+// The law whose parameters are the answer: the fitted law (laws[0]) when
+// the data accept it, else the accepted law of least χ²; nullptr when the
+// laws were not refitted (or none converged).
+const DampingLawFit* AnswerLaw(const DampingLawEnvelope& envelope);
+
 // The acceptance and the intervals, from the laws' fits (laws[0] the fitted
 // law); exposed for tests and for reading a result file back.
 void JudgeDampingLaws(DampingLawEnvelope* envelope);

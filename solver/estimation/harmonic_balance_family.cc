@@ -11,7 +11,7 @@ namespace {
 
 class HarmonicBalanceFamilyImpl final : public ModelFamily {
  public:
-  std::string Name() const override { return "hb"; }
+  ModelKind Kind() const override { return ModelKind::kHarmonicBalance; }
   std::string Description() const override { return "harmonic balance"; }
   std::string StateName() const override { return "theta_rad"; }
   int StateSize(int num_harmonics) const override { return num_harmonics + 1; }

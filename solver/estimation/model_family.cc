@@ -21,4 +21,6 @@ const ModelFamily& FindModelFamily(const std::string& name) {
   throw InputError("model '" + name + "': unknown model family. Fix: use one of " + known);
 }
 
+const ModelFamily& FindModelFamily(ModelKind kind) { return FindModelFamily(std::string(schema::NameOf(kind, kModelKindNames))); }
+
 }  // namespace beamid::solver

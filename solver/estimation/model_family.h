@@ -17,6 +17,7 @@
 
 #include <Eigen/Core>
 
+#include "hb/enum_names.h"
 #include "solver/estimation/model_options.h"
 
 namespace beamid::solver {
@@ -26,12 +27,19 @@ class FitProblem;
 struct IdentifiedModel;
 struct ModelStructure;
 
+// The families, by the key of result.json's "model.kind", prediction.json's
+// "model" and `--model`.
+enum class ModelKind { kHarmonicBalance, kMultipleScales };
+inline constexpr schema::Name<ModelKind> kModelKindNames[] = {{ModelKind::kHarmonicBalance, "hb"},
+                                                              {ModelKind::kMultipleScales, "ms"}};
+
 class ModelFamily {
  public:
   virtual ~ModelFamily() = default;
 
-  // The key of result.json's "model.kind" and of `--model`.
-  virtual std::string Name() const = 0;
+  virtual ModelKind Kind() const = 0;
+  // Kind()'s key ("hb", "ms").
+  std::string Name() const { return std::string(schema::NameOf(Kind(), kModelKindNames)); }
   // For people: "harmonic balance".
   virtual std::string Description() const = 0;
   // result.json's name of a step's state ("theta_rad", "modal_phasor_m"),
@@ -63,6 +71,7 @@ class ModelFamily {
 std::vector<const ModelFamily*> ModelFamilies();
 // The family of this name; throws InputError naming the known ones.
 const ModelFamily& FindModelFamily(const std::string& name);
+const ModelFamily& FindModelFamily(ModelKind kind);
 // "hb, ms": for help texts and messages.
 std::string ModelFamilyNames();
 

@@ -22,7 +22,7 @@ MultipleScalesProblemOptions ProblemOptions(const ModelOptions& options) {
 
 class MultipleScalesFamilyImpl final : public ModelFamily {
  public:
-  std::string Name() const override { return "ms"; }
+  ModelKind Kind() const override { return ModelKind::kMultipleScales; }
   std::string Description() const override { return "multiple scales"; }
   std::string StateName() const override { return "modal_phasor_m"; }
   int StateSize(int) const override { return 1; }

@@ -41,15 +41,6 @@ constexpr bool kDocumenting = std::is_same_v<std::remove_const_t<Io>, schema::Do
 // optional phasor leaves behind.
 constexpr double kAbsent = -std::numeric_limits<double>::infinity();
 
-bool KnownFamily(const std::string& kind) {
-  try {
-    FindModelFamily(kind);
-    return true;
-  } catch (const InputError&) {
-    return false;
-  }
-}
-
 bool KnownQuantity(const std::string& q) {
   return q.empty() || std::find(std::begin(kQuantities), std::end(kQuantities), q) != std::end(kQuantities);
 }
@@ -116,8 +107,7 @@ void Describe(auto& io, schema::Like<PredictionFile> auto& f) {
   io.Constant("command", "predict");
   io.Text("beamid_version", f.beamid_version, TextRule::kAny, kOptional);
   io.Text("result", f.result_file);
-  io.Text("model", f.model_kind, TextRule::kNotEmpty);
-  io.Check(KnownFamily(f.model_kind), "model names a model family (" + ModelFamilyNames() + ")", "model");
+  io.Choice("model", f.model_kind, kModelKindNames);
   io.Number("position_m", f.position_m, "m", schema::NonNegative());
   io.Text("compared_channel", f.compared_channel);
   // Files of the earlier writer lack it: the reader takes it from the keys.

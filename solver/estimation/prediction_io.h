@@ -29,6 +29,7 @@
 
 #include "hb/json_schema.h"
 #include "hb/version.h"
+#include "solver/estimation/model_family.h"
 
 namespace beamid::solver {
 
@@ -66,7 +67,7 @@ struct PredictionFile {
   // The content hash of the campaign the model was identified from (the
   // result's, signal/campaign_hash.h); "" in older files.
   std::string campaign_sha256;
-  std::string model_kind = "hb";          // the model family's name (solver/estimation/model_family.h)
+  ModelKind model_kind = ModelKind::kHarmonicBalance;
   double position_m = 0.0;
   std::string compared_channel;   // "" when no campaign sensor sits at position_m
   std::string compared_quantity;  // "displacement_m", "velocity_m_s" or "acceleration_m_s2"; "" without one

@@ -105,7 +105,7 @@ ResultFile MakeResultFile(const FitData& fit, const FitData& validation, FitProb
                   .absolute_folder = context.campaign_absolute_folder,
                   .sha256 = context.campaign_sha256};
   const ModelStructure& structure = problem.structure();
-  out.model = {.kind = context.family->Name(),
+  out.model = {.kind = context.family->Kind(),
                .law = structure.law->Name(),
                .beam = fit.beam,
                .force_position_m = fit.force_position_m,

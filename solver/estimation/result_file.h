@@ -37,7 +37,7 @@ struct ResultCampaign {
 };
 
 struct ResultModel {
-  std::string kind = "hb";          // the model family's name (solver/estimation/model_family.h)
+  ModelKind kind = ModelKind::kHarmonicBalance;
   std::string law = "polynomial";   // hb::SupportLaw::Name()
   hb::BeamProperties beam;          // nominal, with the loss factor identify started from
   double force_position_m = 0.0;

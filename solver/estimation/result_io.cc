@@ -91,13 +91,6 @@ void Interval(Io& io, std::string_view key, D& low, D& high, std::string_view un
   }
 }
 
-const ModelFamily* FamilyOrNull(const std::string& kind) {
-  try {
-    return &FindModelFamily(kind);
-  } catch (const InputError&) {
-    return nullptr;
-  }
-}
 
 // The estimate of a fit under another damping law or of the ordinary fit.
 // (ParameterEstimate is also another file's: its declaration here is named,
@@ -197,11 +190,7 @@ void Describe(auto& io, schema::Like<ResultCampaign> auto& c) {
 }
 
 void Describe(auto& io, schema::Like<ResultModel> auto& m) {
-  io.Text("kind", m.kind, TextRule::kNotEmpty, kOptional);  // files from before `--model ms` are hb
-  io.Check(FamilyOrNull(m.kind) != nullptr,
-           Rule(FamilyOrNull(m.kind) != nullptr, "kind names a model (" + ModelFamilyNames() + ")",
-                "'" + m.kind + "' is unknown"),
-           "kind");
+  io.Choice("kind", m.kind, kModelKindNames, kOptional);  // files from before `--model ms` are hb
   io.Text("law", m.law, TextRule::kNotEmpty);
   io.Object("beam", m.beam, Presence::kRequired, [](auto& beam_io, auto& b) {
     beam_io.Number("length_m", b.length_m, "m", schema::Positive());
@@ -385,9 +374,9 @@ void Describe(auto& io, schema::Like<ResultFile> auto& f) {
 
   // The model's steady state at each fitted step, under its family's name
   // ("theta_rad": Θ_0..Θ_H, "modal_phasor_m": U).
-  const ModelFamily* family = FamilyOrNull(f.model.kind);
-  const std::string state_name = family ? family->StateName() : "theta_rad";
-  const std::size_t state_size = family ? static_cast<std::size_t>(family->StateSize(f.model.num_harmonics)) : 0;
+  const ModelFamily& family = FindModelFamily(f.model.kind);
+  const std::string state_name = family.StateName();
+  const auto state_size = static_cast<std::size_t>(family.StateSize(f.model.num_harmonics));
   io.List("steps", f.steps, kMaxSteps, Presence::kRequired, [&](auto& step_io, auto& s) {
     step_io.Text("level", s.level);
     step_io.Text("file", s.file);

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include <fmt/core.h>
 
@@ -46,7 +47,33 @@ void SplitByStability(const LevelCurves& level, std::size_t channel, Rows& stabl
   }
 }
 
-std::string FrcPlot(const ReportCurves& curves, std::size_t channel) {
+// The model a diagnosis selected, as its file holds it: its first harmonic
+// at every measured step of every channel (DiagnosisResult::response).
+struct SelectedModel {
+  std::string name;                         // "support_friction", "a + b"
+  const std::vector<ResponsePoint>* points = nullptr;
+};
+
+std::optional<SelectedModel> SelectedModelOf(const ReportInput& input) {
+  if (!input.diagnosis) return std::nullopt;
+  const DiagnosisResult& d = input.diagnosis->diagnosis;
+  const bool named = d.verdict == DiagnosisVerdict::kCauseNamed || d.verdict == DiagnosisVerdict::kCombinationNamed;
+  if (!named || d.response.empty()) return std::nullopt;
+  std::string name;
+  for (const auto& s : d.selected) name += (name.empty() ? "" : " + ") + s;
+  return SelectedModel{.name = name, .points = &d.response};
+}
+
+// One channel's selected-model points of a level, in frequency order.
+Rows SelectedRows(const SelectedModel& selected, const std::string& level, const std::string& channel) {
+  Rows rows;
+  for (const auto& p : *selected.points)
+    if (p.level == level && p.channel == channel) rows.push_back({p.frequency_hz, std::abs(p.final_model)});
+  std::sort(rows.begin(), rows.end());
+  return rows;
+}
+
+std::string FrcPlot(const ReportCurves& curves, std::size_t channel, const std::optional<SelectedModel>& selected) {
   const ReportChannel& ch = curves.channels[channel];
   std::string script = fmt::format(
       "set title {}\nset xlabel 'frequency [Hz]'\nset ylabel {}\nset grid\nset key top left box opaque\n",
@@ -69,8 +96,15 @@ std::string FrcPlot(const ReportCurves& curves, std::size_t channel) {
     plot += fmt::format(
         "{}$s{} with lines lw 2 lc rgb '{}' title {}, $u{} with lines lw 2 dt 2 lc rgb '{}' notitle, "
         "$m{} with points pt 7 ps 0.7 lc rgb '{}' title {}",
-        l ? ", " : "", l, Colour(l), GnuplotText("model " + label), l, Colour(l), l, Colour(l),
-        GnuplotText("measured " + label));
+        l ? ", " : "", l, Colour(l), GnuplotText((selected ? "base model " : "model ") + label), l, Colour(l), l,
+        Colour(l), GnuplotText("measured " + label));
+    if (selected) {
+      const Rows points = SelectedRows(*selected, level.level, curves.channels[channel].channel);
+      if (points.empty()) continue;
+      script += Datablock(fmt::format("x{}", l), points);
+      plot += fmt::format(", $x{} with linespoints pt 2 ps 0.9 lw 1 lc rgb '{}' title {}", l, Colour(l),
+                          GnuplotText("selected model (" + selected->name + ") " + level.level));
+    }
   }
   if (!flagged.empty()) {
     script += Datablock("flagged", flagged);
@@ -244,13 +278,14 @@ std::string ResidualPlot(const ResidualMap& map) {
 
 // With the damping laws refitted: a column of the model-form interval (the
 // envelope over the laws the data accept), flagged where it depends on the law.
-std::string ParameterTable(const ResultFile& result) {
-  const auto& intervals = result.damping_laws.intervals;
+// (result.json's parameters and a damping law's fit hold the same fields.)
+template <typename Parameter>
+std::string ParameterRows(const std::vector<Parameter>& parameters, const std::vector<ModelFormInterval>& intervals) {
   std::string html =
       "<table class=\"parameters\"><tr><th>parameter</th><th>value</th><th>standard uncertainty</th>"
       "<th>95 % interval</th>" +
       std::string(intervals.empty() ? "" : "<th>95 % over the beam's damping laws</th>") + "<th>unit</th></tr>\n";
-  for (const auto& p : result.parameters) {
+  for (const auto& p : parameters) {
     std::string model_form;
     if (!intervals.empty()) {
       const auto i = std::find_if(intervals.begin(), intervals.end(), [&](const auto& m) { return m.name == p.name; });
@@ -263,10 +298,62 @@ std::string ParameterTable(const ResultFile& result) {
                         Number(p.value), Number(p.std), Number(p.lower_95), Number(p.upper_95), model_form,
                         HtmlEscape(p.unit));
   }
-  html += "</table>\n";
-  if (!result.damping_laws.laws.empty() && !result.damping_laws.laws.front().accepted)
-    html += "<p><b>The data rule out the loss factor this fit assumes</b>: quote the intervals over the damping laws.</p>\n";
-  return html;
+  return html + "</table>\n";
+}
+
+// The selected model's parameters, the answer, with the base fit's value of
+// each beside it (blank for the parameters the base model lacks).
+std::string SelectedParameterTable(const DiagnosisResult& d) {
+  std::string html =
+      "<table class=\"parameters\"><tr><th>parameter</th><th>value</th><th>standard uncertainty</th>"
+      "<th>95 % interval</th><th>unit</th><th>base fit (rejected)</th></tr>\n";
+  for (const auto& p : d.final_fit.parameters) {
+    const auto base = std::find_if(d.base.parameters.begin(), d.base.parameters.end(),
+                                   [&](const ParameterEstimate& b) { return b.name == p.name; });
+    html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{} … {}</td><td>{}</td><td>{}</td></tr>\n",
+                        HtmlEscape(p.name), Number(p.value), Number(p.std), Number(p.lower_95), Number(p.upper_95),
+                        HtmlEscape(p.unit), base == d.base.parameters.end() ? "" : Number(base->value));
+  }
+  return html + "</table>\n";
+}
+
+// The held-out channels' first harmonic at every step: measured, the base
+// model and the selected one, per level (DiagnosisResult::response).
+std::string HeldOutSelectedPlot(const SelectedModel& selected, const std::string& channel,
+                                const std::vector<std::string>& levels) {
+  std::string script = fmt::format(
+      "set title {}\nset xlabel 'frequency [Hz]'\nset ylabel '|X_1| (the channel quantity, SI)'\nset grid\n"
+      "set key outside below\n",
+      GnuplotText("held-out " + channel + ": measured, base model and selected model (" + selected.name + ")"));
+  std::string plot = "plot ";
+  for (std::size_t l = 0; l < levels.size(); ++l) {
+    Rows rows;
+    for (const auto& p : *selected.points)
+      if (p.level == levels[l] && p.channel == channel)
+        rows.push_back({p.frequency_hz, std::abs(p.measured), std::abs(p.base_model), std::abs(p.final_model)});
+    std::sort(rows.begin(), rows.end());
+    script += Datablock(fmt::format("h{}", l), rows);
+    plot += fmt::format(
+        "{0}$h{1} using 1:2 with points pt 7 ps 0.7 lc rgb '{2}' title {3}, $h{1} using 1:3 with lines lw 1 dt 2 "
+        "lc rgb '{2}' title {4}, $h{1} using 1:4 with linespoints pt 2 lw 1.5 lc rgb '{2}' title {5}",
+        l ? ", " : "", l, Colour(l), GnuplotText("measured " + levels[l]), GnuplotText("base model " + levels[l]),
+        GnuplotText("selected model " + levels[l]));
+  }
+  return script + plot + "\n";
+}
+
+// The answer first: the parameters under the damping law the data accept;
+// when they reject the loss factor the fit assumed, its parameters follow.
+std::string ParameterTable(const ResultFile& result) {
+  const DampingLawFit* answer = AnswerLaw(result.damping_laws);
+  const auto& intervals = result.damping_laws.intervals;
+  if (answer == nullptr || answer == &result.damping_laws.laws.front()) return ParameterRows(result.parameters, intervals);
+  return fmt::format("<p class=\"answer\"><b>The data reject the loss factor the fit assumes</b>; they accept the "
+                     "<b>{}</b> damping law (reduced χ² {} against {}), whose parameters are the answer:</p>\n",
+                     HtmlEscape(answer->law), Number(answer->reduced_chi_square),
+                     Number(result.fit.reduced_chi_square)) +
+         ParameterRows(answer->parameters, intervals) +
+         "<p>Under the rejected loss factor (for comparison only):</p>\n" + ParameterRows(result.parameters, {});
 }
 
 // What a test engineer reads of a diagnosis (diagnosis.json of `beamid
@@ -330,12 +417,16 @@ std::string DiagnosisSection(const DiagnosisResult& diagnosis) {
                            determined ? Number(p.value) + " ± " + Number(p.std) + unit
                                       : Number(p.value) + unit + " (not determined by these data)");
     }
+    // Without a refit there is no χ² after, drop or p: the row says why instead.
+    const std::string outcome =
+        c.Refitted() ? "<td>" + Number(c.fit.chi_square) + "</td><td>" + Number(c.residual_drop) + "</td><td>" +
+                           Number(c.p_value) + "</td><td>" + (c.significant ? "yes" : "no") + "</td>"
+                     : "<td colspan=\"4\">" +
+                           std::string(c.status == RefitStatus::kNotRefitted ? "not refitted" : "refit failed") +
+                           (c.status_message.empty() ? "" : ": " + HtmlEscape(c.status_message)) + "</td>";
     html += "<tr><td>" + HtmlEscape(c.name) + "</td><td>" + (c.measurement ? "recording" : "physics") + "</td><td>" +
-            Number(c.signature_score) + "</td><td>" +
-            Number(diagnosis.base.chi_square) + "</td><td>" +
-            (c.converged ? Number(c.fit.chi_square) : "refit failed: " + HtmlEscape(c.status)) + "</td><td>" +
-            Number(c.residual_drop) + "</td><td>" + Number(c.p_value) + "</td><td>" +
-            (c.significant ? "yes" : "no") + "</td><td>" + extra + "</td></tr>\n";
+            Number(c.signature_score) + "</td><td>" + Number(diagnosis.base.chi_square) + "</td>" + outcome + "<td>" +
+            extra + "</td></tr>\n";
   }
   html += "</table>\n";
   return html + "</section>\n";
@@ -352,13 +443,19 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves) {
     fit_channels += (fit_channels.empty() ? "" : ", ") + HtmlEscape(channel);
   std::string html = HtmlPageHead(title);
   html += fmt::format("<p>Result <code>{}</code>, campaign <code>{}</code>; support law {}; fitted channels {}, "
-                      "harmonics 1..{}; reduced χ² = {} ({} residuals).</p>\n",
+                      "harmonics 1..{}; reduced χ² = {} (χ² {} over {} degrees of freedom).</p>\n",
                       HtmlEscape(input.result_file.string()), HtmlEscape(input.campaign_folder.string()),
                       HtmlEscape(result.model.law), fit_channels, result.model.num_fit_harmonics,
-                      Number(result.fit.reduced_chi_square), result.fit.degrees_of_freedom);
+                      Number(result.fit.reduced_chi_square), Number(result.fit.chi_square), result.fit.degrees_of_freedom);
   if (input.diagnosis) html += DiagnosisSection(input.diagnosis->diagnosis);
 
-  html += "<section id=\"parameters\"><h2>Identified parameters</h2>\n" + ParameterTable(result);
+  const std::optional<SelectedModel> selected = SelectedModelOf(input);
+  if (selected)
+    html += "<section id=\"selected\"><h2>The selected model: " + HtmlEscape(selected->name) + "</h2>\n" +
+            SelectedParameterTable(input.diagnosis->diagnosis) + "</section>\n";
+  html += std::string("<section id=\"parameters\"><h2>") +
+          (selected ? "The base model's fit (identify), which the diagnosis rejects" : "Identified parameters") +
+          "</h2>\n" + ParameterTable(result);
   for (const auto& v : result.validation)
     html += fmt::format("<p>Held-out {}: {}.</p>\n", HtmlEscape(v.channel), HtmlEscape(HeldOutSummary(v)));
   html += Warnings(result.warnings) + "</section>\n";
@@ -366,10 +463,13 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves) {
 
   html += "<section id=\"frc\"><h2>Frequency response curves</h2>\n";
   for (std::size_t c = 0; c < curves.channels.size(); ++c)
-    html += Figure("frc-" + curves.channels[c].channel, GnuplotSvg(FrcPlot(curves, c)),
+    html += Figure("frc-" + curves.channels[c].channel, GnuplotSvg(FrcPlot(curves, c, selected)),
                    "First-harmonic amplitude of " + HtmlEscape(curves.channels[c].channel) +
                        ": measured steps (dots) and the identified model under each level's mean force "
-                       "(harmonic balance and continuation; solid stable, dashed unstable).");
+                       "(harmonic balance and continuation; solid stable, dashed unstable)" +
+                       (selected ? "; crosses: the model the diagnosis selected (" + HtmlEscape(selected->name) +
+                                       "), at each measured step, beside the base model it replaces."
+                                 : std::string(".")));
   for (const auto& level : curves.levels)
     if (!level.model_complete)
       html += "<p class=\"warning\">The model curve of level " + HtmlEscape(level.level) +
@@ -387,14 +487,22 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves) {
   if (!curves.measured_mode.damping.empty()) {
     const MeasuredNonlinearMode& mode = curves.measured_mode;
     std::string trend;
-    if (mode.damping_trend == "rises")
-      trend = fmt::format("The damping ratio rises with amplitude ({:.1f} σ): dissipation that grows faster than a "
-                          "viscous damper's, as friction's does.", mode.damping_trend_z);
-    else if (mode.damping_trend == "falls")
-      trend = fmt::format("The damping ratio falls with amplitude ({:.1f} σ), as a damper of constant "
-                          "coefficient gives when the frequency rises.", mode.damping_trend_z);
-    else if (!mode.damping_trend.empty())
-      trend = fmt::format("No significant trend of the damping ratio with amplitude ({:+.1f} σ).", mode.damping_trend_z);
+    switch (mode.damping_rate_trend) {
+      case Trend::kRises:
+        trend = fmt::format("The damping rate ζω_n rises with amplitude beyond a constant damper ({:+.1f} σ): "
+                            "dissipation that grows faster than a viscous damper's, as friction's does.",
+                            mode.damping_rate_trend_z);
+        break;
+      case Trend::kFalls:
+        trend = fmt::format("The damping rate ζω_n falls with amplitude below a constant damper ({:+.1f} σ).",
+                            mode.damping_rate_trend_z);
+        break;
+      case Trend::kNone:
+        trend = fmt::format("The damping rate ζω_n is consistent with a constant damper ({:+.1f} σ).",
+                            mode.damping_rate_trend_z);
+        break;
+      case Trend::kNotJudged: break;
+    }
     html += Figure("damping-plot", GnuplotSvg(DampingPlot(curves)),
                    "The measured damping ratio of each level by three estimators (±2σ), and the single nonlinear "
                    "mode fitted across levels (" + HtmlEscape(mode.fit_form) + "). " + trend);
@@ -402,6 +510,19 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves) {
   html += "</section>\n";
 
   html += "<section id=\"prediction\"><h2>Prediction at the held-out sensor</h2>\n";
+  if (selected) {
+    std::vector<std::string> held_out, levels;
+    for (const auto& p : *selected->points) {
+      if (p.held_out && std::find(held_out.begin(), held_out.end(), p.channel) == held_out.end())
+        held_out.push_back(p.channel);
+      if (std::find(levels.begin(), levels.end(), p.level) == levels.end()) levels.push_back(p.level);
+    }
+    for (const auto& channel : held_out)
+      html += Figure("held-out-selected-" + channel, GnuplotSvg(HeldOutSelectedPlot(*selected, channel, levels)),
+                     "First-harmonic amplitude at the held-out " + HtmlEscape(channel) +
+                         " at every step: measured, predicted by the base model and by the selected model (" +
+                         HtmlEscape(selected->name) + "); neither fitted this channel.");
+  }
   if (curves.time_histories.empty())
     html += "<p>This result has no held-out channel (identify with <code>--validate CHANNEL</code>).</p>\n";
   for (const auto& history : curves.time_histories)

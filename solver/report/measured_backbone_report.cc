@@ -138,8 +138,9 @@ std::string MeasuredBackboneHtmlReport(const MeasuredBackboneFile& file, const s
   html += fmt::format("<p>Damping against amplitude: <strong>{}</strong> (ζω_n: slope {:.3g} ± {:.2g} /(s·m), "
                       "{:+.1f} σ); ζ alone {} (slope {:.3g} ± {:.2g} per m, {:+.1f} σ), which a constant damper "
                       "also gives where the frequency changes.</p>\n",
-                      HtmlEscape(t.verdict.empty() ? "not available" : t.verdict), t.damping_rate_slope_per_s_m,
-                      t.damping_rate_slope_std_per_s_m, t.damping_rate_z, HtmlEscape(t.damping_ratio_verdict),
+                      t.verdict == Trend::kNotJudged ? "not available" : schema::NameOf(t.verdict, kDampingRateTrendNames),
+                      t.damping_rate_slope_per_s_m, t.damping_rate_slope_std_per_s_m, t.damping_rate_z,
+                      schema::NameOf(t.damping_ratio_verdict, kDampingRatioTrendNames),
                       t.slope_per_m, t.slope_std_per_m, t.z);
   for (bool frequency : {true, false}) {
     const std::string script = PlotAgainstAmplitude(file, frequency);

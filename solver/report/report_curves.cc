@@ -61,8 +61,8 @@ void SingleModeFitCurve(const MeasuredBackbone& measured, int derivative_order, 
   const SingleModeFit& fit = measured.fit;
   if (!fit.ok) return;
   mode.fit_form = fit.FormName();
-  mode.damping_trend = measured.damping_trend.verdict;
-  mode.damping_trend_z = measured.damping_trend.z;
+  mode.damping_rate_trend = measured.damping_trend.verdict;
+  mode.damping_rate_trend_z = measured.damping_trend.damping_rate_z;
   constexpr int kCurvePoints = 60;
   for (int k = 0; k <= kCurvePoints; ++k) {
     const double a = measured.min_amplitude_m +

@@ -29,6 +29,7 @@
 
 #include "signal/campaign.h"
 #include "signal/phasor_set.h"
+#include "solver/backbone/measured_backbone.h"
 #include "solver/estimation/prediction.h"
 #include "solver/estimation/result_file.h"
 
@@ -107,8 +108,8 @@ struct MeasuredNonlinearMode {
   std::vector<MeasuredDampingPoint> damping;
   std::vector<SingleModeCurvePoint> fit;  // empty when the fit failed
   std::string fit_form;                   // SingleModeFit::FormName()
-  std::string damping_trend;              // "rises", "falls", "no significant trend"
-  double damping_trend_z = 0.0;
+  Trend damping_rate_trend = Trend::kNotJudged;  // ζω_n against a constant damper
+  double damping_rate_trend_z = 0.0;
 };
 
 struct TimeHistory {

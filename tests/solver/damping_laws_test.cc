@@ -39,6 +39,22 @@ TEST(DampingLaws, ALawTheDataRuleOutLeavesTheEnvelopeAndItsParametersAreFlagged)
   EXPECT_FALSE(IntervalOf(e, "k1").depends_on_damping_law);
 }
 
+// The answer is the accepted law's fit: the assumed one while the data
+// accept it, else the accepted law that fits best.
+TEST(DampingLaws, TheAnswerIsTheAssumedLawUntilTheDataRejectItThenTheBestAcceptedLaw) {
+  EXPECT_EQ(AnswerLaw(DampingLawEnvelope{}), nullptr);
+  DampingLawEnvelope rejected{.laws = {Law("loss_factor", 0.046, 160.0, 100, "loss_factor"),
+                                       Law("mass_proportional", 0.049, 104.0, 100, "rayleigh_mass_1_s"),
+                                       Law("rayleigh", 0.050, 100.0, 99, "rayleigh_mass_1_s")}};
+  JudgeDampingLaws(&rejected);
+  ASSERT_NE(AnswerLaw(rejected), nullptr);
+  EXPECT_EQ(AnswerLaw(rejected)->law, "rayleigh");
+  DampingLawEnvelope accepted{.laws = {Law("loss_factor", 0.05, 101.0, 100, "loss_factor"),
+                                       Law("rayleigh", 0.05, 100.0, 99, "rayleigh_mass_1_s")}};
+  JudgeDampingLaws(&accepted);
+  EXPECT_EQ(AnswerLaw(accepted), &accepted.laws[0]);  // accepted, though rayleigh's χ² is lower
+}
+
 TEST(DampingLaws, LawsWithinTheMarginAreAllAcceptedAndTheEnvelopeSpansThem) {
   DampingLawEnvelope e{.laws = {Law("loss_factor", 0.0500, 100.0, 100, "loss_factor"),
                                 Law("rayleigh", 0.0505, 95.0, 99, "rayleigh_mass_1_s")}};

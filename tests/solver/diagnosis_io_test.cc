@@ -137,8 +137,7 @@ DiagnosisFile FullFile(bool with_location) {
                             .description = "Jenkins element in parallel",
                             .signature_score = 0.8 / 3.0,
                             .extra_parameters = {"jenkins_stiffness", "jenkins_slip_moment"},
-                            .converged = true,
-                            .status = "solved",
+                            .status = RefitStatus::kRefitted,
                             .fit = Fit(2.0, {"k1", "k3", "c", "loss_factor", "jenkins_stiffness",
                                              "jenkins_slip_moment"}),
                             .likelihood_ratio = 4.3e4 / 3.0,
@@ -151,8 +150,8 @@ DiagnosisFile FullFile(bool with_location) {
                           .description = "a point mass",
                           .signature_score = 0.1 / 7.0,
                           .extra_parameters = {"added_mass_position", "added_mass"},
-                          .converged = false,
-                          .status = "failed: Ipopt stopped",
+                          .status = RefitStatus::kFailed,
+                          .status_message = "Ipopt stopped",
                           .fit = {},
                           .likelihood_ratio = 0.0,
                           .test_dof = 2,
@@ -164,8 +163,7 @@ DiagnosisFile FullFile(bool with_location) {
                               .description = "the balance with 2H+1 harmonics",
                               .signature_score = 0.0,
                               .extra_parameters = {},
-                              .converged = true,
-                              .status = "solved",
+                              .status = RefitStatus::kRefitted,
                               .fit = Fit(3.0, {"k1", "k3", "c", "loss_factor"}),
                               .likelihood_ratio = 5.0 / 3.0,
                               .test_dof = 1,
@@ -335,8 +333,8 @@ void ExpectSameCandidates(const std::vector<CandidateOutcome>& xs, const std::ve
     EXPECT_EQ(c.rig_check, d.rig_check);
     EXPECT_TRUE(Same(c.signature_score, d.signature_score));
     EXPECT_EQ(c.extra_parameters, d.extra_parameters);
-    EXPECT_EQ(c.converged, d.converged);
     EXPECT_EQ(c.status, d.status);
+    EXPECT_EQ(c.status_message, d.status_message);
     ExpectSameFit(c.fit, d.fit, "candidate fit");
     EXPECT_TRUE(Same(c.likelihood_ratio, d.likelihood_ratio));
     EXPECT_EQ(c.test_dof, d.test_dof);
@@ -551,18 +549,35 @@ TEST(DiagnosisFile, TheDeclarationHolds) {
   }
 }
 
-// A file that `beamid diagnose` wrote before the declaration (the fuzzer's
-// seed, from a real run) reads, and is written again byte for byte: the
-// declaration writes the layout the earlier writer wrote.
-TEST(DiagnosisFile, AFileOfTheEarlierWriterIsWrittenAgainTheSame) {
-  const std::string path = "tests/fuzz/seeds/diagnosis_json_fuzzer/diagnosis.json";
+std::string SeedText(const std::string& name) {
+  const std::string path = "tests/fuzz/seeds/diagnosis_json_fuzzer/" + name;
   std::ifstream in(path, std::ios::binary);
-  ASSERT_TRUE(in) << path << " is missing (the test runs from the source folder)";
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const DiagnosisFile file = DiagnosisFileFromJson(text, path);
-  EXPECT_EQ(file.diagnosis.verdict, DiagnosisVerdict::kNoSignificantDiscrepancy);
-  EXPECT_EQ(file.diagnosis.blame, Blame::kNone);
-  EXPECT_EQ(DiagnosisFileToJson(file), text);
+  EXPECT_TRUE(in) << path << " is missing (the test runs from the source folder)";
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// A file that `beamid diagnose` wrote before the refit status was a choice
+// (the fuzzer's first seed, from a real run: "converged" and "status":
+// "solved" or "not refitted: why") reads as refitted or not refitted with
+// the why; the same run in today's layout ("refit": "refitted") is written
+// again byte for byte.
+TEST(DiagnosisFile, AFileOfTheEarlierWriterReadsAndTodaysLayoutIsWrittenAgainTheSame) {
+  const DiagnosisFile earlier = DiagnosisFileFromJson(SeedText("diagnosis.json"), "diagnosis.json");
+  EXPECT_EQ(earlier.diagnosis.verdict, DiagnosisVerdict::kNoSignificantDiscrepancy);
+  EXPECT_EQ(earlier.diagnosis.blame, Blame::kNone);
+  int refitted = 0, not_refitted = 0;
+  for (const auto& c : earlier.diagnosis.candidates) {
+    refitted += c.Refitted();
+    if (c.status != RefitStatus::kNotRefitted) continue;
+    ++not_refitted;
+    EXPECT_EQ(c.status_message, "the base model already fits within the noise") << c.name;
+  }
+  EXPECT_EQ(refitted, 10);  // "solved" in the file
+  EXPECT_EQ(not_refitted, 3);
+  const std::string text = SeedText("diagnosis_current.json");
+  const DiagnosisFile today = DiagnosisFileFromJson(text, "diagnosis_current.json");
+  EXPECT_EQ(DiagnosisFileToJson(today), text);
+  EXPECT_EQ(DiagnosisFileToJson(earlier), text);  // the same run, whichever layout it was read from
 }
 
 // ---------------------------------------------------------------- the first layout
@@ -648,7 +663,9 @@ TEST(DiagnosisFile, ReadsTheFirstLayout) {
   EXPECT_EQ(r.candidates[0].extra_parameters, std::vector<std::string>{"clamp_compliance"});
   EXPECT_EQ(r.candidates[0].fit.held_out_h1_relative_error, 0.00096);
   EXPECT_TRUE(r.candidates[0].significant);
-  EXPECT_EQ(r.candidates[1].status, "failed: stopped");
+  EXPECT_EQ(r.candidates[0].status, RefitStatus::kRefitted);
+  EXPECT_EQ(r.candidates[1].status, RefitStatus::kFailed);
+  EXPECT_EQ(r.candidates[1].status_message, "stopped");
   EXPECT_TRUE(r.candidates[1].extra_parameters.empty());
   EXPECT_EQ(r.final_fit.chi_square, 6.0);
   EXPECT_EQ(r.final_extra_parameters, std::vector<std::string>{"clamp_compliance"});

@@ -83,7 +83,7 @@ DiagnosisResult DiagnoseCampaign(const FaultyCampaign& c, const std::string& nam
   std::printf("%s: %s (to blame: %s), %.1f s\n  %s\n", name.c_str(), ToString(result.verdict).c_str(),
               ToString(result.blame).c_str(), result.seconds, result.summary.c_str());
   for (const auto& candidate : result.candidates)
-    std::printf("  candidate %s: %s, chi-square %.6g, %s, %.2f s\n", candidate.name.c_str(), candidate.status.c_str(),
+    std::printf("  candidate %s: %s, chi-square %.6g, %s, %.2f s\n", candidate.name.c_str(), candidate.Refitted() ? "refitted" : candidate.status_message.c_str(),
                 candidate.fit.chi_square, candidate.significant ? "significant" : "not significant", candidate.seconds);
   return result;
 }

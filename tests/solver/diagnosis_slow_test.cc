@@ -59,7 +59,7 @@ TEST(DiagnosisOnConcealedEffects, NamesAnAddedMass) {
   const auto wrong = std::find_if(result.candidates.begin(), result.candidates.end(),
                                   [](const auto& c) { return c.name == "modulus_error"; });
   ASSERT_NE(wrong, result.candidates.end());
-  ASSERT_TRUE(wrong->converged);
+  ASSERT_TRUE(wrong->Refitted());
   for (const auto& p : wrong->fit.parameters)
     EXPECT_TRUE(std::isfinite(p.std) && p.std < 1e3 * std::max(std::abs(p.value), 1.0)) << p.name << " ± " << p.std;
 }

@@ -18,7 +18,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 CandidateOutcome Candidate(const std::string& name, double chi_square, double held_out_chi_square) {
   CandidateOutcome c;
   c.name = name;
-  c.converged = true;
+  c.status = RefitStatus::kRefitted;
   c.significant = true;
   c.fit.chi_square = chi_square;
   c.fit.degrees_of_freedom = 500;

@@ -82,8 +82,8 @@ TEST(HtmlReportRecording, ADiagnosisThatBlamesTheRecordingSaysWhatToDoBeforeTheC
   d.summary = "A fault of the recording, not of the model: sensor_gain(acc2).";
   d.location_error = "not located";
   CandidateOutcome gain{.name = "sensor_gain(acc2)", .rig_check = "check acc2's calibration: it reads 5.0 % high",
-                        .converged = true, .significant = true, .measurement = true};
-  CandidateOutcome friction{.name = "support_friction", .converged = true};
+                        .status = RefitStatus::kRefitted, .significant = true, .measurement = true};
+  CandidateOutcome friction{.name = "support_friction", .status = RefitStatus::kRefitted};
   d.candidates = {gain, friction};
   input.diagnosis = DiagnosisFile{.diagnosis = d};
   const std::string page = HtmlReport(input, Curves());

@@ -130,8 +130,8 @@ MeasuredBackboneFile Filled() {
                      .damping_rate_slope_per_s_m = 1.5e3,
                      .damping_rate_slope_std_per_s_m = 7.5e2,
                      .damping_rate_z = 2.0,
-                     .verdict = "consistent with a constant damper",
-                     .damping_ratio_verdict = "rises"};
+                     .verdict = Trend::kNone,
+                     .damping_ratio_verdict = Trend::kRises};
   f.model_backbone = {{.amplitude_m = 1e-5, .frequency_hz = 31.5}, {.amplitude_m = 2e-5, .frequency_hz = kNaN}};
   f.warnings = {"first warning", "second warning"};
   return f;
@@ -331,9 +331,9 @@ TEST(MeasuredBackboneFile, AFileInTheEarlierLayoutReads) {
   EXPECT_EQ(f.single_mode_fit.parameters[2], 36000.0);
   ASSERT_EQ(f.single_mode_fit.curve.size(), 1u);
   EXPECT_EQ(f.single_mode_fit.curve[0].frequency_std_hz, 0.01);
-  EXPECT_EQ(f.damping_trend.verdict, "no significant trend");
-  // Before the damping rate, the one verdict was on ζ.
-  EXPECT_EQ(f.damping_trend.damping_ratio_verdict, "no significant trend");
+  // Before the damping rate, the one verdict was on ζ: the damping rate is not judged.
+  EXPECT_EQ(f.damping_trend.verdict, Trend::kNotJudged);
+  EXPECT_EQ(f.damping_trend.damping_ratio_verdict, Trend::kNone);
   ASSERT_EQ(f.model_backbone.size(), 1u);
   EXPECT_EQ(f.model_backbone[0].frequency_hz, 31.0);
 }

@@ -50,7 +50,7 @@ MeasuredBackboneFile File() {
                                           .frequency_std_hz = 0.002,
                                           .damping_ratio = 0.0057,
                                           .damping_ratio_std = 1e-4});
-  file.damping_trend = {.verdict = "consistent with a constant damper", .damping_ratio_verdict = "rises"};
+  file.damping_trend = {.verdict = Trend::kNone, .damping_ratio_verdict = Trend::kRises};
   file.warnings = {"level 'high' is flagged (jump: ...): left out of the cross-level fit"};
   return file;
 }

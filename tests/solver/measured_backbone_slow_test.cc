@@ -129,9 +129,9 @@ void Print(const char* name, const MeasuredBackbone& m) {
   std::printf("%s global fit: %s, reduced chi-square %.3g; damping slope %.4g ± %.3g /m (z = %.2f, %s); damping "
               "rate slope %.4g ± %.3g /(s m) (z = %.2f): %s\n",
               name, m.fit.FormName().c_str(), m.fit.ReducedChiSquare(), m.damping_trend.slope_per_m,
-              m.damping_trend.slope_std_per_m, m.damping_trend.z, m.damping_trend.damping_ratio_verdict.c_str(),
+              m.damping_trend.slope_std_per_m, m.damping_trend.z, std::string(schema::NameOf(m.damping_trend.damping_ratio_verdict, kDampingRatioTrendNames)).c_str(),
               m.damping_trend.damping_rate_slope_per_s_m, m.damping_trend.damping_rate_slope_std_per_s_m,
-              m.damping_trend.damping_rate_z, m.damping_trend.verdict.c_str());
+              m.damping_trend.damping_rate_z, std::string(schema::NameOf(m.damping_trend.verdict, kDampingRateTrendNames)).c_str());
   // The best candidate of the other family, to see how close the choice was.
   const BackboneModelCandidate* other = nullptr;
   const bool chosen_power = m.fit.frequency_exponent > 0 || m.fit.damping_exponent > 0;
@@ -170,9 +170,9 @@ TEST_F(MeasuredBackboneOnSimulatedCampaigns, FrictionBackboneAgreesWithTheTrueMo
 
 TEST_F(MeasuredBackboneOnSimulatedCampaigns, FrictionDampingRisesWithAmplitudeBaseDampingDoesNot) {
   EXPECT_GT(friction_->measured.damping_trend.z, kTrendSigmas);
-  EXPECT_EQ(friction_->measured.damping_trend.verdict, "rises beyond a constant damper");
+  EXPECT_EQ(friction_->measured.damping_trend.verdict, Trend::kRises);
   EXPECT_LT(base_->measured.damping_trend.z, kTrendSigmas);
-  EXPECT_NE(base_->measured.damping_trend.verdict, "rises beyond a constant damper");
+  EXPECT_NE(base_->measured.damping_trend.verdict, Trend::kRises);
 }
 
 // A level written as an acquisition system's table: response converted to

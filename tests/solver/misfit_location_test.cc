@@ -234,6 +234,42 @@ TEST(LocateMisfit, ReportsContentInHarmonicsFourAndFiveAsBeyondTheFittedOnes) {
   }
 }
 
+// An even-harmonic misfit names an asymmetric support only when the
+// recordings carry the even harmonics; when the model makes them and the
+// recordings do not, the sentence blames the model's even-order term.
+std::string EvenHarmonicFinding(const MisfitLocation& location) {
+  for (const auto& f : location.findings)
+    if (Contains(f, "even harmonics")) return f;
+  return "";
+}
+
+TEST(LocateMisfit, AnEvenHarmonicMisfitIsTheSupportsAsymmetryOnlyWhenTheRecordingsCarryIt) {
+  std::mt19937 rng(9);
+  Synthetic in_recordings = MakeSynthetic(rng);
+  AddNoise(in_recordings, rng);
+  Synthetic in_model = in_recordings;
+  for (std::size_t i = 0; i < in_recordings.model.size(); ++i) {
+    const Complex second = std::polar(2e-2 * std::abs(in_recordings.model[i](1, 0)), 0.7);
+    in_recordings.data.steps[i].measured(1, 1) += second;  // the support's even harmonic, unmodelled
+    in_model.model[i](1, 1) += second;                     // a model's spurious k2, absent from the data
+  }
+  const MisfitLocation asymmetric = LocateMisfit(in_recordings.data, in_recordings.model, kFitted, kUnusedBeam, kNoLoops);
+  ASSERT_TRUE(asymmetric.significant);
+  EXPECT_TRUE(asymmetric.measured_even_harmonics);
+  EXPECT_LT(asymmetric.measured_even_harmonics_p_value, 1e-6);
+  const std::string said_asymmetric = EvenHarmonicFinding(asymmetric);
+  EXPECT_TRUE(Contains(said_asymmetric, "the support is not symmetric")) << said_asymmetric;
+
+  const MisfitLocation spurious = LocateMisfit(in_model.data, in_model.model, kFitted, kUnusedBeam, kNoLoops);
+  ASSERT_TRUE(spurious.significant);
+  EXPECT_GT(spurious.even_harmonic_fraction, 0.9);  // the same misfit share as above ...
+  EXPECT_FALSE(spurious.measured_even_harmonics);   // ... but not in the recordings
+  EXPECT_GT(spurious.measured_even_harmonics_p_value, 1e-3);
+  const std::string said_spurious = EvenHarmonicFinding(spurious);
+  EXPECT_TRUE(Contains(said_spurious, "recordings do not carry")) << said_spurious;
+  EXPECT_FALSE(Contains(said_spurious, "not symmetric")) << said_spurious;
+}
+
 TEST(LocateMisfit, RejectsAModelOfTheWrongSize) {
   std::mt19937 rng(1);
   Synthetic s = MakeSynthetic(rng);

@@ -117,7 +117,7 @@ TEST_F(MultipleScalesIdentification, PredictsTheHeldOutChannelAndAHiddenPosition
   FitData fit_with_loss = *fit_;
   fit_with_loss.beam.loss_factor = kLossFactor;
   const ResultFile report = MakeResultFile(fit_with_loss, Fit({"acc3"}), problem, *ms_, {.family = &MultipleScalesFamily()});
-  EXPECT_EQ(report.model.kind, "ms");
+  EXPECT_EQ(report.model.kind, ModelKind::kMultipleScales);
   EXPECT_EQ(report.model.num_harmonics, 3);
   ASSERT_EQ(report.validation.size(), 1u);
   ASSERT_EQ(report.validation[0].channel, "acc3");

@@ -40,7 +40,7 @@ PredictionFile Filled() {
   f.beamid_version = "9.8.7";
   f.result_file = "runs/result.json";
   f.campaign_sha256 = "9f86d081884c7d659a2feaa0c55ad015a3bf4f1b2b0b822cd15d6c15b0f00a08";
-  f.model_kind = "ms";
+  f.model_kind = ModelKind::kMultipleScales;
   f.position_m = 0.4567;
   f.compared_channel = "vel2";
   f.compared_quantity = "velocity_m_s";
@@ -184,7 +184,7 @@ TEST(PredictionFile, AFileOfTheEarlierWriterReads) {
   EXPECT_EQ(f.beamid_version, "0.9.0");
   EXPECT_EQ(f.result_file, "r.json");
   EXPECT_EQ(f.campaign_sha256, "");
-  EXPECT_EQ(f.model_kind, "hb");
+  EXPECT_EQ(f.model_kind, ModelKind::kHarmonicBalance);
   EXPECT_EQ(f.position_m, 0.45);
   EXPECT_EQ(f.compared_channel, "acc3");
   EXPECT_EQ(f.compared_quantity, "acceleration_m_s2");
@@ -285,7 +285,7 @@ TEST(PredictionFile, AComparisonMustBeWholeAndInTheFilesQuantity) {
       {[](nlohmann::json& j) { j["compared_quantity"] = "force_N"; },
        "field \"compared_quantity\" breaks the rule: compared_quantity is displacement_m, velocity_m_s, "
        "acceleration_m_s2 or \"\""},
-      {[](nlohmann::json& j) { j["model"] = "duffing"; }, "field \"model\" breaks the rule: model names a model family"},
+      {[](nlohmann::json& j) { j["model"] = "duffing"; }, "field \"model\" is \"duffing\", not one of \"hb\", \"ms\""},
       {[](nlohmann::json& j) { j["steps"][0]["harmonics"][2]["displacement_std_m"][1] = -1e-9; },
        "field \"steps[0].harmonics[2].displacement_std_m[1]\" = -1e-09 lies outside ≥ 0"},
       {[](nlohmann::json& j) { j["steps"][0]["harmonics"][2]["k"] = 0; },

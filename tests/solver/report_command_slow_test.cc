@@ -177,11 +177,11 @@ TEST_F(ReportCommand, RendersADiagnosisSummary) {
   location.groups = {beyond, within};
   d.location = location;
   CandidateOutcome friction, clamp;
-  friction.name = "support_friction", friction.signature_score = 0.9, friction.converged = true;
+  friction.name = "support_friction", friction.signature_score = 0.9, friction.status = RefitStatus::kRefitted;
   friction.extra_parameters = {"jenkins_stiffness"};
   friction.fit.parameters = {{.name = "jenkins_stiffness", .unit = "N*m/rad", .value = 49.9, .std = 0.1}};
   friction.fit.chi_square = 120, friction.residual_drop = 41.7, friction.p_value = 0, friction.significant = true;
-  clamp.name = "clamp_compliance", clamp.signature_score = 0.1, clamp.converged = true, clamp.fit.chi_square = 4900;
+  clamp.name = "clamp_compliance", clamp.signature_score = 0.1, clamp.status = RefitStatus::kRefitted, clamp.fit.chi_square = 4900;
   d.candidates = {friction, clamp};
   WriteDiagnosisFile(*folder_ / "diagnosis.json", file);
   const ProgramRun run = RunShell(std::string(BEAMID_EXECUTABLE) + " -q report " +

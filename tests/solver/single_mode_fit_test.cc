@@ -72,7 +72,7 @@ TEST(MeasuredBackbone, FindsALinearOscillatorsResonanceAndDampingByEveryMethod) 
   // A linear oscillator's amplitude doubles with the force; its damping does not change.
   EXPECT_NEAR(m.levels[1].quadrature_amplitude_m.value, 2 * m.levels[0].quadrature_amplitude_m.value,
               1e-6 * m.levels[1].quadrature_amplitude_m.value);
-  EXPECT_EQ(m.damping_trend.verdict, "consistent with a constant damper");
+  EXPECT_EQ(m.damping_trend.verdict, Trend::kNone);
 }
 
 // A nonlinear mode in closed form: ω_n²(a) = p0 + p1·s^α (softening, α = 1.5),
@@ -159,7 +159,7 @@ TEST(MeasuredBackbone, ChoosesThePowerLawsOfAnIwanLikeModeAndFindsItsPhaseResona
     EXPECT_NEAR(l.quadrature_frequency_hz.value, lo / (2 * std::numbers::pi), 1e-7 * kNaturalFrequency_hz) << l.label;
   }
   // ζω_n itself rises (q1·s^β): beyond what a constant damper gives.
-  EXPECT_EQ(m.damping_trend.verdict, "rises beyond a constant damper");
+  EXPECT_EQ(m.damping_trend.verdict, Trend::kRises);
 }
 
 }  // namespace

@@ -123,6 +123,17 @@ std::string StatusTextOf(Ipopt::ApplicationReturnStatus status) {
     case Ipopt::Restoration_Failed: return "restoration phase failed";
     case Ipopt::Error_In_Step_Computation: return "error in step computation";
     case Ipopt::Invalid_Number_Detected: return "invalid number (NaN or Inf) in the model";
+    case Ipopt::Maximum_CpuTime_Exceeded: return "CPU time limit reached";
+    case Ipopt::User_Requested_Stop: return "stopped by beamid (a model evaluation failed or was cancelled)";
+    case Ipopt::Feasible_Point_Found: return "feasible point found";
+    case Ipopt::Diverging_Iterates: return "diverging iterates (a parameter ran off to infinity)";
+    case Ipopt::Not_Enough_Degrees_Of_Freedom: return "not enough degrees of freedom (fewer residuals than parameters)";
+    case Ipopt::Invalid_Problem_Definition: return "invalid problem definition";
+    case Ipopt::Invalid_Option: return "invalid Ipopt option";
+    case Ipopt::Unrecoverable_Exception: return "unrecoverable exception inside Ipopt";
+    case Ipopt::NonIpopt_Exception_Thrown: return "an exception from the model inside Ipopt";
+    case Ipopt::Insufficient_Memory: return "insufficient memory";
+    case Ipopt::Internal_Error: return "internal error in Ipopt";
     default: return "Ipopt status " + std::to_string(static_cast<int>(status));
   }
 }

@@ -1,0 +1,115 @@
+// What the report says follows the outcome it shows: the damping caption
+// says what the measured backbone concluded (each verdict, with its own z),
+// the parameter table leads with the damping law the data accept, and a
+// candidate that was not refitted (or whose refit failed) says so instead
+// of showing a χ², drop and p it never had.
+#include "solver/report/html_report.h"
+
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "solver/estimation/damping_laws.h"
+
+namespace beamid::solver {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+ParameterEstimate Estimate(const std::string& name, double value, double std) {
+  return {.name = name, .unit = "N*m*s/rad", .value = value, .std = std, .lower_95 = value - 1.96 * std,
+          .upper_95 = value + 1.96 * std};
+}
+
+ReportInput Input() {
+  ReportInput input;
+  input.result_file = "out/result.json";
+  input.campaign_folder = "campaign";
+  input.result.model.fit_channels = {"acc1"};
+  input.result.parameters = {{.name = "c", .unit = "N*m*s/rad", .value = 0.0465, .std = 0.0005,
+                              .lower_95 = 0.0465 - 1.96 * 0.0005, .upper_95 = 0.0465 + 1.96 * 0.0005}};
+  input.result.fit.reduced_chi_square = 1.6;
+  return input;
+}
+
+ReportCurves Curves(Trend trend, double z) {
+  ReportCurves curves;
+  curves.channels = {{.channel = "acc1", .position_m = 0.1, .si_unit = "m/s^2", .fitted = true}};
+  LevelCurves level{.level = "high", .force_amplitude_N = 9.0};
+  for (double f : {54.5, 55.0, 55.5}) level.measured.push_back({.frequency_hz = f, .amplitude = {10.0 + f - 54.0}});
+  for (double f = 54.0; f <= 56.0; f += 0.5) level.model.push_back({.frequency_hz = f, .amplitude = {12.0}});
+  curves.levels = {level};
+  for (double f = 54.0; f <= 56.0; f += 0.5) curves.backbone.push_back({.frequency_hz = f, .amplitude = 5.0 + f - 54.0});
+  curves.measured_mode.damping = {{.level = "low", .amplitude = 1.0, .quadrature = 0.006, .quadrature_std = 1e-4},
+                                  {.level = "high", .amplitude = 9.0, .quadrature = 0.011, .quadrature_std = 1e-4}};
+  curves.measured_mode.damping_rate_trend = trend;
+  curves.measured_mode.damping_rate_trend_z = z;
+  curves.residuals.rows = {"acc1 h1"};
+  for (const auto& m : level.measured) {
+    curves.residuals.step_level.push_back("high");
+    curves.residuals.step_frequency_hz.push_back(m.frequency_hz);
+  }
+  curves.residuals.whitened_norm = Eigen::MatrixXd::Ones(1, 3);
+  return curves;
+}
+
+TEST(HtmlReportCaptions, TheDampingCaptionSaysTheMeasuredBackbonesVerdictWithItsOwnZ) {
+  const std::string rises = HtmlReport(Input(), Curves(Trend::kRises, 10.5));
+  EXPECT_THAT(rises, HasSubstr("rises with amplitude beyond a constant damper (+10.5 σ)"));
+  EXPECT_THAT(rises, Not(HasSubstr("consistent with a constant damper")));
+  const std::string falls = HtmlReport(Input(), Curves(Trend::kFalls, -11.6));
+  EXPECT_THAT(falls, HasSubstr("falls with amplitude below a constant damper (-11.6 σ)"));
+  const std::string none = HtmlReport(Input(), Curves(Trend::kNone, 0.4));
+  EXPECT_THAT(none, HasSubstr("consistent with a constant damper (+0.4 σ)"));
+  EXPECT_THAT(none, Not(HasSubstr("rises with amplitude")));
+}
+
+TEST(HtmlReportCaptions, WhenTheDataRejectTheLossFactorTheAcceptedLawsParametersLead) {
+  ReportInput input = Input();
+  input.result.damping_laws.laws = {DampingLawFitOf("loss_factor", {Estimate("c", 0.0465, 0.0005)}, 160.0, 100),
+                                    DampingLawFitOf("rayleigh", {Estimate("c", 0.0501, 0.0006)}, 100.0, 99)};
+  JudgeDampingLaws(&input.result.damping_laws);
+  const std::string page = HtmlReport(input, Curves(Trend::kNone, 0.0));
+  const auto answer = page.find("<td>0.0501</td>");
+  const auto rejected = page.find("<td>0.0465</td>");
+  ASSERT_NE(answer, std::string::npos) << "the accepted law's c";
+  ASSERT_NE(rejected, std::string::npos) << "the rejected law's c, for comparison";
+  EXPECT_LT(answer, rejected) << "the answer comes first";
+  EXPECT_THAT(page, HasSubstr("reject the loss factor"));
+  EXPECT_THAT(page, HasSubstr("<b>rayleigh</b>"));
+
+  // Accepted: one table, the fit's own.
+  ReportInput accepted = Input();
+  accepted.result.damping_laws.laws = {DampingLawFitOf("loss_factor", {Estimate("c", 0.0465, 0.0005)}, 100.5, 100),
+                                       DampingLawFitOf("rayleigh", {Estimate("c", 0.0466, 0.0006)}, 100.0, 99)};
+  JudgeDampingLaws(&accepted.result.damping_laws);
+  const std::string kept = HtmlReport(accepted, Curves(Trend::kNone, 0.0));
+  EXPECT_THAT(kept, Not(HasSubstr("reject the loss factor")));
+  EXPECT_THAT(kept, Not(HasSubstr("<td>0.0466</td>")));
+}
+
+TEST(HtmlReportCaptions, ACandidateNotRefittedOrFailedSaysSoInsteadOfNumbers) {
+  ReportInput input = Input();
+  DiagnosisResult d;
+  d.verdict = DiagnosisVerdict::kCauseNamed;
+  d.selected = {"support_friction"};
+  d.base.chi_square = 4.5e5;
+  CandidateOutcome friction{.name = "support_friction", .status = RefitStatus::kRefitted, .p_value = 1e-30,
+                            .residual_drop = 4.5e4, .significant = true};
+  friction.fit.chi_square = 10.0;
+  CandidateOutcome skipped{.name = "added_mass", .status = RefitStatus::kNotRefitted,
+                           .status_message = "support_friction already fits within the noise"};
+  CandidateOutcome failed{.name = "clamp_compliance", .status = RefitStatus::kFailed,
+                          .status_message = "maximum number of iterations reached"};
+  d.candidates = {friction, skipped, failed};
+  input.diagnosis = DiagnosisFile{.diagnosis = d};
+  const std::string page = HtmlReport(input, Curves(Trend::kNone, 0.0));
+  EXPECT_THAT(page, HasSubstr("<td colspan=\"4\">not refitted: support_friction already fits within the noise</td>"));
+  EXPECT_THAT(page, HasSubstr("<td colspan=\"4\">refit failed: maximum number of iterations reached</td>"));
+  EXPECT_THAT(page, Not(HasSubstr("refit failed: not refitted")));
+}
+
+}  // namespace
+}  // namespace beamid::solver
