@@ -183,7 +183,8 @@ std::vector<Comparison> CheckMarkers(const std::string& text, const std::string&
         bad_spec = true;
       }
     }
-    const auto folder = std::find_if(examples.begin(), examples.end(), [&](const auto& e) { return e.first == example; });
+    const auto folder =
+        std::find_if(examples.begin(), examples.end(), [&](const auto& e) { return e.first == example; });
     std::string error;
     std::optional<nlohmann::json> doc;
     const nlohmann::json* value = nullptr;
