@@ -15,7 +15,7 @@ namespace beamid::hb {
 namespace {
 
 constexpr schema::Format kFormat{kModelFileFormat, "model file",
-                                 "give a model file (README.md, Model files) or a scenario (docs/simulator.md)"};
+                                 "give a model file (docs/model-file.md) or a scenario (docs/simulator.md)"};
 
 // A scenario is a model file too (see the header): "format" names either.
 enum class ModelFormat { kModel, kScenario };

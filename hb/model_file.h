@@ -1,5 +1,5 @@
 // The physical model of the beam and its support as read from a JSON model
-// file (format "beamid-model/1", described in the README, "Model files"):
+// file (format "beamid-model/1", described in docs/model-file.md):
 // the beam, the support law, the linear attachments, where the force acts
 // and where the sensors sit. The format is declared once (hb/json_schema.h);
 // that declaration is its reader, its writer and its field table. A

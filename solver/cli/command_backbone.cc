@@ -122,7 +122,7 @@ BEAMID_REGISTER_COMMAND("backbone", [](CLI::App& app, const GlobalOptions& globa
       "or, with --measured, the measured backbone and damping against amplitude of a stepped-sine test.\n"
       "Example: beamid backbone examples/paper_setup/model.json --max-theta-rad 0.02 -o out/backbone\n"
       "Example: beamid backbone --measured out/base --channel acc2 --result out/result.json -o out/measured");
-  sub->add_option("model", options->model_file, "Model file (JSON, see README 'Model files')");
+  sub->add_option("model", options->model_file, "Model file (JSON, see docs/model-file.md)");
   sub->add_option("--measured", measured->inputs,
                   "Measured input: a campaign folder, a phasor file of beamid extract, or first-harmonic CSV tables "
                   "(one per level, docs/phasor-table.md)");

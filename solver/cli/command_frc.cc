@@ -130,7 +130,7 @@ BEAMID_REGISTER_COMMAND("frc", [](CLI::App& app, const GlobalOptions& global) {
       "frc",
       "Frequency response curves by harmonic balance and continuation (stable and unstable branches).\n"
       "Example: beamid frc examples/paper_setup/model.json --force-N 0.5,1,2 --from-hz 50 --to-hz 58 -o out/frc");
-  sub->add_option("model", options->model_file, "Model file (JSON, see README 'Model files')")->required();
+  sub->add_option("model", options->model_file, "Model file (JSON, see docs/model-file.md)")->required();
   sub->add_option("--force-N", options->force_levels_N, "Force amplitudes [N], comma-separated")
       ->delimiter(',')
       ->check(FiniteRange(1e-9, 1e6));

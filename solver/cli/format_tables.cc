@@ -21,7 +21,7 @@ const std::vector<DocumentedFormat>& DocumentedFormats() {
        hb::BackboneFileFields},
       {std::string(solver::kMeasuredBackboneFormat), "Measured backbone (`beamid backbone --measured`, <output>.json)",
        solver::MeasuredBackboneFileFields},
-      {std::string(hb::kModelFileFormat), "Model file (`frc`, `backbone`; README, Model files)", hb::ModelFileFields},
+      {std::string(hb::kModelFileFormat), "Model file (`frc`, `backbone`; docs/model-file.md)", hb::ModelFileFields},
       {std::string(hb::kScenarioFormat), "Simulation scenario (`simulate`; docs/simulator.md)", hb::ScenarioFields},
       // estimation: result.json and the prediction file
       {std::string(solver::kResultFormat), "Identification result (`beamid identify`, result.json)",

@@ -1,5 +1,5 @@
-// The one reader and writer of result.json (format "beamid-result/1", the
-// README's "result.json"): a ResultFile (solver/estimation/result_file.h) to
+// The one reader and writer of result.json (format "beamid-result/1",
+// docs/result-format.md): a ResultFile (solver/estimation/result_file.h) to
 // JSON text and back. The writer keeps the keys every earlier beamid wrote,
 // adds "beamid_version", and writes the held-out channels, quality entries
 // and parameters in the struct's order. JSON has no NaN: a number that is not

@@ -231,7 +231,7 @@ TEST(ClosedFormBeamTest, PointForceShapeMatchesLinearBeamAndIsReciprocal) {
 }
 
 TEST(ClosedFormBeamTest, SupportStiffnessForA54HzFirstResonance) {
-  // The README example: the K1 that puts the first resonance of the paper's
+  // The model file example (docs/model-file.md): the K1 that puts the first resonance of the paper's
   // beam at 54.0 Hz, found on the closed form and confirmed on LinearBeam.
   const BeamProperties beam = testing::PaperBeam();
   const double target_rad_s = 2.0 * std::numbers::pi * 54.0;
