@@ -117,12 +117,13 @@ void RunDiagnose(const DiagnoseCommandOptions& options, const GlobalOptions& glo
   if (!options.curves.empty()) paths.OutputPrefix("--curves", options.curves, {".csv", ".gp", ".png"});
   paths.Check();
   RequireFitWithinModelHarmonics(options.fit_harmonics, options.harmonics);
+  // Before the campaign is read; the library's names ([0] is "none").
+  const std::vector<std::string> names = solver::CandidateNames();
   for (const auto& name : options.candidates) {
-    const auto names = solver::CandidateNames();
-    if (std::find(names.begin() + 1, names.end(), name) == names.end())
-      throw std::invalid_argument("--candidates: unknown candidate '" + name +
-                                  "' (known: support_friction, clamp_compliance, added_mass, modulus_error, "
-                                  "support_asymmetry, harmonic_truncation)");
+    if (std::find(names.begin() + 1, names.end(), name) != names.end()) continue;
+    std::string known;
+    for (auto n = names.begin() + 1; n != names.end(); ++n) known += (known.empty() ? "" : ", ") + *n;
+    throw std::invalid_argument("--candidates: unknown candidate '" + name + "' (known: " + known + ")");
   }
   const CampaignForAnalysis analysis = ReadCampaignForAnalysis("diagnose", options.campaign_folder, options.fit_channels,
                                                                options.validate_channels, global);

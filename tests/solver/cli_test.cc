@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "solver/diagnosis/candidate_physics.h"
 #include "tests/support/paper_scenario.h"
 #include "tests/support/temp_path.h"
 
@@ -100,6 +101,12 @@ TEST_F(CommandLine, BadInputEndsWithExitCodeTwoAndSaysWhatToFix) {
   run = Beamid("diagnose " + (folder_ / "no_campaign").string() + " --candidates gravity");
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_THAT(run.output, HasSubstr("gravity"));
+  // The known ones are the library's, every one of them.
+  for (const auto& name : beamid::solver::CandidateNames()) {
+    if (name != "none") {
+      EXPECT_THAT(run.output, HasSubstr(name));
+    }
+  }
 }
 
 // Option values out of range are refused before any file is read or any
