@@ -111,5 +111,41 @@ TEST(HtmlReportCaptions, ACandidateNotRefittedOrFailedSaysSoInsteadOfNumbers) {
   EXPECT_THAT(page, Not(HasSubstr("refit failed: not refitted")));
 }
 
+// A diagnosis that names a cause: its model's parameters lead (the base
+// fit's beside them), its first harmonic is drawn at the steps beside the
+// base model's, and the held-out channel gets measured, base and selected.
+TEST(HtmlReportCaptions, ADiagnosisThatNamesACauseShowsTheSelectedModelBesideTheBase) {
+  ReportInput input = Input();
+  DiagnosisResult d;
+  d.verdict = DiagnosisVerdict::kCauseNamed;
+  d.selected = {"support_friction"};
+  d.base.parameters = {Estimate("c", 0.0465, 0.0005)};
+  d.final_fit.parameters = {Estimate("c", 0.0412, 0.0004), Estimate("jenkins_stiffness", 50.04, 0.01)};
+  for (double f : {54.5, 55.0, 55.5})
+    for (const char* channel : {"acc1", "acc3"})
+      d.response.push_back({.level = "high", .frequency_hz = f, .channel = channel, .held_out = channel[3] == '3',
+                            .measured = {6.2, 0.0}, .base_model = {3.5, 0.0}, .final_model = {6.1, 0.0}});
+  input.diagnosis = DiagnosisFile{.diagnosis = d};
+  const std::string page = HtmlReport(input, Curves(Trend::kNone, 0.0));
+  const auto selected = page.find("The selected model: support_friction");
+  const auto base = page.find("The base model's fit (identify), which the diagnosis rejects");
+  ASSERT_NE(selected, std::string::npos);
+  ASSERT_NE(base, std::string::npos);
+  EXPECT_LT(selected, base);
+  EXPECT_THAT(page, HasSubstr("<tr><td>c</td><td>0.0412</td>"));
+  EXPECT_THAT(page, HasSubstr("<td>N*m*s/rad</td><td>0.0465</td></tr>"));  // the base fit's c beside it
+  EXPECT_THAT(page, HasSubstr("selected model (support_friction) high"));  // on the response curves
+  EXPECT_THAT(page, HasSubstr("id=\"held-out-selected-acc3\""));
+  EXPECT_THAT(page, Not(HasSubstr("id=\"held-out-selected-acc1\"")));  // acc1 was fitted
+
+  // No cause named: no selected model anywhere.
+  d.verdict = DiagnosisVerdict::kNoSignificantDiscrepancy;
+  d.selected = {"none"};
+  input.diagnosis = DiagnosisFile{.diagnosis = d};
+  const std::string none = HtmlReport(input, Curves(Trend::kNone, 0.0));
+  EXPECT_THAT(none, Not(HasSubstr("selected model")));
+  EXPECT_THAT(none, HasSubstr("<h2>Identified parameters</h2>"));
+}
+
 }  // namespace
 }  // namespace beamid::solver
