@@ -1,5 +1,7 @@
 #include "solver/estimation/model_family.h"
 
+#include <stdexcept>
+
 #include "hb/errors.h"
 
 namespace beamid::solver {
@@ -21,6 +23,10 @@ const ModelFamily& FindModelFamily(const std::string& name) {
   throw InputError("model '" + name + "': unknown model family. Fix: use one of " + known);
 }
 
-const ModelFamily& FindModelFamily(ModelKind kind) { return FindModelFamily(std::string(schema::NameOf(kind, kModelKindNames))); }
+const ModelFamily& FindModelFamily(ModelKind kind) {
+  for (const ModelFamily* family : ModelFamilies())
+    if (family->Kind() == kind) return *family;
+  throw std::logic_error("FindModelFamily: a ModelKind without its family in ModelFamilies()");
+}
 
 }  // namespace beamid::solver
