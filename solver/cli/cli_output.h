@@ -25,6 +25,7 @@
 
 #include "signal/campaign.h"
 #include "signal/phasor_set.h"
+#include "solver/estimation/damping_laws.h"
 
 namespace beamid::cli {
 
@@ -109,6 +110,11 @@ signal::PhasorSet ReadOrExtractPhasors(const signal::Campaign& campaign, const P
                                        const GlobalOptions& global);
 
 // The steps an extraction left out, one warning line each on stderr.
+// Each damping law's refit (accepted or rejected) and every shared
+// parameter's model-form interval over the accepted laws; nothing when the
+// laws were not refitted.
+void PrintDampingLaws(const solver::DampingLawEnvelope& envelope);
+
 void PrintSkippedSteps(const std::string& command, const signal::PhasorSet& phasors, const GlobalOptions& global);
 
 }  // namespace beamid::cli

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include <fmt/core.h>
+#include <fmt/ranges.h>
 
 #include "signal/campaign.h"
 #include "signal/campaign_extractor.h"
@@ -199,6 +200,10 @@ void RunDiagnose(const DiagnoseCommandOptions& options, const GlobalOptions& glo
         fmt::print("  {:<30} {:>6.2f} {:>12.5g} {:>8.3g}x {:>11.5g} {:>10.2g}  {}  ({:.1f} s){}\n", c.name,
                    c.signature_score, c.fit.chi_square, c.residual_drop, c.fit.bic, c.p_value, held_out(c.fit),
                    c.seconds, c.significant ? "  significant" : "");
+    if (!result.final_damping_laws.empty()) {
+      fmt::print("the selected model ({}):\n", fmt::join(result.selected, " + "));
+      PrintDampingLaws(result.final_damping_laws);
+    }
     fmt::print("{}\nwrote {}\n", result.summary, options.output);
   }
 }

@@ -60,24 +60,6 @@ void PrintParameters(const std::vector<solver::ParameterEstimate>& parameters) {
                p.lower_95, p.upper_95);
 }
 
-// Each law's misfit, then every shared parameter's interval over the accepted laws.
-void PrintDampingLaws(const solver::DampingLawEnvelope& envelope) {
-  if (envelope.laws.empty()) return;
-  fmt::print("  beam damping laws (the fit assumes loss_factor):\n");
-  for (const auto& law : envelope.laws)
-    if (law.converged)
-      fmt::print("    {:<23} reduced chi-square {:.3g}  {}\n", law.law, law.reduced_chi_square,
-                 law.accepted ? "fits: accepted" : "rejected by the data");
-    else
-      fmt::print("    {:<23} {}\n", law.law, law.status);
-  fmt::print("  model-form 95 % intervals (envelope over the accepted damping laws):\n");
-  for (const auto& i : envelope.intervals)
-    fmt::print("    {:<10} {:.6g} … {:.6g} {}{}\n", i.name, i.lower_95, i.upper_95, i.unit,
-               i.depends_on_damping_law ? "   [DEPENDS ON THE DAMPING LAW: another law that fits puts it outside the "
-                                          "statistical interval]"
-                                        : "");
-}
-
 void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& global) {
   OutputPaths()
       .InputFolder(options.campaign_folder)

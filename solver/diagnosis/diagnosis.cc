@@ -916,6 +916,15 @@ DiagnosisResult Diagnose(const FitData& fit, const FitData& validation, const Fi
     result.suggestion = SuggestMeasurement(fit, *refits.models[verdict.cause], refits.outcomes[verdict.cause].name,
                                            *refits.models[verdict.tied_with], refits.outcomes[verdict.tied_with].name);
   }
+  // A fault of the recording refits corrected data under the base physics,
+  // whose model form is identify's question, not the cause's.
+  if (options.damping_laws && result.blame == Blame::kModel && final_model != nullptr) {
+    report(0.93, "refitting the selected model under the other beam damping laws");
+    result.final_damping_laws =
+        FitDampingLaws(final_model->data, final_model->structure, result.final_fit.parameters,
+                       result.final_fit.chi_square, result.final_fit.degrees_of_freedom,
+                       CandidateRefitOptions(options, final_model->model_harmonics));
+  }
   report(0.95, "response curves");
   double final_clock_error = 0.0;
   if (named && final_model == refits.models[verdict.cause].get() &&

@@ -50,6 +50,7 @@
 #include "solver/diagnosis/fitted_model.h"
 #include "solver/diagnosis/measurement_suggestion.h"
 #include "solver/estimation/chi_square.h"
+#include "solver/estimation/damping_laws.h"
 #include "solver/estimation/fit_data.h"
 #include "solver/estimation/fit_problem.h"
 #include "solver/estimation/model_family.h"
@@ -89,6 +90,10 @@ struct DiagnosisOptions {
   // Check the recording first: the measurement artefacts of
   // solver/diagnosis/measurement_artefacts.h beside the physics candidates.
   bool measurement_artefacts = true;
+  // Refit a selected model of the physics under the other beam damping laws,
+  // so that its parameters carry model-form intervals as identify's do
+  // (solver/estimation/damping_laws.h): three more refits of one model.
+  bool damping_laws = true;
 
   // Throws beamid::InputError naming the first field out of its range, its
   // value and the range, so that a bad option fails before minutes of fits.
@@ -212,6 +217,10 @@ struct DiagnosisResult {
   std::optional<MeasurementSuggestion> suggestion;
   FitSummary final_fit;                      // the selected model (the base when none)
   std::vector<std::string> final_extra_parameters;
+  // The selected physics refitted under the other beam damping laws, and its
+  // parameters' model-form intervals; empty when no physics is named, its
+  // model holds no loss factor, or DiagnosisOptions::damping_laws is off.
+  DampingLawEnvelope final_damping_laws;
   std::vector<ResponsePoint> response;
   std::string summary;
   double seconds = 0.0;

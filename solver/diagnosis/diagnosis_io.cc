@@ -14,6 +14,7 @@
 #include "hb/json_schema.h"
 #include "hb/option_checks.h"
 #include "hb/text_file.h"
+#include "solver/estimation/damping_laws_schema.h"
 
 namespace beamid::solver {
 namespace {
@@ -159,6 +160,8 @@ void Describe(auto& io, schema::Like<DiagnosisRecord> auto& rec) {
     final_io.Object("fit", x.file.diagnosis.final_fit);
     final_io.Texts("extra_parameter_names", x.file.diagnosis.final_extra_parameters, kMaxParameters,
                    TextRule::kNotEmpty, kOptional);
+    final_io.Object("damping_laws", x.file.diagnosis.final_damping_laws, kOmittedWhenEmpty,
+                    damping_laws_schema::kEnvelope);
   });
   io.Check(rec.final_extension == r.selected, "final.extension names the selected candidates", "final.extension");
   io.List("candidates", rec.candidates, kMaxCandidates);
@@ -343,6 +346,7 @@ DiagnosisFile DiagnosisFileFromJson(const std::string& text, const std::string& 
   }
   for (CandidateEntry& e : rec.candidates) r.candidates.push_back(Outcome(std::move(e)));
   for (CandidateEntry& e : rec.combinations) r.combinations.push_back(Outcome(std::move(e)));
+  if (!r.final_damping_laws.empty()) JudgeDampingLaws(&r.final_damping_laws);
   if (r.final_extra_parameters.empty() && !r.selected.empty())
     // Older files: the selected candidate's.
     for (const CandidateOutcome& c : r.candidates)

@@ -83,16 +83,22 @@ void JudgeDampingLaws(DampingLawEnvelope* envelope) {
 
 DampingLawEnvelope FitDampingLaws(const FitData& data, const ModelStructure& fitted, const IdentifyResult& result,
                                   const IdentifyOptions& options) {
+  return FitDampingLaws(data, fitted, result.parameters, result.chi_square, result.degrees_of_freedom, options);
+}
+
+DampingLawEnvelope FitDampingLaws(const FitData& data, const ModelStructure& fitted,
+                                  const std::vector<ParameterEstimate>& parameters, double chi_square,
+                                  int degrees_of_freedom, const IdentifyOptions& options) {
   DampingLawEnvelope envelope;
   const auto names = fitted.Names();
   const auto loss = std::find(names.begin(), names.end(), kLossFactor);
-  if (loss == names.end()) return envelope;
+  if (loss == names.end() || parameters.size() != names.size()) return envelope;
   const std::size_t loss_index = static_cast<std::size_t>(loss - names.begin());
-  envelope.laws.push_back(DampingLawFitOf(kLossFactor, result.parameters, result.chi_square, result.degrees_of_freedom));
+  envelope.laws.push_back(DampingLawFitOf(kLossFactor, parameters, chi_square, degrees_of_freedom));
 
   // ζ from η alone would start every law at no damping when the fit put all
   // of it in c; a small floor lets the refit move.
-  const double eta = std::max(result.parameters[loss_index].value, 1e-5);
+  const double eta = std::max(parameters[loss_index].value, 1e-5);
   IdentifyOptions refit = options;
   refit.num_starts = 0;
   refit.num_workers = 1;
@@ -102,8 +108,8 @@ DampingLawEnvelope FitDampingLaws(const FitData& data, const ModelStructure& fit
     ModelStructure structure = fitted;
     structure.linear.erase(structure.linear.begin() + static_cast<std::ptrdiff_t>(loss_index - structure.law_bounds.size()));
     std::vector<double> start;
-    for (std::size_t j = 0; j < result.parameters.size(); ++j)
-      if (j != loss_index) start.push_back(result.parameters[j].value);
+    for (std::size_t j = 0; j < parameters.size(); ++j)
+      if (j != loss_index) start.push_back(parameters[j].value);
     for (LinearParameter& p : LawParameters(law, eta, MeanOmega_rad_s(data))) {
       start.push_back(p.initial);
       structure.linear.push_back(std::move(p));

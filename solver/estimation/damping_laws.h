@@ -65,6 +65,11 @@ std::vector<std::string> DampingLawNames();
 // A refit that fails is listed with its status and never accepted.
 DampingLawEnvelope FitDampingLaws(const FitData& data, const ModelStructure& fitted, const IdentifyResult& result,
                                   const IdentifyOptions& options);
+// The same from a fit's estimates (in `fitted.Names()`' order), its χ² and
+// degrees of freedom: a diagnosis's selected model, which is no IdentifyResult.
+DampingLawEnvelope FitDampingLaws(const FitData& data, const ModelStructure& fitted,
+                                  const std::vector<ParameterEstimate>& parameters, double chi_square,
+                                  int degrees_of_freedom, const IdentifyOptions& options);
 
 // One law's fit from a parameter list (as the identify result's), NaN-free.
 DampingLawFit DampingLawFitOf(const std::string& law, const std::vector<ParameterEstimate>& parameters,

@@ -15,6 +15,7 @@
 #include "hb/json_schema.h"
 #include "hb/option_checks.h"
 #include "hb/text_file.h"
+#include "solver/estimation/damping_laws_schema.h"
 #include "solver/estimation/model_family.h"
 #include "solver/estimation/model_structure.h"
 
@@ -80,48 +81,8 @@ std::string Rule(bool ok, std::string_view rule, const std::string& broken) {
   return ok ? std::string(rule) : std::string(rule) + ": " + broken;
 }
 
-// Two members the file holds as one [low, high].
-template <typename Io, typename D>
-void Interval(Io& io, std::string_view key, D& low, D& high, std::string_view unit) {
-  std::vector<double> pair = {low, high};
-  io.Numbers(key, pair, unit, schema::Any().OrNull(), schema::Count::Exactly(2, "2 (low, high)"));
-  if constexpr (Io::kReading) {
-    low = pair[0];
-    high = pair[1];
-  }
-}
-
-
-// The estimate of a fit under another damping law or of the ordinary fit.
-// (ParameterEstimate is also another file's: its declaration here is named,
-// not found by lookup.)
-constexpr auto kEstimate = [](auto& io, auto& p) {
-  io.Text("name", p.name, TextRule::kNotEmpty);
-  io.Text("unit", p.unit);
-  io.Number("value", p.value, "the parameter's unit", schema::Any().OrNull());
-  io.Number("std", p.std, "the parameter's unit", schema::NonNegative().OrNull());
-  Interval(io, "ci95", p.lower_95, p.upper_95, "the parameter's unit");
-};
-
-constexpr auto kDampingLaws = [](auto& io, auto& envelope) {
-  io.List("laws", envelope.laws, 16, Presence::kRequired, [](auto& law_io, auto& law) {
-    law_io.Text("law", law.law, TextRule::kNotEmpty);
-    law_io.Boolean("converged", law.converged);
-    law_io.Text("status", law.status);
-    law_io.Number("chi_square", law.chi_square, "1", schema::NonNegative().OrNull());
-    law_io.Number("reduced_chi_square", law.reduced_chi_square, "1", schema::NonNegative().OrNull());
-    // Judged again on reading (JudgeDampingLaws), as the intervals.
-    law_io.Boolean("accepted", law.accepted);
-    law_io.List("parameters", law.parameters, kMaxParameters, Presence::kRequired, kEstimate);
-  });
-  io.List("model_form_intervals", envelope.intervals, kMaxParameters, Presence::kRequired,
-          [](auto& interval_io, auto& i) {
-            interval_io.Text("name", i.name, TextRule::kNotEmpty);
-            interval_io.Text("unit", i.unit);
-            Interval(interval_io, "ci95", i.lower_95, i.upper_95, "the parameter's unit");
-            interval_io.Boolean("depends_on_damping_law", i.depends_on_damping_law);
-          });
-};
+using damping_laws_schema::Interval;
+using damping_laws_schema::kEstimate;
 
 constexpr auto kRobustFit = [](auto& io, auto& r) {
   io.Boolean("applied", r.applied);
@@ -321,7 +282,7 @@ void Describe(auto& io, schema::Like<ResultFile> auto& f) {
   io.Matrix("correlation", f.correlation, "1", schema::Between(-1.0 - 1e-6, 1.0 + 1e-6).OrNull(), per_parameter,
             per_parameter);
   io.Object("fit", f.fit);
-  io.Object("damping_laws", f.damping_laws, kOmittedWhenEmpty, kDampingLaws);
+  io.Object("damping_laws", f.damping_laws, kOmittedWhenEmpty, damping_laws_schema::kEnvelope);
   io.Object("robust_fit", f.robust_fit, kOmittedWhenEmpty, kRobustFit);
   io.List("unsettled_steps", f.unsettled_steps, kMaxSteps, kOmittedWhenEmpty);
   io.Texts("warnings", f.warnings, kMaxWarnings);

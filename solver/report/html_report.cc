@@ -302,17 +302,31 @@ std::string ParameterRows(const std::vector<Parameter>& parameters, const std::v
 }
 
 // The selected model's parameters, the answer, with the base fit's value of
-// each beside it (blank for the parameters the base model lacks).
+// each beside it (blank for the parameters the base model lacks), and their
+// model-form intervals over the beam damping laws when the diagnosis refitted
+// the selected model under them.
 std::string SelectedParameterTable(const DiagnosisResult& d) {
+  const std::vector<ModelFormInterval>& model_form = d.final_damping_laws.intervals;
   std::string html =
       "<table class=\"parameters\"><tr><th>parameter</th><th>value</th><th>standard uncertainty</th>"
-      "<th>95 % interval</th><th>unit</th><th>base fit (rejected)</th></tr>\n";
+      "<th>95 % interval</th>";
+  if (!model_form.empty()) html += "<th>model-form 95 % interval (damping laws)</th>";
+  html += "<th>unit</th><th>base fit (rejected)</th></tr>\n";
   for (const auto& p : d.final_fit.parameters) {
     const auto base = std::find_if(d.base.parameters.begin(), d.base.parameters.end(),
                                    [&](const ParameterEstimate& b) { return b.name == p.name; });
-    html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{} … {}</td><td>{}</td><td>{}</td></tr>\n",
-                        HtmlEscape(p.name), Number(p.value), Number(p.std), Number(p.lower_95), Number(p.upper_95),
-                        HtmlEscape(p.unit), base == d.base.parameters.end() ? "" : Number(base->value));
+    html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{} … {}</td>", HtmlEscape(p.name), Number(p.value),
+                        Number(p.std), Number(p.lower_95), Number(p.upper_95));
+    if (!model_form.empty()) {
+      const auto interval = std::find_if(model_form.begin(), model_form.end(),
+                                         [&](const ModelFormInterval& i) { return i.name == p.name; });
+      html += interval == model_form.end()
+                  ? "<td></td>"
+                  : fmt::format("<td>{} … {}{}</td>", Number(interval->lower_95), Number(interval->upper_95),
+                                interval->depends_on_damping_law ? " (depends on the damping law)" : "");
+    }
+    html += fmt::format("<td>{}</td><td>{}</td></tr>\n", HtmlEscape(p.unit),
+                        base == d.base.parameters.end() ? "" : Number(base->value));
   }
   return html + "</table>\n";
 }

@@ -195,6 +195,18 @@ DiagnosisFile FullFile(bool with_location) {
                                        .text = "add an accelerometer at x = 0.450 m"};
   r.final_fit = friction.fit;
   r.final_extra_parameters = friction.extra_parameters;
+  // The selected model under two damping laws; the reader judges them again.
+  r.final_damping_laws.laws.push_back(DampingLawFitOf("loss_factor", friction.fit.parameters, 27.0 / 7.0, 11));
+  std::vector<ParameterEstimate> rayleigh = friction.fit.parameters;
+  for (ParameterEstimate& p : rayleigh) {
+    p.value *= 1.0 + 1.0 / 3.0e3;
+    p.upper_95 += p.std;
+  }
+  rayleigh.push_back({.name = "rayleigh_mass_1_s", .unit = "1/s", .value = 0.1 / 3.0, .std = 1e-3 / 7.0,
+                      .lower_95 = 0.1 / 3.0 - 2e-3 / 7.0, .upper_95 = 0.1 / 3.0 + 2e-3 / 7.0});
+  r.final_damping_laws.laws.push_back(DampingLawFitOf("rayleigh", rayleigh, 25.0 / 7.0, 10));
+  r.final_damping_laws.laws.push_back({.law = "mass_proportional", .status = "failed: Ipopt stopped"});
+  JudgeDampingLaws(&r.final_damping_laws);
   r.response.push_back({.level = "low", .frequency_hz = 51.75, .channel = "acc1", .held_out = false,
                         .measured = {-0.5 / 3.0, 1.0 / 7.0}, .base_model = {-0.51 / 3.0, 1.01 / 7.0},
                         .final_model = {-0.501 / 3.0, 1.001 / 7.0}});
@@ -389,6 +401,28 @@ void ExpectSameFile(const DiagnosisFile& a, const DiagnosisFile& b) {
   }
   ExpectSameFit(x.final_fit, y.final_fit, "final");
   EXPECT_EQ(x.final_extra_parameters, y.final_extra_parameters);
+  const DampingLawEnvelope &xl = x.final_damping_laws, &yl = y.final_damping_laws;
+  ASSERT_EQ(xl.laws.size(), yl.laws.size());
+  for (std::size_t i = 0; i < xl.laws.size(); ++i) {
+    EXPECT_EQ(xl.laws[i].law, yl.laws[i].law);
+    EXPECT_EQ(xl.laws[i].converged, yl.laws[i].converged);
+    EXPECT_EQ(xl.laws[i].status, yl.laws[i].status);
+    EXPECT_EQ(xl.laws[i].accepted, yl.laws[i].accepted);
+    EXPECT_TRUE(Same(xl.laws[i].chi_square, yl.laws[i].chi_square));
+    ASSERT_EQ(xl.laws[i].parameters.size(), yl.laws[i].parameters.size());
+    for (std::size_t j = 0; j < xl.laws[i].parameters.size(); ++j) {
+      EXPECT_EQ(xl.laws[i].parameters[j].name, yl.laws[i].parameters[j].name);
+      EXPECT_TRUE(Same(xl.laws[i].parameters[j].value, yl.laws[i].parameters[j].value));
+      EXPECT_TRUE(Same(xl.laws[i].parameters[j].upper_95, yl.laws[i].parameters[j].upper_95));
+    }
+  }
+  ASSERT_EQ(xl.intervals.size(), yl.intervals.size());
+  for (std::size_t i = 0; i < xl.intervals.size(); ++i) {
+    EXPECT_EQ(xl.intervals[i].name, yl.intervals[i].name);
+    EXPECT_TRUE(Same(xl.intervals[i].lower_95, yl.intervals[i].lower_95));
+    EXPECT_TRUE(Same(xl.intervals[i].upper_95, yl.intervals[i].upper_95));
+    EXPECT_EQ(xl.intervals[i].depends_on_damping_law, yl.intervals[i].depends_on_damping_law);
+  }
   ASSERT_EQ(x.response.size(), y.response.size());
   for (std::size_t i = 0; i < x.response.size(); ++i) {
     const ResponsePoint &p = x.response[i], &q = y.response[i];
@@ -445,6 +479,10 @@ TEST(DiagnosisFile, TheComparisonSeesAChangedField) {
   EXPECT_GE(FailuresOf([&] { ExpectSameFile(file, changed); }), 2);
   changed = file;
   changed.diagnosis.final_extra_parameters.pop_back();
+  EXPECT_EQ(FailuresOf([&] { ExpectSameFile(file, changed); }), 1);
+  changed = file;
+  double& upper = changed.diagnosis.final_damping_laws.intervals[0].upper_95;
+  upper = std::nextafter(upper, 2.0 * upper);
   EXPECT_EQ(FailuresOf([&] { ExpectSameFile(file, changed); }), 1);
 }
 
