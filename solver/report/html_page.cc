@@ -5,14 +5,21 @@
 namespace beamid::solver {
 namespace {
 
+// Readable from a 900 px window up: the text column is at most 1000 px wide,
+// a plot scales down to the column (its SVG keeps its aspect), a table wider
+// than the column scrolls inside its own box, and a long path or name in the
+// text wraps instead of widening the page.
 constexpr const char* kStyle = R"(
-body { font-family: Helvetica, Arial, sans-serif; margin: 2em auto; max-width: 1600px; color: #222; }
+*, *::before, *::after { box-sizing: border-box; }
+body { font-family: Helvetica, Arial, sans-serif; margin: 1em auto; padding: 0 1em; max-width: 1000px; color: #222; line-height: 1.35; }
 h1 { font-size: 1.6em; } h2 { border-bottom: 1px solid #ccc; padding-bottom: 0.2em; margin-top: 1.6em; }
-table { border-collapse: collapse; margin: 0.8em 0; } td, th { border: 1px solid #ccc; padding: 0.3em 0.7em; text-align: right; }
+p, li, dd, dt, figcaption, h1, h2, h3, code { overflow-wrap: anywhere; }
+table { border-collapse: collapse; margin: 0.8em 0; display: block; max-width: 100%; overflow-x: auto; }
+td, th { border: 1px solid #ccc; padding: 0.3em 0.6em; text-align: right; vertical-align: top; }
 th { background: #f3f3f3; } td:first-child { text-align: left; }
-figure.plot { display: inline-block; margin: 0.5em; vertical-align: top; }
-figure.plot svg { display: block; }
-figcaption { font-size: 0.9em; color: #555; max-width: 760px; }
+figure.plot { display: block; margin: 1em 0; max-width: 100%; }
+figure.plot svg { display: block; width: 100%; max-width: 900px; height: auto; }
+figcaption { font-size: 0.9em; color: #555; max-width: 900px; }
 dl { display: grid; grid-template-columns: max-content auto; gap: 0.2em 1em; } dt { font-weight: bold; }
 .flag, .warning { color: #a50f15; }
 )";
