@@ -30,7 +30,20 @@ std::string Figure(const std::string& id, const std::string& svg, const std::str
                      svg, caption);
 }
 
+// A statistic (χ², p, a score): no uncertainty, six significant digits.
 std::string Number(double value) { return fmt::format("{:.6g}", value); }
+
+// A unit column: the unit's symbols, "—" for a dimensionless one.
+std::string UnitCell(const std::string& unit) {
+  const std::string symbol = UnitSymbol(unit);
+  return symbol.empty() ? "—" : HtmlEscape(symbol);
+}
+
+// A standard uncertainty's cell: "not available" rather than a 0 that
+// would read as exact.
+std::string SigmaCell(const UncertainFormat& format, double sigma) {
+  return format.has_sigma() ? format.Format(sigma) : "not available";
+}
 
 // The model a diagnosis selected, as its file holds it: its first harmonic
 // at every measured step of every channel (DiagnosisResult::response).
@@ -60,9 +73,13 @@ std::string RecordingSection(const ReportCurves& curves, const ResultFile& resul
     html += "<p>Robust fit: " + HtmlEscape(result.robust_fit->note) + "</p>\n";
     if (result.robust_fit->applied) {
       html += "<table><tr><th>parameter</th><th>without the outliers (reported)</th><th>with them</th></tr>\n";
-      for (std::size_t j = 0; j < result.parameters.size() && j < result.robust_fit->ordinary_parameters.size(); ++j)
-        html += "<tr><td>" + HtmlEscape(result.parameters[j].name) + "</td><td>" + Number(result.parameters[j].value) +
-                "</td><td>" + Number(result.robust_fit->ordinary_parameters[j].value) + "</td></tr>\n";
+      for (std::size_t j = 0; j < result.parameters.size() && j < result.robust_fit->ordinary_parameters.size(); ++j) {
+        // Both at the reported value's uncertainty, so that they compare digit by digit.
+        const UncertainFormat format(result.parameters[j].value, result.parameters[j].std);
+        html += "<tr><td>" + HtmlEscape(result.parameters[j].name) + "</td><td>" +
+                format.Format(result.parameters[j].value) + "</td><td>" +
+                format.Format(result.robust_fit->ordinary_parameters[j].value) + "</td></tr>\n";
+      }
       html += "</table>\n";
     }
   }
@@ -156,17 +173,19 @@ std::string Warnings(const std::vector<std::string>& warnings) {
 std::string ResonanceTable(const ReportCurves& curves) {
   const ReportChannel& ch = curves.channels[static_cast<std::size_t>(curves.reference_channel)];
   std::string html = fmt::format(
-      "<table class=\"resonance\"><tr><th>level</th><th>phase resonance [Hz]</th><th>|X_1| [{}]</th>"
+      "<table class=\"resonance\"><tr><th>level</th><th>phase resonance [Hz]</th><th>|X₁| [{}]</th>"
       "<th>damping ratio ζ</th><th>model backbone there [Hz]</th><th>measured − model</th><th>note</th></tr>\n",
-      HtmlEscape(ch.si_unit));
-  for (const auto& p : curves.phase_resonance)
+      HtmlEscape(UnitSymbol(ch.si_unit)));
+  for (const auto& p : curves.phase_resonance) {
+    // The model's frequency at the measured one's decimal place.
+    const UncertainFormat frequency(p.frequency_hz, p.frequency_std_hz);
     html += fmt::format(
-        "<tr><td>{}</td><td>{:.4f} ± {:.4f}</td><td>{:.5g} ± {:.2g}</td><td>{:.5f} ± {:.2g}</td><td>{}</td>"
-        "<td class=\"z\">{}</td><td>{}</td></tr>\n",
-        HtmlEscape(p.level), p.frequency_hz, p.frequency_std_hz, p.amplitude, p.amplitude_std,
-        p.damping_ratio, p.damping_ratio_std,
-        std::isfinite(p.model_frequency_hz) ? fmt::format("{:.4f}", p.model_frequency_hz) : "outside its range",
+        "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td class=\"z\">{}</td><td>{}</td></tr>\n",
+        HtmlEscape(p.level), frequency.WithSigma(p.frequency_hz, p.frequency_std_hz),
+        WithUncertainty(p.amplitude, p.amplitude_std), WithUncertainty(p.damping_ratio, p.damping_ratio_std),
+        std::isfinite(p.model_frequency_hz) ? frequency.Format(p.model_frequency_hz) : "outside its range",
         std::isfinite(p.z) ? fmt::format("{:+.2f} σ", p.z) : "", HtmlEscape(p.note));
+  }
   return html + "</table>\n";
 }
 
@@ -241,17 +260,19 @@ std::string ParameterRows(const std::vector<Parameter>& parameters, const std::v
       "<th>95 % interval</th>" +
       std::string(intervals.empty() ? "" : "<th>95 % over the beam's damping laws</th>") + "<th>unit</th></tr>\n";
   for (const auto& p : parameters) {
+    // Every number of the row at the decimal place of the value's σ.
+    const UncertainFormat format(p.value, p.std);
     std::string model_form;
     if (!intervals.empty()) {
       const auto i = std::find_if(intervals.begin(), intervals.end(), [&](const auto& m) { return m.name == p.name; });
       model_form = i == intervals.end()
                        ? "<td>(a damping parameter)</td>"
-                       : fmt::format("<td>{} … {}{}</td>", Number(i->lower_95), Number(i->upper_95),
+                       : fmt::format("<td>{} … {}{}</td>", format.Format(i->lower_95), format.Format(i->upper_95),
                                      i->depends_on_damping_law ? " <b>[depends on the damping law]</b>" : "");
     }
     html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{} … {}</td>{}<td>{}</td></tr>\n", HtmlEscape(p.name),
-                        Number(p.value), Number(p.std), Number(p.lower_95), Number(p.upper_95), model_form,
-                        HtmlEscape(p.unit));
+                        format.Format(p.value), SigmaCell(format, p.std), format.Format(p.lower_95),
+                        format.Format(p.upper_95), model_form, UnitCell(p.unit));
   }
   return html + "</table>\n";
 }
@@ -265,9 +286,11 @@ std::string SelectedParameterTable(const DiagnosisResult& d) {
   for (const auto& p : d.final_fit.parameters) {
     const auto base = std::find_if(d.base.parameters.begin(), d.base.parameters.end(),
                                    [&](const ParameterEstimate& b) { return b.name == p.name; });
+    const UncertainFormat format(p.value, p.std);
     html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{} … {}</td><td>{}</td><td>{}</td></tr>\n",
-                        HtmlEscape(p.name), Number(p.value), Number(p.std), Number(p.lower_95), Number(p.upper_95),
-                        HtmlEscape(p.unit), base == d.base.parameters.end() ? "" : Number(base->value));
+                        HtmlEscape(p.name), format.Format(p.value), SigmaCell(format, p.std), format.Format(p.lower_95),
+                        format.Format(p.upper_95), UnitCell(p.unit),
+                        base == d.base.parameters.end() ? "" : WithUncertainty(base->value, base->std));
   }
   return html + "</table>\n";
 }
@@ -374,9 +397,10 @@ std::string DiagnosisSection(const DiagnosisResult& diagnosis) {
       // A refit that did not move a parameter off its base value leaves it
       // undetermined (its std is that of a flat direction): say so.
       const bool determined = std::isfinite(p.std) && p.std < 100 * std::abs(p.value);
-      const std::string unit = p.unit == "1" ? "" : " " + HtmlEscape(p.unit);
+      const std::string symbol = UnitSymbol(p.unit);
+      const std::string unit = symbol.empty() ? "" : " " + HtmlEscape(symbol);
       extra += fmt::format("{}{} = {}", extra.empty() ? "" : "<br>", HtmlEscape(p.name),
-                           determined ? Number(p.value) + " ± " + Number(p.std) + unit
+                           determined ? HtmlEscape(WithUncertainty(p.value, p.std, p.unit))
                                       : Number(p.value) + unit + " (not determined by these data)");
     }
     // Without a refit there is no χ² after, drop or p: the row says why instead.
