@@ -217,12 +217,13 @@ std::string ResidualPlot(const ResidualMap& map) {
       if (std::isfinite(map.whitened_norm(r, i))) largest = std::max(largest, map.whitened_norm(r, i));
   const int decades = std::clamp(static_cast<int>(std::ceil(std::log10(largest) - 1e-9)), 1, 3);
   const double top = std::pow(10.0, decades), bottom = 1.0 / top;
+  // One filled box per cell (an image needs a grid of at least 2 × 2: one
+  // fitted channel and harmonic would show nothing); a step without a state
+  // (NaN) stays blank.
   Rows data;
-  for (Eigen::Index r = 0; r < rows; ++r) {
+  for (Eigen::Index r = 0; r < rows; ++r)
     for (Eigen::Index i = 0; i < steps; ++i)
       data.push_back({static_cast<double>(i), static_cast<double>(r), std::clamp(map.whitened_norm(r, i), bottom, top)});
-    data.push_back({});
-  }
   std::string ytics, xtics, arrows, cbtics;
   for (Eigen::Index r = 0; r < rows; ++r)
     ytics += fmt::format("{}{} {}", r ? ", " : "", GnuplotText(map.rows[r], GnuplotTextUse::kTicLabel), r);
@@ -247,7 +248,8 @@ std::string ResidualPlot(const ResidualMap& map) {
              "set lmargin 10\nset rmargin 16\n"
              "set xrange [-0.5:{}]\nset yrange [-0.5:{}]\n{}",
              ytics, xtics, bottom, top, cbtics, steps - 0.5, rows - 0.5, arrows) +
-         Datablock("r", data) + "plot $r using 1:2:3 with image pixels notitle\n";
+         Datablock("r", data) +
+         "plot $r using 1:2:(0.5):(0.5):3 with boxxyerror fs solid 1.0 noborder lc palette notitle\n";
 }
 
 // With the damping laws refitted: a column of the model-form interval (the

@@ -1,0 +1,303 @@
+// The report's plots read at a glance: in every SVG gnuplot draws for the
+// page, no legend entry (its sample and its text) lies over a data point or
+// a curve vertex, or inside any panel's plotting area; the response figure
+// of each channel has its amplitude, |X/F| and phase panels and the
+// harmonics figure where harmonics 2 and 3 are held; and the residual map's
+// colour scale is centred at one standard uncertainty — a cell at 1 σ is
+// the neutral colour whatever the largest residual, below it blue, above red.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "solver/report/html_report.h"
+
+namespace beamid::solver {
+namespace {
+
+using ::testing::HasSubstr;
+
+struct Point {
+  double x = 0, y = 0;
+};
+struct Box {
+  double left = 1e300, top = 1e300, right = -1e300, bottom = -1e300;
+  bool Empty() const { return right < left; }
+  void Add(double x, double y) {
+    left = std::min(left, x), right = std::max(right, x), top = std::min(top, y), bottom = std::max(bottom, y);
+  }
+  bool Contains(const Point& p) const { return p.x >= left && p.x <= right && p.y >= top && p.y <= bottom; }
+  bool Intersects(const Box& b) const { return left < b.right && b.left < right && top < b.bottom && b.top < bottom; }
+};
+
+// The <g id="gnuplot_plot_…"> elements of one SVG: gnuplot draws each plot
+// item in one, titled by the item's legend text (or by its own id when the
+// item has no legend entry).
+struct PlotGroup {
+  std::string title;
+  std::string body;
+  bool Keyed() const { return title.rfind("gnuplot_plot_", 0) != 0; }
+};
+
+std::vector<PlotGroup> PlotGroups(const std::string& svg, std::string* outside) {
+  std::vector<PlotGroup> groups;
+  const std::string open = "<g id=\"gnuplot_plot_";
+  std::size_t at = 0, copied = 0;
+  while ((at = svg.find(open, at)) != std::string::npos) {
+    *outside += svg.substr(copied, at - copied);
+    // The group's end: its matching </g>.
+    int depth = 1;  // inside the group's own <g>
+    std::size_t end = at;
+    do {
+      const std::size_t next_open = svg.find("<g", end + 1), next_close = svg.find("</g>", end + 1);
+      if (next_close == std::string::npos) break;
+      if (next_open != std::string::npos && next_open < next_close) {
+        ++depth;
+        end = next_open;
+      } else {
+        --depth;
+        end = next_close;
+      }
+    } while (depth > 0);
+    const std::size_t title_at = svg.find("<title>", at) + 7;
+    groups.push_back({svg.substr(title_at, svg.find("</title>", title_at) - title_at), svg.substr(at, end + 4 - at)});
+    at = copied = end + 4;
+  }
+  *outside += svg.substr(copied);
+  return groups;
+}
+
+// Every vertex a group draws: path and polygon coordinates and point markers.
+std::vector<Point> Vertices(const std::string& body) {
+  std::vector<Point> points;
+  static const std::regex path(R"re(d='([^']*)')re"), polygon(R"re(points = '([^']*)')re"),
+      marker(R"re(<use xlink:href='#gpPt\d+' transform='translate\(([-\d.]+),([-\d.]+)\))re"),
+      pair(R"re(([-\d.]+),([-\d.]+))re");
+  for (const auto* pattern : {&path, &polygon})
+    for (std::sregex_iterator m(body.begin(), body.end(), *pattern), end; m != end; ++m) {
+      const std::string coordinates = (*m)[1];
+      for (std::sregex_iterator p(coordinates.begin(), coordinates.end(), pair); p != end; ++p)
+        points.push_back({std::stod((*p)[1]), std::stod((*p)[2])});
+    }
+  for (std::sregex_iterator m(body.begin(), body.end(), marker), end; m != end; ++m)
+    points.push_back({std::stod((*m)[1]), std::stod((*m)[2])});
+  return points;
+}
+
+// A legend entry's text: anchored at translate(x, y) (baseline), drawn to the
+// left of x (text-anchor end) or right of it; a generous 7.5 px a character.
+void AddTexts(const std::string& body, Box& box) {
+  static const std::regex text(
+      R"re(<g transform="translate\(([-\d.]+),([-\d.]+)\)"[^>]*text-anchor="(\w+)">\s*<text><tspan[^>]*>([^<]*)</tspan>)re");
+  for (std::sregex_iterator m(body.begin(), body.end(), text), end; m != end; ++m) {
+    const double x = std::stod((*m)[1]), y = std::stod((*m)[2]);
+    const double width = 7.5 * static_cast<double>((*m)[4].length());
+    const std::string anchor = (*m)[3];
+    const double left = anchor == "end" ? x - width : anchor == "middle" ? x - width / 2 : x;
+    box.Add(left, y - 12);
+    box.Add(left + width, y + 4);
+  }
+}
+
+// The plotting areas: the closed axis-aligned rectangles gnuplot draws as
+// each panel's border (outside the plot groups).
+std::vector<Box> Borders(const std::string& outside) {
+  std::vector<Box> borders;
+  static const std::regex rectangle(
+      R"re(d='M([-\d.]+),([-\d.]+) L([-\d.]+),([-\d.]+) L([-\d.]+),([-\d.]+) L([-\d.]+),([-\d.]+) L([-\d.]+),([-\d.]+) Z)re");
+  for (std::sregex_iterator m(outside.begin(), outside.end(), rectangle), end; m != end; ++m) {
+    Box b;
+    for (int i = 1; i <= 10; i += 2) b.Add(std::stod((*m)[i]), std::stod((*m)[i + 1]));
+    const bool drawn = std::any_of(borders.begin(), borders.end(), [&](const Box& o) {  // gnuplot draws each twice
+      return std::abs(o.left - b.left) < 0.01 && std::abs(o.top - b.top) < 0.01 && std::abs(o.right - b.right) < 0.01 &&
+             std::abs(o.bottom - b.bottom) < 0.01;
+    });
+    if (!drawn && b.right - b.left > 50 && b.bottom - b.top > 50) borders.push_back(b);
+  }
+  return borders;
+}
+
+std::vector<std::pair<std::string, std::string>> Figures(const std::string& page) {
+  std::vector<std::pair<std::string, std::string>> figures;
+  static const std::regex figure(R"re(<figure class="plot" id="([^"]*)">)re");
+  for (std::sregex_iterator m(page.begin(), page.end(), figure), end; m != end; ++m) {
+    const std::size_t start = page.find("<svg", m->position());
+    figures.push_back({(*m)[1], page.substr(start, page.find("</svg>", start) + 6 - start)});
+  }
+  return figures;
+}
+
+ReportInput Input() {
+  ReportInput input;
+  input.result_file = "out/result.json";
+  input.campaign_folder = "campaign";
+  input.result.model.fit_channels = {"acc1", "acc2"};
+  input.result.parameters = {{.name = "k1", .unit = "N*m/rad", .value = 150.0, .std = 0.002}};
+  return input;
+}
+
+// Three levels of a hardening response on two channels: a model curve that
+// folds (an unstable branch) at the top level, measured steps with a phase
+// and harmonics 2 and 3, a flagged step, the backbone, the damping points,
+// a held-out time history and a residual map: everything the page draws.
+ReportCurves Curves() {
+  ReportCurves curves;
+  curves.channels = {{.channel = "acc1", .position_m = 0.1, .si_unit = "m/s^2", .fitted = true},
+                     {.channel = "acc3", .position_m = 0.57, .si_unit = "m/s^2", .fitted = false}};
+  const double forces[] = {1.0, 4.0, 9.0};
+  const char* names[] = {"low", "mid", "high"};
+  for (int l = 0; l < 3; ++l) {
+    LevelCurves level{.level = names[l], .force_amplitude_N = forces[l]};
+    const double shift = 0.3 * l;  // the resonance rises with the level
+    auto response = [&](double f) { return forces[l] * 8.0 / std::hypot(1.0, (f - 54.0 - shift) / 0.3); };
+    auto phase = [&](double f) { return -90.0 - 180.0 / M_PI * std::atan((f - 54.0 - shift) / 0.3); };
+    for (double f = 50.0; f <= 58.0; f += 0.25)
+      level.measured.push_back({.frequency_hz = f, .amplitude = {response(f), 0.6 * response(f)},
+                                .file = std::string(names[l]) + std::to_string(f), .force_amplitude_N = forces[l],
+                                .phase_deg = {phase(f), phase(f)},
+                                .higher_harmonics = {{1e-4 * forces[l], 2e-3 * forces[l] * forces[l]},
+                                                     {1e-4, 1e-3 * forces[l]}}});
+    for (double f = 49.9; f <= 58.1; f += 0.05)
+      level.model.push_back({.frequency_hz = f, .amplitude = {response(f), 0.6 * response(f)},
+                             .stable = !(l == 2 && f > 54.5 && f < 54.9), .phase_deg = {phase(f), phase(f)},
+                             .higher_harmonics = {{1e-5, 2e-3 * forces[l] * forces[l]}, {1e-5, 1e-3}}});
+    curves.levels.push_back(level);
+  }
+  curves.levels[1].measured[10].flag = "recorded before it settled";
+  for (double f = 54.0; f <= 55.0; f += 0.05) curves.backbone.push_back({.frequency_hz = f, .amplitude = 60.0 * (f - 53.9)});
+  curves.phase_resonance = {{.level = "low", .frequency_hz = 54.0, .frequency_std_hz = 0.001, .amplitude = 8.0,
+                             .amplitude_std = 0.01, .model_frequency_hz = 54.0}};
+  curves.measured_mode.damping = {{.level = "low", .amplitude = 8.0, .quadrature = 0.006, .quadrature_std = 1e-4},
+                                  {.level = "high", .amplitude = 72.0, .quadrature = 0.005, .quadrature_std = 1e-4}};
+  curves.held_out_channel = "acc3";
+  TimeHistory history{.level = "high", .frequency_hz = 54.8};
+  for (int n = 0; n < 96; ++n) {
+    const double t = n / 96.0 / 54.8;
+    history.time_s.push_back(t);
+    history.predicted.push_back(40 * std::sin(2 * M_PI * 54.8 * t));
+    history.predicted_std.push_back(0.5);
+    history.measured.push_back(40.2 * std::sin(2 * M_PI * 54.8 * t));
+  }
+  curves.time_histories = {history};
+  curves.residuals.rows = {"acc1 h1"};
+  curves.residuals.step_level = {"low", "low", "high"};
+  curves.residuals.step_frequency_hz = {54.0, 54.5, 54.8};
+  curves.residuals.whitened_norm = Eigen::MatrixXd::Constant(1, 3, 0.5);
+  return curves;
+}
+
+TEST(HtmlReportPlots, NoLegendEntryLiesOverADataPointOrInsideAPlottingArea) {
+  const std::string page = HtmlReport(Input(), Curves());
+  const auto figures = Figures(page);
+  std::vector<std::string> ids;
+  for (const auto& [id, svg] : figures) {
+    ids.push_back(id);
+    std::string outside;
+    const std::vector<PlotGroup> groups = PlotGroups(svg, &outside);
+    Box key;
+    std::vector<Point> data;
+    int entries = 0;
+    for (const auto& g : groups) {
+      if (g.Keyed()) {
+        ++entries;
+        for (const auto& p : Vertices(g.body)) key.Add(p.x, p.y);
+        AddTexts(g.body, key);
+      } else {
+        const auto v = Vertices(g.body);
+        data.insert(data.end(), v.begin(), v.end());
+      }
+    }
+    const std::vector<Box> borders = Borders(outside);
+    ASSERT_FALSE(borders.empty()) << id;
+    EXPECT_GT(data.size(), 10u) << id << ": the test found no data to check";
+    if (id == "residual-map") {
+      EXPECT_EQ(entries, 0) << "the residual map has a colour box, no legend";
+      continue;
+    }
+    ASSERT_GT(entries, 0) << id;
+    ASSERT_FALSE(key.Empty()) << id;
+    for (const auto& b : borders)
+      EXPECT_FALSE(key.Intersects(b)) << id << ": the legend [" << key.left << ", " << key.top << ", " << key.right
+                                      << ", " << key.bottom << "] overlaps a plotting area [" << b.left << ", "
+                                      << b.top << ", " << b.right << ", " << b.bottom << "]";
+    int covered = 0;
+    for (const auto& p : data) covered += key.Contains(p) ? 1 : 0;
+    EXPECT_EQ(covered, 0) << id << ": data vertices under the legend";
+  }
+  EXPECT_THAT(ids, ::testing::ElementsAre("frc-acc1", "harmonics-acc1", "frc-acc3", "harmonics-acc3", "backbone-plot",
+                                          "damping-plot", "time-high", "residual-map"));
+}
+
+TEST(HtmlReportPlots, EachChannelsResponseHasAmplitudePerForceAndPhasePanelsOnOneAxis) {
+  const std::string page = HtmlReport(Input(), Curves());
+  for (const auto& [id, svg] : Figures(page)) {
+    std::string outside;
+    PlotGroups(svg, &outside);
+    const std::vector<Box> borders = Borders(outside);
+    if (id.rfind("frc-", 0) == 0) {
+      EXPECT_THAT(svg, HasSubstr("|X₁| [m/s²]"));
+      EXPECT_THAT(svg, HasSubstr("|X₁|/|F₁| [m/s²/N]"));
+      EXPECT_THAT(svg, HasSubstr("phase [°]"));
+      ASSERT_EQ(borders.size(), 3u) << id;
+      for (const auto& b : borders) {  // stacked on one frequency axis
+        EXPECT_NEAR(b.left, borders[0].left, 0.01) << id;
+        EXPECT_NEAR(b.right, borders[0].right, 0.01) << id;
+      }
+    } else if (id.rfind("harmonics-", 0) == 0) {
+      EXPECT_EQ(borders.size(), 2u) << id << ": harmonics 2 and 3";
+    }
+  }
+}
+
+// The colour of each cell of a one-row residual map, left to right.
+std::vector<std::array<int, 3>> CellColours(const ResidualMap& map) {
+  ReportCurves curves = Curves();
+  curves.residuals = map;
+  const std::string page = HtmlReport(Input(), curves);
+  std::string svg;
+  for (const auto& [id, s] : Figures(page))
+    if (id == "residual-map") svg = s;
+  // The map's cells are the plot's polygons (the colour box's gradient is drawn outside it).
+  std::string outside, cells_svg;
+  for (const auto& g : PlotGroups(svg, &outside)) cells_svg += g.body;
+  static const std::regex cell(R"re(<polygon fill = 'rgb\(\s*(\d+),\s*(\d+),\s*(\d+)\)' points = '([-\d.]+),)re");
+  std::vector<std::pair<double, std::array<int, 3>>> cells;
+  for (std::sregex_iterator m(cells_svg.begin(), cells_svg.end(), cell), end; m != end; ++m)
+    cells.push_back({std::stod((*m)[4]), {std::stoi((*m)[1]), std::stoi((*m)[2]), std::stoi((*m)[3])}});
+  std::sort(cells.begin(), cells.end());
+  std::vector<std::array<int, 3>> colours;
+  for (const auto& c : cells) colours.push_back(c.second);
+  return colours;
+}
+
+TEST(HtmlReportPlots, TheResidualMapsNeutralColourIsOneStandardUncertainty) {
+  for (const double largest : {3.0, 100.0}) {
+    ResidualMap map;
+    map.rows = {"acc1 h1"};
+    map.step_level = {"low", "low", "low", "high", "high"};
+    map.step_frequency_hz = {1, 2, 3, 4, 5};
+    map.whitened_norm.resize(1, 5);
+    map.whitened_norm << 0.05, 0.5, 1.0, 2.0, largest;
+    const auto colours = CellColours(map);
+    ASSERT_EQ(colours.size(), 5u) << largest;
+    const auto& neutral = colours[2];
+    // 1 σ: a light grey, no hue.
+    EXPECT_GE(std::min({neutral[0], neutral[1], neutral[2]}), 235) << largest;
+    EXPECT_LE(std::max({neutral[0], neutral[1], neutral[2]}) - std::min({neutral[0], neutral[1], neutral[2]}), 3)
+        << largest;
+    // Below: blue, within the noise; above: red, a misfit.
+    for (int i : {0, 1}) EXPECT_GT(colours[i][2], colours[i][0] + 20) << largest << " cell " << i;
+    for (int i : {3, 4}) EXPECT_GT(colours[i][0], colours[i][2] + 20) << largest << " cell " << i;
+    // Further from 1 σ, further from neutral.
+    EXPECT_LT(colours[0][0], colours[1][0]) << largest;
+    EXPECT_LT(colours[4][2], colours[3][2]) << largest;
+  }
+}
+
+}  // namespace
+}  // namespace beamid::solver
