@@ -14,7 +14,8 @@ constexpr const char* kStyle = R"(
 body { font-family: Helvetica, Arial, sans-serif; margin: 1em auto; padding: 0 1em; max-width: 1000px; color: #222; line-height: 1.35; }
 h1 { font-size: 1.6em; } h2 { border-bottom: 1px solid #ccc; padding-bottom: 0.2em; margin-top: 1.6em; }
 p, li, dd, dt, figcaption, h1, h2, h3, code { overflow-wrap: anywhere; }
-table { border-collapse: collapse; margin: 0.8em 0; display: block; max-width: 100%; overflow-x: auto; }
+div.table { max-width: 100%; overflow-x: auto; margin: 0.8em 0; }
+table { border-collapse: collapse; }
 td, th { border: 1px solid #ccc; padding: 0.3em 0.6em; text-align: right; vertical-align: top; }
 th { background: #f3f3f3; } td:first-child { text-align: left; }
 figure.plot { display: block; margin: 1em 0; max-width: 100%; }
@@ -25,6 +26,12 @@ dl { display: grid; grid-template-columns: max-content auto; gap: 0.2em 1em; } d
 )";
 
 }  // namespace
+
+std::string ScrollableTables(std::string html) {
+  for (std::size_t at = 0; (at = html.find("<table", at)) != std::string::npos; at += 24) html.insert(at, "<div class=\"table\">");
+  for (std::size_t at = 0; (at = html.find("</table>", at)) != std::string::npos; at += 14) html.insert(at + 8, "</div>");
+  return html;
+}
 
 std::string HtmlPageHead(const std::string& title) {
   return "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" + HtmlEscape(title) +

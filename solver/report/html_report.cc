@@ -33,6 +33,14 @@ std::string Figure(const std::string& id, const std::string& svg, const std::str
 // A statistic (χ², p, a score): no uncertainty, six significant digits.
 std::string Number(double value) { return fmt::format("{:.6g}", value); }
 
+// value ± σ for a table cell: a narrow column breaks it after the ±, never
+// inside a number or before the ±.
+std::string UncertainCell(double value, double sigma, const std::string& unit = "") {
+  std::string text = HtmlEscape(WithUncertainty(value, sigma, unit));
+  for (std::size_t at; (at = text.find(" ± ")) != std::string::npos;) text.replace(at, 4, "&nbsp;± ");
+  return text;
+}
+
 // A unit column: the unit's symbols, "—" for a dimensionless one.
 std::string UnitCell(const std::string& unit) {
   const std::string symbol = UnitSymbol(unit);
@@ -174,19 +182,22 @@ std::string ResonanceTable(const ReportCurves& curves) {
   const ReportChannel& ch = curves.channels[static_cast<std::size_t>(curves.reference_channel)];
   std::string html = fmt::format(
       "<table class=\"resonance\"><tr><th>level</th><th>phase resonance [Hz]</th><th>|X₁| [{}]</th>"
-      "<th>damping ratio ζ</th><th>model backbone there [Hz]</th><th>measured − model</th><th>note</th></tr>\n",
+      "<th>damping ratio ζ</th><th>model backbone there [Hz]</th><th>measured − model</th></tr>\n",
       HtmlEscape(UnitSymbol(ch.si_unit)));
+  // A level's note is a sentence: below the table, where it has the page's width.
+  std::string notes;
   for (const auto& p : curves.phase_resonance) {
     // The model's frequency at the measured one's decimal place.
     const UncertainFormat frequency(p.frequency_hz, p.frequency_std_hz);
     html += fmt::format(
-        "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td class=\"z\">{}</td><td>{}</td></tr>\n",
-        HtmlEscape(p.level), frequency.WithSigma(p.frequency_hz, p.frequency_std_hz),
-        WithUncertainty(p.amplitude, p.amplitude_std), WithUncertainty(p.damping_ratio, p.damping_ratio_std),
+        "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td class=\"z\">{}</td></tr>\n",
+        HtmlEscape(p.level) + (p.note.empty() ? "" : "&nbsp;*"), UncertainCell(p.frequency_hz, p.frequency_std_hz),
+        UncertainCell(p.amplitude, p.amplitude_std), UncertainCell(p.damping_ratio, p.damping_ratio_std),
         std::isfinite(p.model_frequency_hz) ? frequency.Format(p.model_frequency_hz) : "outside its range",
-        std::isfinite(p.z) ? fmt::format("{:+.2f} σ", p.z) : "", HtmlEscape(p.note));
+        std::isfinite(p.z) ? fmt::format("{:+.2f} σ", p.z) : "");
+    if (!p.note.empty()) notes += "<li>" + HtmlEscape(p.level) + ": " + HtmlEscape(p.note) + "</li>";
   }
-  return html + "</table>\n";
+  return html + "</table>\n" + (notes.empty() ? "" : "<ul class=\"notes\">" + notes + "</ul>\n");
 }
 
 std::string TimePlotSvg(const TimeHistory& history, const std::string& channel) {
@@ -292,7 +303,7 @@ std::string SelectedParameterTable(const DiagnosisResult& d) {
     html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{} … {}</td><td>{}</td><td>{}</td></tr>\n",
                         HtmlEscape(p.name), format.Format(p.value), SigmaCell(format, p.std), format.Format(p.lower_95),
                         format.Format(p.upper_95), UnitCell(p.unit),
-                        base == d.base.parameters.end() ? "" : WithUncertainty(base->value, base->std));
+                        base == d.base.parameters.end() ? "" : UncertainCell(base->value, base->std));
   }
   return html + "</table>\n";
 }
@@ -402,7 +413,7 @@ std::string DiagnosisSection(const DiagnosisResult& diagnosis) {
       const std::string symbol = UnitSymbol(p.unit);
       const std::string unit = symbol.empty() ? "" : " " + HtmlEscape(symbol);
       extra += fmt::format("{}{} = {}", extra.empty() ? "" : "<br>", HtmlEscape(p.name),
-                           determined ? HtmlEscape(WithUncertainty(p.value, p.std, p.unit))
+                           determined ? UncertainCell(p.value, p.std, p.unit)
                                       : Number(p.value) + unit + " (not determined by these data)");
     }
     // Without a refit there is no χ² after, drop or p: the row says why instead.
@@ -536,7 +547,7 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves, con
                  "on a logarithmic colour scale centred at 1 σ (white): blue cells lie within the noise, red "
                  "ones beyond it point at what the model misses.") +
           "</section>\n";
-  return html + "</body>\n</html>\n";
+  return ScrollableTables(html) + "</body>\n</html>\n";
 }
 
 }  // namespace beamid::solver

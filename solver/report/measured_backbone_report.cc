@@ -163,7 +163,7 @@ std::string MeasuredBackboneHtmlReport(const MeasuredBackboneFile& file, const s
     for (const auto& w : file.warnings) html += "<li class=\"warning\">" + HtmlEscape(w) + "</li>\n";
     html += "</ul>\n</section>\n";
   }
-  return html + "</body>\n</html>\n";
+  return ScrollableTables(html) + "</body>\n</html>\n";
 }
 
 }  // namespace beamid::solver

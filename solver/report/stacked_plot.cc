@@ -12,7 +12,7 @@ namespace {
 constexpr int kTitleBand = 30;       // above the first panel
 constexpr int kGap = 20;             // between panels: room for the tic labels at their ends
 constexpr int kAxisBand = 46;        // below the last panel: tic labels and the x label
-constexpr int kLeftMargin = 84;      // tic labels and the y label
+constexpr int kLeftMargin = 100;     // tic labels (up to 7 characters) and the y label
 constexpr int kRightMargin = 24;
 constexpr int kKeyRow = 18;          // one legend row at 12 pt
 constexpr int kKeyPadding = 10;
