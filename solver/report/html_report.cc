@@ -207,7 +207,8 @@ std::string TimePlotSvg(const TimeHistory& history, const std::string& channel) 
   StackedPlot plot{.title = fmt::format("{} (held out), level {}, {:.3f} Hz: one period of the steady state", channel,
                                         history.level, history.frequency_hz),
                    .xlabel = "time [ms]",
-                   .datablocks = Datablock("t", rows)};
+                   .datablocks = Datablock("t", rows),
+                   .x_settings = "set autoscale xfix\n"};  // one period, edge to edge
   const std::string band = "with filledcurves fc rgb '#c6dbef'", predicted = "with lines lw 2 lc rgb '#1f77b4'",
                     measured = "with lines lw 2 dt 2 lc rgb '#d62728'";
   plot.panels = {{.settings = "set ylabel 'acceleration [m/s²]'\n",

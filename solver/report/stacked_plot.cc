@@ -16,8 +16,8 @@ constexpr int kLeftMargin = 100;     // tic labels (up to 7 characters) and the 
 constexpr int kRightMargin = 24;
 constexpr int kKeyRow = 18;          // one legend row at 12 pt
 constexpr int kKeyPadding = 10;
-constexpr double kCharWidth = 6.8;   // Helvetica 12 pt, an average character
-constexpr int kKeySample = 80;       // the sample line and the gaps of one legend column
+constexpr double kCharWidth = 7.5;   // Helvetica 12 pt, a wide average character (a column never overflows)
+constexpr int kKeySample = 90;       // the sample line and the gaps of one legend column
 
 // Legend columns that fit the width, and the rows they take.
 struct KeyLayout {
@@ -29,7 +29,7 @@ KeyLayout LayoutKeys(const std::vector<KeyEntry>& keys, int width_px) {
   std::size_t longest = 0;
   for (const auto& k : keys) longest = std::max(longest, k.title.size());
   const double column_px = kCharWidth * static_cast<double>(longest) + kKeySample;
-  const int columns = std::clamp(static_cast<int>((width_px - 20) / column_px), 1, 3);
+  const int columns = std::clamp(static_cast<int>((width_px - 60) / column_px), 1, 3);
   const int n = static_cast<int>(keys.size());
   return {columns, (n + columns - 1) / columns};
 }

@@ -170,6 +170,11 @@ TEST(HtmlReportPlots, NoLegendEntryLiesOverADataPointOrInsideAPlottingArea) {
     int covered = 0;
     for (const auto& p : data) covered += key.Contains(p) ? 1 : 0;
     EXPECT_EQ(covered, 0) << id << ": data vertices under the legend";
+    // And the legend's samples lie on the canvas (a column too many would run off its right edge).
+    const double width = std::stod(svg.substr(svg.find("viewBox=\"0 0 ") + 13));
+    for (const auto& g : groups)
+      if (g.Keyed())
+        for (const auto& p : Vertices(g.body)) EXPECT_LE(p.x, width) << id << ": legend " << g.title;
   }
   EXPECT_THAT(ids, ::testing::ElementsAre("frc-acc1", "harmonics-acc1", "frc-acc3", "harmonics-acc3", "backbone-plot",
                                           "damping-plot", "time-high", "residual-map"));
