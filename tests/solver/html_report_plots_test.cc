@@ -172,9 +172,10 @@ TEST(HtmlReportPlots, NoLegendEntryLiesOverADataPointOrInsideAPlottingArea) {
     EXPECT_EQ(covered, 0) << id << ": data vertices under the legend";
     // And the legend's samples lie on the canvas (a column too many would run off its right edge).
     const double width = std::stod(svg.substr(svg.find("viewBox=\"0 0 ") + 13));
-    for (const auto& g : groups)
-      if (g.Keyed())
-        for (const auto& p : Vertices(g.body)) EXPECT_LE(p.x, width) << id << ": legend " << g.title;
+    for (const auto& g : groups) {
+      if (!g.Keyed()) continue;
+      for (const auto& p : Vertices(g.body)) EXPECT_LE(p.x, width) << id << ": legend " << g.title;
+    }
   }
   EXPECT_THAT(ids, ::testing::ElementsAre("frc-acc1", "harmonics-acc1", "frc-acc3", "harmonics-acc3", "backbone-plot",
                                           "damping-plot", "time-high", "residual-map"));
