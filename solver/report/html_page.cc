@@ -28,8 +28,10 @@ dl { display: grid; grid-template-columns: max-content auto; gap: 0.2em 1em; } d
 }  // namespace
 
 std::string ScrollableTables(std::string html) {
-  for (std::size_t at = 0; (at = html.find("<table", at)) != std::string::npos; at += 24) html.insert(at, "<div class=\"table\">");
-  for (std::size_t at = 0; (at = html.find("</table>", at)) != std::string::npos; at += 14) html.insert(at + 8, "</div>");
+  for (std::size_t at = 0; (at = html.find("<table", at)) != std::string::npos; at += 24)
+    html.insert(at, "<div class=\"table\">");
+  for (std::size_t at = 0; (at = html.find("</table>", at)) != std::string::npos; at += 14)
+    html.insert(at + 8, "</div>");
   return html;
 }
 

@@ -118,7 +118,8 @@ std::string BackbonePlotSvg(const ReportCurves& curves) {
                    .xlabel = "frequency [Hz]",
                    .datablocks = Datablock("frc", frc) + Datablock("bb", backbone) + Datablock("pr", resonance) +
                                  Datablock("sm", single_mode) + Datablock("band", band)};
-  Panel panel{.settings = "set ylabel " + GnuplotText("|X₁| [" + UnitSymbol(ch.si_unit) + "]") + "\n", .height_px = 330};
+  Panel panel{.settings = "set ylabel " + GnuplotText("|X₁| [" + UnitSymbol(ch.si_unit) + "]") + "\n",
+              .height_px = 330};
   const std::string grey = "with lines lw 1 lc rgb '#aaaaaa'", black = "with lines lw 2.5 lc rgb '#000000'";
   panel.items = {{"$frc", grey}, {"$bb", black}};
   plot.keys = {{grey, "model FRCs"}, {black, "model backbone (phase resonance at this sensor)"}};
@@ -211,9 +212,10 @@ std::string TimePlotSvg(const TimeHistory& history, const std::string& channel) 
                    .x_settings = "set autoscale xfix\n"};  // one period, edge to edge
   const std::string band = "with filledcurves fc rgb '#c6dbef'", predicted = "with lines lw 2 lc rgb '#1f77b4'",
                     measured = "with lines lw 2 dt 2 lc rgb '#d62728'";
-  plot.panels = {{.settings = "set ylabel 'acceleration [m/s²]'\n",
-                  .items = {{"$t using 1:($2-2*$3):($2+2*$3)", band}, {"$t using 1:2", predicted}, {"$t using 1:4", measured}},
-                  .height_px = 280}};
+  plot.panels = {
+      {.settings = "set ylabel 'acceleration [m/s²]'\n",
+       .items = {{"$t using 1:($2-2*$3):($2+2*$3)", band}, {"$t using 1:2", predicted}, {"$t using 1:4", measured}},
+       .height_px = 280}};
   plot.keys = {{band, "prediction ±2σ"}, {predicted, "predicted"}, {measured, "measured (harmonics of the recording)"}};
   return StackedPlotSvg(plot);
 }
@@ -235,7 +237,8 @@ std::string ResidualPlot(const ResidualMap& map) {
   Rows data;
   for (Eigen::Index r = 0; r < rows; ++r)
     for (Eigen::Index i = 0; i < steps; ++i)
-      data.push_back({static_cast<double>(i), static_cast<double>(r), std::clamp(map.whitened_norm(r, i), bottom, top)});
+      data.push_back(
+          {static_cast<double>(i), static_cast<double>(r), std::clamp(map.whitened_norm(r, i), bottom, top)});
   std::string ytics, xtics, arrows, cbtics;
   for (Eigen::Index r = 0; r < rows; ++r)
     ytics += fmt::format("{}{} {}", r ? ", " : "", GnuplotText(map.rows[r], GnuplotTextUse::kTicLabel), r);
@@ -245,12 +248,17 @@ std::string ResidualPlot(const ResidualMap& map) {
     xtics += fmt::format("{}{} {}", xtics.empty() ? "" : ", ", GnuplotText(map.step_level[start], GnuplotTextUse::kTicLabel),
                          0.5 * (start + i - 1));
     if (i < map.step_level.size())
-      arrows += fmt::format("set arrow from {0}, graph 0 to {0}, graph 1 nohead lc rgb '#444444' lw 2 front\n", i - 0.5);
+      arrows +=
+          fmt::format("set arrow from {0}, graph 0 to {0}, graph 1 nohead lc rgb '#444444' lw 2 front\n", i - 0.5);
     start = i;
   }
   for (int d = -decades; d <= decades; ++d)
-    cbtics += fmt::format("{}'{}{}' {:g}", d == -decades ? "" : ", ", d == 0 ? "1 σ" : fmt::format("{:g}", std::pow(10.0, d)),
-                          d < 0 ? " (noise)" : d > 0 ? " (misfit)" : "", std::pow(10.0, d));
+    cbtics +=
+        fmt::format("{}'{}{}' {:g}", d == -decades ? "" : ", ", d == 0 ? "1 σ" : fmt::format("{:g}", std::pow(10.0, d)),
+                    d < 0   ? " (noise)"
+                    : d > 0 ? " (misfit)"
+                            : "",
+                    std::pow(10.0, d));
   return fmt::format(
              "set title 'whitened residual |L^{{-1}}(Y_{{model}} - Y_{{measured}})| per channel, harmonic and step'\n"
              "set xlabel 'steps (by level, in campaign order)'\nset ytics ({})\nset xtics ({})\n"
@@ -463,17 +471,18 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves, con
 
   html += "<section id=\"frc\"><h2>Frequency response curves</h2>\n";
   for (std::size_t c = 0; c < curves.channels.size(); ++c) {
-    html += Figure("frc-" + curves.channels[c].channel,
-                   ResponsePlotSvg(curves, c, selected ? &*selected : nullptr, {.log_amplitude = options.log_amplitude}),
-                   "First harmonic of " + HtmlEscape(curves.channels[c].channel) +
-                       ": its amplitude |X₁| (" + (options.log_amplitude ? "logarithmic" : "linear") +
-                       " axis), the amplitude per unit force |X₁|/|F₁| (logarithmic: the levels meet where the "
-                       "response is linear and part where it is not) and the phase of the displacement against "
-                       "the force (−90° at phase resonance). Measured steps (dots) and the identified model under "
-                       "each level's mean force (harmonic balance and continuation; solid stable, dashed unstable)" +
-                       (selected ? "; crosses: the model the diagnosis selected (" + HtmlEscape(selected->name) +
-                                       "), at each measured step, beside the base model it replaces."
-                                 : std::string(".")));
+    html +=
+        Figure("frc-" + curves.channels[c].channel,
+               ResponsePlotSvg(curves, c, selected ? &*selected : nullptr, {.log_amplitude = options.log_amplitude}),
+               "First harmonic of " + HtmlEscape(curves.channels[c].channel) + ": its amplitude |X₁| (" +
+                   (options.log_amplitude ? "logarithmic" : "linear") +
+                   " axis), the amplitude per unit force |X₁|/|F₁| (logarithmic: the levels meet where the "
+                   "response is linear and part where it is not) and the phase of the displacement against "
+                   "the force (−90° at phase resonance). Measured steps (dots) and the identified model under "
+                   "each level's mean force (harmonic balance and continuation; solid stable, dashed unstable)" +
+                   (selected ? "; crosses: the model the diagnosis selected (" + HtmlEscape(selected->name) +
+                                   "), at each measured step, beside the base model it replaces."
+                             : std::string(".")));
     if (HasHigherHarmonics(curves, c))
       html += Figure("harmonics-" + curves.channels[c].channel, HarmonicsPlotSvg(curves, c),
                      "Harmonics 2 and 3 of " + HtmlEscape(curves.channels[c].channel) +
@@ -515,7 +524,8 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves, con
     }
     html += Figure("damping-plot", DampingPlotSvg(curves),
                    "The measured damping ratio of each level by three estimators (±2σ), and the single nonlinear "
-                   "mode fitted across levels (" + HtmlEscape(mode.fit_form) + "). " + trend);
+                   "mode fitted across levels (" +
+                       HtmlEscape(mode.fit_form) + "). " + trend);
   }
   html += "</section>\n";
 
@@ -538,7 +548,8 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves, con
   for (const auto& history : curves.time_histories)
     html += Figure("time-" + history.level, TimePlotSvg(history, curves.held_out_channel),
                    "Steady-state acceleration at " + HtmlEscape(curves.held_out_channel) + ", level " +
-                       HtmlEscape(history.level) + ": predicted by the identified model (band: ±2 standard "
+                       HtmlEscape(history.level) +
+                       ": predicted by the identified model (band: ±2 standard "
                        "uncertainties from the parameter covariance) and measured.");
   html += "</section>\n";
 

@@ -62,9 +62,15 @@ fs::path RequireChromium() {
 }
 
 std::vector<std::string> ChromiumArguments(const TempFolder& profile, int width_px, int height_px) {
-  return {"--headless", "--no-sandbox",  // Chromium refuses to run as root (CI containers) without it
-          "--disable-gpu", "--hide-scrollbars", "--no-first-run", "--mute-audio",
-          "--disable-background-networking", "--disable-component-update", "--disable-sync",
+  return {"--headless",
+          "--no-sandbox",  // Chromium refuses to run as root (CI containers) without it
+          "--disable-gpu",
+          "--hide-scrollbars",
+          "--no-first-run",
+          "--mute-audio",
+          "--disable-background-networking",
+          "--disable-component-update",
+          "--disable-sync",
           "--user-data-dir=" + (profile.path() / "profile").string(),
           fmt::format("--window-size={},{}", width_px, height_px)};
 }
@@ -107,8 +113,8 @@ PageLayout MeasurePage(const fs::path& html_file, int width_px, double timeout_s
   const std::size_t at = text.find(key);
   PageLayout layout;
   std::istringstream numbers(at == std::string::npos ? "" : text.substr(at + key.size(), 80));
-  if (status != 0 || !(numbers >> layout.scroll_width >> layout.client_width >> layout.scroll_height >>
-                       layout.last_section_bottom)) {
+  if (status != 0 ||
+      !(numbers >> layout.scroll_width >> layout.client_width >> layout.scroll_height >> layout.last_section_bottom)) {
     const std::string message = ReadAll(log);
     throw EnvironmentError(fmt::format("Chromium did not lay out {} (exit status {}): {}", html_file.string(), status,
                                        message.substr(message.size() > 2000 ? message.size() - 2000 : 0)));
@@ -118,10 +124,10 @@ PageLayout MeasurePage(const fs::path& html_file, int width_px, double timeout_s
 
 void ScreenshotHtml(const fs::path& html_file, const fs::path& png_file, const ScreenshotOptions& options) {
   const fs::path chromium = RequireChromium();
-  const int height_px =
-      options.height_px > 0
-          ? options.height_px
-          : std::clamp(MeasurePage(html_file, options.width_px, options.timeout_s).scroll_height, 1, kMaxScreenshotHeightPx);
+  const int height_px = options.height_px > 0
+                            ? options.height_px
+                            : std::clamp(MeasurePage(html_file, options.width_px, options.timeout_s).scroll_height, 1,
+                                         kMaxScreenshotHeightPx);
   std::error_code error;
   const fs::path png = fs::absolute(png_file).lexically_normal();
   if (png.has_parent_path()) fs::create_directories(png.parent_path(), error);

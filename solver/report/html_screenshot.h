@@ -19,8 +19,8 @@
 namespace beamid::solver {
 
 struct ScreenshotOptions {
-  int width_px = 1000;  // the page's text column is at most 1000 px wide
-  int height_px = 0;    // 0: the page's own height at this width (MeasurePage)
+  int width_px = 1000;       // the page's text column is at most 1000 px wide
+  int height_px = 0;         // 0: the page's own height at this width (MeasurePage)
   double timeout_s = 180.0;  // a browser that hangs is stopped
 };
 

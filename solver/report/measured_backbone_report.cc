@@ -50,9 +50,9 @@ std::string PlotAgainstAmplitude(const MeasuredBackboneFile& file, bool frequenc
   // The legend in a band of its own below the data (solver/report/stacked_plot.h).
   StackedPlot plot{.xlabel = "displacement amplitude at the sensor [mm]",
                    .datablocks = Datablock("band", band) + Datablock("fit", in_fit) + Datablock("out", left_out)};
-  Panel panel{.settings = "set ylabel " +
-                          GnuplotText(frequency ? "phase-resonance frequency [Hz]" : "damping ratio ζ") + "\n",
-              .height_px = 320};
+  Panel panel{
+      .settings = "set ylabel " + GnuplotText(frequency ? "phase-resonance frequency [Hz]" : "damping ratio ζ") + "\n",
+      .height_px = 320};
   auto add = [&](const std::string& source, const std::string& style, const std::string& title) {
     panel.items.push_back({source, style});
     plot.keys.push_back({style, title});
@@ -86,13 +86,11 @@ std::string LevelTable(const MeasuredBackboneFile& file) {
         HtmlEscape(l.label),
         l.control == LevelControl::kForce ? LabelsOf(file.excitation_quantity).control
                                           : std::string(LevelControlName(l.control)),
-        Cell(l.quadrature_frequency_hz, 1),
-        FlagCell(l, "quadrature_frequency"), Cell(l.quadrature_amplitude_m, 1e3),
-        Cell(l.damping_ratio, 100), Cell(l.quadrature_damping_ratio, 100),
-        FlagCell(l, "quadrature_damping_ratio"), Cell(l.local_damping_ratio, 100),
-        FlagCell(l, "local_damping_ratio"), Cell(l.half_power_damping_ratio, 100),
-        FlagCell(l, "half_power_damping_ratio"), Cell(l.peak_frequency_hz, 1),
-        FlagCell(l, "peak_frequency"), 100 * l.regeneration_relative_rms, FlagCell(l, "regeneration_relative_rms"),
+        Cell(l.quadrature_frequency_hz, 1), FlagCell(l, "quadrature_frequency"), Cell(l.quadrature_amplitude_m, 1e3),
+        Cell(l.damping_ratio, 100), Cell(l.quadrature_damping_ratio, 100), FlagCell(l, "quadrature_damping_ratio"),
+        Cell(l.local_damping_ratio, 100), FlagCell(l, "local_damping_ratio"), Cell(l.half_power_damping_ratio, 100),
+        FlagCell(l, "half_power_damping_ratio"), Cell(l.peak_frequency_hz, 1), FlagCell(l, "peak_frequency"),
+        100 * l.regeneration_relative_rms, FlagCell(l, "regeneration_relative_rms"),
         l.in_global_fit ? "yes" : "<span class=\"flag\">no</span>", HtmlEscape(kinds));
   }
   return html + "</table>\n";
@@ -152,10 +150,10 @@ std::string MeasuredBackboneHtmlReport(const MeasuredBackboneFile& file, const s
     const std::string svg = PlotAgainstAmplitude(file, frequency);
     if (svg.empty()) continue;
     html += Figure(svg, frequency ? "Backbone: each level's phase resonance (±1σ) and the "
-                                                   "single-mode fit across levels; open circles: flagged levels, "
-                                                   "left out of the fit."
-                                                 : "Damping ratio against amplitude: each level's ζ (its σ covers "
-                                                   "the three estimators) and the fit's ζ(a).");
+                                    "single-mode fit across levels; open circles: flagged levels, "
+                                    "left out of the fit."
+                                  : "Damping ratio against amplitude: each level's ζ (its σ covers "
+                                    "the three estimators) and the fit's ζ(a).");
   }
   html += "</section>\n";
   if (!file.warnings.empty()) {

@@ -74,8 +74,8 @@ struct MeasuredPoint {
   // extraction found its record cut before it settled, the robust fit left
   // it out as an outlier (result.json robust_fit), or both.
   std::string flag;
-  double force_amplitude_N = NAN;  // this step's |F_1|; NaN: the level's mean stands for it
-  std::vector<double> phase_deg;   // as ModelCurvePoint
+  double force_amplitude_N = NAN;                     // this step's |F_1|; NaN: the level's mean stands for it
+  std::vector<double> phase_deg;                      // as ModelCurvePoint
   std::vector<std::vector<double>> higher_harmonics;  // as ModelCurvePoint (NaN where not extracted)
 };
 

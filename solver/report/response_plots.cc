@@ -25,7 +25,9 @@ double HigherAt(const std::vector<std::vector<double>>& values, std::size_t chan
   return values[channel][static_cast<std::size_t>(k - 2)];
 }
 
-std::string LevelLabel(const LevelCurves& level) { return fmt::format("{} ({:.3g} N)", level.level, level.force_amplitude_N); }
+std::string LevelLabel(const LevelCurves& level) {
+  return fmt::format("{} ({:.3g} N)", level.level, level.force_amplitude_N);
+}
 
 // The model's points split into a stable and an unstable set of line
 // segments (a blank row ends a segment; a switch point belongs to both so
@@ -86,8 +88,8 @@ std::vector<ResponseRow> MeasuredResponseRows(const LevelCurves& level, std::siz
   std::vector<ResponseRow> rows;
   for (const auto& m : level.measured) {
     const double amplitude = At(m.amplitude, channel);
-    const double force = std::isfinite(m.force_amplitude_N) && m.force_amplitude_N > 0 ? m.force_amplitude_N
-                                                                                      : level.force_amplitude_N;
+    const double force =
+        std::isfinite(m.force_amplitude_N) && m.force_amplitude_N > 0 ? m.force_amplitude_N : level.force_amplitude_N;
     rows.push_back({m.frequency_hz, amplitude, amplitude / force, At(m.phase_deg, channel)});
   }
   return rows;
@@ -106,18 +108,19 @@ std::string ResponsePlotSvg(const ReportCurves& curves, std::size_t channel, con
                             const ResponsePlotOptions& options) {
   const ReportChannel& ch = curves.channels[channel];
   const std::string unit = AxisUnit(ch);
-  StackedPlot plot{
-      .title = fmt::format("{} at x = {:.3f} m ({}): first harmonic", ch.channel, ch.position_m,
-                           ch.fitted ? "fitted" : "held out"),
-      .xlabel = "frequency [Hz]",
-      .x_settings = FrequencyRange(curves)};
+  StackedPlot plot{.title = fmt::format("{} at x = {:.3f} m ({}): first harmonic", ch.channel, ch.position_m,
+                                        ch.fitted ? "fitted" : "held out"),
+                   .xlabel = "frequency [Hz]",
+                   .x_settings = FrequencyRange(curves)};
   Panel amplitude{.settings = "set ylabel " + GnuplotText(fmt::format("|X₁| [{}]", unit)) + "\n" +
                               (options.log_amplitude ? "set logscale y\nset format y '%g'\n" : ""),
                   .height_px = 210};
-  Panel per_force{.settings = "set ylabel " + GnuplotText(fmt::format("|X₁|/|F₁| [{}/N]", unit)) + "\nset logscale y\nset format y '%g'\n",
+  Panel per_force{.settings = "set ylabel " + GnuplotText(fmt::format("|X₁|/|F₁| [{}/N]", unit)) +
+                              "\nset logscale y\nset format y '%g'\n",
                   .height_px = 210};
-  Panel phase{.settings = "set ylabel 'phase [°]'\nset yrange [-180:180]\n"
-                          "set ytics -180,90,180\n",
+  Panel phase{.settings =
+                  "set ylabel 'phase [°]'\nset yrange [-180:180]\n"
+                  "set ytics -180,90,180\n",
               .height_px = 150};
   Rows flagged;
   bool any_unstable = false, any_phase = false;
@@ -125,10 +128,15 @@ std::string ResponsePlotSvg(const ReportCurves& curves, std::size_t channel, con
     const LevelCurves& level = curves.levels[l];
     const std::vector<ResponseRow> model = ModelResponseRows(level, channel);
     Rows stable, unstable, phase_stable, phase_unstable, measured;
-    SplitByStability(level, [&](std::size_t i) { return std::vector<double>(model[i].begin(), model[i].end()); }, -1,
-                     stable, unstable);
-    SplitByStability(level, [&](std::size_t i) { return std::vector<double>{model[i][0], model[i][3]}; }, 1,
-                     phase_stable, phase_unstable);
+    SplitByStability(
+        level, [&](std::size_t i) { return std::vector<double>(model[i].begin(), model[i].end()); }, -1, stable,
+        unstable);
+    SplitByStability(
+        level,
+        [&](std::size_t i) {
+          return std::vector<double>{model[i][0], model[i][3]};
+        },
+        1, phase_stable, phase_unstable);
     for (const auto& r : MeasuredResponseRows(level, channel)) {
       measured.push_back({r[0], r[1], r[2], r[3]});
       any_phase = any_phase || std::isfinite(r[3]);
@@ -204,12 +212,13 @@ std::string HarmonicsPlotSvg(const ReportCurves& curves, std::size_t channel) {
     for (std::size_t l = 0; l < curves.levels.size(); ++l) {
       const LevelCurves& level = curves.levels[l];
       Rows stable, unstable, measured;
-      SplitByStability(level,
-                       [&](std::size_t i) {
-                         return std::vector<double>{level.model[i].frequency_hz,
-                                                    HigherAt(level.model[i].higher_harmonics, channel, k)};
-                       },
-                       -1, stable, unstable);
+      SplitByStability(
+          level,
+          [&](std::size_t i) {
+            return std::vector<double>{level.model[i].frequency_hz,
+                                       HigherAt(level.model[i].higher_harmonics, channel, k)};
+          },
+          -1, stable, unstable);
       for (const auto& m : level.measured) {
         const double a = HigherAt(m.higher_harmonics, channel, k);
         measured.push_back({m.frequency_hz, a});
@@ -218,7 +227,8 @@ std::string HarmonicsPlotSvg(const ReportCurves& curves, std::size_t channel) {
       for (const auto& p : level.model) any = any || HigherAt(p.higher_harmonics, channel, k) > 0;
       const std::string c = Colour(l);
       const std::string name = fmt::format("h{}l{}", k, l);
-      plot.datablocks += Datablock("s" + name, stable) + Datablock("u" + name, unstable) + Datablock("m" + name, measured);
+      plot.datablocks +=
+          Datablock("s" + name, stable) + Datablock("u" + name, unstable) + Datablock("m" + name, measured);
       panel.items.push_back({"$s" + name, "with lines lw 2 lc rgb '" + c + "'"});
       panel.items.push_back({"$u" + name, "with lines lw 2 dt 2 lc rgb '" + c + "'"});
       panel.items.push_back({"$m" + name, "with points pt 7 ps 0.7 lc rgb '" + c + "'"});
@@ -226,7 +236,8 @@ std::string HarmonicsPlotSvg(const ReportCurves& curves, std::size_t channel) {
     if (any) plot.panels.push_back(std::move(panel));
   }
   for (std::size_t l = 0; l < curves.levels.size(); ++l) {
-    plot.keys.push_back({fmt::format("with lines lw 2 lc rgb '{}'", Colour(l)), "model " + LevelLabel(curves.levels[l])});
+    plot.keys.push_back(
+        {fmt::format("with lines lw 2 lc rgb '{}'", Colour(l)), "model " + LevelLabel(curves.levels[l])});
     plot.keys.push_back(
         {fmt::format("with points pt 7 ps 0.7 lc rgb '{}'", Colour(l)), "measured " + LevelLabel(curves.levels[l])});
   }

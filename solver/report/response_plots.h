@@ -30,7 +30,7 @@ struct ResponsePlotOptions {
 
 // A diagnosis's selected model, drawn beside the base model.
 struct SelectedResponse {
-  std::string name;                                  // "support_friction", "a + b"
+  std::string name;                                    // "support_friction", "a + b"
   const std::vector<ResponsePoint>* points = nullptr;  // DiagnosisResult::response
 };
 

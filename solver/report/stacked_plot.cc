@@ -9,15 +9,15 @@
 namespace beamid::solver {
 namespace {
 
-constexpr int kTitleBand = 30;       // above the first panel
-constexpr int kGap = 20;             // between panels: room for the tic labels at their ends
-constexpr int kAxisBand = 46;        // below the last panel: tic labels and the x label
-constexpr int kLeftMargin = 100;     // tic labels (up to 7 characters) and the y label
+constexpr int kTitleBand = 30;    // above the first panel
+constexpr int kGap = 20;          // between panels: room for the tic labels at their ends
+constexpr int kAxisBand = 46;     // below the last panel: tic labels and the x label
+constexpr int kLeftMargin = 100;  // tic labels (up to 7 characters) and the y label
 constexpr int kRightMargin = 24;
-constexpr int kKeyRow = 18;          // one legend row at 12 pt
+constexpr int kKeyRow = 18;  // one legend row at 12 pt
 constexpr int kKeyPadding = 10;
-constexpr double kCharWidth = 7.5;   // Helvetica 12 pt, a wide average character (a column never overflows)
-constexpr int kKeySample = 90;       // the sample line and the gaps of one legend column
+constexpr double kCharWidth = 7.5;  // Helvetica 12 pt, a wide average character (a column never overflows)
+constexpr int kKeySample = 90;      // the sample line and the gaps of one legend column
 
 // Legend columns that fit the width, and the rows they take.
 struct KeyLayout {
@@ -61,23 +61,26 @@ PlotScript StackedPlotScript(const StackedPlot& plot) {
     const int bottom = top - panel.height_px;
     script += fmt::format("set tmargin at screen {}\nset bmargin at screen {}\n", Screen(top, height),
                           Screen(bottom, height));
-    script += last ? "set format x '% h'\nset xlabel " + GnuplotText(plot.xlabel) + "\n" : "set format x ''\nunset xlabel\n";
+    script +=
+        last ? "set format x '% h'\nset xlabel " + GnuplotText(plot.xlabel) + "\n" : "set format x ''\nunset xlabel\n";
     script += panel.settings;
     std::string command = "plot ";
     for (std::size_t j = 0; j < panel.items.size(); ++j)
       command += (j ? ", " : "") + panel.items[j].source + " " + panel.items[j].style + " notitle";
     script += command + "\n";
     // What a panel set stays with it.
-    script += "unset logscale y\nset autoscale y\nset ytics autofreq\nset format y '% h'\nunset ylabel\n"
-              "unset label\nunset arrow\n";
+    script +=
+        "unset logscale y\nset autoscale y\nset ytics autofreq\nset format y '% h'\nunset ylabel\n"
+        "unset label\nunset arrow\n";
     top = bottom - kGap;
   }
   if (key.rows > 0) {
     // The legend: a panel of its own, without axes, holding only key entries
     // (and one point outside its range, which gnuplot needs to draw a plot).
     script += fmt::format("set tmargin at screen {}\nset bmargin at screen 0\n", Screen(key_band, height));
-    script += "unset border\nunset tics\nunset xlabel\nunset ylabel\nunset grid\nset xrange [0:1]\nset yrange [0:1]\n"
-              "unset logscale\n";
+    script +=
+        "unset border\nunset tics\nunset xlabel\nunset ylabel\nunset grid\nset xrange [0:1]\nset yrange [0:1]\n"
+        "unset logscale\n";
     script += fmt::format("set key center center maxrows {} samplen 3 spacing 1.1 noopaque nobox\n", key.rows);
     std::string command = "plot $none with points notitle";
     for (const auto& k : plot.keys) command += ", keyentry " + k.style + " title " + GnuplotText(k.title);

@@ -13,22 +13,13 @@ namespace {
 constexpr int kMinFixedExponent = -3;
 constexpr int kMaxFixedExponent = 5;
 
+// The superscript of a digit or sign ("" for '+'); null for anything else.
 const char* Superscript(char c) {
-  switch (c) {
-    case '0': return "⁰";
-    case '1': return "¹";
-    case '2': return "²";
-    case '3': return "³";
-    case '4': return "⁴";
-    case '5': return "⁵";
-    case '6': return "⁶";
-    case '7': return "⁷";
-    case '8': return "⁸";
-    case '9': return "⁹";
-    case '-': return "⁻";
-    case '+': return "";
-    default: return nullptr;
-  }
+  static constexpr const char* kDigits[] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
+  if (c >= '0' && c <= '9') return kDigits[c - '0'];
+  if (c == '-') return "⁻";
+  if (c == '+') return "";
+  return nullptr;
 }
 
 // fmt writes -0.00 for a small negative number rounded to zero.

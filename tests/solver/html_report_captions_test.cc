@@ -133,7 +133,7 @@ TEST(HtmlReportCaptions, ADiagnosisThatNamesACauseShowsTheSelectedModelBesideThe
   ASSERT_NE(selected, std::string::npos);
   ASSERT_NE(base, std::string::npos);
   EXPECT_LT(selected, base);
-  EXPECT_THAT(page, HasSubstr("<tr><td>c</td><td>0.04120</td><td>0.00040</td>"));  // rounded to its σ
+  EXPECT_THAT(page, HasSubstr("<tr><td>c</td><td>0.04120</td><td>0.00040</td>"));          // rounded to its σ
   EXPECT_THAT(page, HasSubstr("<td>N·m·s/rad</td><td>0.04650&nbsp;± 0.00050</td></tr>"));  // the base fit's c beside it
   EXPECT_THAT(page, HasSubstr("selected model (support_friction) high"));  // on the response curves
   EXPECT_THAT(page, HasSubstr("id=\"held-out-selected-acc3\""));

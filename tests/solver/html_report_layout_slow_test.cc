@@ -37,12 +37,15 @@ class HtmlReportLayout : public ::testing::Test {
     d.base.chi_square = 26.9436;
     for (const char* name : {"sensor_position(acc2)", "modulus_error", "sensor_phase_delay(acc2)", "clamp_compliance",
                              "support_friction_with_a_rather_long_candidate_name"}) {
-      CandidateOutcome c{.name = name, .signature_score = 0.123456, .status = RefitStatus::kRefitted,
-                         .p_value = 0.355784, .residual_drop = 1.03268};
+      CandidateOutcome c{.name = name,
+                         .signature_score = 0.123456,
+                         .status = RefitStatus::kRefitted,
+                         .p_value = 0.355784,
+                         .residual_drop = 1.03268};
       c.fit.chi_square = 26.0909;
       c.extra_parameters = {"extra_parameter_with_a_long_name"};
-      c.fit.parameters = {{.name = "extra_parameter_with_a_long_name", .unit = "N*m*s/rad", .value = 0.0123456,
-                           .std = 0.00021}};
+      c.fit.parameters = {
+          {.name = "extra_parameter_with_a_long_name", .unit = "N*m*s/rad", .value = 0.0123456, .std = 0.00021}};
       d.candidates.push_back(c);
     }
     input.diagnosis = DiagnosisFile{.diagnosis = d};

@@ -165,8 +165,8 @@ TEST(HtmlReportPlots, NoLegendEntryLiesOverADataPointOrInsideAPlottingArea) {
     ASSERT_FALSE(key.Empty()) << id;
     for (const auto& b : borders)
       EXPECT_FALSE(key.Intersects(b)) << id << ": the legend [" << key.left << ", " << key.top << ", " << key.right
-                                      << ", " << key.bottom << "] overlaps a plotting area [" << b.left << ", "
-                                      << b.top << ", " << b.right << ", " << b.bottom << "]";
+                                      << ", " << key.bottom << "] overlaps a plotting area [" << b.left << ", " << b.top
+                                      << ", " << b.right << ", " << b.bottom << "]";
     int covered = 0;
     for (const auto& p : data) covered += key.Contains(p) ? 1 : 0;
     EXPECT_EQ(covered, 0) << id << ": data vertices under the legend";

@@ -87,8 +87,8 @@ TEST(ReportResponseRows, MeasuredAmplitudePerForceAndPhaseFollowTheOscillatorsCl
       EXPECT_NEAR(rows[i][1], per_force * kForceN, 1e-9 * per_force * kForceN) << kChannels[c] << " " << f;
       EXPECT_NEAR(rows[i][2], per_force, 1e-9 * per_force) << kChannels[c] << " " << f;
       // arg H = −atan2(cω, k − mω²), in (−180°, 0°).
-      const double phase = -std::atan2(oscillator.Damping() * w, oscillator.Stiffness() - oscillator.mass_kg * w * w) *
-                           180.0 / kPi;
+      const double phase =
+          -std::atan2(oscillator.Damping() * w, oscillator.Stiffness() - oscillator.mass_kg * w * w) * 180.0 / kPi;
       EXPECT_NEAR(rows[i][3], phase, 1e-9) << kChannels[c] << " " << f;
       // Below resonance the displacement lags by less than 90°, above by more.
       if (f < oscillator.natural_hz) {
@@ -138,7 +138,8 @@ TEST(ReportResponseRows, TheModelCurveIsDividedByItsLevelsForce) {
   LevelCurves level{.level = "L", .force_amplitude_N = kForceN};
   for (double f : {48.0, 50.0, 52.0}) {
     const Complex x = std::pow(Complex(0, 2 * kPi * f), 2) * oscillator.Receptance(f) * kForceN;
-    level.model.push_back({.frequency_hz = f, .amplitude = {std::abs(x)}, .phase_deg = {DisplacementPhaseDeg(x / kForceN, 2)}});
+    level.model.push_back(
+        {.frequency_hz = f, .amplitude = {std::abs(x)}, .phase_deg = {DisplacementPhaseDeg(x / kForceN, 2)}});
   }
   const std::vector<ResponseRow> rows = ModelResponseRows(level, 0);
   ASSERT_EQ(rows.size(), 3u);

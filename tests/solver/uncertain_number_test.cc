@@ -15,7 +15,7 @@ namespace {
 TEST(UncertainNumber, RoundsTheValueToTheSecondSignificantDigitOfSigma) {
   EXPECT_EQ(WithUncertainty(150.4512, 0.0021), "150.4512 ± 0.0021");
   EXPECT_EQ(WithUncertainty(150.45167, 0.00214), "150.4517 ± 0.0021");
-  EXPECT_EQ(WithUncertainty(0.05003, 0.000085), "0.050030 ± 0.000085");   // a trailing zero is a digit
+  EXPECT_EQ(WithUncertainty(0.05003, 0.000085), "0.050030 ± 0.000085");  // a trailing zero is a digit
   EXPECT_EQ(WithUncertainty(54.00537, 0.0312), "54.005 ± 0.031");
   EXPECT_EQ(WithUncertainty(-4.04, 4.3), "-4.0 ± 4.3");
   EXPECT_EQ(WithUncertainty(299992.3, 41.2), "299992 ± 41");
@@ -41,8 +41,8 @@ TEST(UncertainNumber, VerySmallOrLargeNumbersShareOnePowerOfTen) {
 }
 
 TEST(UncertainNumber, ASigmaOfZeroOrNotFiniteIsNoSigma) {
-  for (const double sigma : {0.0, -1.0, std::numeric_limits<double>::quiet_NaN(),
-                             std::numeric_limits<double>::infinity()}) {
+  for (const double sigma :
+       {0.0, -1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
     const std::string text = WithUncertainty(150.4512, sigma);
     EXPECT_EQ(text, "150.451 (σ not available)") << sigma;
     EXPECT_EQ(text.find("± 0"), std::string::npos);

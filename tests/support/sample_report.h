@@ -42,21 +42,30 @@ inline solver::ReportCurves SampleReportCurves() {
     auto response = [&](double f) { return forces[l] * 8.0 / std::hypot(1.0, (f - 54.0 - shift) / 0.3); };
     auto phase = [&](double f) { return -90.0 - 180.0 / std::numbers::pi * std::atan((f - 54.0 - shift) / 0.3); };
     for (double f = 50.0; f <= 58.0; f += 0.25)
-      level.measured.push_back({.frequency_hz = f, .amplitude = {response(f), 0.6 * response(f)},
-                                .file = std::string(names[l]) + std::to_string(f), .force_amplitude_N = forces[l],
-                                .phase_deg = {phase(f), phase(f)},
-                                .higher_harmonics = {{1e-4 * forces[l], 2e-3 * forces[l] * forces[l]},
-                                                     {1e-4, 1e-3 * forces[l]}}});
+      level.measured.push_back(
+          {.frequency_hz = f,
+           .amplitude = {response(f), 0.6 * response(f)},
+           .file = std::string(names[l]) + std::to_string(f),
+           .force_amplitude_N = forces[l],
+           .phase_deg = {phase(f), phase(f)},
+           .higher_harmonics = {{1e-4 * forces[l], 2e-3 * forces[l] * forces[l]}, {1e-4, 1e-3 * forces[l]}}});
     for (double f = 49.9; f <= 58.1; f += 0.05)
-      level.model.push_back({.frequency_hz = f, .amplitude = {response(f), 0.6 * response(f)},
-                             .stable = !(l == 2 && f > 54.5 && f < 54.9), .phase_deg = {phase(f), phase(f)},
+      level.model.push_back({.frequency_hz = f,
+                             .amplitude = {response(f), 0.6 * response(f)},
+                             .stable = !(l == 2 && f > 54.5 && f < 54.9),
+                             .phase_deg = {phase(f), phase(f)},
                              .higher_harmonics = {{1e-5, 2e-3 * forces[l] * forces[l]}, {1e-5, 1e-3}}});
     curves.levels.push_back(level);
   }
   curves.levels[1].measured[10].flag = "recorded before it settled";
-  for (double f = 54.0; f <= 55.0; f += 0.05) curves.backbone.push_back({.frequency_hz = f, .amplitude = 60.0 * (f - 53.9)});
-  curves.phase_resonance = {{.level = "low", .frequency_hz = 54.0, .frequency_std_hz = 0.001, .amplitude = 8.0,
-                             .amplitude_std = 0.01, .model_frequency_hz = 54.0}};
+  for (double f = 54.0; f <= 55.0; f += 0.05)
+    curves.backbone.push_back({.frequency_hz = f, .amplitude = 60.0 * (f - 53.9)});
+  curves.phase_resonance = {{.level = "low",
+                             .frequency_hz = 54.0,
+                             .frequency_std_hz = 0.001,
+                             .amplitude = 8.0,
+                             .amplitude_std = 0.01,
+                             .model_frequency_hz = 54.0}};
   curves.measured_mode.damping = {{.level = "low", .amplitude = 8.0, .quadrature = 0.006, .quadrature_std = 1e-4},
                                   {.level = "high", .amplitude = 72.0, .quadrature = 0.005, .quadrature_std = 1e-4}};
   curves.held_out_channel = "acc3";
