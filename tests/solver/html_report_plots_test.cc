@@ -7,7 +7,9 @@
 // the neutral colour whatever the largest residual, below it blue, above red.
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <regex>
 #include <string>
 #include <vector>
@@ -73,20 +75,49 @@ std::vector<PlotGroup> PlotGroups(const std::string& svg, std::string* outside) 
   return groups;
 }
 
+// The "x,y" pairs of a path's d or a polygon's points (letters between them
+// are the path's commands).
+void AddPairs(const std::string& coordinates, std::vector<Point>& points) {
+  const char* at = coordinates.c_str();
+  const char* end = at + coordinates.size();
+  while (at < end) {
+    if (!(std::isdigit(static_cast<unsigned char>(*at)) || *at == '-' || *at == '.')) {
+      ++at;
+      continue;
+    }
+    char* after = nullptr;
+    const double x = std::strtod(at, &after);
+    if (after >= end || *after != ',') {  // a lone number (a path's h or v length): not a vertex
+      at = after;
+      continue;
+    }
+    const double y = std::strtod(after + 1, &after);
+    points.push_back({x, y});
+    at = after;
+  }
+}
+
+// The text of every attribute `name='...'` in `body` (written without a
+// regular expression: a path of a long curve is thousands of characters).
+std::vector<std::string> Attributes(const std::string& body, const std::string& name) {
+  std::vector<std::string> values;
+  const std::string open = name + "'";
+  for (std::size_t at = body.find(open); at != std::string::npos; at = body.find(open, at + 1)) {
+    const std::size_t start = at + open.size(), stop = body.find('\'', start);
+    values.push_back(body.substr(start, stop - start));
+  }
+  return values;
+}
+
 // Every vertex a group draws: path and polygon coordinates and point markers.
 std::vector<Point> Vertices(const std::string& body) {
   std::vector<Point> points;
-  static const std::regex path(R"re(d='([^']*)')re"), polygon(R"re(points = '([^']*)')re"),
-      marker(R"re(<use xlink:href='#gpPt\d+' transform='translate\(([-\d.]+),([-\d.]+)\))re"),
-      pair(R"re(([-\d.]+),([-\d.]+))re");
-  for (const auto* pattern : {&path, &polygon})
-    for (std::sregex_iterator m(body.begin(), body.end(), *pattern), end; m != end; ++m) {
-      const std::string coordinates = (*m)[1];
-      for (std::sregex_iterator p(coordinates.begin(), coordinates.end(), pair); p != end; ++p)
-        points.push_back({std::stod((*p)[1]), std::stod((*p)[2])});
-    }
-  for (std::sregex_iterator m(body.begin(), body.end(), marker), end; m != end; ++m)
-    points.push_back({std::stod((*m)[1]), std::stod((*m)[2])});
+  for (const auto& d : Attributes(body, " d=")) AddPairs(d, points);
+  for (const auto& p : Attributes(body, "points = ")) AddPairs(p, points);
+  for (const auto& t : Attributes(body, "transform=")) {  // <use xlink:href='#gpPt..' transform='translate(x,y) ..'
+    if (t.rfind("translate(", 0) != 0) continue;
+    AddPairs(t.substr(10, t.find(')') - 10), points);
+  }
   return points;
 }
 
