@@ -32,6 +32,7 @@ struct ReportOptions {
   std::string campaign_folder;
   std::string output = "report.html";
   std::string screenshot;
+  bool log_amplitude = false;
 };
 
 // Whether the input is the .json of `beamid backbone --measured` (its
@@ -116,7 +117,7 @@ void RunReport(const ReportOptions& options, const GlobalOptions& global) {
   std::string html;
   {
     Progress progress("report: plots", global);
-    html = solver::HtmlReport(input, curves);
+    html = solver::HtmlReport(input, curves, {.log_amplitude = options.log_amplitude});
   }
   WriteTextFile(options.output, html);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -144,6 +145,9 @@ BEAMID_REGISTER_COMMAND("report", [](CLI::App& app, const GlobalOptions& global)
                   "Campaign folder (default: the one recorded in result.json)")
       ->check(NonEmptyPath());
   sub->add_option("-o,--output", options->output, "HTML file to write")->capture_default_str();
+  sub->add_flag("--log-amplitude", options->log_amplitude,
+                "Draw the first-harmonic amplitude |X1| on a logarithmic axis too (|X1|/|F1| and harmonics 2, 3 "
+                "always are)");
   sub->add_option("--screenshot", options->screenshot,
                   "Also render the page in headless Chromium to this PNG and print its path")
       ->check(NonEmptyPath());

@@ -5,19 +5,35 @@
 namespace beamid::solver {
 namespace {
 
+// Readable from a 900 px window up: the text column is at most 1000 px wide,
+// a plot scales down to the column (its SVG keeps its aspect), a table wider
+// than the column scrolls inside its own box, and a long path or name in the
+// text wraps instead of widening the page.
 constexpr const char* kStyle = R"(
-body { font-family: Helvetica, Arial, sans-serif; margin: 2em auto; max-width: 1600px; color: #222; }
+*, *::before, *::after { box-sizing: border-box; }
+body { font-family: Helvetica, Arial, sans-serif; margin: 1em auto; padding: 0 1em; max-width: 1000px; color: #222; line-height: 1.35; }
 h1 { font-size: 1.6em; } h2 { border-bottom: 1px solid #ccc; padding-bottom: 0.2em; margin-top: 1.6em; }
-table { border-collapse: collapse; margin: 0.8em 0; } td, th { border: 1px solid #ccc; padding: 0.3em 0.7em; text-align: right; }
+p, li, dd, dt, figcaption, h1, h2, h3, code { overflow-wrap: anywhere; }
+div.table { max-width: 100%; overflow-x: auto; margin: 0.8em 0; }
+table { border-collapse: collapse; }
+td, th { border: 1px solid #ccc; padding: 0.3em 0.6em; text-align: right; vertical-align: top; }
 th { background: #f3f3f3; } td:first-child { text-align: left; }
-figure.plot { display: inline-block; margin: 0.5em; vertical-align: top; }
-figure.plot svg { display: block; }
-figcaption { font-size: 0.9em; color: #555; max-width: 760px; }
+figure.plot { display: block; margin: 1em 0; max-width: 100%; }
+figure.plot svg { display: block; width: 100%; max-width: 900px; height: auto; }
+figcaption { font-size: 0.9em; color: #555; max-width: 900px; }
 dl { display: grid; grid-template-columns: max-content auto; gap: 0.2em 1em; } dt { font-weight: bold; }
 .flag, .warning { color: #a50f15; }
 )";
 
 }  // namespace
+
+std::string ScrollableTables(std::string html) {
+  for (std::size_t at = 0; (at = html.find("<table", at)) != std::string::npos; at += 24)
+    html.insert(at, "<div class=\"table\">");
+  for (std::size_t at = 0; (at = html.find("</table>", at)) != std::string::npos; at += 14)
+    html.insert(at + 8, "</div>");
+  return html;
+}
 
 std::string HtmlPageHead(const std::string& title) {
   return "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" + HtmlEscape(title) +

@@ -12,6 +12,9 @@
 #include <fmt/core.h>
 
 #include "solver/report/gnuplot_svg.h"
+#include "solver/report/response_plots.h"
+#include "solver/report/stacked_plot.h"
+#include "solver/report/uncertain_number.h"
 
 namespace beamid::solver {
 namespace {
@@ -27,90 +30,39 @@ std::string Figure(const std::string& id, const std::string& svg, const std::str
                      svg, caption);
 }
 
+// A statistic (χ², p, a score): no uncertainty, six significant digits.
 std::string Number(double value) { return fmt::format("{:.6g}", value); }
 
-// Model curve split into stable and unstable segments (a blank row between
-// segments; a switch point belongs to both so the curve stays connected).
-void SplitByStability(const LevelCurves& level, std::size_t channel, Rows& stable, Rows& unstable) {
-  for (std::size_t i = 0; i < level.model.size(); ++i) {
-    const auto& p = level.model[i];
-    const std::vector<double> row = {p.frequency_hz, p.amplitude[channel]};
-    Rows& mine = p.stable ? stable : unstable;
-    Rows& other = p.stable ? unstable : stable;
-    if (i > 0 && level.model[i - 1].stable != p.stable) {
-      other.push_back(row);
-      other.push_back({});
-      const auto& q = level.model[i - 1];
-      mine.push_back({q.frequency_hz, q.amplitude[channel]});
-    }
-    mine.push_back(row);
-  }
+// value ± σ for a table cell: a narrow column breaks it after the ±, never
+// inside a number or before the ±.
+std::string UncertainCell(double value, double sigma, const std::string& unit = "") {
+  std::string text = HtmlEscape(WithUncertainty(value, sigma, unit));
+  for (std::size_t at; (at = text.find(" ± ")) != std::string::npos;) text.replace(at, 4, "&nbsp;± ");
+  return text;
+}
+
+// A unit column: the unit's symbols, "—" for a dimensionless one.
+std::string UnitCell(const std::string& unit) {
+  const std::string symbol = UnitSymbol(unit);
+  return symbol.empty() ? "—" : HtmlEscape(symbol);
+}
+
+// A standard uncertainty's cell: "not available" rather than a 0 that
+// would read as exact.
+std::string SigmaCell(const UncertainFormat& format, double sigma) {
+  return format.has_sigma() ? format.Format(sigma) : "not available";
 }
 
 // The model a diagnosis selected, as its file holds it: its first harmonic
 // at every measured step of every channel (DiagnosisResult::response).
-struct SelectedModel {
-  std::string name;                         // "support_friction", "a + b"
-  const std::vector<ResponsePoint>* points = nullptr;
-};
-
-std::optional<SelectedModel> SelectedModelOf(const ReportInput& input) {
+std::optional<SelectedResponse> SelectedModelOf(const ReportInput& input) {
   if (!input.diagnosis) return std::nullopt;
   const DiagnosisResult& d = input.diagnosis->diagnosis;
   const bool named = d.verdict == DiagnosisVerdict::kCauseNamed || d.verdict == DiagnosisVerdict::kCombinationNamed;
   if (!named || d.response.empty()) return std::nullopt;
   std::string name;
   for (const auto& s : d.selected) name += (name.empty() ? "" : " + ") + s;
-  return SelectedModel{.name = name, .points = &d.response};
-}
-
-// One channel's selected-model points of a level, in frequency order.
-Rows SelectedRows(const SelectedModel& selected, const std::string& level, const std::string& channel) {
-  Rows rows;
-  for (const auto& p : *selected.points)
-    if (p.level == level && p.channel == channel) rows.push_back({p.frequency_hz, std::abs(p.final_model)});
-  std::sort(rows.begin(), rows.end());
-  return rows;
-}
-
-std::string FrcPlot(const ReportCurves& curves, std::size_t channel, const std::optional<SelectedModel>& selected) {
-  const ReportChannel& ch = curves.channels[channel];
-  std::string script = fmt::format(
-      "set title {}\nset xlabel 'frequency [Hz]'\nset ylabel {}\nset grid\nset key top left box opaque\n",
-      GnuplotText(fmt::format("{} at x = {:.3f} m ({}): first harmonic", ch.channel, ch.position_m,
-                              ch.fitted ? "fitted" : "held out")),
-      GnuplotText(fmt::format("|X_1| [{}]", ch.si_unit)));
-  std::string plot = "plot ";
-  Rows flagged;  // steps not to be trusted as the others (MeasuredPoint::flag)
-  for (std::size_t l = 0; l < curves.levels.size(); ++l) {
-    const LevelCurves& level = curves.levels[l];
-    Rows stable, unstable, measured;
-    SplitByStability(level, channel, stable, unstable);
-    for (const auto& m : level.measured) {
-      measured.push_back({m.frequency_hz, m.amplitude[channel]});
-      if (!m.flag.empty()) flagged.push_back({m.frequency_hz, m.amplitude[channel]});
-    }
-    script += Datablock(fmt::format("s{}", l), stable) + Datablock(fmt::format("u{}", l), unstable) +
-              Datablock(fmt::format("m{}", l), measured);
-    const std::string label = fmt::format("{} ({:.3g} N)", level.level, level.force_amplitude_N);
-    plot += fmt::format(
-        "{}$s{} with lines lw 2 lc rgb '{}' title {}, $u{} with lines lw 2 dt 2 lc rgb '{}' notitle, "
-        "$m{} with points pt 7 ps 0.7 lc rgb '{}' title {}",
-        l ? ", " : "", l, Colour(l), GnuplotText((selected ? "base model " : "model ") + label), l, Colour(l), l,
-        Colour(l), GnuplotText("measured " + label));
-    if (selected) {
-      const Rows points = SelectedRows(*selected, level.level, curves.channels[channel].channel);
-      if (points.empty()) continue;
-      script += Datablock(fmt::format("x{}", l), points);
-      plot += fmt::format(", $x{} with linespoints pt 2 ps 0.9 lw 1 lc rgb '{}' title {}", l, Colour(l),
-                          GnuplotText("selected model (" + selected->name + ") " + level.level));
-    }
-  }
-  if (!flagged.empty()) {
-    script += Datablock("flagged", flagged);
-    plot += ", $flagged with points pt 6 ps 2.2 lw 2 lc rgb 'black' title 'flagged step (see the recording section)'";
-  }
-  return script + plot + "\n";
+  return SelectedResponse{.name = name, .points = &d.response};
 }
 
 // The steps the recording makes doubtful: cut before they settled (the
@@ -129,22 +81,22 @@ std::string RecordingSection(const ReportCurves& curves, const ResultFile& resul
     html += "<p>Robust fit: " + HtmlEscape(result.robust_fit->note) + "</p>\n";
     if (result.robust_fit->applied) {
       html += "<table><tr><th>parameter</th><th>without the outliers (reported)</th><th>with them</th></tr>\n";
-      for (std::size_t j = 0; j < result.parameters.size() && j < result.robust_fit->ordinary_parameters.size(); ++j)
-        html += "<tr><td>" + HtmlEscape(result.parameters[j].name) + "</td><td>" + Number(result.parameters[j].value) +
-                "</td><td>" + Number(result.robust_fit->ordinary_parameters[j].value) + "</td></tr>\n";
+      for (std::size_t j = 0; j < result.parameters.size() && j < result.robust_fit->ordinary_parameters.size(); ++j) {
+        // Both at the reported value's uncertainty, so that they compare digit by digit.
+        const UncertainFormat format(result.parameters[j].value, result.parameters[j].std);
+        html += "<tr><td>" + HtmlEscape(result.parameters[j].name) + "</td><td>" +
+                format.Format(result.parameters[j].value) + "</td><td>" +
+                format.Format(result.robust_fit->ordinary_parameters[j].value) + "</td></tr>\n";
+      }
       html += "</table>\n";
     }
   }
   return html.empty() ? html : "<section id=\"recording\"><h2>The recording</h2>\n" + html + "</section>\n";
 }
 
-std::string BackbonePlot(const ReportCurves& curves) {
+std::string BackbonePlotSvg(const ReportCurves& curves) {
   const std::size_t c = static_cast<std::size_t>(curves.reference_channel);
   const ReportChannel& ch = curves.channels[c];
-  std::string script = fmt::format(
-      "set title {}\nset xlabel 'frequency [Hz]'\nset ylabel {}\nset grid\nset key top left box opaque\n",
-      GnuplotText(fmt::format("backbone at {} (x = {:.3f} m)", ch.channel, ch.position_m)),
-      GnuplotText(fmt::format("|X_1| [{}]", ch.si_unit)));
   Rows frc, backbone, resonance;
   for (const auto& level : curves.levels) {
     for (const auto& p : level.model) frc.push_back({p.frequency_hz, p.amplitude[c]});
@@ -162,23 +114,33 @@ std::string BackbonePlot(const ReportCurves& curves) {
     band.push_back({p.frequency_hz - 2 * p.frequency_std_hz, p.amplitude});
   }
   for (auto p = fit.rbegin(); p != fit.rend(); ++p) band.push_back({p->frequency_hz + 2 * p->frequency_std_hz, p->amplitude});
-  script += Datablock("frc", frc) + Datablock("bb", backbone) + Datablock("pr", resonance) +
-            Datablock("sm", single_mode) + Datablock("band", band);
-  script +=
-      "plot $frc with lines lw 1 lc rgb '#aaaaaa' title 'model FRCs', "
-      "$bb with lines lw 2.5 lc rgb '#000000' title 'model backbone (phase resonance at this sensor)', ";
-  if (!single_mode.empty())
-    script +=
-        "$band with filledcurves closed lc rgb '#f4b6b6' fs transparent solid 0.5 notitle, "
-        "$sm using 1:2 with lines lw 1.5 dt 2 lc rgb '#d62728' title 'measured: one nonlinear mode fitted across levels ±2σ', ";
-  script +=
-      "$pr using 1:2:3:4 with xyerrorbars pt 13 ps 1.6 lw 1.5 lc rgb '#d62728' title 'measured phase resonance ±2σ'\n";
-  return script;
+  StackedPlot plot{.title = fmt::format("backbone at {} (x = {:.3f} m)", ch.channel, ch.position_m),
+                   .xlabel = "frequency [Hz]",
+                   .datablocks = Datablock("frc", frc) + Datablock("bb", backbone) + Datablock("pr", resonance) +
+                                 Datablock("sm", single_mode) + Datablock("band", band)};
+  Panel panel{.settings = "set ylabel " + GnuplotText("|X₁| [" + UnitSymbol(ch.si_unit) + "]") + "\n",
+              .height_px = 330};
+  const std::string grey = "with lines lw 1 lc rgb '#aaaaaa'", black = "with lines lw 2.5 lc rgb '#000000'";
+  panel.items = {{"$frc", grey}, {"$bb", black}};
+  plot.keys = {{grey, "model FRCs"}, {black, "model backbone (phase resonance at this sensor)"}};
+  if (!single_mode.empty()) {
+    const std::string fill = "with filledcurves closed lc rgb '#f4b6b6' fs transparent solid 0.5";
+    const std::string dashed = "with lines lw 1.5 dt 2 lc rgb '#d62728'";
+    panel.items.push_back({"$band", fill});
+    panel.items.push_back({"$sm using 1:2", dashed});
+    plot.keys.push_back({dashed, "measured: one nonlinear mode fitted across levels"});
+    plot.keys.push_back({fill, "its ±2σ band"});
+  }
+  const std::string bars = "with xyerrorbars pt 13 ps 1.6 lw 1.5 lc rgb '#d62728'";
+  panel.items.push_back({"$pr using 1:2:3:4", bars});
+  plot.keys.push_back({bars, "measured phase resonance ±2σ"});
+  plot.panels = {panel};
+  return StackedPlotSvg(plot);
 }
 
 // Damping ratio against amplitude, model-free: each level's three estimates
 // and the single-nonlinear-mode fit's ζ(a).
-std::string DampingPlot(const ReportCurves& curves) {
+std::string DampingPlotSvg(const ReportCurves& curves) {
   const ReportChannel& ch = curves.channels[static_cast<std::size_t>(curves.reference_channel)];
   const MeasuredNonlinearMode& mode = curves.measured_mode;
   Rows quadrature, local, half_power, fit;
@@ -190,21 +152,24 @@ std::string DampingPlot(const ReportCurves& curves) {
   for (const auto& p : mode.fit)
     fit.push_back({p.amplitude, p.damping_ratio, p.damping_ratio - 2 * p.damping_ratio_std,
                    p.damping_ratio + 2 * p.damping_ratio_std});
-  std::string script = fmt::format(
-      "set title {}\nset xlabel {}\nset ylabel 'damping ratio {{/Symbol z}}'\nset grid\nset key outside below\n",
-      GnuplotText(fmt::format("damping against amplitude at {} (model-free)", ch.channel)),
-      GnuplotText(fmt::format("|X_1| at phase resonance [{}]", ch.si_unit)));
-  script += Datablock("q", quadrature) + Datablock("l", local) + Datablock("h", half_power) + Datablock("f", fit);
-  std::string plot = "plot ";
-  auto add = [&](const std::string& item) { plot += (plot.size() > 5 ? ", " : "") + item; };
-  if (!fit.empty()) {
-    add("$f using 1:3:4 with filledcurves lc rgb '#f4b6b6' fs transparent solid 0.5 notitle");
-    add("$f using 1:2 with lines lw 1.5 dt 2 lc rgb '#d62728' title 'one nonlinear mode fitted across levels ±2σ'");
-  }
-  if (!quadrature.empty()) add("$q with yerrorbars pt 13 ps 1.4 lc rgb '#d62728' title 'quadrature point'");
-  if (!local.empty()) add("$l with yerrorbars pt 7 ps 0.9 lc rgb '#1f77b4' title 'local single-mode fit'");
-  if (!half_power.empty()) add("$h with yerrorbars pt 5 ps 0.9 lc rgb '#2ca02c' title 'half-power'");
-  return script + plot + "\n";
+  StackedPlot plot{.title = fmt::format("damping against amplitude at {} (model-free)", ch.channel),
+                   .xlabel = "|X₁| at phase resonance [" + UnitSymbol(ch.si_unit) + "]",
+                   .datablocks = Datablock("q", quadrature) + Datablock("l", local) + Datablock("h", half_power) +
+                                 Datablock("f", fit)};
+  Panel panel{.settings = "set ylabel 'damping ratio ζ'\n", .height_px = 300};
+  auto add = [&](bool any, const std::string& source, const std::string& style, const std::string& title) {
+    if (!any) return;
+    panel.items.push_back({source, style});
+    if (!title.empty()) plot.keys.push_back({style, title});
+  };
+  add(!fit.empty(), "$f using 1:3:4", "with filledcurves lc rgb '#f4b6b6' fs transparent solid 0.5", "");
+  add(!fit.empty(), "$f using 1:2", "with lines lw 1.5 dt 2 lc rgb '#d62728'",
+      "one nonlinear mode fitted across levels ±2σ");
+  add(!quadrature.empty(), "$q", "with yerrorbars pt 13 ps 1.4 lc rgb '#d62728'", "quadrature point");
+  add(!local.empty(), "$l", "with yerrorbars pt 7 ps 0.9 lc rgb '#1f77b4'", "local single-mode fit");
+  add(!half_power.empty(), "$h", "with yerrorbars pt 5 ps 0.9 lc rgb '#2ca02c'", "half-power");
+  plot.panels = {panel};
+  return StackedPlotSvg(plot);
 }
 
 std::string Warnings(const std::vector<std::string>& warnings) {
@@ -217,44 +182,64 @@ std::string Warnings(const std::vector<std::string>& warnings) {
 std::string ResonanceTable(const ReportCurves& curves) {
   const ReportChannel& ch = curves.channels[static_cast<std::size_t>(curves.reference_channel)];
   std::string html = fmt::format(
-      "<table class=\"resonance\"><tr><th>level</th><th>phase resonance [Hz]</th><th>|X_1| [{}]</th>"
-      "<th>damping ratio ζ</th><th>model backbone there [Hz]</th><th>measured − model</th><th>note</th></tr>\n",
-      HtmlEscape(ch.si_unit));
-  for (const auto& p : curves.phase_resonance)
+      "<table class=\"resonance\"><tr><th>level</th><th>phase resonance [Hz]</th><th>|X₁| [{}]</th>"
+      "<th>damping ratio ζ</th><th>model backbone there [Hz]</th><th>measured − model</th></tr>\n",
+      HtmlEscape(UnitSymbol(ch.si_unit)));
+  // A level's note is a sentence: below the table, where it has the page's width.
+  std::string notes;
+  for (const auto& p : curves.phase_resonance) {
+    // The model's frequency at the measured one's decimal place.
+    const UncertainFormat frequency(p.frequency_hz, p.frequency_std_hz);
     html += fmt::format(
-        "<tr><td>{}</td><td>{:.4f} ± {:.4f}</td><td>{:.5g} ± {:.2g}</td><td>{:.5f} ± {:.2g}</td><td>{}</td>"
-        "<td class=\"z\">{}</td><td>{}</td></tr>\n",
-        HtmlEscape(p.level), p.frequency_hz, p.frequency_std_hz, p.amplitude, p.amplitude_std,
-        p.damping_ratio, p.damping_ratio_std,
-        std::isfinite(p.model_frequency_hz) ? fmt::format("{:.4f}", p.model_frequency_hz) : "outside its range",
-        std::isfinite(p.z) ? fmt::format("{:+.2f} σ", p.z) : "", HtmlEscape(p.note));
-  return html + "</table>\n";
+        "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td class=\"z\">{}</td></tr>\n",
+        HtmlEscape(p.level) + (p.note.empty() ? "" : "&nbsp;*"), UncertainCell(p.frequency_hz, p.frequency_std_hz),
+        UncertainCell(p.amplitude, p.amplitude_std), UncertainCell(p.damping_ratio, p.damping_ratio_std),
+        std::isfinite(p.model_frequency_hz) ? frequency.Format(p.model_frequency_hz) : "outside its range",
+        std::isfinite(p.z) ? fmt::format("{:+.2f} σ", p.z) : "");
+    if (!p.note.empty()) notes += "<li>" + HtmlEscape(p.level) + ": " + HtmlEscape(p.note) + "</li>";
+  }
+  return html + "</table>\n" + (notes.empty() ? "" : "<ul class=\"notes\">" + notes + "</ul>\n");
 }
 
-std::string TimePlot(const TimeHistory& history, const std::string& channel) {
+std::string TimePlotSvg(const TimeHistory& history, const std::string& channel) {
   Rows rows;
   for (std::size_t n = 0; n < history.time_s.size(); ++n)
     rows.push_back({1e3 * history.time_s[n], history.predicted[n], history.predicted_std[n], history.measured[n]});
-  return fmt::format(
-             "set title {}\nset xlabel 'time [ms]'\nset ylabel 'acceleration [m/s^2]'\nset grid\n"
-             "set key top right box opaque\n",
-             GnuplotText(fmt::format("{} (held out), level {}, {:.3f} Hz: one period of the steady state", channel,
-                                     history.level, history.frequency_hz))) +
-         Datablock("t", rows) +
-         "plot $t using 1:($2-2*$3):($2+2*$3) with filledcurves fc rgb '#c6dbef' title 'prediction ±2σ', "
-         "$t using 1:2 with lines lw 2 lc rgb '#1f77b4' title 'predicted', "
-         "$t using 1:4 with lines lw 2 dt 2 lc rgb '#d62728' title 'measured (harmonics of the recording)'\n";
+  StackedPlot plot{.title = fmt::format("{} (held out), level {}, {:.3f} Hz: one period of the steady state", channel,
+                                        history.level, history.frequency_hz),
+                   .xlabel = "time [ms]",
+                   .datablocks = Datablock("t", rows),
+                   .x_settings = "set autoscale xfix\n"};  // one period, edge to edge
+  const std::string band = "with filledcurves fc rgb '#c6dbef'", predicted = "with lines lw 2 lc rgb '#1f77b4'",
+                    measured = "with lines lw 2 dt 2 lc rgb '#d62728'";
+  plot.panels = {
+      {.settings = "set ylabel 'acceleration [m/s²]'\n",
+       .items = {{"$t using 1:($2-2*$3):($2+2*$3)", band}, {"$t using 1:2", predicted}, {"$t using 1:4", measured}},
+       .height_px = 280}};
+  plot.keys = {{band, "prediction ±2σ"}, {predicted, "predicted"}, {measured, "measured (harmonics of the recording)"}};
+  return StackedPlotSvg(plot);
 }
 
+// The colour scale is logarithmic and centred at one standard uncertainty:
+// |residual|/σ = 1 is the neutral colour, blue below (within the noise), red
+// above (a misfit), symmetric in decades about 1.
 std::string ResidualPlot(const ResidualMap& map) {
   const Eigen::Index rows = map.whitened_norm.rows(), steps = map.whitened_norm.cols();
-  Rows data;
-  for (Eigen::Index r = 0; r < rows; ++r) {
+  double largest = 1.0;
+  for (Eigen::Index r = 0; r < rows; ++r)
     for (Eigen::Index i = 0; i < steps; ++i)
-      data.push_back({static_cast<double>(i), static_cast<double>(r), std::max(map.whitened_norm(r, i), 1e-3)});
-    data.push_back({});
-  }
-  std::string ytics, xtics, arrows;
+      if (std::isfinite(map.whitened_norm(r, i))) largest = std::max(largest, map.whitened_norm(r, i));
+  const int decades = std::clamp(static_cast<int>(std::ceil(std::log10(largest) - 1e-9)), 1, 3);
+  const double top = std::pow(10.0, decades), bottom = 1.0 / top;
+  // One filled box per cell (an image needs a grid of at least 2 × 2: one
+  // fitted channel and harmonic would show nothing); a step without a state
+  // (NaN) stays blank.
+  Rows data;
+  for (Eigen::Index r = 0; r < rows; ++r)
+    for (Eigen::Index i = 0; i < steps; ++i)
+      data.push_back(
+          {static_cast<double>(i), static_cast<double>(r), std::clamp(map.whitened_norm(r, i), bottom, top)});
+  std::string ytics, xtics, arrows, cbtics;
   for (Eigen::Index r = 0; r < rows; ++r)
     ytics += fmt::format("{}{} {}", r ? ", " : "", GnuplotText(map.rows[r], GnuplotTextUse::kTicLabel), r);
   std::size_t start = 0;
@@ -263,97 +248,103 @@ std::string ResidualPlot(const ResidualMap& map) {
     xtics += fmt::format("{}{} {}", xtics.empty() ? "" : ", ", GnuplotText(map.step_level[start], GnuplotTextUse::kTicLabel),
                          0.5 * (start + i - 1));
     if (i < map.step_level.size())
-      arrows += fmt::format("set arrow from {0}, graph 0 to {0}, graph 1 nohead lc rgb '#ffffff' lw 2 front\n", i - 0.5);
+      arrows +=
+          fmt::format("set arrow from {0}, graph 0 to {0}, graph 1 nohead lc rgb '#444444' lw 2 front\n", i - 0.5);
     start = i;
   }
+  for (int d = -decades; d <= decades; ++d)
+    cbtics +=
+        fmt::format("{}'{}{}' {:g}", d == -decades ? "" : ", ", d == 0 ? "1 σ" : fmt::format("{:g}", std::pow(10.0, d)),
+                    d < 0   ? " (noise)"
+                    : d > 0 ? " (misfit)"
+                            : "",
+                    std::pow(10.0, d));
   return fmt::format(
              "set title 'whitened residual |L^{{-1}}(Y_{{model}} - Y_{{measured}})| per channel, harmonic and step'\n"
              "set xlabel 'steps (by level, in campaign order)'\nset ytics ({})\nset xtics ({})\n"
-             "set logscale cb\nset cblabel 'residual (1 = one standard uncertainty)'\n"
-             "set palette defined (0 '#f7fbff', 1 '#6baed6', 2 '#fd8d3c', 3 '#a50f15')\n"
+             "set logscale cb\nset cbrange [{:g}:{:g}]\nset cbtics ({})\n"
+             "set cblabel '|residual| / σ'\n"
+             "set palette defined (0 '#4393c3', 0.25 '#92c5de', 0.5 '#f7f7f7', 0.75 '#f4a582', 1 '#b2182b')\n"
+             "set lmargin 10\nset rmargin 16\n"
              "set xrange [-0.5:{}]\nset yrange [-0.5:{}]\n{}",
-             ytics, xtics, steps - 0.5, rows - 0.5, arrows) +
-         Datablock("r", data) + "plot $r using 1:2:3 with image pixels notitle\n";
+             ytics, xtics, bottom, top, cbtics, steps - 0.5, rows - 0.5, arrows) +
+         Datablock("r", data) +
+         "plot $r using 1:2:(0.5):(0.5):3 with boxxyerror fs solid 1.0 noborder lc palette notitle\n";
 }
 
 // With the damping laws refitted: a column of the model-form interval (the
 // envelope over the laws the data accept), flagged where it depends on the law.
+// With `base`: a last column of the base fit's value of each parameter, blank
+// for those the base model lacks (a diagnosis's selected model).
 // (result.json's parameters and a damping law's fit hold the same fields.)
 template <typename Parameter>
-std::string ParameterRows(const std::vector<Parameter>& parameters, const std::vector<ModelFormInterval>& intervals) {
+std::string ParameterRows(const std::vector<Parameter>& parameters, const std::vector<ModelFormInterval>& intervals,
+                          const std::vector<ParameterEstimate>* base = nullptr) {
   std::string html =
       "<table class=\"parameters\"><tr><th>parameter</th><th>value</th><th>standard uncertainty</th>"
       "<th>95 % interval</th>" +
-      std::string(intervals.empty() ? "" : "<th>95 % over the beam's damping laws</th>") + "<th>unit</th></tr>\n";
+      std::string(intervals.empty() ? "" : "<th>95 % over the beam's damping laws</th>") + "<th>unit</th>" +
+      std::string(base == nullptr ? "" : "<th>base fit (rejected)</th>") + "</tr>\n";
   for (const auto& p : parameters) {
-    std::string model_form;
+    // Every number of the row at the decimal place of the value's σ.
+    const UncertainFormat format(p.value, p.std);
+    std::string model_form, base_value;
     if (!intervals.empty()) {
       const auto i = std::find_if(intervals.begin(), intervals.end(), [&](const auto& m) { return m.name == p.name; });
       model_form = i == intervals.end()
                        ? "<td>(a damping parameter)</td>"
-                       : fmt::format("<td>{} … {}{}</td>", Number(i->lower_95), Number(i->upper_95),
+                       : fmt::format("<td>{} … {}{}</td>", format.Format(i->lower_95), format.Format(i->upper_95),
                                      i->depends_on_damping_law ? " <b>[depends on the damping law]</b>" : "");
     }
-    html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{} … {}</td>{}<td>{}</td></tr>\n", HtmlEscape(p.name),
-                        Number(p.value), Number(p.std), Number(p.lower_95), Number(p.upper_95), model_form,
-                        HtmlEscape(p.unit));
+    if (base != nullptr) {
+      const auto b = std::find_if(base->begin(), base->end(), [&](const auto& q) { return q.name == p.name; });
+      base_value = "<td>" + (b == base->end() ? std::string() : UncertainCell(b->value, b->std)) + "</td>";
+    }
+    html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{} … {}</td>{}<td>{}</td>{}</tr>\n",
+                        HtmlEscape(p.name), format.Format(p.value), SigmaCell(format, p.std),
+                        format.Format(p.lower_95), format.Format(p.upper_95), model_form, UnitCell(p.unit),
+                        base_value);
   }
   return html + "</table>\n";
 }
 
 // The selected model's parameters, the answer, with the base fit's value of
-// each beside it (blank for the parameters the base model lacks), and their
-// model-form intervals over the beam damping laws when the diagnosis refitted
-// the selected model under them.
+// each beside it, and their model-form intervals over the beam damping laws
+// when the diagnosis refitted the selected model under them.
 std::string SelectedParameterTable(const DiagnosisResult& d) {
-  const std::vector<ModelFormInterval>& model_form = d.final_damping_laws.intervals;
-  std::string html =
-      "<table class=\"parameters\"><tr><th>parameter</th><th>value</th><th>standard uncertainty</th>"
-      "<th>95 % interval</th>";
-  if (!model_form.empty()) html += "<th>model-form 95 % interval (damping laws)</th>";
-  html += "<th>unit</th><th>base fit (rejected)</th></tr>\n";
-  for (const auto& p : d.final_fit.parameters) {
-    const auto base = std::find_if(d.base.parameters.begin(), d.base.parameters.end(),
-                                   [&](const ParameterEstimate& b) { return b.name == p.name; });
-    html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{} … {}</td>", HtmlEscape(p.name), Number(p.value),
-                        Number(p.std), Number(p.lower_95), Number(p.upper_95));
-    if (!model_form.empty()) {
-      const auto interval = std::find_if(model_form.begin(), model_form.end(),
-                                         [&](const ModelFormInterval& i) { return i.name == p.name; });
-      html += interval == model_form.end()
-                  ? "<td></td>"
-                  : fmt::format("<td>{} … {}{}</td>", Number(interval->lower_95), Number(interval->upper_95),
-                                interval->depends_on_damping_law ? " (depends on the damping law)" : "");
-    }
-    html += fmt::format("<td>{}</td><td>{}</td></tr>\n", HtmlEscape(p.unit),
-                        base == d.base.parameters.end() ? "" : Number(base->value));
-  }
-  return html + "</table>\n";
+  return ParameterRows(d.final_fit.parameters, d.final_damping_laws.intervals, &d.base.parameters);
 }
 
 // The held-out channels' first harmonic at every step: measured, the base
 // model and the selected one, per level (DiagnosisResult::response).
-std::string HeldOutSelectedPlot(const SelectedModel& selected, const std::string& channel,
-                                const std::vector<std::string>& levels) {
-  std::string script = fmt::format(
-      "set title {}\nset xlabel 'frequency [Hz]'\nset ylabel '|X_1| (the channel quantity, SI)'\nset grid\n"
-      "set key outside below\n",
-      GnuplotText("held-out " + channel + ": measured, base model and selected model (" + selected.name + ")"));
-  std::string plot = "plot ";
+std::string HeldOutSelectedPlotSvg(const SelectedResponse& selected, const ReportCurves& curves,
+                                   const std::string& channel, const std::vector<std::string>& levels) {
+  std::string unit = "the channel quantity, SI";
+  for (const auto& ch : curves.channels)
+    if (ch.channel == channel) unit = UnitSymbol(ch.si_unit);
+  StackedPlot plot{.title = "held-out " + channel + ": measured, base model and selected model (" + selected.name + ")",
+                   .xlabel = "frequency [Hz]"};
+  Panel panel{.settings = "set ylabel " + GnuplotText("|X₁| [" + unit + "]") + "\n", .height_px = 300};
   for (std::size_t l = 0; l < levels.size(); ++l) {
     Rows rows;
     for (const auto& p : *selected.points)
       if (p.level == levels[l] && p.channel == channel)
         rows.push_back({p.frequency_hz, std::abs(p.measured), std::abs(p.base_model), std::abs(p.final_model)});
     std::sort(rows.begin(), rows.end());
-    script += Datablock(fmt::format("h{}", l), rows);
-    plot += fmt::format(
-        "{0}$h{1} using 1:2 with points pt 7 ps 0.7 lc rgb '{2}' title {3}, $h{1} using 1:3 with lines lw 1 dt 2 "
-        "lc rgb '{2}' title {4}, $h{1} using 1:4 with linespoints pt 2 lw 1.5 lc rgb '{2}' title {5}",
-        l ? ", " : "", l, Colour(l), GnuplotText("measured " + levels[l]), GnuplotText("base model " + levels[l]),
-        GnuplotText("selected model " + levels[l]));
+    plot.datablocks += Datablock(fmt::format("h{}", l), rows);
+    const std::string c = Colour(l);
+    const std::string dots = "with points pt 7 ps 0.7 lc rgb '" + c + "'",
+                      base = "with lines lw 1 dt 2 lc rgb '" + c + "'",
+                      crosses = "with linespoints pt 2 lw 1.5 lc rgb '" + c + "'";
+    panel.items.push_back({fmt::format("$h{} using 1:2", l), dots});
+    panel.items.push_back({fmt::format("$h{} using 1:3", l), base});
+    panel.items.push_back({fmt::format("$h{} using 1:4", l), crosses});
+    plot.keys.push_back({dots, "measured " + levels[l]});
+    plot.keys.push_back({base, "base model " + levels[l]});
+    plot.keys.push_back({crosses, "selected model " + levels[l]});
   }
-  return script + plot + "\n";
+  plot.panels = {panel};
+  return StackedPlotSvg(plot);
 }
 
 // The answer first: the parameters under the damping law the data accept;
@@ -426,9 +417,10 @@ std::string DiagnosisSection(const DiagnosisResult& diagnosis) {
       // A refit that did not move a parameter off its base value leaves it
       // undetermined (its std is that of a flat direction): say so.
       const bool determined = std::isfinite(p.std) && p.std < 100 * std::abs(p.value);
-      const std::string unit = p.unit == "1" ? "" : " " + HtmlEscape(p.unit);
+      const std::string symbol = UnitSymbol(p.unit);
+      const std::string unit = symbol.empty() ? "" : " " + HtmlEscape(symbol);
       extra += fmt::format("{}{} = {}", extra.empty() ? "" : "<br>", HtmlEscape(p.name),
-                           determined ? Number(p.value) + " ± " + Number(p.std) + unit
+                           determined ? UncertainCell(p.value, p.std, p.unit)
                                       : Number(p.value) + unit + " (not determined by these data)");
     }
     // Without a refit there is no χ² after, drop or p: the row says why instead.
@@ -448,7 +440,7 @@ std::string DiagnosisSection(const DiagnosisResult& diagnosis) {
 
 }  // namespace
 
-std::string HtmlReport(const ReportInput& input, const ReportCurves& curves) {
+std::string HtmlReport(const ReportInput& input, const ReportCurves& curves, const HtmlReportOptions& options) {
   const ResultFile& result = input.result;
   std::string title = "beamid report";
   if (!result.campaign.name.empty()) title += ": " + result.campaign.name;
@@ -463,7 +455,7 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves) {
                       Number(result.fit.reduced_chi_square), Number(result.fit.chi_square), result.fit.degrees_of_freedom);
   if (input.diagnosis) html += DiagnosisSection(input.diagnosis->diagnosis);
 
-  const std::optional<SelectedModel> selected = SelectedModelOf(input);
+  const std::optional<SelectedResponse> selected = SelectedModelOf(input);
   if (selected)
     html += "<section id=\"selected\"><h2>The selected model: " + HtmlEscape(selected->name) + "</h2>\n" +
             SelectedParameterTable(input.diagnosis->diagnosis) + "</section>\n";
@@ -476,14 +468,25 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves) {
   html += RecordingSection(curves, result);
 
   html += "<section id=\"frc\"><h2>Frequency response curves</h2>\n";
-  for (std::size_t c = 0; c < curves.channels.size(); ++c)
-    html += Figure("frc-" + curves.channels[c].channel, GnuplotSvg(FrcPlot(curves, c, selected)),
-                   "First-harmonic amplitude of " + HtmlEscape(curves.channels[c].channel) +
-                       ": measured steps (dots) and the identified model under each level's mean force "
-                       "(harmonic balance and continuation; solid stable, dashed unstable)" +
-                       (selected ? "; crosses: the model the diagnosis selected (" + HtmlEscape(selected->name) +
-                                       "), at each measured step, beside the base model it replaces."
-                                 : std::string(".")));
+  for (std::size_t c = 0; c < curves.channels.size(); ++c) {
+    html +=
+        Figure("frc-" + curves.channels[c].channel,
+               ResponsePlotSvg(curves, c, selected ? &*selected : nullptr, {.log_amplitude = options.log_amplitude}),
+               "First harmonic of " + HtmlEscape(curves.channels[c].channel) + ": its amplitude |X₁| (" +
+                   (options.log_amplitude ? "logarithmic" : "linear") +
+                   " axis), the amplitude per unit force |X₁|/|F₁| (logarithmic: the levels meet where the "
+                   "response is linear and part where it is not) and the phase of the displacement against "
+                   "the force (−90° at phase resonance). Measured steps (dots) and the identified model under "
+                   "each level's mean force (harmonic balance and continuation; solid stable, dashed unstable)" +
+                   (selected ? "; crosses: the model the diagnosis selected (" + HtmlEscape(selected->name) +
+                                   "), at each measured step, beside the base model it replaces."
+                             : std::string(".")));
+    if (HasHigherHarmonics(curves, c))
+      html += Figure("harmonics-" + curves.channels[c].channel, HarmonicsPlotSvg(curves, c),
+                     "Harmonics 2 and 3 of " + HtmlEscape(curves.channels[c].channel) +
+                         " (logarithmic axes): measured at every step (dots) and the identified model's (lines). "
+                         "A symmetric support makes mostly odd harmonics; an even one points at asymmetry.");
+  }
   for (const auto& level : curves.levels)
     if (!level.model_complete)
       html += "<p class=\"warning\">The model curve of level " + HtmlEscape(level.level) +
@@ -491,7 +494,7 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves) {
   html += "</section>\n";
 
   html += "<section id=\"backbone\"><h2>Backbone</h2>\n" +
-          Figure("backbone-plot", GnuplotSvg(BackbonePlot(curves)),
+          Figure("backbone-plot", BackbonePlotSvg(curves),
                  "The model's backbone as this sensor sees it (its first harmonic in quadrature with the force) "
                  "and each level's measured phase resonance with ±2σ bars, from the model-free analysis of "
                  "<code>beamid backbone --measured</code> (the step nearest quadrature moved there along one "
@@ -517,9 +520,10 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves) {
         break;
       case Trend::kNotJudged: break;
     }
-    html += Figure("damping-plot", GnuplotSvg(DampingPlot(curves)),
+    html += Figure("damping-plot", DampingPlotSvg(curves),
                    "The measured damping ratio of each level by three estimators (±2σ), and the single nonlinear "
-                   "mode fitted across levels (" + HtmlEscape(mode.fit_form) + "). " + trend);
+                   "mode fitted across levels (" +
+                       HtmlEscape(mode.fit_form) + "). " + trend);
   }
   html += "</section>\n";
 
@@ -532,7 +536,7 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves) {
       if (std::find(levels.begin(), levels.end(), p.level) == levels.end()) levels.push_back(p.level);
     }
     for (const auto& channel : held_out)
-      html += Figure("held-out-selected-" + channel, GnuplotSvg(HeldOutSelectedPlot(*selected, channel, levels)),
+      html += Figure("held-out-selected-" + channel, HeldOutSelectedPlotSvg(*selected, curves, channel, levels),
                      "First-harmonic amplitude at the held-out " + HtmlEscape(channel) +
                          " at every step: measured, predicted by the base model and by the selected model (" +
                          HtmlEscape(selected->name) + "); neither fitted this channel.");
@@ -540,18 +544,20 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves) {
   if (curves.time_histories.empty())
     html += "<p>This result has no held-out channel (identify with <code>--validate CHANNEL</code>).</p>\n";
   for (const auto& history : curves.time_histories)
-    html += Figure("time-" + history.level, GnuplotSvg(TimePlot(history, curves.held_out_channel)),
+    html += Figure("time-" + history.level, TimePlotSvg(history, curves.held_out_channel),
                    "Steady-state acceleration at " + HtmlEscape(curves.held_out_channel) + ", level " +
-                       HtmlEscape(history.level) + ": predicted by the identified model (band: ±2 standard "
+                       HtmlEscape(history.level) +
+                       ": predicted by the identified model (band: ±2 standard "
                        "uncertainties from the parameter covariance) and measured.");
   html += "</section>\n";
 
   html += "<section id=\"residuals\"><h2>Residual map</h2>\n" +
-          Figure("residual-map", GnuplotSvg(ResidualPlot(curves.residuals), {.width_px = 900, .height_px = 360}),
-                 "Per fitted channel, harmonic and step: the misfit in units of its standard uncertainty; "
-                 "values well above 1 point at what the model misses.") +
+          Figure("residual-map", GnuplotSvg(ResidualPlot(curves.residuals), {.width_px = 760, .height_px = 360}),
+                 "Per fitted channel, harmonic and step: the misfit in units of its standard uncertainty σ, "
+                 "on a logarithmic colour scale centred at 1 σ (white): blue cells lie within the noise, red "
+                 "ones beyond it point at what the model misses.") +
           "</section>\n";
-  return html + "</body>\n</html>\n";
+  return ScrollableTables(html) + "</body>\n</html>\n";
 }
 
 }  // namespace beamid::solver

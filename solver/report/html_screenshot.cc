@@ -1,9 +1,11 @@
 #include "solver/report/html_screenshot.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <string_view>
+#include <vector>
 
 #include <fmt/core.h>
 
@@ -42,11 +44,90 @@ std::string FileUrl(const fs::path& file) {
   return url;
 }
 
-void ScreenshotHtml(const fs::path& html_file, const fs::path& png_file, const ScreenshotOptions& options) {
+namespace {
+
+std::string ReadAll(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+fs::path RequireChromium() {
   const auto chromium = FindChromium();
   if (!chromium)
     throw EnvironmentError("no Chromium for the screenshot: install the Debian package chromium "
                            "(scripts/install-deps.sh)");
+  return *chromium;
+}
+
+std::vector<std::string> ChromiumArguments(const TempFolder& profile, int width_px, int height_px) {
+  return {"--headless",
+          "--no-sandbox",  // Chromium refuses to run as root (CI containers) without it
+          "--disable-gpu",
+          "--hide-scrollbars",
+          "--no-first-run",
+          "--mute-audio",
+          "--disable-background-networking",
+          "--disable-component-update",
+          "--disable-sync",
+          "--user-data-dir=" + (profile.path() / "profile").string(),
+          fmt::format("--window-size={},{}", width_px, height_px)};
+}
+
+// beamid's own probe: the layout's numbers as an attribute of <html>, which
+// --dump-dom prints.
+constexpr const char* kLayoutProbe = R"(<script>(function () {
+  const e = document.documentElement;
+  const sections = document.querySelectorAll('section');
+  const last = sections.length ? sections[sections.length - 1].getBoundingClientRect().bottom + window.scrollY : 0;
+  e.setAttribute('data-beamid-layout', [e.scrollWidth, e.clientWidth, e.scrollHeight, Math.ceil(last)].join(' '));
+})();</script>)";
+
+}  // namespace
+
+PageLayout MeasurePage(const fs::path& html_file, int width_px, double timeout_s) {
+  const fs::path chromium = RequireChromium();
+  std::string page = ReadAll(html_file);
+  const std::size_t end = page.rfind("</body>");
+  page.insert(end == std::string::npos ? page.size() : end, kLayoutProbe);
+  const TempFolder folder("chromium");
+  const fs::path probe = folder.path() / "probe.html";
+  {
+    std::ofstream out(probe, std::ios::binary);
+    out << page;
+    if (!out) throw EnvironmentError("cannot write the layout probe " + probe.string());
+  }
+  std::vector<std::string> arguments = ChromiumArguments(folder, width_px, 1000);
+  arguments.push_back("--dump-dom");
+  arguments.push_back(FileUrl(probe));
+  const fs::path dom = folder.path() / "dom.html", log = folder.path() / "chromium.log";
+  const int status = RunExternalProgram({.program = chromium.string(),
+                                         .arguments = arguments,
+                                         .debian_package = "chromium",
+                                         .stdout_file = dom,
+                                         .stderr_file = log,
+                                         .timeout_s = timeout_s});
+  const std::string text = ReadAll(dom);
+  const std::string key = "data-beamid-layout=\"";
+  const std::size_t at = text.find(key);
+  PageLayout layout;
+  std::istringstream numbers(at == std::string::npos ? "" : text.substr(at + key.size(), 80));
+  if (status != 0 ||
+      !(numbers >> layout.scroll_width >> layout.client_width >> layout.scroll_height >> layout.last_section_bottom)) {
+    const std::string message = ReadAll(log);
+    throw EnvironmentError(fmt::format("Chromium did not lay out {} (exit status {}): {}", html_file.string(), status,
+                                       message.substr(message.size() > 2000 ? message.size() - 2000 : 0)));
+  }
+  return layout;
+}
+
+void ScreenshotHtml(const fs::path& html_file, const fs::path& png_file, const ScreenshotOptions& options) {
+  const fs::path chromium = RequireChromium();
+  const int height_px = options.height_px > 0
+                            ? options.height_px
+                            : std::clamp(MeasurePage(html_file, options.width_px, options.timeout_s).scroll_height, 1,
+                                         kMaxScreenshotHeightPx);
   std::error_code error;
   const fs::path png = fs::absolute(png_file).lexically_normal();
   if (png.has_parent_path()) fs::create_directories(png.parent_path(), error);
@@ -59,14 +140,12 @@ void ScreenshotHtml(const fs::path& html_file, const fs::path& png_file, const S
   const bool existed = !error;
   const TempFolder profile("chromium");
   const fs::path log = profile.path() / "chromium.log";
+  std::vector<std::string> arguments = ChromiumArguments(profile, options.width_px, height_px);
+  arguments.push_back("--screenshot=" + png.string());
+  arguments.push_back(FileUrl(html_file));
   const int status = RunExternalProgram({
-      .program = chromium->string(),
-      .arguments = {"--headless", "--no-sandbox",  // Chromium refuses to run as root (CI containers) without it
-                    "--disable-gpu", "--hide-scrollbars", "--no-first-run", "--mute-audio",
-                    "--disable-background-networking", "--disable-component-update", "--disable-sync",
-                    "--user-data-dir=" + (profile.path() / "profile").string(),
-                    fmt::format("--window-size={},{}", options.width_px, options.height_px),
-                    "--screenshot=" + png.string(), FileUrl(html_file)},
+      .program = chromium.string(),
+      .arguments = arguments,
       .debian_package = "chromium",
       .stderr_file = log,
       .timeout_s = options.timeout_s,

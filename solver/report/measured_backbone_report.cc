@@ -9,15 +9,18 @@
 #include "solver/report/gnuplot_svg.h"
 #include "solver/report/html_escape.h"
 #include "solver/report/html_page.h"
+#include "solver/report/stacked_plot.h"
+#include "solver/report/uncertain_number.h"
 
 namespace beamid::solver {
 namespace {
 
 using Rows = std::vector<std::vector<double>>;
 
-std::string Cell(const Estimate& e, double scale, const char* format) {
+// A value with its σ, rounded to it (solver/report/uncertain_number.h).
+std::string Cell(const Estimate& e, double scale) {
   if (!e.valid || !std::isfinite(e.value)) return "—";
-  return fmt::format(fmt::runtime(format), scale * e.value, scale * e.std);
+  return WithUncertainty(scale * e.value, scale * e.std);
 }
 
 // A level's flags on one quantity, in red next to its number.
@@ -44,23 +47,26 @@ std::string PlotAgainstAmplitude(const MeasuredBackboneFile& file, bool frequenc
     if (!y.valid || !l.quadrature_amplitude_m.valid) continue;
     (l.in_global_fit ? in_fit : left_out).push_back({1e3 * l.quadrature_amplitude_m.value, y.value, y.std});
   }
-  std::string script = fmt::format(
-      "set xlabel 'displacement amplitude at the sensor [mm]'\nset ylabel {}\nset grid\nset key top left box opaque\n",
-      GnuplotText(frequency ? "phase-resonance frequency [Hz]" : "damping ratio ζ"));
-  script += Datablock("band", band) + Datablock("fit", in_fit) + Datablock("out", left_out);
-  std::vector<std::string> plots;
-  if (!band.empty())
-    plots.push_back("$band using 1:2:3 with filledcurves lc rgb '#c8d8f0' title 'single-mode fit ±1σ', "
-                    "$band using 1:4 with lines lw 2 lc rgb '#2050a0' title 'single-mode fit'");
-  if (!in_fit.empty())
-    plots.push_back("$fit using 1:2:3 with yerrorbars pt 7 ps 1.2 lc rgb '#c03020' title 'levels in the fit'");
+  // The legend in a band of its own below the data (solver/report/stacked_plot.h).
+  StackedPlot plot{.xlabel = "displacement amplitude at the sensor [mm]",
+                   .datablocks = Datablock("band", band) + Datablock("fit", in_fit) + Datablock("out", left_out)};
+  Panel panel{
+      .settings = "set ylabel " + GnuplotText(frequency ? "phase-resonance frequency [Hz]" : "damping ratio ζ") + "\n",
+      .height_px = 320};
+  auto add = [&](const std::string& source, const std::string& style, const std::string& title) {
+    panel.items.push_back({source, style});
+    plot.keys.push_back({style, title});
+  };
+  if (!band.empty()) {
+    add("$band using 1:2:3", "with filledcurves lc rgb '#c8d8f0'", "single-mode fit ±1σ");
+    add("$band using 1:4", "with lines lw 2 lc rgb '#2050a0'", "single-mode fit");
+  }
+  if (!in_fit.empty()) add("$fit using 1:2:3", "with yerrorbars pt 7 ps 1.2 lc rgb '#c03020'", "levels in the fit");
   if (!left_out.empty())
-    plots.push_back("$out using 1:2:3 with yerrorbars pt 6 ps 1.4 lc rgb '#a50f15' title " +
-                    GnuplotText("flagged levels, left out of the fit"));
-  if (plots.empty()) return "";
-  std::string plot = "plot ";
-  for (std::size_t i = 0; i < plots.size(); ++i) plot += (i ? ", " : "") + plots[i];
-  return script + plot + "\n";
+    add("$out using 1:2:3", "with yerrorbars pt 6 ps 1.4 lc rgb '#a50f15'", "flagged levels, left out of the fit");
+  if (panel.items.empty()) return "";
+  plot.panels = {panel};
+  return StackedPlotSvg(plot);
 }
 
 std::string LevelTable(const MeasuredBackboneFile& file) {
@@ -80,13 +86,11 @@ std::string LevelTable(const MeasuredBackboneFile& file) {
         HtmlEscape(l.label),
         l.control == LevelControl::kForce ? LabelsOf(file.excitation_quantity).control
                                           : std::string(LevelControlName(l.control)),
-        Cell(l.quadrature_frequency_hz, 1, "{:.4f} ± {:.2g}"),
-        FlagCell(l, "quadrature_frequency"), Cell(l.quadrature_amplitude_m, 1e3, "{:.4g} ± {:.2g}"),
-        Cell(l.damping_ratio, 100, "{:.4f} ± {:.2g}"), Cell(l.quadrature_damping_ratio, 100, "{:.4f} ± {:.2g}"),
-        FlagCell(l, "quadrature_damping_ratio"), Cell(l.local_damping_ratio, 100, "{:.4f} ± {:.2g}"),
-        FlagCell(l, "local_damping_ratio"), Cell(l.half_power_damping_ratio, 100, "{:.4f} ± {:.2g}"),
-        FlagCell(l, "half_power_damping_ratio"), Cell(l.peak_frequency_hz, 1, "{:.4f} ± {:.2g}"),
-        FlagCell(l, "peak_frequency"), 100 * l.regeneration_relative_rms, FlagCell(l, "regeneration_relative_rms"),
+        Cell(l.quadrature_frequency_hz, 1), FlagCell(l, "quadrature_frequency"), Cell(l.quadrature_amplitude_m, 1e3),
+        Cell(l.damping_ratio, 100), Cell(l.quadrature_damping_ratio, 100), FlagCell(l, "quadrature_damping_ratio"),
+        Cell(l.local_damping_ratio, 100), FlagCell(l, "local_damping_ratio"), Cell(l.half_power_damping_ratio, 100),
+        FlagCell(l, "half_power_damping_ratio"), Cell(l.peak_frequency_hz, 1), FlagCell(l, "peak_frequency"),
+        100 * l.regeneration_relative_rms, FlagCell(l, "regeneration_relative_rms"),
         l.in_global_fit ? "yes" : "<span class=\"flag\">no</span>", HtmlEscape(kinds));
   }
   return html + "</table>\n";
@@ -143,13 +147,13 @@ std::string MeasuredBackboneHtmlReport(const MeasuredBackboneFile& file, const s
                       schema::NameOf(t.damping_ratio_verdict, kDampingRatioTrendNames),
                       t.slope_per_m, t.slope_std_per_m, t.z);
   for (bool frequency : {true, false}) {
-    const std::string script = PlotAgainstAmplitude(file, frequency);
-    if (script.empty()) continue;
-    html += Figure(GnuplotSvg(script), frequency ? "Backbone: each level's phase resonance (±1σ) and the "
-                                                   "single-mode fit across levels; open circles: flagged levels, "
-                                                   "left out of the fit."
-                                                 : "Damping ratio against amplitude: each level's ζ (its σ covers "
-                                                   "the three estimators) and the fit's ζ(a).");
+    const std::string svg = PlotAgainstAmplitude(file, frequency);
+    if (svg.empty()) continue;
+    html += Figure(svg, frequency ? "Backbone: each level's phase resonance (±1σ) and the "
+                                    "single-mode fit across levels; open circles: flagged levels, "
+                                    "left out of the fit."
+                                  : "Damping ratio against amplitude: each level's ζ (its σ covers "
+                                    "the three estimators) and the fit's ζ(a).");
   }
   html += "</section>\n";
   if (!file.warnings.empty()) {
@@ -157,7 +161,7 @@ std::string MeasuredBackboneHtmlReport(const MeasuredBackboneFile& file, const s
     for (const auto& w : file.warnings) html += "<li class=\"warning\">" + HtmlEscape(w) + "</li>\n";
     html += "</ul>\n</section>\n";
   }
-  return html + "</body>\n</html>\n";
+  return ScrollableTables(html) + "</body>\n</html>\n";
 }
 
 }  // namespace beamid::solver

@@ -167,11 +167,19 @@ LevelCurves MeasuredLevel(const signal::PhasorSet& phasors, const std::vector<Re
     if (step.level != level.level) continue;
     MeasuredPoint point{.frequency_hz = step.frequency_hz, .amplitude = {}, .file = step.file};
     if (step.quality.unsettled) point.flag = "recorded before it settled";
+    const Complex force = step.force.Harmonic(1).value;  // real and positive: the phase reference
+    point.force_amplitude_N = std::abs(force);
     for (const auto& channel : channels) {
       const signal::ChannelPhasors* p = step.Find(channel.channel);
       point.amplitude.push_back(p ? p->Harmonic(1).Amplitude() : std::nan(""));
+      point.phase_deg.push_back(p ? DisplacementPhaseDeg(p->Harmonic(1).value / force, channel.derivative_order)
+                                  : std::nan(""));
+      std::vector<double> higher;
+      for (int k = 2; k <= kReportHarmonics; ++k)
+        higher.push_back(p && static_cast<int>(p->harmonics.size()) >= k ? p->Harmonic(k).Amplitude() : std::nan(""));
+      point.higher_harmonics.push_back(std::move(higher));
     }
-    force_sum += step.force.Harmonic(1).Amplitude();
+    force_sum += std::abs(force);
     span.min_hz = std::min(span.min_hz, step.frequency_hz);
     span.max_hz = std::max(span.max_hz, step.frequency_hz);
     level.measured.push_back(std::move(point));
@@ -199,9 +207,17 @@ void TraceModelCurve(const hb::HarmonicBalance& balance, const std::vector<Repor
     const hb::HarmonicBalanceSolution solution{.omega_rad_s = p.omega_rad_s, .theta_rad = p.theta_rad};
     const Eigen::MatrixXcd y = balance.Displacements(solution, force, positions);
     ModelCurvePoint point{.frequency_hz = p.omega_rad_s / kTwoPi, .stable = p.stable};
-    for (std::size_t c = 0; c < channels.size(); ++c)
-      point.amplitude.push_back(std::abs(
-          FromDisplacement(y(static_cast<Eigen::Index>(c), 1), channels[c].derivative_order, p.omega_rad_s)));
+    for (std::size_t c = 0; c < channels.size(); ++c) {
+      const auto row = static_cast<Eigen::Index>(c);
+      const int order = channels[c].derivative_order;
+      const Complex x1 = FromDisplacement(y(row, 1), order, p.omega_rad_s);
+      point.amplitude.push_back(std::abs(x1));
+      point.phase_deg.push_back(DisplacementPhaseDeg(x1 / force[1], order));
+      std::vector<double> higher;
+      for (int k = 2; k <= kReportHarmonics; ++k)
+        higher.push_back(k < y.cols() ? std::abs(FromDisplacement(y(row, k), order, k * p.omega_rad_s)) : std::nan(""));
+      point.higher_harmonics.push_back(std::move(higher));
+    }
     level.model.push_back(std::move(point));
   }
 }
@@ -352,6 +368,20 @@ ResidualMap Residuals(const ResultFile& result, const signal::Campaign& campaign
 }
 
 }  // namespace
+
+LevelCurves MeasuredLevelCurves(const signal::PhasorSet& phasors, const std::vector<ReportChannel>& channels,
+                                const std::string& level) {
+  FrequencySpan span;
+  return MeasuredLevel(phasors, channels, level, span);
+}
+
+double DisplacementPhaseDeg(Complex response_per_force, int derivative_order) {
+  double phase = std::arg(response_per_force) * 180.0 / std::numbers::pi - 90.0 * derivative_order;
+  phase = std::fmod(phase, 360.0);
+  if (phase <= -180.0) phase += 360.0;
+  if (phase > 180.0) phase -= 360.0;
+  return phase;
+}
 
 ReportCurves ComputeReportCurves(const ResultFile& result, const signal::Campaign& campaign,
                                  const signal::PhasorSet& phasors, const ReportCurveOptions& options,

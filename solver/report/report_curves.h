@@ -1,8 +1,10 @@
 // The numbers behind the plots of `beamid report`, from an identified model
 // (result.json), its campaign and the campaign's phasors:
-//  - per level and channel, the measured first-harmonic amplitudes |X_1| and
-//    the model's frequency response curve (hb/continuation) under a pure sine
-//    of the level's mean measured force amplitude |F_1|, with its stability;
+//  - per level and channel, the measured first harmonic X_1 (amplitude, and
+//    its phase against the force) and the model's frequency response curve
+//    (hb/continuation) under a pure sine of the level's mean measured force
+//    amplitude |F_1|, with its stability; the amplitudes of harmonics 2 and 3
+//    of both where the phasors and the model hold them;
 //  - the model's backbone at the reference channel (the first fitted one) as
 //    it is measured there (solver/sensor_backbone.h: the channel's first
 //    harmonic in quadrature with the force), and the measured phase-resonance
@@ -21,6 +23,7 @@
 #pragma once
 
 #include <cmath>
+#include <complex>
 #include <functional>
 #include <string>
 #include <vector>
@@ -43,20 +46,37 @@ struct ReportChannel {
   bool fitted = false;
 };
 
+// The highest harmonic whose amplitude the response plots show.
+constexpr int kReportHarmonics = 3;
+
+// The phase of a response phasor X (of a quantity of the given derivative
+// order: 0 displacement, 1 velocity, 2 acceleration) per unit force F, as the
+// phase of the displacement against the force, in degrees, in (−180, 180]:
+// arg(X/F) − order·90°. One convention for every sensor, so that a phase
+// resonance reads −90° (+90° where the mode's shape has the other sign).
+double DisplacementPhaseDeg(std::complex<double> response_per_force, int derivative_order);
+
 struct ModelCurvePoint {
   double frequency_hz = 0.0;
-  std::vector<double> amplitude;  // per channel
+  std::vector<double> amplitude;  // per channel: |X_1|
   bool stable = true;
+  std::vector<double> phase_deg;  // per channel: DisplacementPhaseDeg(X_1/F_1); empty: not known
+  // per channel, |X_k| for k = 2..kReportHarmonics (NaN where the model has
+  // fewer harmonics); empty: not known
+  std::vector<std::vector<double>> higher_harmonics;
 };
 
 struct MeasuredPoint {
   double frequency_hz = 0.0;
-  std::vector<double> amplitude;  // per channel
+  std::vector<double> amplitude;  // per channel: |X_1|
   std::string file;
   // Why the step is not to be trusted as the others ("" when it is): the
   // extraction found its record cut before it settled, the robust fit left
   // it out as an outlier (result.json robust_fit), or both.
   std::string flag;
+  double force_amplitude_N = NAN;                     // this step's |F_1|; NaN: the level's mean stands for it
+  std::vector<double> phase_deg;                      // as ModelCurvePoint
+  std::vector<std::vector<double>> higher_harmonics;  // as ModelCurvePoint (NaN where not extracted)
 };
 
 struct LevelCurves {
@@ -143,6 +163,11 @@ struct ReportCurveOptions {
   int backbone_points = 60;
   int samples_per_period = 96;  // time histories
 };
+
+// A level's measured points (no model curve): |X_1|, phase and harmonics of
+// every channel at each of its steps, campaign order.
+LevelCurves MeasuredLevelCurves(const signal::PhasorSet& phasors, const std::vector<ReportChannel>& channels,
+                                const std::string& level);
 
 // `progress(fraction, what)` is called as the work advances.
 ReportCurves ComputeReportCurves(const ResultFile& result, const signal::Campaign& campaign,

@@ -72,8 +72,9 @@ TEST(HtmlReportCaptions, WhenTheDataRejectTheLossFactorTheAcceptedLawsParameters
                                     DampingLawFitOf("rayleigh", {Estimate("c", 0.0501, 0.0006)}, 100.0, 99)};
   JudgeDampingLaws(&input.result.damping_laws);
   const std::string page = HtmlReport(input, Curves(Trend::kNone, 0.0));
-  const auto answer = page.find("<td>0.0501</td>");
-  const auto rejected = page.find("<td>0.0465</td>");
+  // Values rounded to their σ (0.0006, 0.0005): five decimals.
+  const auto answer = page.find("<td>0.05010</td>");
+  const auto rejected = page.find("<td>0.04650</td>");
   ASSERT_NE(answer, std::string::npos) << "the accepted law's c";
   ASSERT_NE(rejected, std::string::npos) << "the rejected law's c, for comparison";
   EXPECT_LT(answer, rejected) << "the answer comes first";
@@ -87,7 +88,7 @@ TEST(HtmlReportCaptions, WhenTheDataRejectTheLossFactorTheAcceptedLawsParameters
   JudgeDampingLaws(&accepted.result.damping_laws);
   const std::string kept = HtmlReport(accepted, Curves(Trend::kNone, 0.0));
   EXPECT_THAT(kept, Not(HasSubstr("reject the loss factor")));
-  EXPECT_THAT(kept, Not(HasSubstr("<td>0.0466</td>")));
+  EXPECT_THAT(kept, Not(HasSubstr("<td>0.04660</td>")));
 }
 
 TEST(HtmlReportCaptions, ACandidateNotRefittedOrFailedSaysSoInsteadOfNumbers) {
@@ -132,8 +133,8 @@ TEST(HtmlReportCaptions, ADiagnosisThatNamesACauseShowsTheSelectedModelBesideThe
   ASSERT_NE(selected, std::string::npos);
   ASSERT_NE(base, std::string::npos);
   EXPECT_LT(selected, base);
-  EXPECT_THAT(page, HasSubstr("<tr><td>c</td><td>0.0412</td>"));
-  EXPECT_THAT(page, HasSubstr("<td>N*m*s/rad</td><td>0.0465</td></tr>"));  // the base fit's c beside it
+  EXPECT_THAT(page, HasSubstr("<tr><td>c</td><td>0.04120</td><td>0.00040</td>"));          // rounded to its σ
+  EXPECT_THAT(page, HasSubstr("<td>N·m·s/rad</td><td>0.04650&nbsp;± 0.00050</td></tr>"));  // the base fit's c beside it
   EXPECT_THAT(page, HasSubstr("selected model (support_friction) high"));  // on the response curves
   EXPECT_THAT(page, HasSubstr("id=\"held-out-selected-acc3\""));
   EXPECT_THAT(page, Not(HasSubstr("id=\"held-out-selected-acc1\"")));  // acc1 was fitted

@@ -62,7 +62,8 @@ TEST(HtmlReportRecording, CirclesAndListsTheFlaggedStepsWithTheParametersWithout
   EXPECT_THAT(page, HasSubstr("high 55 Hz (<code>high/step_020.csv</code>): recorded before it settled; left out by "
                               "the robust fit"));
   EXPECT_THAT(page, HasSubstr("flagged step (see the recording section)"));  // the plot's legend
-  EXPECT_THAT(page, HasSubstr("<tr><td>k1</td><td>150.003</td><td>150.417</td></tr>"));
+  // Both at the reported value's σ (0.002): four decimals.
+  EXPECT_THAT(page, HasSubstr("<tr><td>k1</td><td>150.0030</td><td>150.4170</td></tr>"));
   // No flagged step, no robust fit: nothing to say.
   ReportInput clean = Input();
   clean.result.robust_fit.reset();
