@@ -8,7 +8,9 @@
 // goes through this interface — build the fit problem, name and size its
 // state, rebuild the identified model's response at any position — so a
 // new family (another beam damping law, say) is one new file implementing
-// it and one line in ModelFamilies().
+// it and its StepModel (solver/estimation/stepped_fit_problem.h: what the
+// family knows of one step; the fit problem is assembled from it) and one
+// line in ModelFamilies().
 #pragma once
 
 #include <memory>
