@@ -4,7 +4,7 @@
 //    the model's frequency response curve (hb/continuation) under a pure sine
 //    of the level's mean measured force amplitude |F_1|, with its stability;
 //  - the model's backbone at the reference channel (the first fitted one) as
-//    it is measured there (solver/sensor_backbone.h: the channel's first
+//    it is measured there (solver/estimation/sensor_backbone.h: the channel's first
 //    harmonic in quadrature with the force), and the measured phase-resonance
 //    point of every level with its uncertainty, from the model-free analysis
 //    of `beamid backbone --measured` (solver/measured_backbone.h), which also
