@@ -80,9 +80,7 @@ class HarmonicBalanceFamilyImpl final : public ModelFamily {
   // The sensor's phase resonance along the backbone of θ, over the steps' |Θ_1|.
   std::vector<SensorBackbonePoint> BackboneAtSensor(const IdentifiedModel& model, double sensor_position_m,
                                                     int num_points) const override {
-    double theta_max = 0.0;
-    for (const IdentifiedStep& s : model.steps)
-      if (s.state.size() > 1) theta_max = std::max(theta_max, std::abs(s.state[1]));
+    const double theta_max = LargestStateAmplitude(model, 1);
     if (theta_max <= 0.0) return {};
     return ModelBackboneAtSensor(model.structure.ApplyLinear(model.beam), *model.structure.law, model.force_position_m,
                                  sensor_position_m,

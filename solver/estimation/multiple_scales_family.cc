@@ -167,9 +167,7 @@ class MultipleScalesFamilyImpl final : public ModelFamily {
   // |Y_1| = |h1(x; U = a, Ω, F = 0)|, over the steps' |U|.
   std::vector<SensorBackbonePoint> BackboneAtSensor(const IdentifiedModel& model, double sensor_position_m,
                                                     int num_points) const override {
-    double u_max = 0.0;
-    for (const IdentifiedStep& s : model.steps)
-      if (s.state.size() > 0) u_max = std::max(u_max, std::abs(s.state[0]));
+    const double u_max = LargestStateAmplitude(model, 0);
     if (u_max <= 0.0) return {};
     const hb::MultipleScalesModel ms = IdentifiedMultipleScales(model);
     std::vector<SensorBackbonePoint> out;
