@@ -21,7 +21,7 @@
 #include "solver/backbone/measured_backbone.h"
 #include "solver/backbone/measured_backbone_io.h"
 #include "solver/estimation/prediction.h"
-#include "solver/backbone/sensor_backbone.h"
+#include "solver/estimation/sensor_backbone.h"
 
 namespace beamid::cli {
 namespace {

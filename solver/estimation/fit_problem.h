@@ -2,10 +2,11 @@
 // constrained least-squares program in scaled variables
 //     min ½·|r(x)|²   s.t.   c(x) = 0,   l ≤ x ≤ u,
 // x = [parameters; per-step states], one block of constraints per step
-// (the model's equations there). IdentificationProblem (exact harmonic
-// balance) and MultipleScalesProblem (the seed's model) implement it;
-// solver/internal/ipopt_program.* runs Ipopt on it and solver/identify.* does
-// the rest (starts, covariance) through it alone.
+// (the model's equations there). SteppedFitProblem (stepped_fit_problem.h)
+// implements it once for every model family from the family's model of one
+// step (IdentificationProblem: exact harmonic balance; MultipleScalesProblem:
+// the seed's model); solver/internal/ipopt_program.* runs Ipopt on it and
+// solver/identify.* does the rest (starts, covariance) through it alone.
 #pragma once
 
 #include <string>

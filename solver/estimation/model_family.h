@@ -8,9 +8,12 @@
 // goes through this interface — build the fit problem, name and size its
 // state, rebuild the identified model's response at any position — so a
 // new family (another beam damping law, say) is one new file implementing
-// it and one line in ModelFamilies().
+// it and its StepModel (solver/estimation/stepped_fit_problem.h: what the
+// family knows of one step; the fit problem is assembled from it) and one
+// line in ModelFamilies().
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -26,6 +29,20 @@ struct FitData;
 class FitProblem;
 struct IdentifiedModel;
 struct ModelStructure;
+struct SensorBackbonePoint;  // solver/estimation/sensor_backbone.h
+
+// The model's first-harmonic response under a pure sine force, as a report
+// draws it: points in continuation order (a fold goes back in frequency).
+struct ModelResponsePoint {
+  double omega_rad_s = 0.0;
+  bool stable = true;
+  Eigen::MatrixXcd displacement_m;  // Y_0..Y_K (columns) at each position asked for (rows)
+};
+struct ModelResponse {
+  std::vector<ModelResponsePoint> points;
+  bool reached_end = true;  // false: the curve stops short of omega_end
+  std::string message;      // why, when it does
+};
 
 // The families, by the key of result.json's "model.kind", prediction.json's
 // "model" and `--model`.
@@ -62,6 +79,26 @@ class ModelFamily {
   // has a steady state.
   virtual std::vector<Eigen::VectorXcd> DisplacementAt(const IdentifiedModel& model, const std::vector<double>& p,
                                                        double position_m, std::vector<bool>* converged) const = 0;
+  // The identified model (its identified parameters) at every one of its
+  // steps from the step's fitted state as it stands, not solved again:
+  // the displacement phasors Y_0..Y_H at positions (positions × (H + 1)),
+  // what the fit set beside the data (the report's residual map).
+  virtual std::vector<Eigen::MatrixXcd> FittedDisplacements(const IdentifiedModel& model,
+                                                            const std::vector<double>& positions_m) const = 0;
+  // The identified model's response to a pure sine force of this amplitude
+  // from omega_start to omega_end, Y_1 at positions; at most max_points
+  // points. `on_fraction`, if given, is told the fraction done.
+  virtual ModelResponse FrequencyResponse(const IdentifiedModel& model, double force_amplitude_N,
+                                          double omega_start_rad_s, double omega_end_rad_s, int max_points,
+                                          const std::vector<double>& positions_m,
+                                          const std::function<void(double)>& on_fraction) const = 0;
+  // The identified model's backbone at a sensor (frequency against |Y_1|,
+  // solver/estimation/sensor_backbone.h), num_points over the amplitudes its
+  // steps reached (from a thirtieth of the largest to 1.3 times it); empty
+  // when the steps have no amplitude. Throws std::runtime_error when it
+  // cannot be traced.
+  virtual std::vector<SensorBackbonePoint> BackboneAtSensor(const IdentifiedModel& model, double sensor_position_m,
+                                                            int num_points) const = 0;
   // The support rotation's harmonics Θ_0..Θ_H in a step's state, when the
   // family's state holds them (empty otherwise).
   virtual Eigen::VectorXcd SupportRotation_rad(const Eigen::VectorXcd& state) const = 0;

@@ -16,6 +16,13 @@ using Complex = std::complex<double>;
 
 }  // namespace
 
+double LargestStateAmplitude(const IdentifiedModel& model, int entry) {
+  double largest = 0.0;
+  for (const IdentifiedStep& s : model.steps)
+    if (s.state.size() > entry) largest = std::max(largest, std::abs(s.state[entry]));
+  return largest;
+}
+
 hb::HarmonicBalance IdentifiedHarmonicBalance(const IdentifiedModel& model, const std::vector<double>& p) {
   ModelStructure structure = model.structure;
   if (!p.empty()) structure.SetValues(p);

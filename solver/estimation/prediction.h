@@ -49,6 +49,10 @@ IdentifiedModel ReadIdentifiedModel(const std::filesystem::path& result_file);
 // cannot rebuild (another law, an unknown linear parameter).
 IdentifiedModel ToIdentifiedModel(const ResultFile& result);
 
+// The largest |state[entry]| over the identified steps (0 where no step's
+// state has that entry): the range of amplitudes the test reached.
+double LargestStateAmplitude(const IdentifiedModel& model, int entry);
+
 // The harmonic balance of the identified model with parameters p (structure
 // order; empty: the identified values), as PredictAt solves it.
 hb::HarmonicBalance IdentifiedHarmonicBalance(const IdentifiedModel& model, const std::vector<double>& p = {});

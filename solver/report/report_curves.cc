@@ -8,12 +8,11 @@
 #include <stdexcept>
 
 
-#include "hb/continuation.h"
 #include "signal/quantity.h"
 #include "signal/first_harmonic_level.h"
 #include "solver/estimation/fit_data.h"
+#include "solver/estimation/sensor_backbone.h"
 #include "solver/backbone/measured_backbone.h"
-#include "solver/backbone/sensor_backbone.h"
 
 namespace beamid::solver {
 namespace {
@@ -189,33 +188,28 @@ LevelCurves MeasuredLevel(const signal::PhasorSet& phasors, const std::vector<Re
 }
 
 // The model's frequency response under a pure sine of the level's mean force,
-// a little wider than the measured span so that its ends show.
-void TraceModelCurve(const hb::HarmonicBalance& balance, const std::vector<ReportChannel>& channels,
+// a little wider than the measured span so that its ends show (the model's
+// family traces it).
+void TraceModelCurve(const IdentifiedModel& model, const std::vector<ReportChannel>& channels,
                      const std::vector<double>& positions, const FrequencySpan& span, int max_points,
                      const std::function<void(double)>& on_fraction, LevelCurves& level) {
-  Eigen::VectorXcd force = Eigen::VectorXcd::Zero(2);
-  force[1] = level.force_amplitude_N;
   const double margin = 0.01 * (span.max_hz - span.min_hz) + 1e-3 * span.min_hz;
-  const auto summary = hb::TraceFrequencyResponse(
-      balance, force,
-      {.omega_start_rad_s = kTwoPi * (span.min_hz - margin), .omega_end_rad_s = kTwoPi * (span.max_hz + margin),
-       .max_points = max_points},
-      on_fraction);
-  level.model_complete = summary.reached_end;
-  level.model_message = summary.message;
-  for (const auto& p : summary.points) {
-    const hb::HarmonicBalanceSolution solution{.omega_rad_s = p.omega_rad_s, .theta_rad = p.theta_rad};
-    const Eigen::MatrixXcd y = balance.Displacements(solution, force, positions);
+  const ModelResponse response =
+      model.family->FrequencyResponse(model, level.force_amplitude_N, kTwoPi * (span.min_hz - margin),
+                                      kTwoPi * (span.max_hz + margin), max_points, positions, on_fraction);
+  level.model_complete = response.reached_end;
+  level.model_message = response.message;
+  for (const auto& p : response.points) {
     ModelCurvePoint point{.frequency_hz = p.omega_rad_s / kTwoPi, .stable = p.stable};
     for (std::size_t c = 0; c < channels.size(); ++c) {
-      const auto row = static_cast<Eigen::Index>(c);
+      const Eigen::VectorXcd y = p.displacement_m.row(static_cast<Eigen::Index>(c));
       const int order = channels[c].derivative_order;
-      const Complex x1 = FromDisplacement(y(row, 1), order, p.omega_rad_s);
+      const Complex x1 = FromDisplacement(y[1], order, p.omega_rad_s);
       point.amplitude.push_back(std::abs(x1));
-      point.phase_deg.push_back(DisplacementPhaseDeg(x1 / force[1], order));
+      point.phase_deg.push_back(DisplacementPhaseDeg(x1 / level.force_amplitude_N, order));
       std::vector<double> higher;
       for (int k = 2; k <= kReportHarmonics; ++k)
-        higher.push_back(k < y.cols() ? std::abs(FromDisplacement(y(row, k), order, k * p.omega_rad_s)) : std::nan(""));
+        higher.push_back(k < y.size() ? std::abs(FromDisplacement(y[k], order, k * p.omega_rad_s)) : std::nan(""));
       point.higher_harmonics.push_back(std::move(higher));
     }
     level.model.push_back(std::move(point));
@@ -223,7 +217,7 @@ void TraceModelCurve(const hb::HarmonicBalance& balance, const std::vector<Repor
 }
 
 // Measured and model curves of every level; the first half of the progress.
-std::vector<LevelCurves> FrequencyResponses(const hb::HarmonicBalance& balance, const signal::PhasorSet& phasors,
+std::vector<LevelCurves> FrequencyResponses(const IdentifiedModel& model, const signal::PhasorSet& phasors,
                                             const std::vector<ReportChannel>& channels,
                                             const std::vector<std::string>& level_names,
                                             const ReportCurveOptions& options, const Progress& progress) {
@@ -233,7 +227,7 @@ std::vector<LevelCurves> FrequencyResponses(const hb::HarmonicBalance& balance, 
     FrequencySpan span;
     LevelCurves level = MeasuredLevel(phasors, channels, level_names[l], span);
     Report(progress, 0.5 * l / level_names.size(), "frequency response of level " + level.level);
-    TraceModelCurve(balance, channels, positions, span, options.frc_max_points,
+    TraceModelCurve(model, channels, positions, span, options.frc_max_points,
                     [&](double fraction) {
                       Report(progress, 0.5 * (l + fraction) / level_names.size(), "frequency response");
                     },
@@ -244,23 +238,14 @@ std::vector<LevelCurves> FrequencyResponses(const hb::HarmonicBalance& balance, 
 }
 
 // The model's backbone at the reference sensor over the identified steps'
-// range of |Θ_1| (empty when there is none or it fails: the page is still
-// worth having without it), also stored in the channel's quantity.
+// range of amplitudes (the family's; empty when there is none or it fails:
+// the page is still worth having without it), also stored in the channel's
+// quantity.
 std::vector<SensorBackbonePoint> ModelBackbone(const IdentifiedModel& model, const ReportChannel& reference,
                                                int num_points, ReportCurves& curves) {
-  double theta_max = 0.0;
-  for (const auto& s : model.steps)
-    if (const Eigen::VectorXcd theta = model.family->SupportRotation_rad(s.state); theta.size() > 1)
-      theta_max = std::max(theta_max, std::abs(theta[1]));
   std::vector<SensorBackbonePoint> model_backbone;
-  if (theta_max <= 0.0) return model_backbone;
   try {
-    model_backbone = ModelBackboneAtSensor(model.structure.ApplyLinear(model.beam), *model.structure.law,
-                                           model.force_position_m, reference.position_m,
-                                           {.min_theta_amplitude_rad = theta_max / 30.0,
-                                            .max_theta_amplitude_rad = 1.3 * theta_max,
-                                            .num_points = num_points},
-                                           model.num_harmonics);
+    model_backbone = model.family->BackboneAtSensor(model, reference.position_m, num_points);
   } catch (const std::runtime_error& error) {
     curves.phase_resonance_warnings.push_back(std::string("the model's backbone: ") + error.what());
   }
@@ -327,11 +312,11 @@ void HeldOutHistories(const ResultFile& result, const signal::Campaign& campaign
   }
 }
 
-// Residual map of the fitted channels, from the fitted states; NaN where a
-// step has no identified state.
+// Residual map of the fitted channels, from the fitted states (the model's
+// family rebuilds their sensor phasors); NaN where a step has no identified
+// state.
 ResidualMap Residuals(const ResultFile& result, const signal::Campaign& campaign, const signal::PhasorSet& phasors,
-                      const IdentifiedModel& model, const hb::HarmonicBalance& balance,
-                      const std::vector<ReportChannel>& channels) {
+                      const IdentifiedModel& model, const std::vector<ReportChannel>& channels) {
   std::vector<std::string> fitted;
   for (const auto& c : channels)
     if (c.fitted) fitted.push_back(c.channel);
@@ -339,6 +324,7 @@ ResidualMap Residuals(const ResultFile& result, const signal::Campaign& campaign
   const FitData fit = MakeFitData(campaign, phasors, {.channels = fitted, .num_fit_harmonics = k_fit});
   std::vector<double> fit_positions;
   for (const auto& c : fit.channels) fit_positions.push_back(c.position_m);
+  const std::vector<Eigen::MatrixXcd> fitted_y = model.family->FittedDisplacements(model, fit_positions);
   ResidualMap residuals;
   for (const auto& c : fit.channels)
     for (int k = 1; k <= k_fit; ++k) residuals.rows.push_back(c.channel + " h" + std::to_string(k));
@@ -349,12 +335,8 @@ ResidualMap Residuals(const ResultFile& result, const signal::Campaign& campaign
     residuals.step_level.push_back(s.level);
     residuals.step_frequency_hz.push_back(s.omega_rad_s / kTwoPi);
     const IdentifiedStep* identified = FindStep(model, s.file);
-    // A family whose state is not the support rotation has no residuals here.
-    const Eigen::VectorXcd theta = identified ? model.family->SupportRotation_rad(identified->state) : Eigen::VectorXcd();
-    if (theta.size() == 0) continue;
-    const hb::HarmonicBalanceSolution solution{.omega_rad_s = identified->omega_rad_s,
-                                               .theta_rad = hb::PadHarmonics(theta, model.num_harmonics)};
-    const Eigen::MatrixXcd y = balance.Displacements(solution, identified->force_N, fit_positions);
+    if (!identified) continue;
+    const Eigen::MatrixXcd& y = fitted_y[static_cast<std::size_t>(identified - model.steps.data())];
     for (std::size_t c = 0; c < fit.channels.size(); ++c)
       for (int k = 1; k <= k_fit; ++k) {
         const Complex misfit = FromDisplacement(y(static_cast<Eigen::Index>(c), k), fit.channels[c].derivative_order,
@@ -387,12 +369,11 @@ ReportCurves ComputeReportCurves(const ResultFile& result, const signal::Campaig
                                  const signal::PhasorSet& phasors, const ReportCurveOptions& options,
                                  const std::function<void(double, const std::string&)>& progress) {
   const IdentifiedModel model = ToIdentifiedModel(result);
-  const hb::HarmonicBalance balance = IdentifiedHarmonicBalance(model);
   ReportCurves curves;
   curves.channels = Channels(result, campaign);
   curves.reference_channel = ReferenceChannel(curves.channels);
   const std::vector<std::string> level_names = LevelNames(phasors);
-  curves.levels = FrequencyResponses(balance, phasors, curves.channels, level_names, options, progress);
+  curves.levels = FrequencyResponses(model, phasors, curves.channels, level_names, options, progress);
   if (result.robust_fit && result.robust_fit->applied)
     for (auto& level : curves.levels)
       for (auto& point : level.measured)
@@ -410,7 +391,7 @@ ReportCurves ComputeReportCurves(const ResultFile& result, const signal::Campaig
   HeldOutHistories(result, campaign, phasors, model, level_names, options.samples_per_period, curves);
 
   Report(progress, 0.9, "residual map");
-  curves.residuals = Residuals(result, campaign, phasors, model, balance, curves.channels);
+  curves.residuals = Residuals(result, campaign, phasors, model, curves.channels);
   Report(progress, 1.0, "done");
   return curves;
 }

@@ -6,7 +6,7 @@
 //    amplitude |F_1|, with its stability; the amplitudes of harmonics 2 and 3
 //    of both where the phasors and the model hold them;
 //  - the model's backbone at the reference channel (the first fitted one) as
-//    it is measured there (solver/sensor_backbone.h: the channel's first
+//    it is measured there (solver/estimation/sensor_backbone.h: the channel's first
 //    harmonic in quadrature with the force), and the measured phase-resonance
 //    point of every level with its uncertainty, from the model-free analysis
 //    of `beamid backbone --measured` (solver/measured_backbone.h), which also

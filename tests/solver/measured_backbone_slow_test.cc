@@ -26,7 +26,7 @@
 #include "signal/first_harmonic_level.h"
 #include "signal/phasor_table.h"
 #include "signal/quantity_conversion.h"
-#include "solver/backbone/sensor_backbone.h"
+#include "solver/estimation/sensor_backbone.h"
 #include "tests/support/temp_path.h"
 
 namespace beamid::solver {

@@ -6,6 +6,7 @@
 // that names its state wrongly or rebuilds another branch fails here.
 #include "solver/estimation/model_family.h"
 
+#include <cmath>
 #include <set>
 
 #include <gmock/gmock.h>
@@ -14,6 +15,7 @@
 #include "hb/errors.h"
 #include "solver/estimation/fit_problem.h"
 #include "solver/estimation/prediction.h"
+#include "solver/estimation/sensor_backbone.h"
 #include "tests/support/expect_refused.h"
 #include "tests/support/synthetic_fit_data.h"
 
@@ -80,6 +82,51 @@ TEST(ModelFamily, RebuildsFromItsStatesThePhasorsOfItsFitProblem) {
       }
     }
   }
+}
+
+TEST(ModelFamily, FittedDisplacementsAreThePhasorsOfItsFitProblemAsTheyStand) {
+  // The residual map's phasors: from the states as fitted (off the
+  // balance too), not solved again.
+  const FitData data = testing::SyntheticFitData();
+  const std::vector<double> positions_m = {0.1, 0.3, 0.45};
+  for (const ModelFamily* family : ModelFamilies()) {
+    SCOPED_TRACE(family->Name());
+    const std::unique_ptr<FitProblem> problem = family->MakeProblem(data, Structure(), {.num_harmonics = 5});
+    Eigen::VectorXd x = problem->FeasiblePoint(kParameters);
+    for (int i = problem->num_parameters(); i < x.size(); ++i) x[i] *= 1.0 + 0.03 * (i % 3);
+    const std::vector<Eigen::MatrixXcd> fitted = family->FittedDisplacements(Rebuilt(*family, data, *problem, x), positions_m);
+    ASSERT_EQ(fitted.size(), data.steps.size());
+    for (int i = 0; i < problem->num_steps(); ++i) {
+      const Eigen::MatrixXcd expected = problem->DisplacementPhasors(x, i, positions_m);
+      ASSERT_EQ(fitted[i].rows(), expected.rows());
+      ASSERT_EQ(fitted[i].cols(), expected.cols());
+      EXPECT_LT((fitted[i] - expected).cwiseAbs().maxCoeff(), 1e-9 * expected.cwiseAbs().maxCoeff()) << "step " << i;
+    }
+  }
+}
+
+TEST(ModelFamily, BackbonesAtASensorAgreeBetweenFamilies) {
+  // Two independent models of one beam and support: at equal amplitude of
+  // the sensor their backbones agree to 0.1 % at these small amplitudes.
+  const FitData data = testing::SyntheticFitData();
+  std::vector<std::vector<SensorBackbonePoint>> backbones;
+  for (const ModelFamily* family : ModelFamilies()) {
+    SCOPED_TRACE(family->Name());
+    const std::unique_ptr<FitProblem> problem = family->MakeProblem(data, Structure(), {.num_harmonics = 5});
+    const IdentifiedModel model = Rebuilt(*family, data, *problem, problem->FeasiblePoint(kParameters));
+    backbones.push_back(family->BackboneAtSensor(model, 0.3, 20));
+    ASSERT_GE(backbones.back().size(), 10u);
+    for (std::size_t n = 1; n < backbones.back().size(); ++n)
+      EXPECT_GT(backbones.back()[n].amplitude_m, backbones.back()[n - 1].amplitude_m);
+  }
+  int compared = 0;
+  for (const SensorBackbonePoint& p : backbones[1]) {
+    const double f = BackboneFrequencyAt_hz(backbones[0], p.amplitude_m);
+    if (!std::isfinite(f)) continue;
+    EXPECT_NEAR(p.frequency_hz, f, 1e-3 * f) << "|Y_1| = " << p.amplitude_m;
+    ++compared;
+  }
+  EXPECT_GE(compared, 5);
 }
 
 TEST(ModelFamily, OnlyHarmonicBalanceStatesAreTheSupportRotation) {

@@ -1,4 +1,4 @@
-#include "solver/backbone/sensor_backbone.h"
+#include "solver/estimation/sensor_backbone.h"
 
 #include "hb/errors.h"
 
