@@ -460,10 +460,11 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves, con
   for (const auto& channel : result.model.fit_channels)
     fit_channels += (fit_channels.empty() ? "" : ", ") + HtmlEscape(channel);
   std::string html = HtmlPageHead(title);
-  html += fmt::format("<p>Result <code>{}</code>, campaign <code>{}</code>; support law {}; fitted channels {}, "
-                      "harmonics 1..{}; reduced χ² = {} (χ² {} over {} degrees of freedom).</p>\n",
+  html += fmt::format("<p>Result <code>{}</code>, campaign <code>{}</code>; model {} ({}); support law {}; fitted "
+                      "channels {}, harmonics 1..{}; reduced χ² = {} (χ² {} over {} degrees of freedom).</p>\n",
                       HtmlEscape(input.result_file.string()), HtmlEscape(input.campaign_folder.string()),
-                      HtmlEscape(outcome.support_law), fit_channels, result.model.num_fit_harmonics,
+                      schema::NameOf(outcome.model_kind, kModelKindNames),
+                      HtmlEscape(FindModelFamily(outcome.model_kind).Description()), HtmlEscape(outcome.support_law), fit_channels, result.model.num_fit_harmonics,
                       Number(outcome.reduced_chi_square), Number(outcome.chi_square), outcome.degrees_of_freedom);
   html += fmt::format("<p class=\"fit-verdict\"><b>{}</b> (reduced χ² {}, at most {:g} allowed){}</p>\n",
                       outcome.fit_within_noise ? "The model fits within the noise" : "The model misfits beyond the noise",
@@ -523,23 +524,15 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves, con
           Warnings(curves.phase_resonance_warnings);
   if (!curves.measured_mode.damping.empty()) {
     const MeasuredNonlinearMode& mode = curves.measured_mode;
+    // The verdict in the measured backbone's own words (kDampingRateTrendNames).
     std::string trend;
-    switch (outcome.damping_trend) {
-      case Trend::kRises:
-        trend = fmt::format("The damping rate ζω_n rises with amplitude beyond a constant damper ({:+.1f} σ): "
-                            "dissipation that grows faster than a viscous damper's, as friction's does.",
-                            outcome.damping_trend_z);
-        break;
-      case Trend::kFalls:
-        trend = fmt::format("The damping rate ζω_n falls with amplitude below a constant damper ({:+.1f} σ).",
-                            outcome.damping_trend_z);
-        break;
-      case Trend::kNone:
-        trend = fmt::format("The damping rate ζω_n is consistent with a constant damper ({:+.1f} σ).",
-                            outcome.damping_trend_z);
-        break;
-      case Trend::kNotJudged: break;
-    }
+    if (outcome.damping_trend != Trend::kNotJudged)
+      trend = fmt::format("The damping rate ζω_n against amplitude {}{} ({:+.1f} σ){}",
+                          outcome.damping_trend == Trend::kNone ? "is " : "",
+                          schema::NameOf(outcome.damping_trend, kDampingRateTrendNames), outcome.damping_trend_z,
+                          outcome.damping_trend == Trend::kRises
+                              ? ": dissipation that grows faster than a viscous damper's, as friction's does."
+                              : ".");
     html += Figure("damping-plot", DampingPlotSvg(curves),
                    "The measured damping ratio of each level by three estimators (±2σ), and the single nonlinear "
                    "mode fitted across levels (" +
