@@ -9,12 +9,11 @@
 // drift apart. The block's fields: docs/report.md.
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "solver/backbone/measured_backbone_io.h"
 #include "solver/diagnosis/diagnosis.h"
@@ -31,7 +30,7 @@ inline constexpr std::string_view kReportDataId = "beamid-report-data";
 struct HeldOutOutcome {
   std::string channel;
   int steps = 0;
-  double worst_h1_relative_error = 0.0; // NaN (null): no step resolves it
+  double worst_h1_relative_error = 0.0;  // NaN (null): no step resolves it
   int measurable_steps_h1 = 0;
   double worst_h3_relative_error = 0.0;
   int measurable_steps_h3 = 0;
@@ -69,8 +68,7 @@ struct IdentificationOutcome {
 
 struct LevelOutcome {
   std::string label;
-  std::vector<std::string>
-      flags; // LevelFlagName of each kind, once, in the file's order
+  std::vector<std::string> flags;  // LevelFlagName of each kind, once, in the file's order
   int jumps = 0;
   bool in_global_fit = true;
 };
@@ -81,22 +79,21 @@ struct MeasuredBackboneOutcome {
   int left_out_levels = 0;
   std::string fit_form;
   double fit_reduced_chi_square = 0.0;
-  Trend damping_rate_trend = Trend::kNotJudged; // on ζω_n
+  Trend damping_rate_trend = Trend::kNotJudged;  // on ζω_n
   double damping_rate_z = 0.0;
-  Trend damping_ratio_trend = Trend::kNotJudged; // on ζ alone
+  Trend damping_ratio_trend = Trend::kNotJudged;  // on ζ alone
   double damping_ratio_z = 0.0;
 };
 
-IdentificationOutcome OutcomeOf(const ReportInput &input,
-                                const ReportCurves &curves);
-MeasuredBackboneOutcome OutcomeOf(const MeasuredBackboneFile &file);
+IdentificationOutcome OutcomeOf(const ReportInput& input, const ReportCurves& curves);
+MeasuredBackboneOutcome OutcomeOf(const MeasuredBackboneFile& file);
 
-nlohmann::json ToJson(const IdentificationOutcome &outcome);
-nlohmann::json ToJson(const MeasuredBackboneOutcome &outcome);
+nlohmann::json ToJson(const IdentificationOutcome& outcome);
+nlohmann::json ToJson(const MeasuredBackboneOutcome& outcome);
 
 // `<script type="application/json" id="beamid-report-data">…</script>`: data,
 // never run; every "</" and "<!--" inside is escaped so that no text of the
 // record can close the element or open a comment.
-std::string ReportDataBlock(const nlohmann::json &record);
+std::string ReportDataBlock(const nlohmann::json& record);
 
-} // namespace beamid::solver
+}  // namespace beamid::solver
