@@ -464,10 +464,12 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves, con
                       "channels {}, harmonics 1..{}; reduced χ² = {} (χ² {} over {} degrees of freedom).</p>\n",
                       HtmlEscape(input.result_file.string()), HtmlEscape(input.campaign_folder.string()),
                       schema::NameOf(outcome.model_kind, kModelKindNames),
-                      HtmlEscape(FindModelFamily(outcome.model_kind).Description()), HtmlEscape(outcome.support_law), fit_channels, result.model.num_fit_harmonics,
+                      HtmlEscape(FindModelFamily(outcome.model_kind).Description()), HtmlEscape(outcome.support_law),
+                      fit_channels, result.model.num_fit_harmonics,
                       Number(outcome.reduced_chi_square), Number(outcome.chi_square), outcome.degrees_of_freedom);
   html += fmt::format("<p class=\"fit-verdict\"><b>{}</b> (reduced χ² {}, at most {:g} allowed){}</p>\n",
-                      outcome.fit_within_noise ? "The model fits within the noise" : "The model misfits beyond the noise",
+                      outcome.fit_within_noise ? "The model fits within the noise"
+                                               : "The model misfits beyond the noise",
                       Number(outcome.reduced_chi_square), kMisfitReducedChiSquare,
                       outcome.fit_within_noise ? "."
                                                : ": it lacks some physics or the recordings hold a fault; "

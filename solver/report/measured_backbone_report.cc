@@ -139,8 +139,8 @@ std::string MeasuredBackboneHtmlReport(const MeasuredBackboneFile& file, const s
   html += "<section id=\"fit\"><h2>Cross-level single-mode fit and damping trend</h2>\n";
   html += fmt::format("<p>Form: {}; reduced χ² {:.3g}.</p>\n", HtmlEscape(outcome.fit_form),
                       outcome.fit_reduced_chi_square);
-  html += fmt::format("<p class=\"damping-trend\">Damping against amplitude: <strong>{}</strong> (ζω_n: slope {:.3g} ± {:.2g} /(s·m), "
-                      "{:+.1f} σ); ζ alone {} (slope {:.3g} ± {:.2g} per m, {:+.1f} σ), which a constant damper "
+  html += fmt::format("<p class=\"damping-trend\">Damping against amplitude: <strong>{}</strong> (ζω_n: slope "
+                      "{:.3g} ± {:.2g} /(s·m), {:+.1f} σ); ζ alone {} (slope {:.3g} ± {:.2g} per m, {:+.1f} σ), which a constant damper "
                       "also gives where the frequency changes.</p>\n",
                       outcome.damping_rate_trend == Trend::kNotJudged
                           ? "not available"
