@@ -7,7 +7,7 @@ namespace {
 
 // Keyed on the count, not the value: files written before the worst error
 // of an unresolved harmonic was NaN hold 0 there.
-std::string Harmonic(int measurable_steps, std::size_t steps, double worst, const char* harmonic) {
+std::string Harmonic(int measurable_steps, int steps, double worst, const char* harmonic) {
   if (measurable_steps == 0)
     return fmt::format("nothing measurable on the {} harmonic (none of the {} steps resolves its error: all lie below "
                        "the noise floor)",
@@ -19,8 +19,14 @@ std::string Harmonic(int measurable_steps, std::size_t steps, double worst, cons
 }  // namespace
 
 std::string HeldOutSummary(const HeldOutChannel& channel) {
-  return Harmonic(channel.measurable_steps_h1, channel.steps.size(), channel.worst_h1_relative_error, "1st") + "; " +
-         Harmonic(channel.measurable_steps_h3, channel.steps.size(), channel.worst_h3_relative_error, "3rd");
+  return HeldOutSummary(static_cast<int>(channel.steps.size()), channel.worst_h1_relative_error,
+                        channel.measurable_steps_h1, channel.worst_h3_relative_error, channel.measurable_steps_h3);
+}
+
+std::string HeldOutSummary(int steps, double worst_h1_relative_error, int measurable_steps_h1,
+                           double worst_h3_relative_error, int measurable_steps_h3) {
+  return Harmonic(measurable_steps_h1, steps, worst_h1_relative_error, "1st") + "; " +
+         Harmonic(measurable_steps_h3, steps, worst_h3_relative_error, "3rd");
 }
 
 }  // namespace beamid::solver

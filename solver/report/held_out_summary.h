@@ -15,5 +15,8 @@ namespace beamid::solver {
 // resolve it); nothing measurable on the 3rd harmonic (none of the 6 steps
 // resolves its error: all lie below the noise floor)".
 std::string HeldOutSummary(const HeldOutChannel& channel);
+// The same from its numbers (a report's record of them).
+std::string HeldOutSummary(int steps, double worst_h1_relative_error, int measurable_steps_h1,
+                           double worst_h3_relative_error, int measurable_steps_h3);
 
 }  // namespace beamid::solver

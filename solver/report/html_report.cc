@@ -3,6 +3,7 @@
 #include "solver/report/held_out_summary.h"
 #include "solver/report/html_escape.h"
 #include "solver/report/html_page.h"
+#include "solver/report/report_outcome.h"
 
 #include <algorithm>
 #include <cmath>
@@ -55,13 +56,14 @@ std::string SigmaCell(const UncertainFormat& format, double sigma) {
 
 // The model a diagnosis selected, as its file holds it: its first harmonic
 // at every measured step of every channel (DiagnosisResult::response).
-std::optional<SelectedResponse> SelectedModelOf(const ReportInput& input) {
-  if (!input.diagnosis) return std::nullopt;
+std::optional<SelectedResponse> SelectedModelOf(const ReportInput& input, const IdentificationOutcome& outcome) {
+  if (!input.diagnosis || !outcome.diagnosis) return std::nullopt;
   const DiagnosisResult& d = input.diagnosis->diagnosis;
-  const bool named = d.verdict == DiagnosisVerdict::kCauseNamed || d.verdict == DiagnosisVerdict::kCombinationNamed;
+  const DiagnosisVerdict verdict = outcome.diagnosis->verdict;
+  const bool named = verdict == DiagnosisVerdict::kCauseNamed || verdict == DiagnosisVerdict::kCombinationNamed;
   if (!named || d.response.empty()) return std::nullopt;
   std::string name;
-  for (const auto& s : d.selected) name += (name.empty() ? "" : " + ") + s;
+  for (const auto& s : outcome.diagnosis->selected) name += (name.empty() ? "" : " + ") + s;
   return SelectedResponse{.name = name, .points = &d.response};
 }
 
@@ -349,14 +351,16 @@ std::string HeldOutSelectedPlotSvg(const SelectedResponse& selected, const Repor
 
 // The answer first: the parameters under the damping law the data accept;
 // when they reject the loss factor the fit assumed, its parameters follow.
-std::string ParameterTable(const ResultFile& result) {
-  const DampingLawFit* answer = AnswerLaw(result.damping_laws);
+std::string ParameterTable(const ResultFile& result, const IdentificationOutcome& outcome) {
+  const auto& laws = result.damping_laws.laws;
   const auto& intervals = result.damping_laws.intervals;
-  if (answer == nullptr || answer == &result.damping_laws.laws.front()) return ParameterRows(result.parameters, intervals);
+  const auto answer = std::find_if(laws.begin(), laws.end(),
+                                   [&](const DampingLawFit& law) { return law.law == outcome.answer_damping_law; });
+  if (!outcome.assumed_damping_law_rejected || answer == laws.end()) return ParameterRows(result.parameters, intervals);
   return fmt::format("<p class=\"answer\"><b>The data reject the loss factor the fit assumes</b>; they accept the "
                      "<b>{}</b> damping law (reduced χ² {} against {}), whose parameters are the answer:</p>\n",
-                     HtmlEscape(answer->law), Number(answer->reduced_chi_square),
-                     Number(result.fit.reduced_chi_square)) +
+                     HtmlEscape(outcome.answer_damping_law), Number(outcome.answer_reduced_chi_square),
+                     Number(outcome.reduced_chi_square)) +
          ParameterRows(answer->parameters, intervals) +
          "<p>Under the rejected loss factor (for comparison only):</p>\n" + ParameterRows(result.parameters, {});
 }
@@ -365,22 +369,28 @@ std::string ParameterTable(const ResultFile& result) {
 // diagnose`): the verdict, the findings, only the residual groups that stand
 // out of the noise, and one row per candidate; the full statistics stay in
 // the JSON file.
-std::string DiagnosisSection(const DiagnosisResult& diagnosis) {
+std::string DiagnosisSection(const DiagnosisResult& diagnosis, const DiagnosisOutcome& stated) {
   std::string html = "<section id=\"diagnosis\"><h2>Diagnosis</h2>\n";
   std::string selected;
-  for (const auto& name : diagnosis.selected) selected += (selected.empty() ? "" : ", ") + HtmlEscape(name);
-  html += "<p><b>Verdict:</b> " + HtmlEscape(ToString(diagnosis.verdict)) +
-          (diagnosis.blame == Blame::kNone ? ""
-                                            : " — to blame: <b>" + HtmlEscape(ToString(diagnosis.blame)) + "</b>") +
+  for (const auto& name : stated.selected) selected += (selected.empty() ? "" : ", ") + HtmlEscape(name);
+  html += "<p class=\"diagnosis-verdict\"><b>Verdict:</b> " + HtmlEscape(ToString(stated.verdict)) +
+          (stated.blame == Blame::kNone ? ""
+                                         : " — to blame: <b>" + HtmlEscape(ToString(stated.blame)) + "</b>") +
+          (stated.ranked_by == RankedBy::kNone ? "" : " (ranked by " + HtmlEscape(ToString(stated.ranked_by)) + ")") +
           "</p>\n";
   // An engineer checks the recording before the model: its findings first.
   std::string recording;
   for (const auto& c : diagnosis.candidates)
-    if (c.measurement && diagnosis.blame == Blame::kRecording && c.name == diagnosis.selected.front())
+    if (c.measurement && stated.blame == Blame::kRecording && !stated.selected.empty() &&
+        c.name == stated.selected.front())
       recording += "<li>" + HtmlEscape(c.name) + ": " + HtmlEscape(c.rig_check) + "</li>";
   for (const auto& f : diagnosis.recording_findings) recording += "<li>" + HtmlEscape(f) + "</li>";
   if (!recording.empty()) html += "<h3>The recording</h3>\n<ul class=\"warning\">" + recording + "</ul>\n";
-  html += "<p><b>Selected:</b> " + selected + "</p>\n";
+  html += "<p class=\"diagnosis-selected\"><b>Selected:</b> " + selected + "</p>\n";
+  html += std::string("<p class=\"diagnosis-rest\">") +
+          (stated.rest_within_noise ? "What the diagnosis leaves of the misfit lies within the noise."
+                                    : "Part of the misfit remains beyond the noise after the diagnosis.") +
+          "</p>\n";
   html += "<p class=\"diagnosis-summary\">" + HtmlEscape(diagnosis.summary) + "</p>\n";
   if (!diagnosis.location) {
     html += "<p class=\"warning\">The misfit could not be located: " + HtmlEscape(diagnosis.location_error) + "</p>\n";
@@ -442,28 +452,41 @@ std::string DiagnosisSection(const DiagnosisResult& diagnosis) {
 
 std::string HtmlReport(const ReportInput& input, const ReportCurves& curves, const HtmlReportOptions& options) {
   const ResultFile& result = input.result;
+  // What the page states, once: its text below reads it, and the page embeds it.
+  const IdentificationOutcome outcome = OutcomeOf(input, curves);
   std::string title = "beamid report";
   if (!result.campaign.name.empty()) title += ": " + result.campaign.name;
   std::string fit_channels;
   for (const auto& channel : result.model.fit_channels)
     fit_channels += (fit_channels.empty() ? "" : ", ") + HtmlEscape(channel);
   std::string html = HtmlPageHead(title);
-  html += fmt::format("<p>Result <code>{}</code>, campaign <code>{}</code>; support law {}; fitted channels {}, "
-                      "harmonics 1..{}; reduced χ² = {} (χ² {} over {} degrees of freedom).</p>\n",
+  html += fmt::format("<p>Result <code>{}</code>, campaign <code>{}</code>; model {} ({}); support law {}; fitted "
+                      "channels {}, harmonics 1..{}; reduced χ² = {} (χ² {} over {} degrees of freedom).</p>\n",
                       HtmlEscape(input.result_file.string()), HtmlEscape(input.campaign_folder.string()),
-                      HtmlEscape(result.model.law), fit_channels, result.model.num_fit_harmonics,
-                      Number(result.fit.reduced_chi_square), Number(result.fit.chi_square), result.fit.degrees_of_freedom);
-  if (input.diagnosis) html += DiagnosisSection(input.diagnosis->diagnosis);
+                      schema::NameOf(outcome.model_kind, kModelKindNames),
+                      HtmlEscape(FindModelFamily(outcome.model_kind).Description()), HtmlEscape(outcome.support_law),
+                      fit_channels, result.model.num_fit_harmonics,
+                      Number(outcome.reduced_chi_square), Number(outcome.chi_square), outcome.degrees_of_freedom);
+  html += fmt::format("<p class=\"fit-verdict\"><b>{}</b> (reduced χ² {}, at most {:g} allowed){}</p>\n",
+                      outcome.fit_within_noise ? "The model fits within the noise"
+                                               : "The model misfits beyond the noise",
+                      Number(outcome.reduced_chi_square), kMisfitReducedChiSquare,
+                      outcome.fit_within_noise ? "."
+                                               : ": it lacks some physics or the recordings hold a fault; "
+                                                 "<code>beamid diagnose</code> tells which.");
+  if (input.diagnosis) html += DiagnosisSection(input.diagnosis->diagnosis, *outcome.diagnosis);
 
-  const std::optional<SelectedResponse> selected = SelectedModelOf(input);
+  const std::optional<SelectedResponse> selected = SelectedModelOf(input, outcome);
   if (selected)
     html += "<section id=\"selected\"><h2>The selected model: " + HtmlEscape(selected->name) + "</h2>\n" +
             SelectedParameterTable(input.diagnosis->diagnosis) + "</section>\n";
   html += std::string("<section id=\"parameters\"><h2>") +
           (selected ? "The base model's fit (identify), which the diagnosis rejects" : "Identified parameters") +
-          "</h2>\n" + ParameterTable(result);
-  for (const auto& v : result.validation)
-    html += fmt::format("<p>Held-out {}: {}.</p>\n", HtmlEscape(v.channel), HtmlEscape(HeldOutSummary(v)));
+          "</h2>\n" + ParameterTable(result, outcome);
+  for (const auto& v : outcome.held_out)
+    html += fmt::format("<p class=\"held-out\">Held-out {}: {}.</p>\n", HtmlEscape(v.channel),
+                        HtmlEscape(HeldOutSummary(v.steps, v.worst_h1_relative_error, v.measurable_steps_h1,
+                                                  v.worst_h3_relative_error, v.measurable_steps_h3)));
   html += Warnings(result.warnings) + "</section>\n";
   html += RecordingSection(curves, result);
 
@@ -503,23 +526,15 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves, con
           Warnings(curves.phase_resonance_warnings);
   if (!curves.measured_mode.damping.empty()) {
     const MeasuredNonlinearMode& mode = curves.measured_mode;
+    // The verdict in the measured backbone's own words (kDampingRateTrendNames).
     std::string trend;
-    switch (mode.damping_rate_trend) {
-      case Trend::kRises:
-        trend = fmt::format("The damping rate ζω_n rises with amplitude beyond a constant damper ({:+.1f} σ): "
-                            "dissipation that grows faster than a viscous damper's, as friction's does.",
-                            mode.damping_rate_trend_z);
-        break;
-      case Trend::kFalls:
-        trend = fmt::format("The damping rate ζω_n falls with amplitude below a constant damper ({:+.1f} σ).",
-                            mode.damping_rate_trend_z);
-        break;
-      case Trend::kNone:
-        trend = fmt::format("The damping rate ζω_n is consistent with a constant damper ({:+.1f} σ).",
-                            mode.damping_rate_trend_z);
-        break;
-      case Trend::kNotJudged: break;
-    }
+    if (outcome.damping_trend != Trend::kNotJudged)
+      trend = fmt::format("The damping rate ζω_n against amplitude {}{} ({:+.1f} σ){}",
+                          outcome.damping_trend == Trend::kNone ? "is " : "",
+                          schema::NameOf(outcome.damping_trend, kDampingRateTrendNames), outcome.damping_trend_z,
+                          outcome.damping_trend == Trend::kRises
+                              ? ": dissipation that grows faster than a viscous damper's, as friction's does."
+                              : ".");
     html += Figure("damping-plot", DampingPlotSvg(curves),
                    "The measured damping ratio of each level by three estimators (±2σ), and the single nonlinear "
                    "mode fitted across levels (" +
@@ -557,7 +572,7 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves, con
                  "on a logarithmic colour scale centred at 1 σ (white): blue cells lie within the noise, red "
                  "ones beyond it point at what the model misses.") +
           "</section>\n";
-  return ScrollableTables(html) + "</body>\n</html>\n";
+  return ScrollableTables(html) + ReportDataBlock(ToJson(outcome)) + "</body>\n</html>\n";
 }
 
 }  // namespace beamid::solver

@@ -1,12 +1,14 @@
 // The HTML report of `beamid report`: one self-contained file (no external
-// resources, no scripts) with the identified parameters and their 95 %
+// resources, nothing executable) with the identified parameters and their 95 %
 // intervals, the fit's quality, the diagnosis summary when the input is a
 // diagnosis, and plots drawn by gnuplot as inline SVG (solver/report/gnuplot_svg.h):
 // frequency response curves per channel (solver/report/response_plots.h:
 // |X₁|, |X₁|/|F₁| and phase of every level, measured points, model stable
 // branches solid and unstable dashed; harmonics 2 and 3), the backbone with the measured
 // phase-resonance points, predicted vs measured time histories at the
-// held-out channel, and the residual map (solver/report_curves.h).
+// held-out channel, and the residual map (solver/report_curves.h). The
+// outcomes its text states are embedded as one JSON data block
+// (solver/report/report_outcome.h), which the text is written from.
 #pragma once
 
 #include <string>

@@ -9,6 +9,7 @@
 #include "solver/report/gnuplot_svg.h"
 #include "solver/report/html_escape.h"
 #include "solver/report/html_page.h"
+#include "solver/report/report_outcome.h"
 #include "solver/report/stacked_plot.h"
 #include "solver/report/uncertain_number.h"
 
@@ -69,17 +70,16 @@ std::string PlotAgainstAmplitude(const MeasuredBackboneFile& file, bool frequenc
   return StackedPlotSvg(plot);
 }
 
-std::string LevelTable(const MeasuredBackboneFile& file) {
+std::string LevelTable(const MeasuredBackboneFile& file, const MeasuredBackboneOutcome& outcome) {
   std::string html =
       "<table>\n<tr><th>level</th><th>control</th><th>phase resonance [Hz]</th><th>amplitude [mm]</th>"
       "<th>ζ [%] (σ covers the estimators)</th><th>ζ phase resonance [%]</th><th>ζ local fit [%]</th>"
       "<th>ζ half-power [%]</th><th>peak [Hz]</th><th>regeneration RMS</th><th>in the fit</th><th>flags</th></tr>\n";
-  for (const auto& l : file.levels) {
+  for (std::size_t i = 0; i < file.levels.size(); ++i) {
+    const LevelResonance& l = file.levels[i];
+    const LevelOutcome& stated = outcome.levels[i];
     std::string kinds;
-    for (const auto& f : l.flags) {
-      const std::string name(LevelFlagName(f.kind));
-      if (kinds.find(name) == std::string::npos) kinds += (kinds.empty() ? "" : ", ") + name;
-    }
+    for (const auto& name : stated.flags) kinds += (kinds.empty() ? "" : ", ") + name;
     html += fmt::format(
         "<tr><td>{}</td><td>{}</td><td>{}{}</td><td>{}</td><td>{}</td><td>{}{}</td><td>{}{}</td><td>{}{}</td>"
         "<td>{}{}</td><td>{:.3g} %{}</td><td>{}</td><td class=\"flag\">{}</td></tr>\n",
@@ -91,7 +91,7 @@ std::string LevelTable(const MeasuredBackboneFile& file) {
         Cell(l.local_damping_ratio, 100), FlagCell(l, "local_damping_ratio"), Cell(l.half_power_damping_ratio, 100),
         FlagCell(l, "half_power_damping_ratio"), Cell(l.peak_frequency_hz, 1), FlagCell(l, "peak_frequency"),
         100 * l.regeneration_relative_rms, FlagCell(l, "regeneration_relative_rms"),
-        l.in_global_fit ? "yes" : "<span class=\"flag\">no</span>", HtmlEscape(kinds));
+        stated.in_global_fit ? "yes" : "<span class=\"flag\">no</span>", HtmlEscape(kinds));
   }
   return html + "</table>\n";
 }
@@ -119,6 +119,8 @@ std::string LevelNotes(const MeasuredBackboneFile& file) {
 
 std::string MeasuredBackboneHtmlReport(const MeasuredBackboneFile& file, const std::string& source) {
   const std::string title = "Measured backbone";
+  // What the page states, once: its text below reads it, and the page embeds it.
+  const MeasuredBackboneOutcome outcome = OutcomeOf(file);
   std::string html = HtmlPageHead(title);
   std::string inputs;
   for (const auto& i : file.inputs) inputs += (inputs.empty() ? "" : ", ") + ("<code>" + HtmlEscape(i) + "</code>");
@@ -129,23 +131,23 @@ std::string MeasuredBackboneHtmlReport(const MeasuredBackboneFile& file, const s
                       HtmlEscape(file.channel.empty() ? "?" : file.channel), HtmlEscape(file.response_quantity),
                       HtmlEscape(excitation.control), HtmlEscape(excitation.unit), HtmlEscape(excitation.frf),
                       excitation.caveat.empty() ? "" : "; " + HtmlEscape(excitation.caveat));
-  int flagged = 0, left_out = 0;
-  for (const auto& l : file.levels) flagged += !l.flags.empty(), left_out += !l.in_global_fit;
   html += fmt::format("<section id=\"levels\"><h2>Levels</h2>\n<p>{} levels, {} flagged, {} left out of the "
                       "cross-level fit.</p>\n",
-                      file.levels.size(), flagged, left_out);
-  html += LevelTable(file) + LevelNotes(file) + "</section>\n";
-  const auto& t = file.damping_trend;
+                      outcome.levels.size(), outcome.flagged_levels, outcome.left_out_levels);
+  html += LevelTable(file, outcome) + LevelNotes(file) + "</section>\n";
+  const auto& t = file.damping_trend;  // the slopes; the verdicts and their z from the record
   html += "<section id=\"fit\"><h2>Cross-level single-mode fit and damping trend</h2>\n";
-  html += fmt::format("<p>Form: {}; reduced χ² {:.3g}.</p>\n", HtmlEscape(file.single_mode_fit.form),
-                      file.single_mode_fit.reduced_chi_square);
-  html += fmt::format("<p>Damping against amplitude: <strong>{}</strong> (ζω_n: slope {:.3g} ± {:.2g} /(s·m), "
-                      "{:+.1f} σ); ζ alone {} (slope {:.3g} ± {:.2g} per m, {:+.1f} σ), which a constant damper "
+  html += fmt::format("<p>Form: {}; reduced χ² {:.3g}.</p>\n", HtmlEscape(outcome.fit_form),
+                      outcome.fit_reduced_chi_square);
+  html += fmt::format("<p class=\"damping-trend\">Damping against amplitude: <strong>{}</strong> (ζω_n: slope "
+                      "{:.3g} ± {:.2g} /(s·m), {:+.1f} σ); ζ alone {} (slope {:.3g} ± {:.2g} per m, {:+.1f} σ), which a constant damper "
                       "also gives where the frequency changes.</p>\n",
-                      t.verdict == Trend::kNotJudged ? "not available" : schema::NameOf(t.verdict, kDampingRateTrendNames),
-                      t.damping_rate_slope_per_s_m, t.damping_rate_slope_std_per_s_m, t.damping_rate_z,
-                      schema::NameOf(t.damping_ratio_verdict, kDampingRatioTrendNames),
-                      t.slope_per_m, t.slope_std_per_m, t.z);
+                      outcome.damping_rate_trend == Trend::kNotJudged
+                          ? "not available"
+                          : schema::NameOf(outcome.damping_rate_trend, kDampingRateTrendNames),
+                      t.damping_rate_slope_per_s_m, t.damping_rate_slope_std_per_s_m, outcome.damping_rate_z,
+                      schema::NameOf(outcome.damping_ratio_trend, kDampingRatioTrendNames), t.slope_per_m,
+                      t.slope_std_per_m, outcome.damping_ratio_z);
   for (bool frequency : {true, false}) {
     const std::string svg = PlotAgainstAmplitude(file, frequency);
     if (svg.empty()) continue;
@@ -161,7 +163,7 @@ std::string MeasuredBackboneHtmlReport(const MeasuredBackboneFile& file, const s
     for (const auto& w : file.warnings) html += "<li class=\"warning\">" + HtmlEscape(w) + "</li>\n";
     html += "</ul>\n</section>\n";
   }
-  return ScrollableTables(html) + "</body>\n</html>\n";
+  return ScrollableTables(html) + ReportDataBlock(ToJson(outcome)) + "</body>\n</html>\n";
 }
 
 }  // namespace beamid::solver

@@ -57,13 +57,13 @@ ReportCurves Curves(Trend trend, double z) {
 
 TEST(HtmlReportCaptions, TheDampingCaptionSaysTheMeasuredBackbonesVerdictWithItsOwnZ) {
   const std::string rises = HtmlReport(Input(), Curves(Trend::kRises, 10.5));
-  EXPECT_THAT(rises, HasSubstr("rises with amplitude beyond a constant damper (+10.5 σ)"));
+  EXPECT_THAT(rises, HasSubstr("against amplitude rises beyond a constant damper (+10.5 σ)"));
   EXPECT_THAT(rises, Not(HasSubstr("consistent with a constant damper")));
   const std::string falls = HtmlReport(Input(), Curves(Trend::kFalls, -11.6));
-  EXPECT_THAT(falls, HasSubstr("falls with amplitude below a constant damper (-11.6 σ)"));
+  EXPECT_THAT(falls, HasSubstr("against amplitude falls below a constant damper (-11.6 σ)"));
   const std::string none = HtmlReport(Input(), Curves(Trend::kNone, 0.4));
-  EXPECT_THAT(none, HasSubstr("consistent with a constant damper (+0.4 σ)"));
-  EXPECT_THAT(none, Not(HasSubstr("rises with amplitude")));
+  EXPECT_THAT(none, HasSubstr("against amplitude is consistent with a constant damper (+0.4 σ)"));
+  EXPECT_THAT(none, Not(HasSubstr("rises beyond")));
 }
 
 TEST(HtmlReportCaptions, WhenTheDataRejectTheLossFactorTheAcceptedLawsParametersLead) {

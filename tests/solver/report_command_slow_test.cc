@@ -120,7 +120,9 @@ TEST_F(ReportCommand, WritesOneSelfContainedPageWithEveryPlot) {
             << fs::file_size(*folder_ / "report.html") / 1000 << " kB\n";
   const std::string html = ReadFile(*folder_ / "report.html");
   EXPECT_EQ(Count(html, "<svg"), static_cast<std::size_t>(kPlots));
-  EXPECT_THAT(html, Not(HasSubstr("<script")));
+  // Nothing to run: the one script element is the JSON data block.
+  EXPECT_EQ(Count(html, "<script"), 1u);
+  EXPECT_THAT(html, HasSubstr("<script type=\"application/json\" id=\"beamid-report-data\">"));
   EXPECT_THAT(html, Not(HasSubstr("<link")));
   EXPECT_THAT(html, Not(HasSubstr("src=\"http")));
   EXPECT_THAT(html, Not(HasSubstr("href=\"http")));
