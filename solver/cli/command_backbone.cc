@@ -15,8 +15,9 @@
 #include "hb/model_file.h"
 #include "hb/multiple_scales.h"
 #include "solver/cli/cli_output.h"
+#include "solver/workflow/output_file.h"
 #include "solver/cli/command_registry.h"
-#include "solver/cli/output_paths.h"
+#include "solver/workflow/output_paths.h"
 #include "solver/cli/measured_backbone_command.h"
 
 namespace beamid::cli {
@@ -32,7 +33,7 @@ struct BackboneCommandOptions {
 };
 
 void RunBackbone(const BackboneCommandOptions& options, const GlobalOptions& global) {
-  OutputPaths().Input(options.model_file).OutputPrefix("-o", options.output, {".csv", ".json"}).Check();
+  workflow::OutputPaths().Input(options.model_file).OutputPrefix("-o", options.output, {".csv", ".json"}).Check();
   if (!(options.min_theta_rad < options.max_theta_rad))
     throw InputError(fmt::format("--min-theta-rad {} must lie below --max-theta-rad {}", options.min_theta_rad,
                                  options.max_theta_rad));
@@ -97,8 +98,8 @@ void RunBackbone(const BackboneCommandOptions& options, const GlobalOptions& glo
       point.sensors.push_back({.displacement_m = {y.row(i).begin(), y.row(i).end()}});
     file.points.push_back(std::move(point));
   }
-  WriteTextFile(options.output + ".csv", hb::BackboneFileToCsv(file));
-  WriteTextFile(options.output + ".json", hb::BackboneFileToJson(file));
+  workflow::WriteTextFile(options.output + ".csv", hb::BackboneFileToCsv(file));
+  workflow::WriteTextFile(options.output + ".json", hb::BackboneFileToJson(file));
   if (!global.quiet && !summary.points.empty()) {
     const auto& first = summary.points.front();
     const auto& last = summary.points.back();

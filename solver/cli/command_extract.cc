@@ -11,8 +11,9 @@
 #include "signal/campaign_extractor.h"
 #include "signal/phasor_set_io.h"
 #include "solver/cli/cli_output.h"
+#include "solver/workflow/output_file.h"
 #include "solver/cli/command_registry.h"
-#include "solver/cli/output_paths.h"
+#include "solver/workflow/output_paths.h"
 
 namespace beamid::cli {
 namespace {
@@ -28,7 +29,7 @@ struct ExtractCommandOptions {
 };
 
 void RunExtract(const ExtractCommandOptions& options, const GlobalOptions& global) {
-  OutputPaths paths;
+  workflow::OutputPaths paths;
   paths.InputFolder(options.campaign_folder).Output("-o", options.output);
   if (!options.csv_output.empty()) paths.Output("--csv", options.csv_output);
   paths.Check();
@@ -47,10 +48,10 @@ void RunExtract(const ExtractCommandOptions& options, const GlobalOptions& globa
   };
   const signal::PhasorSet set = signal::ExtractCampaign(campaign, extract);
   progress.Done();
-  PrintSkippedSteps("extract", set, global);
+  workflow::WarnSkippedSteps("extract", set, CliObserver(global));
 
-  WriteTextFile(options.output, signal::PhasorSetToJson(set));
-  if (!options.csv_output.empty()) WriteTextFile(options.csv_output, signal::PhasorSetToCsv(set));
+  workflow::WriteTextFile(options.output, signal::PhasorSetToJson(set));
+  if (!options.csv_output.empty()) workflow::WriteTextFile(options.csv_output, signal::PhasorSetToCsv(set));
   if (global.quiet) return;
   double worst_snr_db = 1e300, longest_settling_s = 0.0;
   std::size_t warned = 0, noted = 0;

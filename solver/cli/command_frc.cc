@@ -12,8 +12,9 @@
 #include "hb/frc_file.h"
 #include "hb/model_file.h"
 #include "solver/cli/cli_output.h"
+#include "solver/workflow/output_file.h"
 #include "solver/cli/command_registry.h"
-#include "solver/cli/output_paths.h"
+#include "solver/workflow/output_paths.h"
 
 namespace beamid::cli {
 namespace {
@@ -33,7 +34,7 @@ struct FrcOptions {
 };
 
 void RunFrc(const FrcOptions& options, const GlobalOptions& global) {
-  OutputPaths().Input(options.model_file).OutputPrefix("-o", options.output, {".csv", ".json"}).Check();
+  workflow::OutputPaths().Input(options.model_file).OutputPrefix("-o", options.output, {".csv", ".json"}).Check();
   const hb::ModelFile model = hb::ReadModelFile(options.model_file);
   const auto law = model.MakeSupportLaw();
   hb::LinearBeamModel linear_model{.beam = model.beam, .attachments = model.attachments,
@@ -116,8 +117,8 @@ void RunFrc(const FrcOptions& options, const GlobalOptions& global) {
                  summary.points.size(), summary.num_turning_points, peak, f_peak);
     }
   }
-  WriteTextFile(options.output + ".csv", hb::FrcFileToCsv(file));
-  WriteTextFile(options.output + ".json", hb::FrcFileToJson(file));
+  workflow::WriteTextFile(options.output + ".csv", hb::FrcFileToCsv(file));
+  workflow::WriteTextFile(options.output + ".json", hb::FrcFileToJson(file));
   if (!global.quiet) fmt::print("wrote {0}.csv and {0}.json\n", options.output);
   // The partial curves are written; the run still failed to converge.
   if (!incomplete.empty())

@@ -17,7 +17,7 @@
 #include "signal/campaign_identity.h"
 #include "solver/cli/cli_output.h"
 #include "solver/cli/command_registry.h"
-#include "solver/cli/output_paths.h"
+#include "solver/workflow/output_paths.h"
 #include "solver/estimation/fit_data.h"
 #include "solver/estimation/prediction.h"
 #include "solver/estimation/prediction_io.h"
@@ -34,7 +34,7 @@ struct PredictOptions {
 };
 
 void RunPredict(const PredictOptions& options, const GlobalOptions& global) {
-  OutputPaths()
+  workflow::OutputPaths()
       .Input(options.result_file)
       .InputFolder(options.campaign_folder)
       .Output("-o", options.output)

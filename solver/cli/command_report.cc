@@ -16,8 +16,9 @@
 #include "signal/campaign_extractor.h"
 #include "signal/campaign_identity.h"
 #include "solver/cli/cli_output.h"
+#include "solver/workflow/output_file.h"
 #include "solver/cli/command_registry.h"
-#include "solver/cli/output_paths.h"
+#include "solver/workflow/output_paths.h"
 #include "solver/report/html_report.h"
 #include "solver/report/html_screenshot.h"
 #include "solver/report/measured_backbone_report.h"
@@ -59,7 +60,7 @@ void Screenshot(const ReportOptions& options, const GlobalOptions& global) {
 }
 
 void RunReport(const ReportOptions& options, const GlobalOptions& global) {
-  OutputPaths paths;
+  workflow::OutputPaths paths;
   paths.Input(options.input_file).InputFolder(options.campaign_folder).Output("-o", options.output);
   if (!options.screenshot.empty()) paths.Output("--screenshot", options.screenshot);
   paths.Check();
@@ -73,7 +74,7 @@ void RunReport(const ReportOptions& options, const GlobalOptions& global) {
       Progress progress("report: plots", global);
       html = solver::MeasuredBackboneHtmlReport(solver::ReadMeasuredBackboneFile(options.input_file), options.input_file);
     }
-    WriteTextFile(options.output, html);
+    workflow::WriteTextFile(options.output, html);
     if (!global.quiet)
       fmt::print("wrote {} ({:.0f} kB, measured backbone)\n", options.output, html.size() / 1e3);
     Screenshot(options, global);
@@ -118,7 +119,7 @@ void RunReport(const ReportOptions& options, const GlobalOptions& global) {
     Progress progress("report: plots", global);
     html = solver::HtmlReport(input, curves);
   }
-  WriteTextFile(options.output, html);
+  workflow::WriteTextFile(options.output, html);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!global.quiet) {
     std::size_t plots = 0;

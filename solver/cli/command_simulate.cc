@@ -12,7 +12,7 @@
 #include "hb/stepped_sine.h"
 #include "solver/cli/cli_output.h"
 #include "solver/cli/command_registry.h"
-#include "solver/cli/output_paths.h"
+#include "solver/workflow/output_paths.h"
 
 namespace beamid::cli {
 namespace {
@@ -24,7 +24,7 @@ struct SimulateOptions {
 };
 
 void RunSimulate(const SimulateOptions& options, const GlobalOptions& global) {
-  OutputPaths().Input(options.scenario).OutputFolder("-o", options.output).Check();
+  workflow::OutputPaths().Input(options.scenario).OutputFolder("-o", options.output).Check();
   const hb::Scenario scenario = hb::ReadScenario(options.scenario);
   hb::SteppedSineSimulation simulation(scenario);
   hb::CampaignWriter writer(simulation, options.output, {.overwrite = options.overwrite});

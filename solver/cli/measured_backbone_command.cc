@@ -17,7 +17,8 @@
 #include "signal/phasor_set_io.h"
 #include "signal/phasor_table.h"
 #include "solver/cli/cli_output.h"
-#include "solver/cli/output_paths.h"
+#include "solver/workflow/output_file.h"
+#include "solver/workflow/output_paths.h"
 #include "solver/backbone/measured_backbone.h"
 #include "solver/backbone/measured_backbone_io.h"
 #include "solver/estimation/prediction.h"
@@ -72,7 +73,7 @@ void RunMeasuredBackbone(const MeasuredBackboneCommandOptions& options, const Gl
       throw InputError("-o " + options.output + " is also an input of this command (" + input +
                        "): -o takes the prefix of the outputs; choose another name");
   }
-  OutputPaths paths;
+  workflow::OutputPaths paths;
   for (const auto& input : options.inputs) {
     if (std::filesystem::is_directory(input))
       paths.InputFolder(input);
@@ -172,8 +173,8 @@ void RunMeasuredBackbone(const MeasuredBackboneCommandOptions& options, const Gl
                                     .warnings = measured.warnings};
   for (const auto& p : model)
     file.model_backbone.push_back({.amplitude_m = p.amplitude_m, .frequency_hz = p.frequency_hz});
-  WriteTextFile(options.output + ".csv", csv.str());
-  WriteTextFile(options.output + "_curves.csv", curves.str());
+  workflow::WriteTextFile(options.output + ".csv", csv.str());
+  workflow::WriteTextFile(options.output + "_curves.csv", curves.str());
   solver::WriteMeasuredBackboneFile(options.output + ".json", file);
   if (global.quiet) return;
   for (const auto& w : measured.warnings) PrintToStderr(fmt::format("beamid backbone: warning: {}\n", w));
