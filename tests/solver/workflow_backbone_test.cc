@@ -1,0 +1,138 @@
+// The backbone workflows called directly, without the program: a model's
+// backbone (examples/paper_setup/model.json) and the measured backbone of
+// the demo's phasor tables (examples/phasor_tables/) hold what a direct
+// library call finds and what was written, and a bad request is refused with
+// an InputError naming the field before any work. Run from the source folder
+// (as ctest does).
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "hb/backbone_file.h"
+#include "signal/phasor_table.h"
+#include "solver/backbone/measured_backbone.h"
+#include "solver/backbone/measured_backbone_io.h"
+#include "solver/workflow/measure_backbone.h"
+#include "solver/workflow/trace_model_backbone.h"
+#include "tests/support/expect_refused.h"
+#include "tests/support/file_bytes.h"
+#include "tests/support/temp_path.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using beamid::testing::InputErrorOf;
+using beamid::testing::ReadFile;
+using ::testing::HasSubstr;
+namespace solver = beamid::solver;
+namespace workflow = beamid::workflow;
+
+const std::vector<std::string> kTables = {"examples/phasor_tables/low.csv", "examples/phasor_tables/mid.csv",
+                                          "examples/phasor_tables/high.csv"};
+
+class BackboneWorkflows : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    out_ = beamid::testing::UniqueTempPath("beamid_backbone_workflow");
+    fs::remove_all(out_);
+    fs::create_directories(out_);
+  }
+  static void TearDownTestSuite() { fs::remove_all(out_); }
+  static inline fs::path out_;
+};
+
+TEST_F(BackboneWorkflows, AModelsBackboneIsTracedWrittenAndReturned) {
+  const workflow::TraceBackboneRequest request{.model_file = "examples/paper_setup/model.json",
+                                               .min_theta_rad = 1e-4,
+                                               .max_theta_rad = 1e-2,
+                                               .points = 6,
+                                               .harmonics = 3,
+                                               .output = (out_ / "model").string()};
+  std::vector<std::string> tasks;
+  const workflow::TraceBackboneOutcome outcome = workflow::TraceModelBackbone(
+      request, {.begin = [&](const std::string& task) { tasks.push_back(task); }});
+  EXPECT_EQ(tasks, std::vector<std::string>{"backbone"});
+  ASSERT_TRUE(outcome.Complete()) << outcome.summary.message;
+  ASSERT_EQ(outcome.summary.points.size(), 6u);
+  ASSERT_EQ(outcome.file.points.size(), 6u);
+  EXPECT_EQ(outcome.file.harmonics, 3);
+  // The paper's support stiffens (k3 > 0): the resonance rises with the amplitude.
+  EXPECT_GT(outcome.file.points.back().frequency_hz, outcome.file.points.front().frequency_hz);
+  EXPECT_DOUBLE_EQ(outcome.file.points.front().theta_amplitude_rad, 1e-4);
+  // What the outcome holds is what was written.
+  EXPECT_EQ(ReadFile(request.output + ".json"), beamid::hb::BackboneFileToJson(outcome.file));
+  EXPECT_EQ(ReadFile(request.output + ".csv"), beamid::hb::BackboneFileToCsv(outcome.file));
+}
+
+TEST_F(BackboneWorkflows, ABadModelBackboneRequestIsRefusedNamingTheField) {
+  workflow::TraceBackboneRequest request{.model_file = "examples/paper_setup/model.json",
+                                         .min_theta_rad = 1e-2,
+                                         .max_theta_rad = 1e-3,
+                                         .output = (out_ / "refused").string()};
+  EXPECT_THAT(InputErrorOf([&] { workflow::TraceModelBackbone(request); }),
+              AllOf(HasSubstr("--min-theta-rad"), HasSubstr("--max-theta-rad")));
+  EXPECT_FALSE(fs::exists(request.output + ".json"));
+  request.min_theta_rad = 1e-5;
+  request.points = 1;
+  EXPECT_THAT(InputErrorOf([&] { request.Validate(); }), AllOf(HasSubstr("--points"), HasSubstr("must be")));
+  request.points = 10;
+  request.model_file.clear();
+  EXPECT_THAT(InputErrorOf([&] { request.Validate(); }), HasSubstr("model file"));
+  // PREFIX.json may not replace the model (Validate only checks: nothing is written).
+  request.model_file = "examples/paper_setup/model.json";
+  request.output = "examples/paper_setup/model";
+  EXPECT_THAT(InputErrorOf([&] { request.Validate(); }), HasSubstr("-o"));
+}
+
+TEST_F(BackboneWorkflows, TheMeasuredBackboneOfTablesIsWhatADirectAnalysisFindsAndIsWritten) {
+  const workflow::MeasureBackboneRequest request{.inputs = kTables, .output = (out_ / "measured").string()};
+  const workflow::MeasureBackboneOutcome outcome = workflow::MeasureBackbone(request);
+
+  std::vector<beamid::signal::FirstHarmonicLevel> levels;
+  for (const auto& table : kTables) levels.push_back(beamid::signal::ReadPhasorTable(table));
+  const solver::MeasuredBackbone direct = solver::AnalyseMeasuredBackbone(levels);
+
+  EXPECT_EQ(outcome.channel, levels.front().channel);
+  EXPECT_TRUE(outcome.model_backbone.empty());  // no result file
+  ASSERT_EQ(outcome.measured.levels.size(), 3u);
+  ASSERT_EQ(direct.levels.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(outcome.measured.levels[i].label, direct.levels[i].label);
+    EXPECT_EQ(outcome.measured.levels[i].quadrature_frequency_hz.value, direct.levels[i].quadrature_frequency_hz.value);
+    EXPECT_EQ(outcome.measured.levels[i].damping_ratio.value, direct.levels[i].damping_ratio.value);
+  }
+  EXPECT_EQ(outcome.measured.fit.FormName(), direct.fit.FormName());
+  EXPECT_EQ(outcome.measured.damping_trend.verdict, direct.damping_trend.verdict);
+
+  const solver::MeasuredBackboneFile written = solver::ReadMeasuredBackboneFile(request.output + ".json");
+  EXPECT_EQ(written.inputs, kTables);
+  ASSERT_EQ(written.levels.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i)
+    EXPECT_EQ(written.levels[i].quadrature_frequency_hz.value, direct.levels[i].quadrature_frequency_hz.value);
+  // One row per level under the header.
+  std::istringstream csv(ReadFile(request.output + ".csv"));
+  int rows = 0;
+  for (std::string line; std::getline(csv, line);) ++rows;
+  EXPECT_EQ(rows, 4);
+  EXPECT_TRUE(fs::exists(request.output + "_curves.csv"));
+}
+
+TEST_F(BackboneWorkflows, ABadMeasuredBackboneRequestIsRefusedNamingTheField) {
+  workflow::MeasureBackboneRequest request{.output = (out_ / "refused_measured").string()};
+  EXPECT_THAT(InputErrorOf([&] { workflow::MeasureBackbone(request); }), AllOf(HasSubstr("--measured"), HasSubstr("Fix:")));
+  request.inputs = kTables;
+  request.position_m = std::nan("");
+  EXPECT_THAT(InputErrorOf([&] { request.Validate(); }), HasSubstr("--position-m"));
+  request.position_m = -1.0;  // not given
+  request.output = kTables[1];
+  EXPECT_THAT(InputErrorOf([&] { request.Validate(); }), AllOf(HasSubstr("-o"), HasSubstr("input")));
+  EXPECT_FALSE(fs::exists(out_ / "refused_measured.json"));
+}
+
+}  // namespace
