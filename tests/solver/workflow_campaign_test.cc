@@ -1,8 +1,8 @@
-// The identify and diagnose workflows called directly, without the program:
-// on a small simulated campaign (3 steps, made once for the suite) the
-// outcome holds what a direct solver::Identify call finds and what was
-// written, the observer is told the tasks in order, and a bad request is
-// refused with an InputError naming the field before any work.
+// The identify, diagnose and predict workflows called directly, without the
+// program: on a small simulated campaign (3 steps, made once for the suite)
+// the outcome holds what a direct library call finds and what was written,
+// the observer is told the tasks in order, and a bad request is refused with
+// an InputError naming the field before any work.
 #include <algorithm>
 #include <filesystem>
 #include <string>
@@ -14,9 +14,12 @@
 #include "solver/diagnosis/diagnosis_io.h"
 #include "solver/estimation/identify.h"
 #include "solver/estimation/model_structure.h"
+#include "solver/estimation/prediction.h"
+#include "solver/estimation/prediction_io.h"
 #include "solver/estimation/result_io.h"
 #include "solver/workflow/diagnose_campaign.h"
 #include "solver/workflow/identify_campaign.h"
+#include "solver/workflow/predict_campaign.h"
 #include "tests/support/expect_refused.h"
 #include "tests/support/paper_scenario.h"
 #include "tests/support/simulated_campaign.h"
@@ -189,6 +192,52 @@ TEST_F(Workflows, DiagnoseCampaignReturnsTheDiagnosisItWrites) {
   EXPECT_EQ(written.campaign_sha256, campaign_->campaign.sha256);
   // Only the asked candidate was tried.
   for (const auto& c : outcome.diagnosis.candidates) EXPECT_EQ(c.name, "support_friction");
+}
+
+TEST_F(Workflows, PredictCampaignPredictsWhatADirectPredictionFindsAndComparesTheSensorThere) {
+  const workflow::IdentifyRequest identify = Request("for_prediction.json");
+  workflow::IdentifyCampaign(identify);
+  const workflow::PredictRequest request{.result_file = identify.output,
+                                         .campaign_folder = campaign_->folder.string(),
+                                         .position_m = 0.57,  // acc3
+                                         .output = (out_ / "prediction.json").string()};
+  std::vector<std::string> tasks;
+  const workflow::PredictOutcome outcome =
+      workflow::PredictCampaign(request, {.begin = [&](const std::string& task) { tasks.push_back(task); }});
+  EXPECT_EQ(tasks, std::vector<std::string>{"predict"});
+
+  const std::vector<solver::PredictedStep> direct =
+      solver::PredictAt(solver::ToIdentifiedModel(solver::ReadResultFile(identify.output)), 0.57);
+  ASSERT_EQ(outcome.num_steps, direct.size());
+  ASSERT_EQ(outcome.file.steps.size(), direct.size());
+  EXPECT_EQ(outcome.family, &solver::HarmonicBalanceFamily());
+  for (std::size_t i = 0; i < direct.size(); ++i) {
+    EXPECT_EQ(outcome.file.steps[i].file, direct[i].file);
+    ASSERT_FALSE(outcome.file.steps[i].harmonics.empty());
+    EXPECT_EQ(outcome.file.steps[i].harmonics[0].displacement_m, direct[i].displacement_m[1]);
+  }
+  EXPECT_TRUE(outcome.Unconverged().empty());
+  // acc3 sits at x: compared, with the worst first-harmonic error of the steps.
+  EXPECT_EQ(outcome.file.compared_channel, "acc3");
+  double worst = 0.0;
+  for (const auto& step : outcome.file.steps) {
+    ASSERT_TRUE(step.harmonics[0].compared);
+    worst = std::max(worst, step.harmonics[0].relative_error);
+  }
+  EXPECT_EQ(outcome.worst_h1_relative_error, worst);
+  EXPECT_GT(worst, 0.0);
+  const solver::PredictionFile written = solver::ReadPredictionFile(request.output);
+  EXPECT_EQ(written.compared_channel, "acc3");
+  ASSERT_EQ(written.steps.size(), direct.size());
+  EXPECT_EQ(written.steps[0].harmonics[0].displacement_m, direct[0].displacement_m[1]);
+
+  // Off the beam's range, and an output that is the result itself: refused.
+  workflow::PredictRequest refused = request;
+  refused.position_m = -0.1;
+  EXPECT_THAT(InputErrorOf([&] { refused.Validate(); }), AllOf(HasSubstr("--x"), HasSubstr("must be")));
+  refused = request;
+  refused.output = identify.output;
+  EXPECT_THAT(InputErrorOf([&] { workflow::PredictCampaign(refused); }), HasSubstr("-o"));
 }
 
 }  // namespace
