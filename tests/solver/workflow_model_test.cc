@@ -1,7 +1,8 @@
-// The backbone workflows called directly, without the program: a model's
-// backbone (examples/paper_setup/model.json) and the measured backbone of
-// the demo's phasor tables (examples/phasor_tables/) hold what a direct
-// library call finds and what was written, and a bad request is refused with
+// The workflows of a model file and of measured tables called directly,
+// without the program: a model's backbone and response curves
+// (examples/paper_setup/model.json) and the measured backbone of the demo's
+// phasor tables (examples/phasor_tables/) hold what a direct library call
+// finds and what was written, and a bad request is refused with
 // an InputError naming the field before any work. Run from the source folder
 // (as ctest does).
 #include <cmath>
@@ -15,11 +16,13 @@
 #include <gtest/gtest.h>
 
 #include "hb/backbone_file.h"
+#include "hb/frc_file.h"
 #include "signal/phasor_table.h"
 #include "solver/backbone/measured_backbone.h"
 #include "solver/backbone/measured_backbone_io.h"
 #include "solver/workflow/measure_backbone.h"
 #include "solver/workflow/trace_model_backbone.h"
+#include "solver/workflow/trace_response_curves.h"
 #include "tests/support/expect_refused.h"
 #include "tests/support/file_bytes.h"
 #include "tests/support/temp_path.h"
@@ -133,6 +136,54 @@ TEST_F(BackboneWorkflows, ABadMeasuredBackboneRequestIsRefusedNamingTheField) {
   request.output = kTables[1];
   EXPECT_THAT(InputErrorOf([&] { request.Validate(); }), AllOf(HasSubstr("-o"), HasSubstr("input")));
   EXPECT_FALSE(fs::exists(out_ / "refused_measured.json"));
+}
+
+TEST_F(BackboneWorkflows, ResponseCurvesAreTracedPerLevelWrittenAndReturned) {
+  const workflow::FrcRequest request{.model_file = "examples/paper_setup/model.json",
+                                     .force_levels_N = {0.5, 2.0},
+                                     .from_hz = 50.0,
+                                     .to_hz = 58.0,
+                                     .harmonics = 3,
+                                     .max_points = 400,
+                                     .output = (out_ / "frc").string()};
+  std::vector<std::string> tasks;
+  std::vector<double> levels_told;
+  const workflow::FrcOutcome outcome = workflow::TraceResponseCurves(
+      request, {.begin = [&](const std::string& task) { tasks.push_back(task); }},
+      [&](const workflow::FrcLevelSummary& level) { levels_told.push_back(level.force_N); });
+  EXPECT_EQ(tasks, (std::vector<std::string>{"frc: level 1/2 (0.5 N)", "frc: level 2/2 (2 N)"}));
+  EXPECT_EQ(levels_told, (std::vector<double>{0.5, 2.0}));
+  ASSERT_TRUE(outcome.Incomplete().empty()) << outcome.Incomplete();
+  ASSERT_EQ(outcome.levels.size(), 2u);
+  ASSERT_EQ(outcome.file.curves.size(), 2u);
+  for (std::size_t l = 0; l < 2; ++l) {
+    EXPECT_EQ(outcome.levels[l].num_points, outcome.file.curves[l].points.size());
+    EXPECT_TRUE(outcome.levels[l].complete);
+    // The peak lies inside the band.
+    EXPECT_GT(outcome.levels[l].peak_frequency_hz, 50.0);
+    EXPECT_LT(outcome.levels[l].peak_frequency_hz, 58.0);
+  }
+  // Four times the force: a larger peak, and on the stiffening support a higher one.
+  EXPECT_GT(outcome.levels[1].peak_theta_rad, outcome.levels[0].peak_theta_rad);
+  EXPECT_GT(outcome.levels[1].peak_frequency_hz, outcome.levels[0].peak_frequency_hz);
+  EXPECT_EQ(ReadFile(request.output + ".json"), beamid::hb::FrcFileToJson(outcome.file));
+  EXPECT_EQ(ReadFile(request.output + ".csv"), beamid::hb::FrcFileToCsv(outcome.file));
+
+  // A curve cut at 5 points is written and told, not thrown.
+  workflow::FrcRequest cut = request;
+  cut.force_levels_N = {1.0};
+  cut.max_points = 5;
+  cut.output = (out_ / "frc_cut").string();
+  const workflow::FrcOutcome stopped = workflow::TraceResponseCurves(cut);
+  EXPECT_THAT(stopped.Incomplete(), HasSubstr("the curve at 1 N stopped early"));
+  EXPECT_TRUE(fs::exists(cut.output + ".json"));
+
+  workflow::FrcRequest refused = request;
+  refused.force_levels_N = {0.5, -1.0};
+  EXPECT_THAT(InputErrorOf([&] { refused.Validate(); }), AllOf(HasSubstr("--force-N"), HasSubstr("must be")));
+  refused = request;
+  refused.max_points = 1;
+  EXPECT_THAT(InputErrorOf([&] { refused.Validate(); }), AllOf(HasSubstr("--max-points"), HasSubstr("must be")));
 }
 
 }  // namespace
