@@ -119,11 +119,6 @@ workflow::RunObserver CliObserver(const GlobalOptions& global) {
               }};
 }
 
-signal::Campaign ReadCampaignAndWarn(const std::string& command, const std::filesystem::path& folder,
-                                     const GlobalOptions& global) {
-  return workflow::ReadCampaignAndWarn(command, folder, CliObserver(global));
-}
-
 void AddPhasorInputOptions(CLI::App* command, workflow::PhasorInput* input) {
   command->add_option("--phasors", input->phasors_file, "Use phasors from 'beamid extract' instead of extracting")
       ->check(NonEmptyPath());

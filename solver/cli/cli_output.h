@@ -78,9 +78,4 @@ void AddPhasorInputOptions(CLI::App* command, workflow::PhasorInput* input);
 // --quiet.
 workflow::RunObserver CliObserver(const GlobalOptions& global);
 
-// campaign.json of a folder, its warnings printed on stderr unless --quiet
-// (workflow::ReadCampaignAndWarn).
-signal::Campaign ReadCampaignAndWarn(const std::string& command, const std::filesystem::path& folder,
-                                     const GlobalOptions& global);
-
 }  // namespace beamid::cli

@@ -30,6 +30,13 @@ forbid solver/diagnosis 'solver/(backbone|report|workflow|cli)/' "diagnosis buil
 forbid solver/report 'solver/(workflow|cli)/' "the report is a library the workflows and the cli use"
 forbid solver/workflow 'solver/cli/|CLI/' "a workflow is called by the cli, never the other way"
 forbid solver/estimation 'nlohmann/|fmt/|CLI/' "an estimation header is plain data" '*.h'
+# A workflow prints nothing: what it tells goes to its RunObserver.
+prints=$(grep -rnE 'fmt::print|std::(cout|cerr|clog)|(^|[^a-z_])(f?printf|f?puts|fwrite)\(' solver/workflow || true)
+if [ -n "$prints" ]; then
+  echo "solver/workflow must not print (tell the RunObserver, or return it in the outcome):"
+  echo "$prints"
+  violations=$((violations + 1))
+fi
 if [ "$violations" -eq 0 ]; then
   echo "1 passed, 0 failed"
 else

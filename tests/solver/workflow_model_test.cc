@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -20,9 +21,11 @@
 #include "signal/phasor_table.h"
 #include "solver/backbone/measured_backbone.h"
 #include "solver/backbone/measured_backbone_io.h"
+#include "solver/report/measured_backbone_report.h"
 #include "solver/workflow/measure_backbone.h"
 #include "solver/workflow/trace_model_backbone.h"
 #include "solver/workflow/trace_response_curves.h"
+#include "solver/workflow/write_report.h"
 #include "tests/support/expect_refused.h"
 #include "tests/support/file_bytes.h"
 #include "tests/support/temp_path.h"
@@ -124,6 +127,37 @@ TEST_F(BackboneWorkflows, TheMeasuredBackboneOfTablesIsWhatADirectAnalysisFindsA
   for (std::string line; std::getline(csv, line);) ++rows;
   EXPECT_EQ(rows, 4);
   EXPECT_TRUE(fs::exists(request.output + "_curves.csv"));
+}
+
+TEST_F(BackboneWorkflows, TheReportOfAMeasuredBackboneIsTheLibrarysPage) {
+  const workflow::MeasureBackboneRequest measure{.inputs = kTables, .output = (out_ / "for_report").string()};
+  workflow::MeasureBackbone(measure);
+  const workflow::ReportRequest request{.input_file = measure.output + ".json",
+                                        .output = (out_ / "report.html").string()};
+  std::vector<std::string> tasks;
+  const workflow::ReportOutcome outcome =
+      workflow::WriteReport(request, {.begin = [&](const std::string& task) { tasks.push_back(task); }});
+  EXPECT_EQ(tasks, std::vector<std::string>{"report: plots"});
+  EXPECT_TRUE(outcome.measured_backbone);
+  const std::string page = ReadFile(request.output);
+  EXPECT_EQ(outcome.html_bytes, page.size());
+  EXPECT_EQ(page, solver::MeasuredBackboneHtmlReport(solver::ReadMeasuredBackboneFile(request.input_file),
+                                                     request.input_file));
+  // No screenshot asked for: none taken.
+  workflow::ScreenshotReport(request);
+  EXPECT_FALSE(fs::exists(out_ / "report.png"));
+
+  // A measured backbone needs no campaign: one given is a slip.
+  workflow::ReportRequest with_campaign = request;
+  with_campaign.campaign_folder = (out_ / "a_campaign").string();
+  with_campaign.output = (out_ / "refused.html").string();
+  try {
+    workflow::WriteReport(with_campaign);
+    ADD_FAILURE() << "accepted a campaign for a measured backbone";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_THAT(e.what(), HasSubstr("--campaign"));
+  }
+  EXPECT_FALSE(fs::exists(with_campaign.output));
 }
 
 TEST_F(BackboneWorkflows, ABadMeasuredBackboneRequestIsRefusedNamingTheField) {
