@@ -1,5 +1,5 @@
-// Shared by the subcommands: progress on stderr, CSV/JSON writing with clear
-// errors, and the conversion of displacement phasors to the other quantities.
+// Shared by the subcommands: progress and a workflow's notices on stderr,
+// the options several commands take, and JSON phasors.
 //
 // Progress has two forms. Text (default): on a terminal one line rewritten
 // in place ("identify   42 %  start 3/8"); otherwise one line per 10 %;
@@ -26,6 +26,8 @@
 #include "signal/campaign.h"
 #include "signal/phasor_set.h"
 #include "solver/estimation/damping_laws.h"
+#include "solver/workflow/campaign_input.h"
+#include "solver/workflow/run_observer.h"
 
 namespace beamid::cli {
 
@@ -53,10 +55,6 @@ void PrintJsonExit(int exit_code, const std::string& message);
 // [re, im] pairs, the JSON form of a complex phasor everywhere in beamid.
 nlohmann::json PhasorsToJson(const Eigen::VectorXcd& phasors);
 
-// Writes text to a file, creating its folder; throws std::invalid_argument
-// naming the path if it cannot.
-void WriteTextFile(const std::filesystem::path& path, const std::string& text);
-
 // Writes text to stderr and never throws: a full or closed stderr must not
 // turn a run (or its error message) into a crash. Failures are ignored.
 void PrintToStderr(std::string_view text) noexcept;
@@ -68,53 +66,22 @@ CLI::Validator FiniteRange(double min, double max);
 CLI::Validator NonEmptyPath();
 
 // -H/--harmonics (the model's H, 1..50) and --fit-harmonics (K, 1..50), as
-// identify and diagnose take them; and the check, before any work, that the
-// model holds every fitted harmonic (K <= H).
+// identify and diagnose take them (their check K <= H:
+// workflow::RequireFitWithinModelHarmonics).
 void AddModelHarmonicsOptions(CLI::App* command, int* harmonics, int* fit_harmonics, const std::string& model_help);
-void RequireFitWithinModelHarmonics(int fit_harmonics, int harmonics);
 
-// campaign.json of a folder (its warnings printed on stderr, signal::
-// Campaign::warnings) and the channels a fit uses: --fit as given, or every
-// sensor neither ignored nor held out; the fitted and held-out sensors are
-// marked as analysed, so that only their recordings' problems stop the run
-// (signal::Campaign::Use). Throws InputError for a channel both fitted and
-// held out (its "prediction" would be a fit) and for a fit with no channel
-// left.
-struct CampaignForAnalysis {
-  signal::Campaign campaign;
-  std::vector<std::string> fit_channels;
-};
-CampaignForAnalysis ReadCampaignForAnalysis(const std::string& command, const std::string& folder,
-                                            const std::vector<std::string>& fit_channels,
-                                            const std::vector<std::string>& validate_channels,
-                                            const GlobalOptions& global);
+// --phasors and --skip-bad-steps of a model-based command.
+void AddPhasorInputOptions(CLI::App* command, workflow::PhasorInput* input);
 
-// campaign.json of a folder, its warnings printed on stderr unless --quiet
-// (a recording that is a byte copy of another step's).
-signal::Campaign ReadCampaignAndWarn(const std::string& command, const std::filesystem::path& folder,
-                                     const GlobalOptions& global);
-
-// Where a model-based command takes its phasors from.
-struct PhasorInput {
-  std::string phasors_file;     // --phasors: the output of `beamid extract`; empty: extract
-  bool skip_bad_steps = false;  // --skip-bad-steps: analyse the steps whose recordings hold no error
-};
-void AddPhasorInputOptions(CLI::App* command, PhasorInput* input);
-
-// The phasors of a campaign: read from input.phasors_file when given (and
-// checked to be this campaign's: its steps, and its campaign_sha256 against
-// the campaign's content hash, signal/campaign_identity.h), else extracted with harmonics
-// 1..num_harmonics and progress on stderr. The steps left out (skipped) are
-// listed on stderr unless --quiet.
-signal::PhasorSet ReadOrExtractPhasors(const signal::Campaign& campaign, const PhasorInput& input, int num_harmonics,
-                                       const GlobalOptions& global);
-
-// The steps an extraction left out, one warning line each on stderr.
 // Each damping law's refit (accepted or rejected) and every shared
 // parameter's model-form interval over the accepted laws; nothing when the
 // laws were not refitted.
 void PrintDampingLaws(const solver::DampingLawEnvelope& envelope);
 
-void PrintSkippedSteps(const std::string& command, const signal::PhasorSet& phasors, const GlobalOptions& global);
+// What a workflow tells while it runs, shown on stderr: its tasks' progress
+// (Progress above, in the form --progress chooses), each warning as
+// "beamid SOURCE: warning: TEXT" and each note as a line, neither with
+// --quiet.
+workflow::RunObserver CliObserver(const GlobalOptions& global);
 
 }  // namespace beamid::cli

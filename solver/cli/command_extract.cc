@@ -1,18 +1,16 @@
 // beamid extract: the harmonic phasors of every step of a stepped-sine
 // campaign (signal/campaign_extractor.h), written as phasors.json (read by
-// the fit) and optionally as a CSV table.
+// the fit) and optionally as a CSV table. The work is
+// workflow::ExtractCampaign; this prints its outcome.
 #include <algorithm>
 #include <memory>
 #include <string>
 
 #include <fmt/core.h>
 
-#include "signal/campaign.h"
-#include "signal/campaign_extractor.h"
-#include "signal/phasor_set_io.h"
 #include "solver/cli/cli_output.h"
 #include "solver/cli/command_registry.h"
-#include "solver/cli/output_paths.h"
+#include "solver/workflow/extract_campaign.h"
 
 namespace beamid::cli {
 namespace {
@@ -28,29 +26,15 @@ struct ExtractCommandOptions {
 };
 
 void RunExtract(const ExtractCommandOptions& options, const GlobalOptions& global) {
-  OutputPaths paths;
-  paths.InputFolder(options.campaign_folder).Output("-o", options.output);
-  if (!options.csv_output.empty()) paths.Output("--csv", options.csv_output);
-  paths.Check();
-  if (options.harmonics < 1 || options.harmonics > 50)
-    throw std::invalid_argument("-H/--harmonics must lie between 1 and 50 (got " + std::to_string(options.harmonics) +
-                                ")");
-  signal::Campaign campaign = ReadCampaignAndWarn("extract", options.campaign_folder, global);
-  campaign.Analyse(options.channels);
-  signal::ExtractOptions extract;
-  extract.skip_bad_steps = options.skip_bad_steps;
-  extract.estimator.num_harmonics = options.harmonics;
-  extract.num_threads = options.threads;
-  Progress progress("extract", global);
-  extract.progress = [&](std::size_t done, std::size_t total, const signal::StepPhasors&) {
-    progress.Update(static_cast<double>(done) / static_cast<double>(total));
-  };
-  const signal::PhasorSet set = signal::ExtractCampaign(campaign, extract);
-  progress.Done();
-  PrintSkippedSteps("extract", set, global);
-
-  WriteTextFile(options.output, signal::PhasorSetToJson(set));
-  if (!options.csv_output.empty()) WriteTextFile(options.csv_output, signal::PhasorSetToCsv(set));
+  const workflow::ExtractOutcome outcome = workflow::ExtractCampaign({.campaign_folder = options.campaign_folder,
+                                                                      .harmonics = options.harmonics,
+                                                                      .output = options.output,
+                                                                      .csv_output = options.csv_output,
+                                                                      .threads = options.threads,
+                                                                      .channels = options.channels,
+                                                                      .skip_bad_steps = options.skip_bad_steps},
+                                                                     CliObserver(global));
+  const signal::PhasorSet& set = outcome.phasors;
   if (global.quiet) return;
   double worst_snr_db = 1e300, longest_settling_s = 0.0;
   std::size_t warned = 0, noted = 0;
@@ -67,7 +51,7 @@ void RunExtract(const ExtractCommandOptions& options, const GlobalOptions& globa
   fmt::print("{} steps{}, {} channels, harmonics 1..{}: worst SNR {:.1f} dB, longest transient {:.3f} s, {} steps with "
              "warnings, {} with notes (in {})\nwrote {}{}\n",
              set.steps.size(), set.skipped.empty() ? "" : fmt::format(" ({} skipped)", set.skipped.size()),
-             campaign.sensors.size() + 1, options.harmonics, worst_snr_db, longest_settling_s, warned, noted,
+             outcome.num_sensors + 1, options.harmonics, worst_snr_db, longest_settling_s, warned, noted,
              options.output, options.output, options.csv_output.empty() ? "" : " and " + options.csv_output);
 }
 

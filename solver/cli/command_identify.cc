@@ -1,25 +1,20 @@
 // beamid identify: the support's parameters from a whole stepped-sine
 // campaign (exact harmonic balance or the seed's multiple-scales model,
 // Ipopt), with uncertainty, fit quality and the prediction error at held-out
-// channels.
-#include <cmath>
-#include <filesystem>
+// channels. The work is workflow::IdentifyCampaign; this file parses the
+// options, prints the outcome and maps a misfit to exit 5.
+#include <optional>
 
 #include <fmt/core.h>
 
-#include "signal/campaign.h"
-#include "signal/campaign_extractor.h"
-#include "signal/phasor_set_io.h"
 #include "solver/cli/cli_output.h"
 #include "solver/cli/command_registry.h"
-#include "solver/cli/output_paths.h"
 #include "solver/estimation/damping_laws.h"
 #include "solver/estimation/identify.h"
 #include "solver/estimation/model_family.h"
-#include "solver/estimation/result_file.h"
-#include "solver/estimation/result_io.h"
 #include "solver/estimation/robust_fit.h"
 #include "solver/report/held_out_summary.h"
+#include "solver/workflow/identify_campaign.h"
 
 namespace beamid::cli {
 namespace {
@@ -29,7 +24,7 @@ struct IdentifyCommandOptions {
   std::vector<std::string> fit_channels;
   std::vector<std::string> validate_channels;
   std::string model = "hb";
-  PhasorInput phasor_input;
+  workflow::PhasorInput phasor_input;
   int harmonics = 5;
   int fit_harmonics = 3;
   int starts = 0;
@@ -61,91 +56,30 @@ void PrintParameters(const std::vector<solver::ParameterEstimate>& parameters) {
 }
 
 void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& global) {
-  OutputPaths()
-      .InputFolder(options.campaign_folder)
-      .Input(options.phasor_input.phasors_file)
-      .Output("-o", options.output)
-      .Check();
-  const solver::ModelFamily& family = solver::FindModelFamily(options.model);
-  RequireFitWithinModelHarmonics(options.fit_harmonics, options.harmonics);
-  const CampaignForAnalysis analysis = ReadCampaignForAnalysis("identify", options.campaign_folder, options.fit_channels,
-                                                               options.validate_channels, global);
-  const signal::Campaign& campaign = analysis.campaign;
-  const signal::PhasorSet phasors =
-      ReadOrExtractPhasors(campaign, options.phasor_input, std::max(5, options.fit_harmonics), global);
-  const solver::FitData fit = solver::MakeFitData(
-      campaign, phasors, {.channels = analysis.fit_channels, .num_fit_harmonics = options.fit_harmonics});
-  const solver::FitData validation =
-      options.validate_channels.empty()
-          ? solver::FitData{}
-          : solver::MakeFitData(campaign, phasors,
-                                {.channels = options.validate_channels, .num_fit_harmonics = options.fit_harmonics});
-  solver::ModelStructure structure = solver::PolynomialModel({.k1_Nm_rad = 100.0});
-  if (options.fit_ei_scale) structure.linear.push_back(solver::BendingStiffnessScale());
-  // The beam's own damping is unknown in a real test and, left out, ends up
-  // in c with an interval that does not cover the truth: fit it by default.
-  if (!options.fix_loss_factor) structure.linear.push_back(solver::LossFactor(std::max(options.beam_loss_factor, 1e-4)));
-  solver::IdentifyOptions identify;
-  identify.family = &family;
-  identify.model.num_harmonics = options.harmonics;
-  identify.model.beam_loss_factor = options.beam_loss_factor;
-  identify.num_starts = options.starts;
-  identify.num_workers = options.workers;
-  Progress progress("identify", global);
-  const auto report_progress = [&](double fraction, const std::string& what) { progress.Update(0.9 * fraction, what); };
-  const solver::IdentifyResult ordinary = solver::Identify(fit, structure, identify, report_progress);
-  // A faulty step (a record cut before it settled, a glitch) must not pull
-  // the parameters by its whole chi-square: the outlier test leaves out a few
-  // such steps, never a misfit spread over many (solver/estimation/robust_fit.h).
-  solver::RobustFitResult robust{.data = fit, .fit = ordinary};
-  if (options.robust) {
-    progress.Update(0.92, "testing the steps for outliers");
-    robust = solver::RobustRefit(fit, structure, ordinary, identify);
-  }
-  const solver::IdentifyResult& result = robust.fit;
-  // The beam's damping law is assumed, never known: the other laws' refits
-  // give the parameters' model-form intervals (solver/estimation/damping_laws.h).
-  solver::DampingLawEnvelope damping_laws;
-  // Only for a fit within the noise: the parameters of a model that misses
-  // the data are not to be quoted with any interval (diagnose first), and
-  // refits of it under other laws ran for minutes.
-  if (options.damping_envelope && family.Kind() == solver::ModelKind::kHarmonicBalance && result.verdict.within_noise) {
-    progress.Update(0.95, "refitting under the other beam damping laws");
-    damping_laws = solver::FitDampingLaws(robust.data, structure, result, identify);
-  }
-  progress.Done();
-
-  const std::unique_ptr<solver::FitProblem> problem = family.MakeProblem(robust.data, structure, identify.model);
-  problem->FeasiblePoint(result.starts[result.best_start].scaled_at);  // the winning run's scales
-  solver::FitData fit_with_loss = robust.data;
-  fit_with_loss.beam.loss_factor = options.beam_loss_factor;
-  solver::ResultFile result_file = solver::MakeResultFile(
-      fit_with_loss, solver::WithoutLeftOutSteps(validation, robust), *problem, result,
-      {.campaign_folder = options.campaign_folder,
-       .campaign_name = campaign.name,
-       // `beamid report` finds the campaign from anywhere on this machine.
-       .campaign_absolute_folder = std::filesystem::absolute(options.campaign_folder).lexically_normal().string(),
-       .campaign_sha256 = campaign.sha256,
-       .family = &family});
-  result_file.damping_laws = damping_laws;
-  if (!robust.outliers.empty())
-    result_file.robust_fit = solver::ResultRobustFit{.applied = robust.applied,
-                                                     .note = robust.note,
-                                                     .outliers = robust.outliers,
-                                                     .ordinary_parameters = ordinary.parameters,
-                                                     .ordinary_chi_square = ordinary.chi_square,
-                                                     .ordinary_degrees_of_freedom = ordinary.degrees_of_freedom};
-  for (const auto& s : fit.steps)
-    if (s.unsettled)
-      result_file.unsettled_steps.push_back({.level = s.level,
-                                             .file = s.file,
-                                             .frequency_hz = s.FrequencyHz(),
-                                             .change_relative = s.unsettled_change_relative});
-  solver::WriteResultFile(options.output, result_file);
-
+  workflow::IdentifyRequest request{
+      .campaign_folder = options.campaign_folder,
+      // No --fit: every sensor neither ignored nor held out.
+      .fit_channels = options.fit_channels.empty() ? std::nullopt : std::optional(options.fit_channels),
+      .validate_channels = options.validate_channels,
+      .model = options.model,
+      .phasor_input = options.phasor_input,
+      .harmonics = options.harmonics,
+      .fit_harmonics = options.fit_harmonics,
+      .starts = options.starts,
+      .workers = options.workers,
+      .fit_ei_scale = options.fit_ei_scale,
+      .fix_loss_factor = options.fix_loss_factor,
+      .damping_envelope = options.damping_envelope,
+      .robust = options.robust,
+      .beam_loss_factor = options.beam_loss_factor,
+      .output = options.output};
+  const workflow::IdentifyOutcome outcome = workflow::IdentifyCampaign(request, CliObserver(global));
+  const solver::IdentifyResult& result = outcome.Result();
   if (!global.quiet) {
+    const solver::FitData& fit = outcome.fit;
+    const solver::DampingLawEnvelope& damping_laws = outcome.damping_laws;
     fmt::print("identified ({}) from {} steps, {} channel(s), harmonics 1..{} in {:.2f} s ({} of {} starts reached the best fit)\n",
-               family.Description(), fit.steps.size(), fit.channels.size(),
+               outcome.family->Description(), fit.steps.size(), fit.channels.size(),
                fit.num_fit_harmonics, result.seconds, result.starts_at_best,
                result.starts.size());
     // The answer first: the parameters under the damping law the data accept.
@@ -162,23 +96,25 @@ void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& glo
     }
     fmt::print("  reduced chi-square {:.3g} (chi-square {:.4g} over {} degrees of freedom)\n", result.reduced_chi_square,
                result.chi_square, result.degrees_of_freedom);
-    for (const auto& s : result_file.unsettled_steps)
+    for (const auto& s : outcome.result_file.unsettled_steps)
       fmt::print("  step {} {:.4g} Hz ({}) was recorded before it settled: its uncertainty includes a {:.2f} % change "
                  "between the halves of its analysed part; re-record it with a longer settle\n",
                  s.level, s.frequency_hz, s.file, 100.0 * s.change_relative);
-    PrintRobustFit(robust, ordinary);
+    PrintRobustFit(outcome.robust, outcome.ordinary);
     PrintDampingLaws(damping_laws);
     if (result.minima.minima.size() > 1)
       fmt::print("  the starts reached {} distinct minima; the second is {:.3g} worse in chi-square ({})\n",
                  result.minima.minima.size(), result.minima.second_chi_square_gap,
                  result.minima.decisive ? "ruled out by the data" : "NOT ruled out by the data");
-    for (const auto& v : result_file.validation)
+    for (const auto& v : outcome.result_file.validation)
       fmt::print("  held-out {}: {}\n", v.channel, solver::HeldOutSummary(v));
     for (const auto& w : result.warnings) fmt::print("  warning: {}\n", w);
     fmt::print("  verdict: {}\n", result.verdict.text);
     fmt::print("wrote {}\n", options.output);
   }
-  if (!result.verdict.within_noise) throw ModelMissesData(result.verdict.text + " (the result is in " + options.output + ")");
+  // Exit 5: fitted and written, but the model misses the data beyond their noise.
+  if (!outcome.WithinNoise())
+    throw ModelMissesData(result.verdict.text + " (the result is in " + options.output + ")");
 }
 
 BEAMID_REGISTER_COMMAND("identify", [](CLI::App& app, const GlobalOptions& global) {

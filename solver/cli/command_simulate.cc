@@ -1,18 +1,18 @@
 // `beamid simulate SCENARIO.json -o DIR`: runs the time-domain simulator
 // (hb/stepped_sine.h) through a stepped-sine test and writes the campaign plus
 // truth.json (hb/campaign_writer.h). The scenario format: docs/simulator.md.
+// The work is workflow::SimulateCampaign; this prints each step and the
+// outcome.
 #include <chrono>
 #include <cstdio>
 #include <string>
 
 #include <fmt/core.h>
 
-#include "hb/campaign_writer.h"
-#include "hb/scenario.h"
 #include "hb/stepped_sine.h"
 #include "solver/cli/cli_output.h"
 #include "solver/cli/command_registry.h"
-#include "solver/cli/output_paths.h"
+#include "solver/workflow/simulate_campaign.h"
 
 namespace beamid::cli {
 namespace {
@@ -24,44 +24,33 @@ struct SimulateOptions {
 };
 
 void RunSimulate(const SimulateOptions& options, const GlobalOptions& global) {
-  OutputPaths().Input(options.scenario).OutputFolder("-o", options.output).Check();
-  const hb::Scenario scenario = hb::ReadScenario(options.scenario);
-  hb::SteppedSineSimulation simulation(scenario);
-  hb::CampaignWriter writer(simulation, options.output, {.overwrite = options.overwrite});
-  const int total = scenario.NumSteps();
-  const auto start = std::chrono::steady_clock::now();
-  int unsettled = 0;
-  Progress progress("simulate", global);
-  // Text progress is one line per step (a step takes seconds); JSON goes
-  // through Progress.
+  workflow::RunObserver observer = CliObserver(global);
+  // Text progress is one line per step (a step takes seconds, below); JSON
+  // goes through Progress.
+  if (!global.JsonProgress()) observer.progress = {};
   const bool step_lines = !global.quiet && !global.JsonProgress();
-  simulation.Run([&](const hb::SimulatedStep& step) {
-    writer.Write(step);
-    if (!step.settled) ++unsettled;
-    if (global.JsonProgress())
-      progress.Update(static_cast<double>(step.index + 1) / total,
-                      fmt::format("{} {:.3f} Hz", step.level, step.nominal_frequency_hz));
-    if (step_lines) {
-      const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      PrintToStderr(fmt::format("[{:>4}/{}] {:<10} {:8.3f} Hz  settled in {:5.2f} s{}  ({:.1f} s elapsed)\n", step.index + 1,
-                 total, step.level, step.nominal_frequency_hz, step.settle_s, step.settled ? "" : " (NOT settled)",
-                 elapsed));
-    }
-  });
-  writer.Finish();
-  progress.Done();
+  const auto start = std::chrono::steady_clock::now();
+  const auto print_step = [&](const hb::SimulatedStep& step, int total) {
+    if (!step_lines) return;
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    PrintToStderr(fmt::format("[{:>4}/{}] {:<10} {:8.3f} Hz  settled in {:5.2f} s{}  ({:.1f} s elapsed)\n",
+                              step.index + 1, total, step.level, step.nominal_frequency_hz, step.settle_s,
+                              step.settled ? "" : " (NOT settled)", elapsed));
+  };
+  const workflow::SimulateOutcome outcome = workflow::SimulateCampaign(
+      {.scenario = options.scenario, .output = options.output, .overwrite = options.overwrite}, observer, print_step);
   if (!global.quiet) {
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    PrintToStderr(fmt::format("wrote {} steps to {} ({:.1f} MB) in {:.1f} s\n", total, options.output,
-               static_cast<double>(writer.bytes_written()) / 1e6, elapsed));
-    if (unsettled > 0)
+    PrintToStderr(fmt::format("wrote {} steps to {} ({:.1f} MB) in {:.1f} s\n", outcome.num_steps, options.output,
+               static_cast<double>(outcome.bytes_written) / 1e6, elapsed));
+    if (outcome.unsettled_steps > 0)
       PrintToStderr(fmt::format(
           "warning: {} step(s) reached timing.settle_max_s before settling; their recordings still hold a "
           "transient (truth.json marks them \"settled\": false)\n",
-          unsettled));
-    if (writer.clipped_samples() > 0)
+          outcome.unsettled_steps));
+    if (outcome.clipped_samples > 0)
       PrintToStderr(fmt::format("warning: the ADC clipped {} samples; raise adc_range in the scenario's noise\n",
-                 writer.clipped_samples()));
+                 outcome.clipped_samples));
   }
 }
 

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # The folders are the architecture, and their dependencies point one way:
 #   hb (models, error types) ← signal (recordings → phasors) ← solver/,
-#   and inside solver/: estimation ← diagnosis ← report ← cli,
-#   backbone (model-free, on signal only) ← report ← cli.
+#   and inside solver/: estimation ← diagnosis ← report ← workflow ← cli,
+#   backbone (model-free, on signal only) ← report ← workflow ← cli.
+# The workflows (the use cases) print nothing and know no command line: no
+# CLI11 and no solver/cli/ in solver/workflow/.
 # An include against that direction fails this check, and so does a JSON or
 # presentation library in an estimation header: the fit's interface is plain
 # data, the file formats live in their *_io files.
@@ -22,11 +24,19 @@ forbid() {  # folder, pattern of a forbidden include, reason; files = *.h and *.
 }
 forbid hb 'signal/|solver/' "hb is the lowest library"
 forbid signal 'solver/' "signal builds on hb only"
-forbid solver/estimation 'solver/(backbone|diagnosis|report|cli)/' "estimation builds on hb and signal only"
-forbid solver/backbone 'solver/(estimation|diagnosis|report|cli)/' "the measured backbone is model-free"
-forbid solver/diagnosis 'solver/(backbone|report|cli)/' "diagnosis builds on estimation"
-forbid solver/report 'solver/cli/' "the report is a library the cli uses"
+forbid solver/estimation 'solver/(backbone|diagnosis|report|workflow|cli)/' "estimation builds on hb and signal only"
+forbid solver/backbone 'solver/(estimation|diagnosis|report|workflow|cli)/' "the measured backbone is model-free"
+forbid solver/diagnosis 'solver/(backbone|report|workflow|cli)/' "diagnosis builds on estimation"
+forbid solver/report 'solver/(workflow|cli)/' "the report is a library the workflows and the cli use"
+forbid solver/workflow 'solver/cli/|CLI/' "a workflow is called by the cli, never the other way"
 forbid solver/estimation 'nlohmann/|fmt/|CLI/' "an estimation header is plain data" '*.h'
+# A workflow prints nothing: what it tells goes to its RunObserver.
+prints=$(grep -rnE 'fmt::print|std::(cout|cerr|clog)|(^|[^a-z_])(f?printf|f?puts|fwrite)\(' solver/workflow || true)
+if [ -n "$prints" ]; then
+  echo "solver/workflow must not print (tell the RunObserver, or return it in the outcome):"
+  echo "$prints"
+  violations=$((violations + 1))
+fi
 if [ "$violations" -eq 0 ]; then
   echo "1 passed, 0 failed"
 else

@@ -423,7 +423,7 @@ TEST_F(BadInput, EveryBadInputEndsWithExitTwoAndAMessageThatNamesItAndTheFix) {
       {"a line break in a scenario's sensor name",
        scenario_with("{\"channel\": \"acc1\"", "{\"channel\": \"acc1\\n\""), "simulate {d}/s.json -o {d}/sim",
        {"s.json", "sensors[0].channel", "control character", "Fix:"}},
-      // outputs and option ranges (solver/cli/output_paths.h, checks before any work)
+      // outputs and option ranges (solver/workflow/output_paths.h, checks before any work)
       {"an empty -o", nullptr, "extract {c} -o ''", {"-o", "empty"}},
       {"an empty --phasors", nullptr, "identify {c} --phasors '' -o {d}/r.json", {"--phasors", "empty"}},
       {"an empty --csv", nullptr, "extract {c} --csv '' -o {d}/p.json", {"--csv", "empty"}},

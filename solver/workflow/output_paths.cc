@@ -1,4 +1,4 @@
-#include "solver/cli/output_paths.h"
+#include "solver/workflow/output_paths.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -11,7 +11,7 @@
 #include "hb/errors.h"
 #include "hb/text_file.h"
 
-namespace beamid::cli {
+namespace beamid::workflow {
 namespace {
 
 namespace fs = std::filesystem;
@@ -138,4 +138,4 @@ void OutputPaths::Check() const {
   }
 }
 
-}  // namespace beamid::cli
+}  // namespace beamid::workflow

@@ -29,7 +29,7 @@
 #include <string_view>
 #include <vector>
 
-namespace beamid::cli {
+namespace beamid::workflow {
 
 class OutputPaths {
  public:
@@ -62,4 +62,4 @@ class OutputPaths {
   std::vector<Named> outputs_;
 };
 
-}  // namespace beamid::cli
+}  // namespace beamid::workflow
