@@ -90,8 +90,11 @@ RobustFitResult RobustRefit(const FitData& data, const ModelStructure& structure
   IdentifyOptions refit = options;
   refit.num_starts = 0;
   refit.num_workers = 1;
-  // From the optimum a refit converges in a few iterations or not at all.
+  // From the optimum a refit converges in a few iterations or not at all:
+  // ipopt.max_iterations, not the first start's long allowance (a refit of a
+  // model missing physics ran 1000 iterations, two minutes, to fail).
   refit.continuation_iterations = 0;
+  refit.first_start_min_iterations = 0;
 
   std::vector<int> kept(data.steps.size());  // current step → ordinary step
   for (std::size_t i = 0; i < kept.size(); ++i) kept[i] = static_cast<int>(i);
