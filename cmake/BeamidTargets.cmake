@@ -59,7 +59,10 @@ function(beamid_add_folder_library)
   target_link_libraries(${ARG_NAME} PUBLIC ${ARG_DEPS})
   if(BEAMID_PRECOMPILE_HEADERS)
     # The folder libraries share their flags: the first one (hb) compiles
-    # the header, the others load it.
+    # the header, the others load it. A shared library (the sanitizer build)
+    # would define its own <target>_EXPORTS, which no file uses and which
+    # makes GCC refuse another library's header.
+    set_target_properties(${ARG_NAME} PROPERTIES DEFINE_SYMBOL "")
     get_property(pch_host GLOBAL PROPERTY BEAMID_LIBRARY_PCH_HOST)
     if(pch_host)
       target_precompile_headers(${ARG_NAME} REUSE_FROM ${pch_host})
