@@ -10,7 +10,12 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+// GCC 12 reports a false -Wmaybe-uninitialized inside std::regex's compiler
+// when built with the sanitizers (GCC PR 105562).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include <regex>
+#pragma GCC diagnostic pop
 #include <string>
 #include <vector>
 
