@@ -20,6 +20,7 @@
 #include "solver/estimation/damping_laws.h"
 #include "solver/estimation/fit_verdict.h"
 #include "solver/report/html_report.h"
+#include "tests/support/sample_report.h"
 #include "solver/report/measured_backbone_report.h"
 
 namespace beamid::solver {
@@ -106,28 +107,8 @@ ReportInput Input(double chi_square, int dof) {
   return input;
 }
 
-// A level, its damping points (none: the trend not judged) and a residual map.
 ReportCurves Curves(Trend trend, double z, bool damping = true) {
-  ReportCurves curves;
-  curves.channels = {{.channel = "acc1", .position_m = 0.1, .si_unit = "m/s^2", .fitted = true}};
-  LevelCurves level{.level = "high", .force_amplitude_N = 9.0};
-  for (double f : {54.5, 55.0, 55.5}) level.measured.push_back({.frequency_hz = f, .amplitude = {10.0 + f - 54.0}});
-  for (double f = 54.0; f <= 56.0; f += 0.5) level.model.push_back({.frequency_hz = f, .amplitude = {12.0}});
-  curves.levels = {level};
-  for (double f = 54.0; f <= 56.0; f += 0.5)
-    curves.backbone.push_back({.frequency_hz = f, .amplitude = 5.0 + f - 54.0});
-  if (damping)
-    curves.measured_mode.damping = {{.level = "low", .amplitude = 1.0, .quadrature = 0.006, .quadrature_std = 1e-4},
-                                    {.level = "high", .amplitude = 9.0, .quadrature = 0.011, .quadrature_std = 1e-4}};
-  curves.measured_mode.damping_rate_trend = trend;
-  curves.measured_mode.damping_rate_trend_z = z;
-  curves.residuals.rows = {"acc1 h1"};
-  for (const auto& m : level.measured) {
-    curves.residuals.step_level.push_back("high");
-    curves.residuals.step_frequency_hz.push_back(m.frequency_hz);
-  }
-  curves.residuals.whitened_norm = Eigen::MatrixXd::Ones(1, 3);
-  return curves;
+  return testing::MinimalReportCurves(trend, z, damping);
 }
 
 HeldOutChannel HeldOut(const std::string& channel, int steps, double worst_h1, int measurable_h1, double worst_h3,

@@ -85,4 +85,31 @@ inline solver::ReportCurves SampleReportCurves() {
   return curves;
 }
 
+// One fitted channel at one level (three steps), the model's curve and
+// backbone, two damping points (none: the damping trend not judged) with the
+// measured backbone's verdict `trend` at `z`, and a residual map of ones: the
+// least a page needs for its captions and verdicts to be tested.
+inline solver::ReportCurves MinimalReportCurves(solver::Trend trend, double z, bool damping = true) {
+  using namespace solver;
+  ReportCurves curves;
+  curves.channels = {{.channel = "acc1", .position_m = 0.1, .si_unit = "m/s^2", .fitted = true}};
+  LevelCurves level{.level = "high", .force_amplitude_N = 9.0};
+  for (double f : {54.5, 55.0, 55.5}) level.measured.push_back({.frequency_hz = f, .amplitude = {10.0 + f - 54.0}});
+  for (double f = 54.0; f <= 56.0; f += 0.5) level.model.push_back({.frequency_hz = f, .amplitude = {12.0}});
+  curves.levels = {level};
+  for (double f = 54.0; f <= 56.0; f += 0.5) curves.backbone.push_back({.frequency_hz = f, .amplitude = 5.0 + f - 54.0});
+  if (damping)
+    curves.measured_mode.damping = {{.level = "low", .amplitude = 1.0, .quadrature = 0.006, .quadrature_std = 1e-4},
+                                    {.level = "high", .amplitude = 9.0, .quadrature = 0.011, .quadrature_std = 1e-4}};
+  curves.measured_mode.damping_rate_trend = trend;
+  curves.measured_mode.damping_rate_trend_z = z;
+  curves.residuals.rows = {"acc1 h1"};
+  for (const auto& m : level.measured) {
+    curves.residuals.step_level.push_back("high");
+    curves.residuals.step_frequency_hz.push_back(m.frequency_hz);
+  }
+  curves.residuals.whitened_norm = Eigen::MatrixXd::Ones(1, 3);
+  return curves;
+}
+
 }  // namespace beamid::testing
