@@ -53,6 +53,12 @@ std::string ReadAll(const fs::path& path) {
   return text.str();
 }
 
+// What Chromium said last, for an error message.
+std::string LogTail(const fs::path& log) {
+  const std::string message = ReadAll(log);
+  return message.substr(message.size() > 2000 ? message.size() - 2000 : 0);
+}
+
 fs::path RequireChromium() {
   const auto chromium = FindChromium();
   if (!chromium)
@@ -115,9 +121,8 @@ PageLayout MeasurePage(const fs::path& html_file, int width_px, double timeout_s
   std::istringstream numbers(at == std::string::npos ? "" : text.substr(at + key.size(), 80));
   if (status != 0 ||
       !(numbers >> layout.scroll_width >> layout.client_width >> layout.scroll_height >> layout.last_section_bottom)) {
-    const std::string message = ReadAll(log);
-    throw EnvironmentError(fmt::format("Chromium did not lay out {} (exit status {}): {}", html_file.string(), status,
-                                       message.substr(message.size() > 2000 ? message.size() - 2000 : 0)));
+    throw EnvironmentError(
+        fmt::format("Chromium did not lay out {} (exit status {}): {}", html_file.string(), status, LogTail(log)));
   }
   return layout;
 }
@@ -153,12 +158,8 @@ void ScreenshotHtml(const fs::path& html_file, const fs::path& png_file, const S
   const bool written = device || (fs::is_regular_file(png, error) && fs::file_size(png, error) > 0 &&
                                   (!existed || fs::last_write_time(png, error) != before));
   if (status != 0 || !written) {
-    std::ifstream in(log);
-    std::ostringstream text;
-    text << in.rdbuf();
-    const std::string message = text.str();
     throw EnvironmentError(fmt::format("Chromium wrote no screenshot {} (exit status {}): {}", png_file.string(),
-                                       status, message.substr(message.size() > 2000 ? message.size() - 2000 : 0)));
+                                       status, LogTail(log)));
   }
 }
 
