@@ -265,12 +265,9 @@ struct RefitRun {
 
 // What the candidates see of the base fit: the rotation amplitude of every step.
 BaseFitContext ContextOf(const FitData& fit, const FittedModel& model) {
-  BaseFitContext context{.data = &fit, .model_harmonics = model.model_harmonics};
-  for (int i = 0; i < model.problem->num_steps(); ++i) {
-    const Eigen::VectorXcd theta = model.family->SupportRotation_rad(model.problem->StepState(model.x, i));
-    context.theta_amplitude_rad.push_back(theta.size() > 1 ? std::abs(theta[1]) : 0.0);
-  }
-  return context;
+  return {.data = &fit,
+          .theta_amplitude_rad = model.SupportRotationAmplitudes_rad(),
+          .model_harmonics = model.model_harmonics};
 }
 
 // The library's candidates that options.candidates selects (all when empty).
@@ -468,6 +465,18 @@ std::unique_ptr<FittedModel> TestCandidate(const FitData& fit, const FitSummary&
   return model;
 }
 
+// Per harmonic 1..K of channel c at a step, |L⁻¹(Y_model − Y_measured)|.
+std::vector<double> WhitenedMisfits(const FitStep& step, int c, const Eigen::MatrixXcd& model) {
+  std::vector<double> sigma;
+  for (int k = 0; k < step.measured.cols(); ++k) {
+    const std::complex<double> misfit = model(c, k) - step.measured(c, k);
+    sigma.push_back((step.whitening[static_cast<std::size_t>(c)][static_cast<std::size_t>(k)] *
+                     Eigen::Vector2d(misfit.real(), misfit.imag()))
+                        .norm());
+  }
+  return sigma;
+}
+
 // Measured, base and final first harmonics of the fitted and held-out channels.
 // final_clock_error: the final model's ε when it is the clock error's (0
 // otherwise): it was fitted at the true frequencies, where it gives what the
@@ -478,19 +487,41 @@ std::vector<ResponsePoint> ResponseCurves(const FitData& fit, const FitData& val
   for (const FitData* data : {&fit, &validation}) {
     if (data->channels.empty()) continue;
     const auto base_y = base.Phasors(*data);
-    const auto final_y = final_model.Phasors(
-        CorrectedData(*data, {.kind = ArtefactKind::kClockError, .value = final_clock_error}));
-    for (std::size_t i = 0; i < data->steps.size(); ++i)
+    // The final model read against the data it was fitted to (a fault of the
+    // recording corrected), so that its fitted misfits' squares sum to its χ².
+    const FitData final_at =
+        data == &fit ? final_model.data
+                     : CorrectedData(*data, {.kind = ArtefactKind::kClockError, .value = final_clock_error});
+    const auto final_y = final_model.Phasors(final_at);
+    for (std::size_t i = 0; i < data->steps.size(); ++i) {
+      const FitStep& step = data->steps[i];
       for (int c = 0; c < static_cast<int>(data->channels.size()); ++c)
-        response.push_back({.level = data->steps[i].level,
-                            .frequency_hz = data->steps[i].omega_rad_s / (2.0 * 3.141592653589793),
+        response.push_back({.level = step.level,
+                            .frequency_hz = step.FrequencyHz(),
                             .channel = data->channels[c].channel,
                             .held_out = data == &validation,
-                            .measured = data->steps[i].measured(c, 0),
+                            .measured = step.measured(c, 0),
                             .base_model = base_y[i](c, 0),
-                            .final_model = final_y[i](c, 0)});
+                            .final_model = final_y[i](c, 0),
+                            .base_misfit_sigma = WhitenedMisfits(step, c, base_y[i]),
+                            .final_misfit_sigma = WhitenedMisfits(final_at.steps[i], c, final_y[i])});
+    }
   }
   return response;
+}
+
+// The selected model's backbone at the first fitted channel; a failure to
+// trace it is kept as the reason, not thrown: the diagnosis stands without it.
+SelectedBackbone FinalBackbone(const FittedModel& model, int num_points) {
+  const FitChannel& reference = model.data.channels.front();
+  SelectedBackbone backbone{.channel = reference.channel, .position_m = reference.position_m};
+  try {
+    const IdentifiedModel identified = model.Identified();
+    backbone.points = model.family->BackboneAtSensor(identified, reference.position_m, num_points);
+  } catch (const std::runtime_error& error) {
+    backbone.error = error.what();
+  }
+  return backbone;
 }
 
 }  // namespace
@@ -516,6 +547,7 @@ void DiagnosisOptions::Validate() const {
   ipopt.Validate();
   RequireAtLeast("DiagnosisOptions.refit_max_iterations", refit_max_iterations, 1);
   RequireInRange("DiagnosisOptions.max_pair_partners", max_pair_partners, 0, 16);
+  RequireInRange("DiagnosisOptions.backbone_points", backbone_points, 2, 1000);
 }
 
 BaseFit FitBase(const FitData& fit, const DiagnosisOptions& options) {
@@ -932,6 +964,11 @@ DiagnosisResult Diagnose(const FitData& fit, const FitData& validation, const Fi
     for (const ParameterEstimate& p : refits.outcomes[verdict.cause].fit.parameters)
       if (p.name == ArtefactKindName(ArtefactKind::kClockError)) final_clock_error = p.value;
   result.response = ResponseCurves(fit, validation, base.model, *final_model, final_clock_error);
+  // A fault of the recording leaves the physics, and so the backbone, the base's.
+  if (result.blame == Blame::kModel && final_model != &base.model) {
+    report(0.97, "the selected model's backbone");
+    result.final_backbone = FinalBackbone(*final_model, options.backbone_points);
+  }
   result.summary = WriteSummary(result);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   report(1.0, "done");

@@ -54,6 +54,7 @@
 #include "solver/estimation/fit_data.h"
 #include "solver/estimation/fit_problem.h"
 #include "solver/estimation/model_family.h"
+#include "solver/estimation/sensor_backbone.h"
 #include "solver/estimation/identify.h"
 #include "solver/diagnosis/misfit_location.h"
 
@@ -94,6 +95,8 @@ struct DiagnosisOptions {
   // so that its parameters carry model-form intervals as identify's do
   // (solver/estimation/damping_laws.h): three more refits of one model.
   bool damping_laws = true;
+  // Points of the selected model's backbone (DiagnosisResult::final_backbone).
+  int backbone_points = 40;
 
   // Throws beamid::InputError naming the first field out of its range, its
   // value and the range, so that a bad option fails before minutes of fits.
@@ -193,6 +196,22 @@ struct ResponsePoint {
   std::complex<double> measured;
   std::complex<double> base_model;
   std::complex<double> final_model;
+  // Per harmonic k = 1..K of the channel's data, the whitened misfit
+  // |L⁻¹(Y_model − Y_measured)| of the base and the final model (solver/
+  // estimation/fit_data.h): their squares over the fitted channels sum to
+  // each fit's χ². Empty in files written before they were kept.
+  std::vector<double> base_misfit_sigma, final_misfit_sigma;
+};
+
+// The selected model's backbone as the reference sensor (the first fitted
+// channel) sees it (solver/estimation/sensor_backbone.h), to draw beside the
+// base model's; empty when no physics is named or it could not be traced.
+struct SelectedBackbone {
+  std::string channel;
+  double position_m = 0.0;
+  std::vector<SensorBackbonePoint> points;
+  std::string error;  // why points is empty, when tracing failed
+  bool empty() const { return points.empty() && error.empty(); }
 };
 
 struct DiagnosisResult {
@@ -222,6 +241,7 @@ struct DiagnosisResult {
   // model holds no loss factor, or DiagnosisOptions::damping_laws is off.
   DampingLawEnvelope final_damping_laws;
   std::vector<ResponsePoint> response;
+  SelectedBackbone final_backbone;
   std::string summary;
   double seconds = 0.0;
 };

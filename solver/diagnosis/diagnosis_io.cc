@@ -162,6 +162,7 @@ void Describe(auto& io, schema::Like<DiagnosisRecord> auto& rec) {
                    TextRule::kNotEmpty, kOptional);
     final_io.Object("damping_laws", x.file.diagnosis.final_damping_laws, kOmittedWhenEmpty,
                     damping_laws_schema::kEnvelope);
+    final_io.Object("backbone", x.file.diagnosis.final_backbone, kOmittedWhenEmpty);
   });
   io.Check(rec.final_extension == r.selected, "final.extension names the selected candidates", "final.extension");
   io.List("candidates", rec.candidates, kMaxCandidates);
@@ -290,6 +291,22 @@ void Describe(auto& io, schema::Like<ResponsePoint> auto& p) {
   io.Phasor("measured", p.measured, "SI, the channel's");
   io.Phasor("base_model", p.base_model, "SI, the channel's");
   io.Phasor("final_model", p.final_model, "SI, the channel's");
+  io.Numbers("base_misfit_sigma", p.base_misfit_sigma, "σ (per harmonic 1..K)", NonNegativeOrNull(),
+             kMaxModelHarmonics, kOmittedWhenEmpty);
+  io.Numbers("final_misfit_sigma", p.final_misfit_sigma, "σ (per harmonic 1..K)", NonNegativeOrNull(),
+             kMaxModelHarmonics, kOmittedWhenEmpty);
+}
+
+void Describe(auto& io, schema::Like<SensorBackbonePoint> auto& p) {
+  io.Number("amplitude_m", p.amplitude_m, "m", schema::NonNegative());
+  io.Number("frequency_hz", p.frequency_hz, "Hz", schema::Positive());
+}
+
+void Describe(auto& io, schema::Like<SelectedBackbone> auto& b) {
+  io.Text("channel", b.channel, TextRule::kNotEmpty);
+  io.Number("position_m", b.position_m, "m", schema::NonNegative());
+  io.List("points", b.points, kMaxEntries, kOmittedWhenEmpty);
+  io.Text("error", b.error, TextRule::kAny, kOmittedWhenEmpty);
 }
 
 void Describe(auto& io, schema::Like<LevelShare> auto& l) {

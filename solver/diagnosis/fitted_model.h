@@ -12,6 +12,7 @@
 #include "solver/estimation/fit_problem.h"
 #include "solver/estimation/model_family.h"
 #include "solver/estimation/model_structure.h"
+#include "solver/estimation/prediction.h"
 
 namespace beamid::solver {
 
@@ -35,6 +36,19 @@ struct FittedModel {
   // Per step, channels × K phasors of `data`'s channels in its units
   // (harmonics the model lacks are 0).
   std::vector<Eigen::MatrixXcd> Phasors(const FitData& at) const;
+
+  // The model as identify would have written it (no covariance): what the
+  // families trace curves and backbones from.
+  IdentifiedModel Identified() const;
+
+  // |Θ₁|, the first harmonic of the support rotation y'(L) at each step:
+  // from the state where the family's state holds Θ (harmonic balance),
+  // otherwise from the fitted displacements near the support by the
+  // one-sided second-order difference (3y(L) − 4y(L−δ) + y(L−2δ))/(2δ)
+  // (multiple scales, whose state is the mode's amplitude).
+  std::vector<double> SupportRotationAmplitudes_rad() const;
+  // Always by the difference: the check of the state's Θ.
+  std::vector<double> SupportRotationAmplitudesFromShape_rad() const;
 };
 
 }  // namespace beamid::solver

@@ -12,6 +12,7 @@
 
 #include <fmt/core.h>
 
+#include "solver/report/diagnosis_residual_map.h"
 #include "solver/report/gnuplot_svg.h"
 #include "solver/report/response_plots.h"
 #include "solver/report/stacked_plot.h"
@@ -64,7 +65,7 @@ std::optional<SelectedResponse> SelectedModelOf(const ReportInput& input, const 
   if (!named || d.response.empty()) return std::nullopt;
   std::string name;
   for (const auto& s : outcome.diagnosis->selected) name += (name.empty() ? "" : " + ") + s;
-  return SelectedResponse{.name = name, .points = &d.response};
+  return SelectedResponse{.name = name, .points = &d.response, .backbone = &d.final_backbone};
 }
 
 // The steps the recording makes doubtful: cut before they settled (the
@@ -96,10 +97,14 @@ std::string RecordingSection(const ReportCurves& curves, const ResultFile& resul
   return html.empty() ? html : "<section id=\"recording\"><h2>The recording</h2>\n" + html + "</section>\n";
 }
 
-std::string BackbonePlotSvg(const ReportCurves& curves) {
+std::string BackbonePlotSvg(const ReportCurves& curves, const SelectedResponse* selected) {
   const std::size_t c = static_cast<std::size_t>(curves.reference_channel);
   const ReportChannel& ch = curves.channels[c];
-  Rows frc, backbone, resonance;
+  Rows frc, backbone, resonance, selected_backbone;
+  if (selected && selected->backbone && selected->backbone->channel == ch.channel)
+    for (const auto& p : selected->backbone->points)
+      selected_backbone.push_back(
+          {p.frequency_hz, p.amplitude_m * std::pow(2 * std::numbers::pi * p.frequency_hz, ch.derivative_order)});
   for (const auto& level : curves.levels) {
     for (const auto& p : level.model) frc.push_back({p.frequency_hz, p.amplitude[c]});
     frc.push_back({});
@@ -124,7 +129,15 @@ std::string BackbonePlotSvg(const ReportCurves& curves) {
               .height_px = 330};
   const std::string grey = "with lines lw 1 lc rgb '#aaaaaa'", black = "with lines lw 2.5 lc rgb '#000000'";
   panel.items = {{"$frc", grey}, {"$bb", black}};
-  plot.keys = {{grey, "model FRCs"}, {black, "model backbone (phase resonance at this sensor)"}};
+  plot.keys = {{grey, "model FRCs"},
+               {black, selected ? "base model's backbone (phase resonance at this sensor)"
+                                : "model backbone (phase resonance at this sensor)"}};
+  if (!selected_backbone.empty()) {
+    const std::string blue = "with lines lw 2.5 lc rgb '#1f77b4'";
+    plot.datablocks += Datablock("sel", selected_backbone);
+    panel.items.push_back({"$sel", blue});
+    plot.keys.push_back({blue, "backbone of the selected model (" + selected->name + ")"});
+  }
   if (!single_mode.empty()) {
     const std::string fill = "with filledcurves closed lc rgb '#f4b6b6' fs transparent solid 0.5";
     const std::string dashed = "with lines lw 1.5 dt 2 lc rgb '#d62728'";
@@ -224,10 +237,11 @@ std::string TimePlotSvg(const TimeHistory& history, const std::string& channel) 
 
 // The colour scale is logarithmic and centred at one standard uncertainty:
 // |residual|/σ = 1 is the neutral colour, blue below (within the noise), red
-// above (a misfit), symmetric in decades about 1.
-std::string ResidualPlot(const ResidualMap& map) {
+// above (a misfit), symmetric in decades about 1. `largest`: a residual the
+// scale must reach besides the map's own (another map's, so that two maps
+// share one scale).
+std::string ResidualPlot(const ResidualMap& map, double largest = 1.0) {
   const Eigen::Index rows = map.whitened_norm.rows(), steps = map.whitened_norm.cols();
-  double largest = 1.0;
   for (Eigen::Index r = 0; r < rows; ++r)
     for (Eigen::Index i = 0; i < steps; ++i)
       if (std::isfinite(map.whitened_norm(r, i))) largest = std::max(largest, map.whitened_norm(r, i));
@@ -448,6 +462,52 @@ std::string DiagnosisSection(const DiagnosisResult& diagnosis, const DiagnosisOu
   return html + "</section>\n";
 }
 
+// What the selected model's backbone adds to the backbone figure's caption.
+std::string SelectedBackboneCaption(const SelectedResponse* selected, const ReportCurves& curves) {
+  if (!selected || !selected->backbone || selected->backbone->empty()) return "";
+  const SelectedBackbone& b = *selected->backbone;
+  if (!b.error.empty()) return " The selected model's backbone could not be traced: " + HtmlEscape(b.error) + ".";
+  if (b.channel != curves.channels[static_cast<std::size_t>(curves.reference_channel)].channel)
+    return " The selected model's backbone was traced at " + HtmlEscape(b.channel) + ", not at this sensor.";
+  return " Blue: the backbone of the model the diagnosis selected (" + HtmlEscape(selected->name) +
+         "), beside the base model's (black).";
+}
+
+constexpr SvgSize kResidualMapSize{.width_px = 760, .height_px = 360};
+constexpr const char* kResidualMapScale =
+    "on a logarithmic colour scale centred at 1 σ (white): blue cells lie within the noise, red ones beyond it "
+    "point at what the model misses";
+
+// The identified model's map; after a diagnosis that named a cause, the base
+// model's and the selected model's (diagnosis.json), so that the cause's
+// effect shows cell by cell.
+std::string ResidualMaps(const ReportCurves& curves, const ReportInput& input, const std::optional<SelectedResponse>& selected) {
+  if (selected) {
+    const ResidualMap before = DiagnosisResidualMap(*selected->points, DiagnosedModel::kBase);
+    const ResidualMap after = DiagnosisResidualMap(*selected->points, DiagnosedModel::kSelected);
+    if (!before.rows.empty() && !after.rows.empty()) {
+      // One colour scale for both: a cell's colour compares across the maps.
+      const auto finite = [](const ResidualMap& map) {
+        return map.whitened_norm.unaryExpr([](double v) { return std::isfinite(v) ? v : 0.0; }).maxCoeff();
+      };
+      const double largest = std::max(finite(before), finite(after));
+      return Figure("residual-map", GnuplotSvg(ResidualPlot(before, largest), kResidualMapSize),
+                    fmt::format("Before: the base model the diagnosis refitted (χ² {} on the map; {} in its fit). Per "
+                                "fitted channel, harmonic and step the misfit in units of its standard uncertainty σ, {}.",
+                                Number(SumOfSquares(before)), Number(input.diagnosis->diagnosis.base.chi_square),
+                                kResidualMapScale)) +
+             Figure("residual-map-selected", GnuplotSvg(ResidualPlot(after, largest), kResidualMapSize),
+                    fmt::format("After: the selected model ({}), against the data it was fitted to (χ² {} on the "
+                                "map; {} in its fit), on the same colour scale: what stays red, the cause does not explain.",
+                                HtmlEscape(selected->name), Number(SumOfSquares(after)),
+                                Number(input.diagnosis->diagnosis.final_fit.chi_square)));
+    }
+  }
+  return Figure("residual-map", GnuplotSvg(ResidualPlot(curves.residuals), kResidualMapSize),
+                std::string("Per fitted channel, harmonic and step: the misfit in units of its standard uncertainty "
+                            "σ, ") + kResidualMapScale + ".");
+}
+
 }  // namespace
 
 std::string HtmlReport(const ReportInput& input, const ReportCurves& curves, const HtmlReportOptions& options) {
@@ -517,11 +577,12 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves, con
   html += "</section>\n";
 
   html += "<section id=\"backbone\"><h2>Backbone</h2>\n" +
-          Figure("backbone-plot", BackbonePlotSvg(curves),
+          Figure("backbone-plot", BackbonePlotSvg(curves, selected ? &*selected : nullptr),
                  "The model's backbone as this sensor sees it (its first harmonic in quadrature with the force) "
                  "and each level's measured phase resonance with ±2σ bars, from the model-free analysis of "
                  "<code>beamid backbone --measured</code> (the step nearest quadrature moved there along one "
-                 "nonlinear mode; on a level that jumps before quadrature, from the branch before the jump).") +
+                 "nonlinear mode; on a level that jumps before quadrature, from the branch before the jump)." +
+                     SelectedBackboneCaption(selected ? &*selected : nullptr, curves)) +
           (curves.phase_resonance.empty() ? "<p>No level crosses phase resonance.</p>\n" : ResonanceTable(curves)) +
           Warnings(curves.phase_resonance_warnings);
   if (!curves.measured_mode.damping.empty()) {
@@ -566,12 +627,7 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves, con
                        "uncertainties from the parameter covariance) and measured.");
   html += "</section>\n";
 
-  html += "<section id=\"residuals\"><h2>Residual map</h2>\n" +
-          Figure("residual-map", GnuplotSvg(ResidualPlot(curves.residuals), {.width_px = 760, .height_px = 360}),
-                 "Per fitted channel, harmonic and step: the misfit in units of its standard uncertainty σ, "
-                 "on a logarithmic colour scale centred at 1 σ (white): blue cells lie within the noise, red "
-                 "ones beyond it point at what the model misses.") +
-          "</section>\n";
+  html += "<section id=\"residuals\"><h2>Residual map</h2>\n" + ResidualMaps(curves, input, selected) + "</section>\n";
   return ScrollableTables(html) + ReportDataBlock(ToJson(outcome)) + "</body>\n</html>\n";
 }
 

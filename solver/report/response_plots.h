@@ -32,6 +32,7 @@ struct ResponsePlotOptions {
 struct SelectedResponse {
   std::string name;                                    // "support_friction", "a + b"
   const std::vector<ResponsePoint>* points = nullptr;  // DiagnosisResult::response
+  const SelectedBackbone* backbone = nullptr;          // DiagnosisResult::final_backbone
 };
 
 // What the response figure draws of one channel of one level, a row per

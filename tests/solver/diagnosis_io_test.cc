@@ -209,10 +209,15 @@ DiagnosisFile FullFile(bool with_location) {
   JudgeDampingLaws(&r.final_damping_laws);
   r.response.push_back({.level = "low", .frequency_hz = 51.75, .channel = "acc1", .held_out = false,
                         .measured = {-0.5 / 3.0, 1.0 / 7.0}, .base_model = {-0.51 / 3.0, 1.01 / 7.0},
-                        .final_model = {-0.501 / 3.0, 1.001 / 7.0}});
+                        .final_model = {-0.501 / 3.0, 1.001 / 7.0},
+                        .base_misfit_sigma = {31.0 / 7.0, 2.0 / 3.0, std::nan("")},
+                        .final_misfit_sigma = {0.9 / 7.0, 1e-300, 0.0}});
   r.response.push_back({.level = "high", .frequency_hz = 56.0 / 3.0 * 3.0 + 1e-12, .channel = "acc3",
                         .held_out = true, .measured = {2.0 / 3.0, -0.0}, .base_model = {1e-300, -1e-300},
                         .final_model = {2.0 / 3.0, 5e-324}});
+  r.final_backbone = {.channel = "acc1", .position_m = 0.3 / 7.0};
+  r.final_backbone.points = {{.amplitude_m = 1e-5 / 3.0, .frequency_hz = 53.0 + 1.0 / 7.0},
+                             {.amplitude_m = 2e-4 / 3.0, .frequency_hz = 55.0 / 3.0 * 3.0}};
   r.summary = "Base model: reduced chi-square 27.3. Missing physics: support_friction.";
   r.seconds = 61.0 / 7.0;
   file.campaign_folder = "campaigns/friction";
@@ -435,6 +440,16 @@ void ExpectSameFile(const DiagnosisFile& a, const DiagnosisFile& b) {
       EXPECT_TRUE(Same(u.real(), v.real()));
       EXPECT_TRUE(Same(u.imag(), v.imag()));
     }
+    ExpectSameNumbers(p.base_misfit_sigma, q.base_misfit_sigma);
+    ExpectSameNumbers(p.final_misfit_sigma, q.final_misfit_sigma);
+  }
+  EXPECT_EQ(x.final_backbone.channel, y.final_backbone.channel);
+  EXPECT_TRUE(Same(x.final_backbone.position_m, y.final_backbone.position_m));
+  EXPECT_EQ(x.final_backbone.error, y.final_backbone.error);
+  ASSERT_EQ(x.final_backbone.points.size(), y.final_backbone.points.size());
+  for (std::size_t i = 0; i < x.final_backbone.points.size(); ++i) {
+    EXPECT_TRUE(Same(x.final_backbone.points[i].amplitude_m, y.final_backbone.points[i].amplitude_m));
+    EXPECT_TRUE(Same(x.final_backbone.points[i].frequency_hz, y.final_backbone.points[i].frequency_hz));
   }
   EXPECT_EQ(x.summary, y.summary);
   EXPECT_TRUE(Same(x.seconds, y.seconds));

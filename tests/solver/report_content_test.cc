@@ -15,10 +15,12 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "solver/estimation/damping_laws.h"
 #include "solver/estimation/fit_verdict.h"
+#include "solver/report/diagnosis_residual_map.h"
 #include "solver/report/html_report.h"
 #include "tests/support/sample_report.h"
 #include "solver/report/measured_backbone_report.h"
@@ -568,6 +570,109 @@ TEST(ReportContent, AMeasuredBackbonePageForEachTrend) {
     EXPECT_EQ(block, BackboneBlock(c.expected_rate, c.expected_ratio)) << block.dump(2);
     ExpectBackbonePageStates(page, block);
   }
+}
+
+
+// ---- A diagnosis that names physics: its model beside the base ----
+
+// Three steps of acc1 (fitted, harmonics 1..3) and one of the held-out acc3;
+// the base misfits large in h1, the selected model's within the noise.
+DiagnosisResult NamedFriction() {
+  DiagnosisResult d;
+  d.verdict = DiagnosisVerdict::kCauseNamed;
+  d.blame = Blame::kModel;
+  d.ranked_by = RankedBy::kHeldOutChannels;
+  d.selected = {"support_friction"};
+  d.base.parameters = {Parameter("k1", 150.2, 0.3)};
+  d.final_fit.parameters = {Parameter("k1", 149.8, 0.2)};
+  const std::vector<std::vector<double>> base = {{30.0, 4.0, 0.5}, {41.0, 2.0, 0.25}, {12.0, 3.0, 0.125}},
+                                         final = {{0.5, 1.5, 0.25}, {1.25, 0.75, 0.5}, {0.5, 1.0, 0.25}};
+  const double frequencies[] = {54.5, 55.0, 55.5};
+  for (std::size_t i = 0; i < 3; ++i) {
+    d.response.push_back({.level = "high", .frequency_hz = frequencies[i], .channel = "acc1",
+                          .measured = {6.2, 0.0}, .base_model = {3.5, 0.0}, .final_model = {6.1, 0.0},
+                          .base_misfit_sigma = base[i], .final_misfit_sigma = final[i]});
+    for (std::size_t k = 0; k < 3; ++k) {
+      d.base.chi_square += base[i][k] * base[i][k];
+      d.final_fit.chi_square += final[i][k] * final[i][k];
+    }
+  }
+  // Held out: not on the map, and its misfits not in the fits' χ².
+  d.response.push_back({.level = "high", .frequency_hz = 55.0, .channel = "acc3", .held_out = true,
+                        .measured = {1.0, 0.0}, .base_model = {0.5, 0.0}, .final_model = {0.9, 0.0},
+                        .base_misfit_sigma = {99.0}, .final_misfit_sigma = {7.0}});
+  d.final_backbone = {.channel = "acc1", .position_m = 0.1};
+  for (double f : {54.2, 54.6, 55.1}) d.final_backbone.points.push_back({.amplitude_m = 1e-4 * (f - 54.0), .frequency_hz = f});
+  return d;
+}
+
+TEST(ReportContent, TheDiagnosisMapsAreTheBaseAndTheSelectedModelsCellByCell) {
+  const DiagnosisResult d = NamedFriction();
+  for (const DiagnosedModel model : {DiagnosedModel::kBase, DiagnosedModel::kSelected}) {
+    const ResidualMap map = DiagnosisResidualMap(d.response, model);
+    EXPECT_EQ(map.rows, (std::vector<std::string>{"acc1 h1", "acc1 h2", "acc1 h3"}));
+    EXPECT_EQ(map.step_frequency_hz, (std::vector<double>{54.5, 55.0, 55.5}));
+    ASSERT_EQ(map.whitened_norm.cols(), 3);
+    for (std::size_t i = 0; i < 3; ++i)
+      for (std::size_t k = 0; k < 3; ++k) {
+        const ResponsePoint& p = d.response[i];
+        EXPECT_EQ(map.whitened_norm(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(i)),
+                  (model == DiagnosedModel::kBase ? p.base_misfit_sigma : p.final_misfit_sigma)[k]);
+      }
+    EXPECT_EQ(SumOfSquares(map), model == DiagnosedModel::kBase ? d.base.chi_square : d.final_fit.chi_square);
+  }
+}
+
+TEST(ReportContent, ADiagnosisDrawsTheSelectedModelsBackboneAndItsResidualMapAfterTheCause) {
+  ReportInput input = Input(4.5e5, 186);
+  input.diagnosis = DiagnosisFile{.diagnosis = NamedFriction()};
+  const DiagnosisResult& d = input.diagnosis->diagnosis;
+  const std::string page = HtmlReport(input, Curves(Trend::kRises, 10.5));
+  ExpectPageStates(page, DataBlock(page));
+  // Before and after, each captioned with its own χ², the map's equal to the fit's.
+  const std::string before = Element(page, "<figure class=\"plot\" id=\"residual-map\">", "</figure>");
+  const std::string after = Element(page, "<figure class=\"plot\" id=\"residual-map-selected\">", "</figure>");
+  EXPECT_THAT(before, HasSubstr(fmt::format("χ² {:.6g} on the map; {:.6g} in its fit", d.base.chi_square,
+                                            d.base.chi_square)));
+  EXPECT_THAT(after, HasSubstr(fmt::format("χ² {:.6g} on the map; {:.6g} in its fit", d.final_fit.chi_square,
+                                           d.final_fit.chi_square)));
+  EXPECT_THAT(after, HasSubstr("the selected model (support_friction)"));
+  // One colour scale: the selected model's cells (at most 1.5 σ) are drawn on
+  // the base's scale, which reaches 100 σ.
+  EXPECT_THAT(before, HasSubstr("100 (misfit)"));
+  EXPECT_THAT(after, HasSubstr("100 (misfit)"));
+  // The backbone figure: the base's and the selected model's, each in the legend.
+  const std::string backbone = Element(page, "<figure class=\"plot\" id=\"backbone-plot\">", "</figure>");
+  EXPECT_THAT(backbone, HasSubstr("base model's backbone"));
+  EXPECT_THAT(backbone, HasSubstr("backbone of the selected model"));
+  EXPECT_THAT(backbone, HasSubstr("Blue: the backbone of the model the diagnosis selected (support_friction)"));
+}
+
+TEST(ReportContent, ABackboneTracedElsewhereOrNotAtAllIsSaidNotDrawn) {
+  for (const auto& [channel, error, said] :
+       {std::tuple<std::string, std::string, std::string>{"acc2", "", "traced at acc2, not at this sensor"},
+        {"acc1", "no quadrature point", "could not be traced: no quadrature point"}}) {
+    ReportInput input = Input(4.5e5, 186);
+    DiagnosisResult d = NamedFriction();
+    d.final_backbone.channel = channel;
+    d.final_backbone.error = error;
+    if (!error.empty()) d.final_backbone.points.clear();
+    input.diagnosis = DiagnosisFile{.diagnosis = d};
+    const std::string page = HtmlReport(input, Curves(Trend::kRises, 10.5));
+    const std::string backbone = Element(page, "<figure class=\"plot\" id=\"backbone-plot\">", "</figure>");
+    EXPECT_THAT(backbone, HasSubstr(said));
+    EXPECT_THAT(backbone, Not(HasSubstr("backbone of the selected model")));
+  }
+}
+
+TEST(ReportContent, ADiagnosisWithoutMisfitsKeepsTheIdentifiedMap) {
+  ReportInput input = Input(4.5e5, 186);
+  DiagnosisResult d = NamedFriction();
+  for (auto& p : d.response) p.base_misfit_sigma.clear(), p.final_misfit_sigma.clear();
+  input.diagnosis = DiagnosisFile{.diagnosis = d};
+  const std::string page = HtmlReport(input, Curves(Trend::kRises, 10.5));
+  EXPECT_EQ(Count(page, "id=\"residual-map\""), 1u);
+  EXPECT_EQ(Count(page, "id=\"residual-map-selected\""), 0u);
 }
 
 }  // namespace

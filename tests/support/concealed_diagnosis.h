@@ -4,6 +4,7 @@
 // located up to the 5th harmonic; and the checks every proof shares.
 #pragma once
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -50,6 +51,43 @@ enum class HeldOut { kFirstHarmonic, kHarmonicsChiSquare };
 
 // blame: the model for missing physics (never taken for a fault of the
 // recording), the recording for a measurement artefact.
+// The whitened misfits the response points keep (what the report's residual
+// maps draw) are each model's own: over the fitted channels their squares
+// sum to the χ² its optimiser reached.
+inline void ExpectMisfitsSumToTheFits(const solver::DiagnosisResult& result) {
+  double base = 0.0, final = 0.0;
+  for (const auto& p : result.response) {
+    if (p.held_out) continue;
+    EXPECT_FALSE(p.base_misfit_sigma.empty());
+    EXPECT_EQ(p.final_misfit_sigma.size(), p.base_misfit_sigma.size());
+    for (double m : p.base_misfit_sigma) base += m * m;
+    for (double m : p.final_misfit_sigma) final += m * m;
+  }
+  EXPECT_NEAR(base, result.base.chi_square, 1e-6 * result.base.chi_square);
+  EXPECT_NEAR(final, result.final_fit.chi_square, 1e-6 * result.final_fit.chi_square);
+}
+
+// Named physics comes with its model's backbone at the first fitted sensor,
+// within the band the steps span (widened by a tenth each way: the backbone
+// runs to 1.3 times the largest fitted amplitude).
+inline void ExpectSelectedBackbone(const solver::DiagnosisResult& result) {
+  const solver::SelectedBackbone& backbone = result.final_backbone;
+  EXPECT_TRUE(backbone.error.empty()) << backbone.error;
+  ASSERT_FALSE(backbone.points.empty());
+  ASSERT_FALSE(result.response.empty());
+  EXPECT_EQ(backbone.channel, result.response.front().channel);
+  double lowest = result.response.front().frequency_hz, highest = lowest;
+  for (const auto& p : result.response) {
+    lowest = std::min(lowest, p.frequency_hz);
+    highest = std::max(highest, p.frequency_hz);
+  }
+  for (const auto& p : backbone.points) {
+    EXPECT_GT(p.amplitude_m, 0.0);
+    EXPECT_GT(p.frequency_hz, 0.9 * lowest);
+    EXPECT_LT(p.frequency_hz, 1.1 * highest);
+  }
+}
+
 inline void ExpectNamed(const solver::DiagnosisResult& result, const std::string& cause,
                         HeldOut held_out = HeldOut::kFirstHarmonic, solver::Blame blame = solver::Blame::kModel) {
   ASSERT_EQ(result.verdict, solver::DiagnosisVerdict::kCauseNamed);
@@ -62,6 +100,8 @@ inline void ExpectNamed(const solver::DiagnosisResult& result, const std::string
     EXPECT_LT(result.final_fit.held_out_h1_relative_error, result.base.held_out_h1_relative_error);
   else
     EXPECT_LT(result.final_fit.held_out_chi_square, result.base.held_out_chi_square);
+  ExpectMisfitsSumToTheFits(result);
+  if (blame == solver::Blame::kModel) ExpectSelectedBackbone(result);
 }
 
 inline solver::ParameterEstimate FinalParameter(const solver::DiagnosisResult& result, const std::string& name) {
