@@ -17,23 +17,8 @@
 namespace beamid::cli {
 namespace {
 
-struct BackboneCommandOptions {
-  std::string model_file;
-  double min_theta_rad = 1e-5;
-  double max_theta_rad = 2e-2;
-  int points = 200;
-  int harmonics = 7;
-  std::string output = "backbone";
-};
-
-void RunBackbone(const BackboneCommandOptions& options, const GlobalOptions& global) {
-  const workflow::TraceBackboneOutcome outcome = workflow::TraceModelBackbone({.model_file = options.model_file,
-                                                                             .min_theta_rad = options.min_theta_rad,
-                                                                             .max_theta_rad = options.max_theta_rad,
-                                                                             .points = options.points,
-                                                                             .harmonics = options.harmonics,
-                                                                             .output = options.output},
-                                                                            CliObserver(global));
+void RunBackbone(const workflow::TraceBackboneRequest& request, const GlobalOptions& global) {
+  const workflow::TraceBackboneOutcome outcome = workflow::TraceModelBackbone(request, CliObserver(global));
   const hb::BackboneSummary& summary = outcome.summary;
   if (!global.quiet && !summary.points.empty()) {
     const auto& first = summary.points.front();
@@ -41,7 +26,7 @@ void RunBackbone(const BackboneCommandOptions& options, const GlobalOptions& glo
     fmt::print("  backbone: {:.3f} Hz at |θ1| = {:.1e} rad → {:.3f} Hz at {:.1e} rad ({} points)\n",
                first.omega_rad_s / (2 * std::numbers::pi), first.theta_amplitude_rad,
                last.omega_rad_s / (2 * std::numbers::pi), last.theta_amplitude_rad, summary.points.size());
-    fmt::print("wrote {0}.csv and {0}.json\n", options.output);
+    fmt::print("wrote {0}.csv and {0}.json\n", request.output);
   }
   // The partial backbone is written; the run still failed to converge.
   if (!outcome.Complete())
@@ -50,15 +35,15 @@ void RunBackbone(const BackboneCommandOptions& options, const GlobalOptions& glo
 }
 
 BEAMID_REGISTER_COMMAND("backbone", [](CLI::App& app, const GlobalOptions& global) {
-  auto options = std::make_shared<BackboneCommandOptions>();
-  auto measured = std::make_shared<MeasuredBackboneCommandOptions>();
+  auto request = std::make_shared<workflow::TraceBackboneRequest>();
+  auto measured = std::make_shared<workflow::MeasureBackboneRequest>();
   CLI::App* sub = app.add_subcommand(
       "backbone",
       "Backbone of a model: resonance frequency against amplitude of θ = y'(L) and of each sensor;\n"
       "or, with --measured, the measured backbone and damping against amplitude of a stepped-sine test.\n"
       "Example: beamid backbone examples/paper_setup/model.json --max-theta-rad 0.02 -o out/backbone\n"
       "Example: beamid backbone --measured out/base --channel acc2 --result out/result.json -o out/measured");
-  sub->add_option("model", options->model_file, "Model file (JSON, see docs/model-file.md)");
+  sub->add_option("model", request->model_file, "Model file (JSON, see docs/model-file.md)");
   sub->add_option("--measured", measured->inputs,
                   "Measured input: a campaign folder, a phasor file of beamid extract, or first-harmonic CSV tables "
                   "(one per level, docs/phasor-table.md)");
@@ -72,33 +57,33 @@ BEAMID_REGISTER_COMMAND("backbone", [](CLI::App& app, const GlobalOptions& globa
                 "regeneration beyond the noise) in the cross-level fit and the damping trend; by default they are left "
                 "out (the flags are shown either way)");
   // θ is the slope at the support: 1 rad (57°) is far beyond any beam.
-  sub->add_option("--min-theta-rad", options->min_theta_rad, "Smallest θ amplitude [rad]")
+  sub->add_option("--min-theta-rad", request->min_theta_rad, "Smallest θ amplitude [rad]")
       ->check(FiniteRange(1e-12, 1.0))
       ->capture_default_str();
-  sub->add_option("--max-theta-rad", options->max_theta_rad, "Largest θ amplitude [rad]")
+  sub->add_option("--max-theta-rad", request->max_theta_rad, "Largest θ amplitude [rad]")
       ->check(FiniteRange(1e-12, 1.0))
       ->capture_default_str();
-  sub->add_option("--points", options->points, "Number of amplitudes (2 … 10000)")
+  sub->add_option("--points", request->points, "Number of amplitudes (2 … 10000)")
       ->check(CLI::Range(2, 10000))
       ->capture_default_str();
-  sub->add_option("-H,--harmonics", options->harmonics, "Harmonics kept in the balance")
+  sub->add_option("-H,--harmonics", request->harmonics, "Harmonics kept in the balance")
       ->check(CLI::Range(1, 50))
       ->capture_default_str();
-  sub->add_option("-o,--output", options->output, "Output prefix: writes PREFIX.csv and PREFIX.json")
+  sub->add_option("-o,--output", request->output, "Output prefix: writes PREFIX.csv and PREFIX.json")
       ->capture_default_str();
-  sub->callback([options, measured, &global] {
+  sub->callback([request, measured, &global] {
     if (!measured->inputs.empty()) {
-      if (!options->model_file.empty())
+      if (!request->model_file.empty())
         throw std::invalid_argument("backbone: give a model file or --measured, not both");
-      measured->output = options->output;
+      measured->output = request->output;
       RunMeasuredBackbone(*measured, global);
       return;
     }
-    if (options->model_file.empty())
+    if (request->model_file.empty())
       throw std::invalid_argument("backbone: give a model file, or --measured INPUT for a test's backbone");
     if (measured->keep_flagged_levels)
       throw std::invalid_argument("backbone: --keep-flagged-levels applies to --measured only (a model has no levels)");
-    RunBackbone(*options, global);
+    RunBackbone(*request, global);
   });
 });
 

@@ -15,25 +15,8 @@
 namespace beamid::cli {
 namespace {
 
-struct ExtractCommandOptions {
-  std::string campaign_folder;
-  int harmonics = 5;
-  std::string output = "phasors.json";
-  std::string csv_output;
-  int threads = 0;
-  std::vector<std::string> channels;  // the sensors to be analysed; empty: all
-  bool skip_bad_steps = false;
-};
-
-void RunExtract(const ExtractCommandOptions& options, const GlobalOptions& global) {
-  const workflow::ExtractOutcome outcome = workflow::ExtractCampaign({.campaign_folder = options.campaign_folder,
-                                                                      .harmonics = options.harmonics,
-                                                                      .output = options.output,
-                                                                      .csv_output = options.csv_output,
-                                                                      .threads = options.threads,
-                                                                      .channels = options.channels,
-                                                                      .skip_bad_steps = options.skip_bad_steps},
-                                                                     CliObserver(global));
+void RunExtract(const workflow::ExtractRequest& request, const GlobalOptions& global) {
+  const workflow::ExtractOutcome outcome = workflow::ExtractCampaign(request, CliObserver(global));
   const signal::PhasorSet& set = outcome.phasors;
   if (global.quiet) return;
   double worst_snr_db = 1e300, longest_settling_s = 0.0;
@@ -51,12 +34,12 @@ void RunExtract(const ExtractCommandOptions& options, const GlobalOptions& globa
   fmt::print("{} steps{}, {} channels, harmonics 1..{}: worst SNR {:.1f} dB, longest transient {:.3f} s, {} steps with "
              "warnings, {} with notes (in {})\nwrote {}{}\n",
              set.steps.size(), set.skipped.empty() ? "" : fmt::format(" ({} skipped)", set.skipped.size()),
-             outcome.num_sensors + 1, options.harmonics, worst_snr_db, longest_settling_s, warned, noted,
-             options.output, options.output, options.csv_output.empty() ? "" : " and " + options.csv_output);
+             outcome.num_sensors + 1, request.harmonics, worst_snr_db, longest_settling_s, warned, noted,
+             request.output, request.output, request.csv_output.empty() ? "" : " and " + request.csv_output);
 }
 
 BEAMID_REGISTER_COMMAND("extract", [](CLI::App& app, const GlobalOptions& global) {
-  auto options = std::make_shared<ExtractCommandOptions>();
+  auto request = std::make_shared<workflow::ExtractRequest>();
   CLI::App* sub = app.add_subcommand(
       "extract",
       "Harmonic phasors of every step of a stepped-sine campaign: the transient is dropped, the excitation\n"
@@ -65,24 +48,24 @@ BEAMID_REGISTER_COMMAND("extract", [](CLI::App& app, const GlobalOptions& global
       "Example (a simulated campaign):\n"
       "  beamid simulate examples/scenarios/paper_base.json -o out/paper_base\n"
       "  beamid extract out/paper_base -H 5 -o out/phasors.json --csv out/phasors.csv");
-  sub->add_option("campaign", options->campaign_folder, "Campaign folder (holds campaign.json)")->required();
-  sub->add_option("-H,--harmonics", options->harmonics, "Harmonics per channel")
+  sub->add_option("campaign", request->campaign_folder, "Campaign folder (holds campaign.json)")->required();
+  sub->add_option("-H,--harmonics", request->harmonics, "Harmonics per channel")
       ->check(CLI::Range(1, 50))
       ->capture_default_str();
-  sub->add_option("-o,--output", options->output, "Phasors file (JSON, format beamid-phasors/1)")
+  sub->add_option("-o,--output", request->output, "Phasors file (JSON, format beamid-phasors/1)")
       ->capture_default_str();
-  sub->add_option("--csv", options->csv_output, "Also write a CSV table (one row per step, channel, harmonic)")
+  sub->add_option("--csv", request->csv_output, "Also write a CSV table (one row per step, channel, harmonic)")
       ->check(NonEmptyPath());
-  sub->add_option("--threads", options->threads, "Worker threads (0: one per core)")
+  sub->add_option("--threads", request->threads, "Worker threads (0: one per core)")
       ->check(CLI::Range(0, 256))
       ->capture_default_str();
-  sub->add_option("--channel", options->channels,
+  sub->add_option("--channel", request->channels,
                   "Sensors to be analysed (default: all not ignored); problems of the others only warn")
       ->delimiter(',');
-  sub->add_flag("--skip-bad-steps", options->skip_bad_steps,
+  sub->add_flag("--skip-bad-steps", request->skip_bad_steps,
                 "Leave out the steps whose recordings hold errors (listed, and kept in the phasors file as "
                 "skipped); without it the run stops with the list");
-  sub->callback([options, &global] { RunExtract(*options, global); });
+  sub->callback([request, &global] { RunExtract(*request, global); });
 });
 
 }  // namespace

@@ -19,24 +19,6 @@
 namespace beamid::cli {
 namespace {
 
-struct IdentifyCommandOptions {
-  std::string campaign_folder;
-  std::vector<std::string> fit_channels;
-  std::vector<std::string> validate_channels;
-  std::string model = "hb";
-  workflow::PhasorInput phasor_input;
-  int harmonics = 5;
-  int fit_harmonics = 3;
-  int starts = 0;
-  int workers = 0;
-  bool fit_ei_scale = false;
-  bool fix_loss_factor = false;
-  bool damping_envelope = true;
-  bool robust = true;
-  double beam_loss_factor = 0.0;
-  std::string output = "result.json";
-};
-
 // The steps the robust fit found outlying, and every parameter with and without them.
 void PrintRobustFit(const solver::RobustFitResult& robust, const solver::IdentifyResult& ordinary) {
   if (robust.outliers.empty()) return;
@@ -55,24 +37,7 @@ void PrintParameters(const std::vector<solver::ParameterEstimate>& parameters) {
                p.lower_95, p.upper_95);
 }
 
-void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& global) {
-  workflow::IdentifyRequest request{
-      .campaign_folder = options.campaign_folder,
-      // No --fit: every sensor neither ignored nor held out.
-      .fit_channels = options.fit_channels.empty() ? std::nullopt : std::optional(options.fit_channels),
-      .validate_channels = options.validate_channels,
-      .model = options.model,
-      .phasor_input = options.phasor_input,
-      .harmonics = options.harmonics,
-      .fit_harmonics = options.fit_harmonics,
-      .starts = options.starts,
-      .workers = options.workers,
-      .fit_ei_scale = options.fit_ei_scale,
-      .fix_loss_factor = options.fix_loss_factor,
-      .damping_envelope = options.damping_envelope,
-      .robust = options.robust,
-      .beam_loss_factor = options.beam_loss_factor,
-      .output = options.output};
+void RunIdentify(const workflow::IdentifyRequest& request, const GlobalOptions& global) {
   const workflow::IdentifyOutcome outcome = workflow::IdentifyCampaign(request, CliObserver(global));
   const solver::IdentifyResult& result = outcome.Result();
   if (!global.quiet) {
@@ -110,57 +75,63 @@ void RunIdentify(const IdentifyCommandOptions& options, const GlobalOptions& glo
       fmt::print("  held-out {}: {}\n", v.channel, solver::HeldOutSummary(v));
     for (const auto& w : result.warnings) fmt::print("  warning: {}\n", w);
     fmt::print("  verdict: {}\n", result.verdict.text);
-    fmt::print("wrote {}\n", options.output);
+    fmt::print("wrote {}\n", request.output);
   }
   // Exit 5: fitted and written, but the model misses the data beyond their noise.
   if (!outcome.WithinNoise())
-    throw ModelMissesData(result.verdict.text + " (the result is in " + options.output + ")");
+    throw ModelMissesData(result.verdict.text + " (the result is in " + request.output + ")");
 }
 
 BEAMID_REGISTER_COMMAND("identify", [](CLI::App& app, const GlobalOptions& global) {
-  auto options = std::make_shared<IdentifyCommandOptions>();
+  auto request = std::make_shared<workflow::IdentifyRequest>();
+  // --fit binds to a list; the request's is unset when none is given.
+  auto fit_channels = std::make_shared<std::vector<std::string>>();
   CLI::App* sub = app.add_subcommand(
       "identify",
       "Identify the support (k1, k2, k3, c) from a stepped-sine campaign.\n"
       "Example: beamid identify campaign/ --fit acc1,acc2 --validate acc3 -o result.json");
-  sub->add_option("campaign", options->campaign_folder, "Campaign folder (holds campaign.json)")->required();
-  sub->add_option("--fit", options->fit_channels,
+  sub->add_option("campaign", request->campaign_folder, "Campaign folder (holds campaign.json)")->required();
+  sub->add_option("--fit", *fit_channels,
                   "Response channels to fit (default: every sensor neither ignored nor held out)")
       ->delimiter(',');
-  sub->add_option("--validate", options->validate_channels, "Held-out channels to predict and compare")
+  sub->add_option("--validate", request->validate_channels, "Held-out channels to predict and compare")
       ->delimiter(',');
   std::string families;
   for (const solver::ModelFamily* family : solver::ModelFamilies())
     families += (families.empty() ? "" : ", ") + family->Name() + " (" + family->Description() + ")";
-  sub->add_option("--model", options->model, "Model family: " + families)
+  sub->add_option("--model", request->model, "Model family: " + families)
       ->check([](const std::string& name) {
         for (const solver::ModelFamily* family : solver::ModelFamilies())
           if (family->Name() == name) return std::string();
         return "unknown model family '" + name + "' (use " + solver::ModelFamilyNames() + ")";
       })
       ->capture_default_str();
-  AddPhasorInputOptions(sub, &options->phasor_input);
-  AddModelHarmonicsOptions(sub, &options->harmonics, &options->fit_harmonics, "Harmonics of the model (hb; ms has 3)");
-  sub->add_option("--starts", options->starts, "Further starts besides the direct estimate")
+  AddPhasorInputOptions(sub, &request->phasor_input);
+  AddModelHarmonicsOptions(sub, &request->harmonics, &request->fit_harmonics, "Harmonics of the model (hb; ms has 3)");
+  sub->add_option("--starts", request->starts, "Further starts besides the direct estimate")
       ->check(CLI::Range(0, 1000))
       ->capture_default_str();
-  sub->add_option("--workers", options->workers, "Worker processes that run the starts in parallel (0: one per core)")
+  sub->add_option("--workers", request->workers, "Worker processes that run the starts in parallel (0: one per core)")
       ->check(CLI::Range(0, 256))
       ->capture_default_str();
-  sub->add_flag("--fit-ei-scale", options->fit_ei_scale, "Also fit a scale of the nominal bending stiffness EI");
-  sub->add_flag("--fix-loss-factor", options->fix_loss_factor,
+  sub->add_flag("--fit-ei-scale", request->fit_ei_scale, "Also fit a scale of the nominal bending stiffness EI");
+  sub->add_flag("--fix-loss-factor", request->fix_loss_factor,
                 "Do not fit the beam's structural loss factor η; hold it at --beam-loss-factor");
-  sub->add_flag("!--no-damping-laws", options->damping_envelope,
+  sub->add_flag("!--no-damping-laws", request->damping_envelope,
                 "Do not refit under the other beam damping laws (Rayleigh, mass- and stiffness-proportional): faster, "
                 "but no model-form intervals");
-  sub->add_flag("!--no-robust", options->robust,
+  sub->add_flag("!--no-robust", request->robust,
                 "Do not test the steps for outliers: fit every step with its full weight, even a faulty one");
-  sub->add_option("--beam-loss-factor", options->beam_loss_factor,
+  sub->add_option("--beam-loss-factor", request->beam_loss_factor,
                   "The beam's structural loss factor: the start of its fit, or its value with --fix-loss-factor")
       ->check(FiniteRange(0.0, 1.0))
       ->capture_default_str();
-  sub->add_option("-o,--output", options->output, "Result file (JSON)")->capture_default_str();
-  sub->callback([options, &global] { RunIdentify(*options, global); });
+  sub->add_option("-o,--output", request->output, "Result file (JSON)")->capture_default_str();
+  sub->callback([request, fit_channels, &global] {
+    // No --fit: every sensor neither ignored nor held out.
+    request->fit_channels = fit_channels->empty() ? std::nullopt : std::optional(*fit_channels);
+    RunIdentify(*request, global);
+  });
 });
 
 }  // namespace

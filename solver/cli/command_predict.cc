@@ -17,48 +17,37 @@
 namespace beamid::cli {
 namespace {
 
-struct PredictOptions {
-  std::string result_file;
-  std::string campaign_folder;
-  double position_m = 0.0;
-  std::string output = "prediction.json";
-};
-
-void RunPredict(const PredictOptions& options, const GlobalOptions& global) {
-  const workflow::PredictOutcome outcome = workflow::PredictCampaign({.result_file = options.result_file,
-                                                                      .campaign_folder = options.campaign_folder,
-                                                                      .position_m = options.position_m,
-                                                                      .output = options.output},
-                                                                     CliObserver(global));
+void RunPredict(const workflow::PredictRequest& request, const GlobalOptions& global) {
+  const workflow::PredictOutcome outcome = workflow::PredictCampaign(request, CliObserver(global));
   const std::string& compared = outcome.file.compared_channel;
   if (!global.quiet) {
-    fmt::print("predicted {} steps at x = {:.3f} m with the {} model\n", outcome.num_steps, options.position_m,
+    fmt::print("predicted {} steps at x = {:.3f} m with the {} model\n", outcome.num_steps, request.position_m,
                outcome.family->Description());
     if (!compared.empty())
       fmt::print("  against {}: worst first-harmonic error {:.2f} %\n", compared, 100 * outcome.worst_h1_relative_error);
-    fmt::print("wrote {}\n", options.output);
+    fmt::print("wrote {}\n", request.output);
   }
   // Exit 3, the prediction written all the same.
   const std::string unconverged = outcome.Unconverged();
   if (!unconverged.empty())
     throw NumericalError("the harmonic balance did not converge at " + unconverged + " (written to " +
-                             options.output + " all the same)");
+                             request.output + " all the same)");
 }
 
 BEAMID_REGISTER_COMMAND("predict", [](CLI::App& app, const GlobalOptions& global) {
-  auto options = std::make_shared<PredictOptions>();
+  auto request = std::make_shared<workflow::PredictRequest>();
   CLI::App* sub = app.add_subcommand(
       "predict",
       "Predict the steady state at any position from an identified model, with uncertainty bands.\n"
       "Example: beamid predict result.json --campaign campaign/ --x 0.45 -o pred.json");
-  sub->add_option("result", options->result_file, "result.json of 'beamid identify'")->required();
-  sub->add_option("--x", options->position_m, "Position on the beam [m]")
+  sub->add_option("result", request->result_file, "result.json of 'beamid identify'")->required();
+  sub->add_option("--x", request->position_m, "Position on the beam [m]")
       ->required()
       ->check(FiniteRange(0.0, 100.0));
-  sub->add_option("--campaign", options->campaign_folder, "Campaign to compare with (a sensor at x)")
+  sub->add_option("--campaign", request->campaign_folder, "Campaign to compare with (a sensor at x)")
       ->check(NonEmptyPath());
-  sub->add_option("-o,--output", options->output, "Output file (JSON)")->capture_default_str();
-  sub->callback([options, &global] { RunPredict(*options, global); });
+  sub->add_option("-o,--output", request->output, "Output file (JSON)")->capture_default_str();
+  sub->callback([request, &global] { RunPredict(*request, global); });
 });
 
 }  // namespace

@@ -16,58 +16,45 @@
 namespace beamid::cli {
 namespace {
 
-struct ReportOptions {
-  std::string input_file;
-  std::string campaign_folder;
-  std::string output = "report.html";
-  std::string screenshot;
-  bool log_amplitude = false;
-};
-
-void RunReport(const ReportOptions& options, const GlobalOptions& global) {
-  const workflow::ReportRequest request{.input_file = options.input_file,
-                                        .campaign_folder = options.campaign_folder,
-                                        .output = options.output,
-                                        .screenshot = options.screenshot,
-                                        .log_amplitude = options.log_amplitude};
+void RunReport(const workflow::ReportRequest& request, const GlobalOptions& global) {
   const workflow::RunObserver observer = CliObserver(global);
   const workflow::ReportOutcome outcome = workflow::WriteReport(request, observer);
   if (!global.quiet) {
     if (outcome.measured_backbone)
-      fmt::print("wrote {} ({:.0f} kB, measured backbone)\n", options.output, outcome.html_bytes / 1e3);
+      fmt::print("wrote {} ({:.0f} kB, measured backbone)\n", request.output, outcome.html_bytes / 1e3);
     else
-      fmt::print("wrote {} ({:.0f} kB, {} plots) in {:.1f} s\n", options.output, outcome.html_bytes / 1e3,
+      fmt::print("wrote {} ({:.0f} kB, {} plots) in {:.1f} s\n", request.output, outcome.html_bytes / 1e3,
                  outcome.plots, outcome.seconds);
   }
-  if (options.screenshot.empty()) return;
+  if (request.screenshot.empty()) return;
   workflow::ScreenshotReport(request, observer);
   // The path is printed even with --quiet: it was asked for.
-  fmt::print("screenshot: {}\n", options.screenshot);
+  fmt::print("screenshot: {}\n", request.screenshot);
 }
 
 BEAMID_REGISTER_COMMAND("report", [](CLI::App& app, const GlobalOptions& global) {
-  auto options = std::make_shared<ReportOptions>();
+  auto request = std::make_shared<workflow::ReportRequest>();
   CLI::App* sub = app.add_subcommand(
       "report",
       "Write one self-contained HTML page of a result or diagnosis: parameters with intervals, frequency\n"
       "response curves, backbone, prediction at the held-out sensor, residual map (plots by gnuplot).\n"
       "Example: beamid report result.json -o report.html --screenshot report.png\n"
       "Example: beamid report out/measured.json -o measured.html   (a measured backbone on its own)");
-  sub->add_option("input", options->input_file,
+  sub->add_option("input", request->input_file,
                   "result.json of 'beamid identify', diagnosis.json of 'beamid diagnose', or the .json of "
                   "'beamid backbone --measured' (rendered on its own: levels, flags, fit, damping trend)")
       ->required();
-  sub->add_option("--campaign", options->campaign_folder,
+  sub->add_option("--campaign", request->campaign_folder,
                   "Campaign folder (default: the one recorded in result.json)")
       ->check(NonEmptyPath());
-  sub->add_option("-o,--output", options->output, "HTML file to write")->capture_default_str();
-  sub->add_flag("--log-amplitude", options->log_amplitude,
+  sub->add_option("-o,--output", request->output, "HTML file to write")->capture_default_str();
+  sub->add_flag("--log-amplitude", request->log_amplitude,
                 "Draw the first-harmonic amplitude |X1| on a logarithmic axis too (|X1|/|F1| and harmonics 2, 3 "
                 "always are)");
-  sub->add_option("--screenshot", options->screenshot,
+  sub->add_option("--screenshot", request->screenshot,
                   "Also render the page in headless Chromium to this PNG and print its path")
       ->check(NonEmptyPath());
-  sub->callback([options, &global] { RunReport(*options, global); });
+  sub->callback([request, &global] { RunReport(*request, global); });
 });
 
 }  // namespace

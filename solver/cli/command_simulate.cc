@@ -17,13 +17,7 @@
 namespace beamid::cli {
 namespace {
 
-struct SimulateOptions {
-  std::string scenario;
-  std::string output;
-  bool overwrite = false;
-};
-
-void RunSimulate(const SimulateOptions& options, const GlobalOptions& global) {
+void RunSimulate(const workflow::SimulateRequest& request, const GlobalOptions& global) {
   workflow::RunObserver observer = CliObserver(global);
   // Text progress is one line per step (a step takes seconds, below); JSON
   // goes through Progress.
@@ -37,11 +31,10 @@ void RunSimulate(const SimulateOptions& options, const GlobalOptions& global) {
                               step.index + 1, total, step.level, step.nominal_frequency_hz, step.settle_s,
                               step.settled ? "" : " (NOT settled)", elapsed));
   };
-  const workflow::SimulateOutcome outcome = workflow::SimulateCampaign(
-      {.scenario = options.scenario, .output = options.output, .overwrite = options.overwrite}, observer, print_step);
+  const workflow::SimulateOutcome outcome = workflow::SimulateCampaign(request, observer, print_step);
   if (!global.quiet) {
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    PrintToStderr(fmt::format("wrote {} steps to {} ({:.1f} MB) in {:.1f} s\n", outcome.num_steps, options.output,
+    PrintToStderr(fmt::format("wrote {} steps to {} ({:.1f} MB) in {:.1f} s\n", outcome.num_steps, request.output,
                static_cast<double>(outcome.bytes_written) / 1e6, elapsed));
     if (outcome.unsettled_steps > 0)
       PrintToStderr(fmt::format(
@@ -55,7 +48,7 @@ void RunSimulate(const SimulateOptions& options, const GlobalOptions& global) {
 }
 
 BEAMID_REGISTER_COMMAND("simulate", [](CLI::App& app, const GlobalOptions& global) {
-  auto options = std::make_shared<SimulateOptions>();
+  auto request = std::make_shared<workflow::SimulateRequest>();
   CLI::App* command = app.add_subcommand(
       "simulate",
       "Simulate a stepped-sine test in the time domain (finite-element beam, nonlinear support, noise) and write\n"
@@ -63,10 +56,10 @@ BEAMID_REGISTER_COMMAND("simulate", [](CLI::App& app, const GlobalOptions& globa
       "The scenario format is described in docs/simulator.md.\n\n"
       "Example:\n"
       "  beamid simulate examples/scenarios/paper_base.json -o out/paper_base");
-  command->add_option("scenario", options->scenario, "Scenario file (JSON)")->required()->check(CLI::ExistingFile);
-  command->add_option("-o,--output", options->output, "Output directory for the campaign")->required();
-  command->add_flag("--overwrite", options->overwrite, "Replace a campaign already in the output directory");
-  command->callback([options, &global] { RunSimulate(*options, global); });
+  command->add_option("scenario", request->scenario, "Scenario file (JSON)")->required()->check(CLI::ExistingFile);
+  command->add_option("-o,--output", request->output, "Output directory for the campaign")->required();
+  command->add_flag("--overwrite", request->overwrite, "Replace a campaign already in the output directory");
+  command->callback([request, &global] { RunSimulate(*request, global); });
 });
 
 }  // namespace

@@ -11,15 +11,8 @@
 
 namespace beamid::cli {
 
-void RunMeasuredBackbone(const MeasuredBackboneCommandOptions& options, const GlobalOptions& global) {
-  const workflow::MeasureBackboneOutcome outcome =
-      workflow::MeasureBackbone({.inputs = options.inputs,
-                                 .channel = options.channel,
-                                 .result_file = options.result_file,
-                                 .position_m = options.position_m,
-                                 .keep_flagged_levels = options.keep_flagged_levels,
-                                 .output = options.output},
-                                CliObserver(global));
+void RunMeasuredBackbone(const workflow::MeasureBackboneRequest& request, const GlobalOptions& global) {
+  const workflow::MeasureBackboneOutcome outcome = workflow::MeasureBackbone(request, CliObserver(global));
   const solver::MeasuredBackbone& measured = outcome.measured;
   const solver::ExcitationLabels excitation = solver::LabelsOf(measured.excitation_quantity);
   const auto control = [&](const solver::LevelResonance& l) { return workflow::LevelControlText(measured, l); };
@@ -88,7 +81,7 @@ void RunMeasuredBackbone(const MeasuredBackboneCommandOptions& options, const Gl
              schema::NameOf(trend.verdict, solver::kDampingRateTrendNames), trend.damping_rate_slope_per_s_m,
              trend.damping_rate_slope_std_per_s_m, trend.damping_rate_z,
              schema::NameOf(trend.damping_ratio_verdict, solver::kDampingRatioTrendNames), trend.slope_per_m, trend.slope_std_per_m, trend.z);
-  fmt::print("wrote {0}.json, {0}.csv and {0}_curves.csv\n", options.output);
+  fmt::print("wrote {0}.json, {0}.csv and {0}_curves.csv\n", request.output);
 }
 
 }  // namespace beamid::cli

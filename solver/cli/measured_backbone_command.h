@@ -8,23 +8,11 @@
 // this prints its outcome.
 #pragma once
 
-#include <string>
-#include <vector>
-
 #include "solver/cli/command_registry.h"
+#include "solver/workflow/measure_backbone.h"
 
 namespace beamid::cli {
 
-struct MeasuredBackboneCommandOptions {
-  std::vector<std::string> inputs;  // one campaign folder or phasor file, or CSV tables (one per level)
-  std::string channel;              // response channel of a campaign ("" = its first sensor)
-  std::string result_file;          // identified model to overlay ("" = none)
-  double position_m = -1.0;         // the tables' sensor position, for the overlay
-  // MeasuredBackboneOptions::keep_flagged_levels_in_fit (--keep-flagged-levels).
-  bool keep_flagged_levels = false;
-  std::string output = "backbone";
-};
-
-void RunMeasuredBackbone(const MeasuredBackboneCommandOptions& options, const GlobalOptions& global);
+void RunMeasuredBackbone(const workflow::MeasureBackboneRequest& request, const GlobalOptions& global);
 
 }  // namespace beamid::cli
