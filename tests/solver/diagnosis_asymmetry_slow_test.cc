@@ -22,9 +22,9 @@ TEST(DiagnosisOnConcealedEffects, NamesASupportAsymmetry) {
   s["support"]["one_sided"] = {{"stiffness_Nm_rad", kOneSidedStiffness_Nm_rad}};
   const DiagnosisResult result = testing::DiagnoseScenario(s, "asymmetry");
   testing::ExpectNamed(result, "support_asymmetry", testing::HeldOut::kHarmonicsChiSquare);
-  testing::ExpectWithinInterval(result, "one_sided_stiffness", kOneSidedStiffness_Nm_rad);
+  testing::ExpectWithinInterval(result, "one_sided_stiffness", kOneSidedStiffness_Nm_rad, 0.02);  // 0.92 %
   // The polynomial beside it comes back too (the truth has k1 = 120, k2 = 0).
-  testing::ExpectWithinInterval(result, "k1", 120.0);
+  testing::ExpectWithinInterval(result, "k1", 120.0, 0.005);  // 0.22 %
   const ParameterEstimate k2 = testing::FinalParameter(result, "k2");
   EXPECT_LE(k2.lower_95, 0.0);
   EXPECT_GE(k2.upper_95, 0.0);

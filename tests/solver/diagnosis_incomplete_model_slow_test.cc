@@ -54,9 +54,11 @@ TEST(DiagnosisOfAnIncompleteModel, IdentifyAnswersAndDiagnoseNamesTheMassesAtThe
   testing::ExpectNamed(result, "instrument_masses");
   EXPECT_TRUE(result.rest_within_noise);
   EXPECT_NE(result.summary.find("On the rig: weigh the shaker's moving part"), std::string::npos) << result.summary;
-  testing::ExpectWithinInterval(result, "mass_at_drive", 0.015);
-  testing::ExpectWithinInterval(result, "mass_at_acc1", 0.004);
-  testing::ExpectWithinInterval(result, "mass_at_acc2", 0.003);
+  // Bounds about twice the measured standard uncertainties: these data hold
+  // the drive's and acc1's masses loosely (15 % and 16 %), acc2's well (1.3 %).
+  testing::ExpectWithinInterval(result, "mass_at_drive", 0.015, 0.3);
+  testing::ExpectWithinInterval(result, "mass_at_acc1", 0.004, 0.3);
+  testing::ExpectWithinInterval(result, "mass_at_acc2", 0.003, 0.03);
 }
 
 TEST(DiagnosisOfAnIncompleteModel, FrictionAloneLeavesAMisfitAndThePairWithClampComplianceIsNamed) {

@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <tuple>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -63,16 +64,17 @@ FaultyCampaign Simulate(const std::string& example, FaultyCampaign* unweighed = 
 }
 
 void ExpectSupportWithinIntervals(const std::vector<ParameterEstimate>& parameters, const hb::Scenario& scenario) {
-  const std::pair<const char*, double> truths[] = {{"k1", scenario.polynomial.k1_Nm_rad},
-                                                   {"k3", scenario.polynomial.k3_Nm_rad3},
-                                                   {"c", scenario.polynomial.c_Nms_rad}};
-  for (const auto& [name, truth] : truths) {
+  // Width bounds about three times the largest standard uncertainty measured
+  // over the faults (k1 0.016 %, k3 0.027 %, c 0.17 % of the truth).
+  const std::tuple<const char*, double, double> truths[] = {{"k1", scenario.polynomial.k1_Nm_rad, 5e-4},
+                                                            {"k3", scenario.polynomial.k3_Nm_rad3, 1e-3},
+                                                            {"c", scenario.polynomial.c_Nms_rad, 5e-3}};
+  for (const auto& [name, truth, max_relative_std] : truths) {
     const auto p = std::find_if(parameters.begin(), parameters.end(),
                                 [&](const ParameterEstimate& e) { return e.name == name; });
     ASSERT_NE(p, parameters.end()) << name;
     std::printf("  %s = %.8g (95 %%: %.8g … %.8g), truth %.8g\n", name, p->value, p->lower_95, p->upper_95, truth);
-    EXPECT_LE(p->lower_95, truth) << name;
-    EXPECT_GE(p->upper_95, truth) << name;
+    testing::ExpectIntervalHolds(*p, truth, max_relative_std);
   }
 }
 
@@ -90,8 +92,10 @@ DiagnosisResult DiagnoseCampaign(const FaultyCampaign& c, const std::string& nam
 
 // The sensor fault's parameter of the named model holds the truth, and the
 // support's parameters of that model hold theirs; returns the fault's estimate.
+// max_relative_std: the fault's standard uncertainty may be at most this share
+// of its truth (about twice what was measured).
 ParameterEstimate ExpectSensorFaultNamed(const std::string& example, const std::string& cause, const std::string& parameter,
-                            double truth) {
+                            double truth, double max_relative_std) {
   const FaultyCampaign c = Simulate(example);
   const DiagnosisResult result = DiagnoseCampaign(c, example);
   std::printf("  chi-square %.4g -> %.4g; %s = %.6g ± %.2g (truth %.6g)\n", result.base.chi_square,
@@ -99,7 +103,7 @@ ParameterEstimate ExpectSensorFaultNamed(const std::string& example, const std::
               testing::FinalParameter(result, parameter).std, truth);
   testing::ExpectNamed(result, cause, testing::HeldOut::kFirstHarmonic, Blame::kRecording);
   EXPECT_TRUE(result.rest_within_noise) << result.final_fit.reduced_chi_square;
-  testing::ExpectWithinInterval(result, parameter, truth);
+  testing::ExpectWithinInterval(result, parameter, truth, max_relative_std);
   ExpectSupportWithinIntervals(result.final_fit.parameters, c.scenario);
   // No physics was needed, nor named.
   for (const auto& candidate : result.candidates)
@@ -161,7 +165,7 @@ TEST(RecordingFaults, AStepRecordedBeforeItSettledIsWeighedByWhatIsLeftOfItsTran
 }
 
 TEST(RecordingFaults, AnAccelerometerReadingFivePercentHighIsNamedWithItsGain) {
-  ExpectSensorFaultNamed("paper_sensor_gain", "sensor_gain(acc2)", "gain_error_acc2", 0.05);
+  ExpectSensorFaultNamed("paper_sensor_gain", "sensor_gain(acc2)", "gain_error_acc2", 0.05, 0.005);  // 0.2 %
 }
 
 TEST(RecordingFaults, AnAccelerometerGluedTenMillimetresFromItsStatedPositionIsNamedWithTheOffset) {
@@ -169,11 +173,11 @@ TEST(RecordingFaults, AnAccelerometerGluedTenMillimetresFromItsStatedPositionIsN
   const hb::ScenarioSensor& acc2 = scenario.sensors.at(1);
   ASSERT_TRUE(acc2.stated_position_m.has_value());
   ExpectSensorFaultNamed("paper_sensor_position", "sensor_position(acc2)", "position_error_acc2",
-                         acc2.position_m - *acc2.stated_position_m);
+                         acc2.position_m - *acc2.stated_position_m, 0.01);  // 0.48 %
 }
 
 TEST(RecordingFaults, AChannelDelayedByTwoTenthsOfAMillisecondIsNamedWithItsDelay) {
-  ExpectSensorFaultNamed("paper_sensor_delay", "sensor_phase_delay(acc2)", "delay_acc2", 2e-4);
+  ExpectSensorFaultNamed("paper_sensor_delay", "sensor_phase_delay(acc2)", "delay_acc2", 2e-4, 0.004);  // 0.15 %
 }
 
 // The acquisition's clock 0.2 % fast against the rate its files state:
@@ -182,7 +186,7 @@ TEST(RecordingFaults, AnAcquisitionClockTwoTenthsOfAPercentFastIsNamedWithItsErr
   const hb::Scenario scenario = hb::ReadScenario("examples/scenarios/paper_clock_error.json");
   const double truth = scenario.timing.daq_clock_error_relative;
   ASSERT_NE(truth, 0.0);
-  const ParameterEstimate clock = ExpectSensorFaultNamed("paper_clock_error", "clock_error", "clock_error", truth);
+  const ParameterEstimate clock = ExpectSensorFaultNamed("paper_clock_error", "clock_error", "clock_error", truth, 0.015);  // 0.75 %
   EXPECT_NEAR(clock.value, truth, 0.03 * truth);
 }
 

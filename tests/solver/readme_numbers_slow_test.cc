@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include <fmt/core.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -377,6 +378,64 @@ TEST_F(ReadmeNumbers, EveryQuotedNumberIsTheExamplesOwn) {
   // The two guides quote both examples: markers lost in an edit fail here.
   EXPECT_TRUE(files_with_markers.count("README.md"));
   EXPECT_TRUE(files_with_markers.count("examples/concealed_friction/README.md"));
+}
+
+// The page's data block (one per page), parsed.
+nlohmann::json ReportDataBlock(const std::string& page) {
+  const std::string open = "<script type=\"application/json\" id=\"beamid-report-data\">";
+  const std::size_t begin = page.find(open);
+  if (begin == std::string::npos) return nullptr;
+  const std::size_t start = begin + open.size();
+  return nlohmann::json::parse(page.substr(start, page.find("</script>", start) - start));
+}
+
+// The text of figure `id` (its plot and caption); "" when the page has none.
+std::string FigureText(const std::string& page, const std::string& id) {
+  const std::size_t begin = page.find("<figure class=\"plot\" id=\"" + id + "\">");
+  return begin == std::string::npos ? "" : page.substr(begin, page.find("</figure>", begin) - begin);
+}
+
+// What each example's report states is what its analysis found: the data
+// block against result.json and diagnosis.json, and after the concealed
+// friction's diagnosis, the selected model drawn beside the base.
+TEST_F(ReadmeNumbers, EachExamplesReportStatesItsAnalysis) {
+  for (const auto& [name, folder] : *examples_) {
+    SCOPED_TRACE(name);
+    const std::string page = ReadText(folder / "report.html");
+    const nlohmann::json block = ReportDataBlock(page);
+    ASSERT_TRUE(block.is_object());
+    const nlohmann::json result = nlohmann::json::parse(ReadText(folder / "result.json"));
+    const nlohmann::json diagnosis = nlohmann::json::parse(ReadText(folder / "diagnosis.json"));
+    EXPECT_EQ(block["fit"]["chi_square"], result["fit"]["chi_square"]);
+    EXPECT_EQ(block["fit"]["degrees_of_freedom"], result["fit"]["degrees_of_freedom"]);
+    EXPECT_EQ(block["model"]["kind"], result["model"]["kind"]);
+    const nlohmann::json& stated = block["diagnosis"];
+    EXPECT_EQ(stated["verdict"], diagnosis["verdict"]);
+    EXPECT_EQ(stated["selected"], diagnosis["selected"]);
+    EXPECT_EQ(stated["rest_within_noise"], diagnosis["rest_within_noise"]);
+    const bool named = diagnosis["verdict"] == "cause named";
+    EXPECT_EQ(named, name == "friction");
+    const std::string after = FigureText(page, "residual-map-selected");
+    const std::string backbone = FigureText(page, "backbone-plot");
+    if (!named) {
+      EXPECT_EQ(after, "");
+      EXPECT_EQ(backbone.find("backbone of the selected model"), std::string::npos);
+      continue;
+    }
+    EXPECT_EQ(stated["blame"], diagnosis["blame"]);
+    const std::string selected = diagnosis["selected"][0].get<std::string>();
+    EXPECT_NE(after.find(fmt::format("χ² {:.6g} on the map; {:.6g} in its fit",
+                                     diagnosis["final"]["fit"]["chi_square"].get<double>(),
+                                     diagnosis["final"]["fit"]["chi_square"].get<double>())),
+              std::string::npos)
+        << after.substr(after.find("<figcaption>"));
+    EXPECT_NE(FigureText(page, "residual-map").find(fmt::format("χ² {:.6g} on the map",
+                                                                diagnosis["base"]["chi_square"].get<double>())),
+              std::string::npos);
+    EXPECT_NE(backbone.find("backbone of the selected model"), std::string::npos);
+    EXPECT_NE(backbone.find("the model the diagnosis selected (" + selected + ")"), std::string::npos);
+    EXPECT_NE(FigureText(page, "held-out-selected-acc3"), "");
+  }
 }
 
 TEST_F(ReadmeNumbers, AMarkerThatNamesNothingFails) {
