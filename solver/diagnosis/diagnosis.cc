@@ -16,6 +16,7 @@
 #include "solver/estimation/chi_square.h"
 #include "solver/estimation/model_phasors.h"
 #include "solver/estimation/internal/worker_processes.h"
+#include "solver/estimation/whitened_misfit.h"
 
 namespace beamid::solver {
 namespace {
@@ -468,12 +469,8 @@ std::unique_ptr<FittedModel> TestCandidate(const FitData& fit, const FitSummary&
 // Per harmonic 1..K of channel c at a step, |L⁻¹(Y_model − Y_measured)|.
 std::vector<double> WhitenedMisfits(const FitStep& step, int c, const Eigen::MatrixXcd& model) {
   std::vector<double> sigma;
-  for (int k = 0; k < step.measured.cols(); ++k) {
-    const std::complex<double> misfit = model(c, k) - step.measured(c, k);
-    sigma.push_back((step.whitening[static_cast<std::size_t>(c)][static_cast<std::size_t>(k)] *
-                     Eigen::Vector2d(misfit.real(), misfit.imag()))
-                        .norm());
-  }
+  for (int k = 0; k < step.measured.cols(); ++k)
+    sigma.push_back(Whitened(step, c, k + 1, model(c, k) - step.measured(c, k)).norm());
   return sigma;
 }
 
@@ -575,7 +572,7 @@ HeldOutCheck ValidateOnHeldOut(const FittedModel& model, const FitData& validati
     for (int c = 0; c < static_cast<int>(validation.channels.size()); ++c) {
       for (int k = 1; k <= validation.num_fit_harmonics; ++k) {
         const Complex e = predicted[i](c, k - 1) - s.measured(c, k - 1);
-        chi2 += (s.whitening[c][k - 1] * Eigen::Vector2d(e.real(), e.imag())).squaredNorm();
+        chi2 += Whitened(s, c, k, e).squaredNorm();
       }
       error2 += std::norm(predicted[i](c, 0) - s.measured(c, 0));
       norm2 += std::norm(s.measured(c, 0));

@@ -12,6 +12,7 @@
 #include "solver/estimation/internal/worker_processes.h"
 #include "solver/estimation/model_phasors.h"
 #include "solver/estimation/robust_fit.h"
+#include "solver/estimation/whitened_misfit.h"
 
 namespace beamid::solver {
 namespace {
@@ -34,10 +35,6 @@ constexpr double kConvergedRelative = 1e-3;
 // and its further rounds (a physics refit each) would cost the diagnosis
 // seconds on every campaign whose misfit is physics.
 constexpr double kUnpromisingShare = 0.9;
-
-Eigen::Vector2d Whitened(const FitStep& s, int c, int k, Complex value) {
-  return s.whitening[c][k - 1] * Eigen::Vector2d(value.real(), value.imag());
-}
 
 // Gauss–Newton for one scalar of the misfit of `channels`: residual(θ) per
 // step, channel and harmonic, its derivative by the callback; returns θ and

@@ -11,6 +11,7 @@
 #include "solver/estimation/fit_problem.h"
 #include "solver/estimation/identify.h"
 #include "solver/estimation/model_phasors.h"
+#include "solver/estimation/whitened_misfit.h"
 
 namespace beamid::solver {
 namespace {
@@ -34,7 +35,7 @@ std::vector<ChannelQuality> Quality(const FitData& fit, FitProblem& problem, con
           const Complex misfit = model[i](c, k - 1) - s.measured(c, k - 1);
           error2 += std::norm(misfit);
           measured2 += std::norm(s.measured(c, k - 1));
-          chi2 += (s.whitening[c][k - 1] * Eigen::Vector2d(misfit.real(), misfit.imag())).squaredNorm();
+          chi2 += Whitened(s, c, k, misfit).squaredNorm();
           ++count;
         }
         per_level.push_back({.level = level,

@@ -1,4 +1,5 @@
 #include "solver/estimation/stepped_fit_problem.h"
+#include "solver/estimation/whitened_misfit.h"
 
 #include <algorithm>
 #include <stdexcept>
@@ -30,7 +31,7 @@ Eigen::VectorXd WhitenedMisfit(const FitData& data, int step, const Eigen::Vecto
       const int at = c * k_max + k - 1;
       const Complex misfit =
           DerivativeFactor(data.channels[c].derivative_order, k * s.omega_rad_s) * sensors[at] - s.measured(c, k - 1);
-      r.segment<2>(2 * at) = s.whitening[c][k - 1] * Eigen::Vector2d(misfit.real(), misfit.imag());
+      r.segment<2>(2 * at) = Whitened(s, c, k, misfit);
     }
   return r;
 }

@@ -13,6 +13,7 @@
 #include "solver/estimation/fit_data.h"
 #include "solver/estimation/sensor_backbone.h"
 #include "solver/backbone/measured_backbone.h"
+#include "solver/estimation/whitened_misfit.h"
 
 namespace beamid::solver {
 namespace {
@@ -343,7 +344,7 @@ ResidualMap Residuals(const ResultFile& result, const signal::Campaign& campaign
                                                 k * identified->omega_rad_s) -
                                s.measured(static_cast<Eigen::Index>(c), k - 1);
         residuals.whitened_norm(static_cast<Eigen::Index>(c * k_fit + k - 1), static_cast<Eigen::Index>(i)) =
-            (s.whitening[c][k - 1] * Eigen::Vector2d(misfit.real(), misfit.imag())).norm();
+            Whitened(s, static_cast<int>(c), k, misfit).norm();
       }
   }
   return residuals;

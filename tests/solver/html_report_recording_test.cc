@@ -10,6 +10,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "tests/support/sample_report.h"
+
 namespace beamid::solver {
 namespace {
 
@@ -47,12 +49,7 @@ ReportCurves Curves() {
   curves.levels = {level};
   // The other plots need something to draw.
   for (double f = 54.0; f <= 56.0; f += 0.5) curves.backbone.push_back({.frequency_hz = f, .amplitude = 5.0 + f - 54.0});
-  curves.residuals.rows = {"acc1 h1"};
-  for (const auto& m : level.measured) {
-    curves.residuals.step_level.push_back("high");
-    curves.residuals.step_frequency_hz.push_back(m.frequency_hz);
-  }
-  curves.residuals.whitened_norm = Eigen::MatrixXd::Ones(1, 4);
+  curves.residuals = testing::UnitResidualMap(level);
   return curves;
 }
 

@@ -85,6 +85,19 @@ inline solver::ReportCurves SampleReportCurves() {
   return curves;
 }
 
+// A residual map of ones (1 σ everywhere) over the level's measured steps,
+// one row (acc1 h1): what the pages need to draw one.
+inline solver::ResidualMap UnitResidualMap(const solver::LevelCurves& level) {
+  solver::ResidualMap map;
+  map.rows = {"acc1 h1"};
+  for (const auto& m : level.measured) {
+    map.step_level.push_back(level.level);
+    map.step_frequency_hz.push_back(m.frequency_hz);
+  }
+  map.whitened_norm = Eigen::MatrixXd::Ones(1, static_cast<Eigen::Index>(level.measured.size()));
+  return map;
+}
+
 // One fitted channel at one level (three steps), the model's curve and
 // backbone, two damping points (none: the damping trend not judged) with the
 // measured backbone's verdict `trend` at `z`, and a residual map of ones: the
@@ -103,12 +116,7 @@ inline solver::ReportCurves MinimalReportCurves(solver::Trend trend, double z, b
                                     {.level = "high", .amplitude = 9.0, .quadrature = 0.011, .quadrature_std = 1e-4}};
   curves.measured_mode.damping_rate_trend = trend;
   curves.measured_mode.damping_rate_trend_z = z;
-  curves.residuals.rows = {"acc1 h1"};
-  for (const auto& m : level.measured) {
-    curves.residuals.step_level.push_back("high");
-    curves.residuals.step_frequency_hz.push_back(m.frequency_hz);
-  }
-  curves.residuals.whitened_norm = Eigen::MatrixXd::Ones(1, 3);
+  curves.residuals = UnitResidualMap(level);
   return curves;
 }
 
