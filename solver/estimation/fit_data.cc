@@ -31,6 +31,9 @@ void FitDataOptions::Validate() const {
   // would exceed the largest fundamental itself.
   if (!(relative_uncertainty_floor > 0.0 && relative_uncertainty_floor < 1.0))
     Refuse("FitDataOptions.relative_uncertainty_floor", FormatValue(relative_uncertainty_floor), "above 0 and below 1");
+  // At 1 or above the model's error would exceed the phasor itself.
+  if (!(relative_model_error >= 0.0 && relative_model_error < 1.0))
+    Refuse("FitDataOptions.relative_model_error", FormatValue(relative_model_error), "at least 0 and below 1");
   RequireNonNegative("FitDataOptions.force_harmonic_chi2_threshold", force_harmonic_chi2_threshold);
 }
 
@@ -88,8 +91,25 @@ FitData MakeFitData(const signal::Campaign& campaign, const signal::PhasorSet& p
   for (const auto& step : phasors.steps)
     for (int c = 0; c < channels; ++c)
       if (const auto* p = step.Find(data.channels[c].channel)) largest[c] = std::max(largest[c], p->Harmonic(1).Amplitude());
+  // Each step's neighbours on its level, in acquisition order, for ∂Y/∂ω.
+  std::vector<std::vector<std::size_t>> level_steps;
+  std::vector<std::pair<std::size_t, std::size_t>> place(phasors.steps.size());  // (level, index in it)
+  {
+    std::vector<std::string> labels;
+    for (std::size_t i = 0; i < phasors.steps.size(); ++i) {
+      const auto it = std::find(labels.begin(), labels.end(), phasors.steps[i].level);
+      const std::size_t l = static_cast<std::size_t>(it - labels.begin());
+      if (it == labels.end()) {
+        labels.push_back(phasors.steps[i].level);
+        level_steps.emplace_back();
+      }
+      place[i] = {l, level_steps[l].size()};
+      level_steps[l].push_back(i);
+    }
+  }
 
-  for (const auto& step : phasors.steps) {
+  for (std::size_t i = 0; i < phasors.steps.size(); ++i) {
+    const signal::StepPhasors& step = phasors.steps[i];
     FitStep fit;
     fit.level = step.level;
     fit.file = step.file;
@@ -102,19 +122,48 @@ FitData MakeFitData(const signal::Campaign& campaign, const signal::PhasorSet& p
       if (h.harmonic >= 2 && !IsSignificant(h, options.force_harmonic_chi2_threshold)) continue;
       fit.force_N[h.harmonic] = h.value;
     }
+    // F_1 is the phase reference (real, positive): its real part's σ is
+    // that of its amplitude.
+    const signal::HarmonicPhasor& f1 = step.force.Harmonic(1);
+    const double force_relative_std = f1.Amplitude() > 0.0 ? std::sqrt(f1.Covariance()(0, 0)) / f1.Amplitude() : 0.0;
+    const double omega_std_rad_s = 2.0 * std::numbers::pi * step.frequency_std_hz;
+    const auto& [level, index] = place[i];
+    std::vector<double> level_omega;
+    for (const std::size_t j : level_steps[level]) level_omega.push_back(phasors.steps[j].Omega_rad_s());
     fit.measured.resize(channels, k_max);
     fit.std_amplitude.resize(channels, k_max);
     fit.whitening.resize(channels);
+    fit.uncertainty.resize(channels);
     for (int c = 0; c < channels; ++c) {
       const auto* p = step.Find(data.channels[c].channel);
       if (!p) throw std::invalid_argument(step.file + ": no phasors for channel " + data.channels[c].channel);
-      const double floor = options.relative_uncertainty_floor * largest[c];
       for (int k = 1; k <= k_max; ++k) {
         const signal::HarmonicPhasor& h = p->Harmonic(k);
+        std::vector<std::complex<double>> level_values;
+        std::vector<double> level_noise;
+        for (const std::size_t j : level_steps[level]) {
+          const auto* q = phasors.steps[j].Find(data.channels[c].channel);
+          const signal::HarmonicPhasor& other = q ? q->Harmonic(k) : h;
+          level_values.push_back(other.value);
+          level_noise.push_back(std::sqrt(0.5 * other.Covariance().trace()));
+        }
+        PhasorUncertaintyBudget budget;
+        Eigen::Matrix2d covariance;
+        if (options.uncertainty == FitDataOptions::Uncertainty::kPropagated) {
+          // Noise-free data (simulations) must not get an infinite weight;
+          // a billionth of the channel's largest fundamental never shows
+          // beside real noise.
+          covariance = PhasorCovariance({h.value, h.Covariance()}, k, force_relative_std,
+                                        NeighbourSlope(level_omega, level_values, level_noise, index),
+                                        omega_std_rad_s, options.relative_model_error, 1e-9 * largest[c], &budget);
+        } else {
+          const double floor = options.relative_uncertainty_floor * largest[c];
+          covariance = h.Covariance() + floor * floor * Eigen::Matrix2d::Identity();
+          budget = {.noise = std::sqrt(0.5 * h.Covariance().trace()), .model_error = floor};
+        }
         fit.measured(c, k - 1) = h.value;
-        Eigen::Matrix2d covariance = h.Covariance();
-        covariance.diagonal().array() += floor * floor;
         fit.std_amplitude(c, k - 1) = std::sqrt(0.5 * covariance.trace());
+        fit.uncertainty[c].push_back(budget);
         const Eigen::Matrix2d lower = covariance.llt().matrixL();
         fit.whitening[c].push_back(lower.inverse());
       }

@@ -11,12 +11,10 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 #include "hb/noise.h"
 #include "hb/scenario.h"
@@ -30,32 +28,13 @@
 namespace beamid::solver {
 namespace {
 
-// The paper's example campaign (examples/scenarios/paper_base.json: 1, 4
-// and 9 N) with 15 steps per level instead of 33, over the resonance. Its
-// noise is that of a real test of this beam, not tuned for this check:
-// - accelerometers: 0.005 m/s² rms broadband (0.5 mg over the 2.56 kHz band,
-//   ≈ 10 µg/√Hz: a general-purpose ICP accelerometer on a 24-bit DAQ) plus
-//   0.3 % of the channel's rms for the signal-proportional errors of a real
-//   chain (gain ripple, cable and mounting motion, shaker-table noise). At
-//   1 N the responses are 0.8–30 m/s², so the floor is 45–75 dB below them;
-//   the 0.3 % part keeps every SNR near 50 dB;
-// - force transducer: 0.002 N rms plus 0.2 % of its rms;
-// - 24-bit ADCs over ±500 m/s² and ±50 N; generator clock 25 ppm off.
-hb::Scenario LeanPaperBase() {
-  std::ifstream file("examples/scenarios/paper_base.json");
-  nlohmann::json scenario = nlohmann::json::parse(file);
-  for (auto& level : scenario["levels"]) level["frequencies_Hz"] = {{"start", 51.0}, {"stop", 57.3}, {"step", 0.45}};
-  scenario.erase("hidden_positions_m");
-  return hb::ParseScenario(scenario.dump(), "paper_base.json, 15 steps per level");
-}
-
 constexpr int kRealisations = 30;
 constexpr double kMinCoverage = 0.85;  // the 85–100 %
 const std::vector<std::string> kNames = {"k1", "k2", "k3", "c", "loss_factor"};
 const std::vector<double> kTruth = {150.0, 0.0, 3e5, 0.05, 2e-4};
 
 TEST(IdentificationCoverage, TruthLiesInThe95PercentIntervalsIn85To100PercentOfNoiseRealisations) {
-  const hb::Scenario scenario = LeanPaperBase();
+  const hb::Scenario scenario = beamid::testing::LeanPaperBase();
   ASSERT_EQ(scenario.NumSteps(), 45);
   const std::filesystem::path folder = beamid::testing::UniqueTempPath("beamid_coverage_slow_test");
   std::filesystem::remove_all(folder);

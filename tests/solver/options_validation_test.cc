@@ -43,6 +43,8 @@ TEST(OptionsValidation, FitDataRefusesEachFieldOutOfRange) {
   refused({.num_fit_harmonics = 0}, "num_fit_harmonics = 0: must be 1 … 50");
   refused({.num_fit_harmonics = 51}, "num_fit_harmonics");
   refused({.relative_uncertainty_floor = 0.0}, "relative_uncertainty_floor");
+  refused({.relative_model_error = -1e-6}, "relative_model_error");
+  refused({.relative_model_error = 1.0}, "relative_model_error");
   refused({.force_harmonic_chi2_threshold = -1.0}, "force_harmonic_chi2_threshold");
 }
 
