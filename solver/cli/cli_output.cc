@@ -1,5 +1,6 @@
 #include "solver/cli/cli_output.h"
 
+#include <map>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -94,6 +95,22 @@ void AddModelHarmonicsOptions(CLI::App* command, int* harmonics, int* fit_harmon
   command->add_option("--fit-harmonics", *fit_harmonics, "Harmonics 1..K fitted (K <= -H)")
       ->check(CLI::Range(1, 50))
       ->capture_default_str();
+}
+
+void AddPhasorUncertaintyOption(CLI::App* command, solver::PhasorUncertainty* uncertainty) {
+  std::map<std::string, solver::PhasorUncertainty> names;
+  for (const auto& [value, name] : solver::kPhasorUncertaintyNames) names.emplace(std::string(name), value);
+  std::vector<std::string> keys;
+  for (const auto& [name, value] : names) keys.push_back(name);
+  command
+      ->add_option_function<std::string>(
+          "--phasor-uncertainty", [uncertainty, names](const std::string& name) { *uncertainty = names.at(name); },
+          "How each phasor is weighed: relative_floor (its noise, raised to 1e-4 of the channel's largest "
+          "fundamental) or propagated (its noise, the force's and the frequency's errors propagated into it, and "
+          "1e-5 of it for the model's own error; docs/identify.md)")
+      ->check(CLI::IsMember(keys))
+      ->type_name("TEXT")
+      ->default_str("relative_floor");
 }
 
 workflow::RunObserver CliObserver(const GlobalOptions& global) {

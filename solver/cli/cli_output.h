@@ -26,6 +26,7 @@
 #include "signal/campaign.h"
 #include "signal/phasor_set.h"
 #include "solver/estimation/damping_laws.h"
+#include "solver/estimation/fit_data.h"
 #include "solver/workflow/campaign_input.h"
 #include "solver/workflow/run_observer.h"
 
@@ -69,6 +70,8 @@ CLI::Validator NonEmptyPath();
 // identify and diagnose take them (their check K <= H:
 // workflow::RequireFitWithinModelHarmonics).
 void AddModelHarmonicsOptions(CLI::App* command, int* harmonics, int* fit_harmonics, const std::string& model_help);
+// --phasor-uncertainty relative_floor|propagated (solver/estimation/fit_data.h).
+void AddPhasorUncertaintyOption(CLI::App* command, solver::PhasorUncertainty* uncertainty);
 
 // --phasors and --skip-bad-steps of a model-based command.
 void AddPhasorInputOptions(CLI::App* command, workflow::PhasorInput* input);

@@ -76,6 +76,7 @@ BEAMID_REGISTER_COMMAND("diagnose", [](CLI::App& app, const GlobalOptions& globa
                 "the acquisition's clock, outlying steps) before the physics");
   AddPhasorInputOptions(sub, &request->phasor_input);
   AddModelHarmonicsOptions(sub, &request->harmonics, &request->fit_harmonics, "Harmonics of the base model");
+  AddPhasorUncertaintyOption(sub, &request->phasor_uncertainty);
   sub->add_option("--workers", request->workers, "Parallel refits (0: one per core)")
       ->check(CLI::Range(0, 256))
       ->capture_default_str();

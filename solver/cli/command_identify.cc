@@ -108,6 +108,7 @@ BEAMID_REGISTER_COMMAND("identify", [](CLI::App& app, const GlobalOptions& globa
       ->capture_default_str();
   AddPhasorInputOptions(sub, &request->phasor_input);
   AddModelHarmonicsOptions(sub, &request->harmonics, &request->fit_harmonics, "Harmonics of the model (hb; ms has 3)");
+  AddPhasorUncertaintyOption(sub, &request->phasor_uncertainty);
   sub->add_option("--starts", request->starts, "Further starts besides the direct estimate")
       ->check(CLI::Range(0, 1000))
       ->capture_default_str();

@@ -58,6 +58,7 @@ FitData MakeFitData(const signal::Campaign& campaign, const signal::PhasorSet& p
   data.beam = campaign.beam;
   data.force_position_m = campaign.excitation.position_m;
   data.num_fit_harmonics = options.num_fit_harmonics;
+  data.uncertainty = options.uncertainty;
   for (const auto& sensor : campaign.sensors)
     if (sensor.mass_kg && *sensor.mass_kg > 0.0)
       data.sensor_masses.point_masses.push_back({sensor.position_m, *sensor.mass_kg});
@@ -133,7 +134,7 @@ FitData MakeFitData(const signal::Campaign& campaign, const signal::PhasorSet& p
     fit.measured.resize(channels, k_max);
     fit.std_amplitude.resize(channels, k_max);
     fit.whitening.resize(channels);
-    fit.uncertainty.resize(channels);
+    fit.uncertainty_budget.resize(channels);
     for (int c = 0; c < channels; ++c) {
       const auto* p = step.Find(data.channels[c].channel);
       if (!p) throw std::invalid_argument(step.file + ": no phasors for channel " + data.channels[c].channel);
@@ -149,7 +150,7 @@ FitData MakeFitData(const signal::Campaign& campaign, const signal::PhasorSet& p
         }
         PhasorUncertaintyBudget budget;
         Eigen::Matrix2d covariance;
-        if (options.uncertainty == FitDataOptions::Uncertainty::kPropagated) {
+        if (options.uncertainty == PhasorUncertainty::kPropagated) {
           // Noise-free data (simulations) must not get an infinite weight;
           // a billionth of the channel's largest fundamental never shows
           // beside real noise.
@@ -163,7 +164,7 @@ FitData MakeFitData(const signal::Campaign& campaign, const signal::PhasorSet& p
         }
         fit.measured(c, k - 1) = h.value;
         fit.std_amplitude(c, k - 1) = std::sqrt(0.5 * covariance.trace());
-        fit.uncertainty[c].push_back(budget);
+        fit.uncertainty_budget[c].push_back(budget);
         const Eigen::Matrix2d lower = covariance.llt().matrixL();
         fit.whitening[c].push_back(lower.inverse());
       }

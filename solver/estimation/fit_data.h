@@ -16,12 +16,19 @@
 #include <Eigen/Core>
 
 #include "hb/beam_properties.h"
+#include "hb/enum_names.h"
 #include "hb/linear_attachments.h"
 #include "solver/estimation/phasor_uncertainty.h"
 #include "signal/campaign.h"
 #include "signal/phasor_set.h"
 
 namespace beamid::solver {
+
+// How a response phasor's σ is made (FitDataOptions::uncertainty).
+enum class PhasorUncertainty { kRelativeFloor, kPropagated };
+// result.json's names, and the command line's (--phasor-uncertainty).
+inline constexpr schema::Name<PhasorUncertainty> kPhasorUncertaintyNames[] = {
+    {PhasorUncertainty::kRelativeFloor, "relative_floor"}, {PhasorUncertainty::kPropagated, "propagated"}};
 
 struct FitChannel {
   std::string channel;
@@ -51,7 +58,7 @@ struct FitStep {
   Eigen::MatrixXd std_amplitude;         // channels × K: σ of the real/imag parts (rms of the two)
   // [channel][k-1]: what std_amplitude is made of (phasor_uncertainty.h),
   // as the data were read (a corrected recording fault leaves it as it was).
-  std::vector<std::vector<PhasorUncertaintyBudget>> uncertainty;
+  std::vector<std::vector<PhasorUncertaintyBudget>> uncertainty_budget;
   // The extraction found the record cut before it settled and raised its
   // phasors' uncertainty by what is left of the transient (the change
   // between the analysed part's halves, |ΔX_1|/|X_1| of the worst channel;
@@ -70,6 +77,7 @@ struct FitData {
   int num_fit_harmonics = 3;             // K
   std::vector<FitStep> steps;
   std::vector<std::string> levels;       // distinct labels in campaign order
+  PhasorUncertainty uncertainty = PhasorUncertainty::kRelativeFloor;  // how the σ were made
 
   int NumResiduals() const { return static_cast<int>(2 * channels.size() * num_fit_harmonics * steps.size()); }
 };
@@ -88,8 +96,7 @@ struct FitDataOptions {
   //   errors propagated into each phasor, plus the model's own error ε
   //   (relative_model_error) relative to the phasor itself. On the paper's
   //   campaign the reduced χ² is 1.04.
-  enum class Uncertainty { kRelativeFloor, kPropagated };
-  Uncertainty uncertainty = Uncertainty::kRelativeFloor;
+  PhasorUncertainty uncertainty = PhasorUncertainty::kRelativeFloor;
   double relative_uncertainty_floor = 1e-4;
   // ε: the finite elements and the harmonic truncation agree with
   // independent solutions at 1e-7 and below; 1e-5 leaves a margin for the

@@ -53,7 +53,9 @@ std::complex<double> NeighbourSlope(const std::vector<double>& omega_rad_s,
   const std::complex<double> y = values[i];
   if (around.size() < 2) return 0.0;
   bool resolved = true;
-  for (const std::size_t j : around) resolved = resolved && std::abs(values[j]) > 10.0 * noise_std[j];
+  // (A value of exactly 0, noise-free data's missing harmonic, has no 1/Y.)
+  for (const std::size_t j : around)
+    resolved = resolved && std::abs(values[j]) > 10.0 * noise_std[j] && std::abs(values[j]) > 0.0;
   if (!resolved) {
     // 1/Y of a harmonic at the noise is noise; its chords are as good as any.
     std::complex<double> smallest = (values[around[1]] - y) / (omega_rad_s[around[1]] - omega_rad_s[i]);

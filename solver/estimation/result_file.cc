@@ -18,6 +18,15 @@ namespace {
 
 using Complex = std::complex<double>;
 
+// √(Σσ²/Σ|Y|²) of each term.
+PhasorUncertaintyBudget RelativeStd(const PhasorUncertaintyBudget& variance, double measured2) {
+  const auto relative = [&](double v) { return std::sqrt(v / std::max(measured2, 1e-300)); };
+  return {.noise = relative(variance.noise),
+          .force = relative(variance.force),
+          .frequency = relative(variance.frequency),
+          .model_error = relative(variance.model_error)};
+}
+
 // Relative RMS error and χ² per fitted channel, harmonic and level.
 std::vector<ChannelQuality> Quality(const FitData& fit, FitProblem& problem, const Eigen::VectorXd& x) {
   const std::vector<Eigen::MatrixXcd> model = ModelPhasors(fit, problem, x);
@@ -28,6 +37,7 @@ std::vector<ChannelQuality> Quality(const FitData& fit, FitProblem& problem, con
       std::vector<LevelQuality> per_level;
       for (const auto& level : fit.levels) {
         double error2 = 0.0, measured2 = 0.0, chi2 = 0.0;
+        PhasorUncertaintyBudget variance;  // Σσ² term by term
         int count = 0;
         for (std::size_t i = 0; i < fit.steps.size(); ++i) {
           const FitStep& s = fit.steps[i];
@@ -36,12 +46,20 @@ std::vector<ChannelQuality> Quality(const FitData& fit, FitProblem& problem, con
           error2 += std::norm(misfit);
           measured2 += std::norm(s.measured(c, k - 1));
           chi2 += Whitened(s, c, k, misfit).squaredNorm();
+          if (!s.uncertainty_budget.empty()) {
+            const PhasorUncertaintyBudget& u = s.uncertainty_budget[c][static_cast<std::size_t>(k - 1)];
+            variance.noise += u.noise * u.noise;
+            variance.force += u.force * u.force;
+            variance.frequency += u.frequency * u.frequency;
+            variance.model_error += u.model_error * u.model_error;
+          }
           ++count;
         }
         per_level.push_back({.level = level,
                              .relative_rms_error = std::sqrt(error2 / std::max(measured2, 1e-300)),
                              .chi_square = chi2,
-                             .num_steps = count});
+                             .num_steps = count,
+                             .relative_std = RelativeStd(variance, measured2)});
       }
       channel.harmonics.push_back(std::move(per_level));
     }
@@ -113,7 +131,8 @@ ResultFile MakeResultFile(const FitData& fit, const FitData& validation, FitProb
                .sensor_masses = fit.sensor_masses.point_masses,
                .fit_channels = {},
                .num_fit_harmonics = fit.num_fit_harmonics,
-               .num_harmonics = problem.num_model_harmonics()};
+               .num_harmonics = problem.num_model_harmonics(),
+               .phasor_uncertainty = fit.uncertainty};
   for (const auto& c : fit.channels) out.model.fit_channels.push_back(c.channel);
   for (const auto& p : result.parameters)
     out.parameters.push_back(

@@ -20,6 +20,7 @@
 #include "hb/beam_properties.h"
 #include "hb/linear_attachments.h"
 #include "solver/estimation/damping_laws.h"
+#include "solver/estimation/fit_data.h"
 #include "solver/estimation/fit_verdict.h"
 #include "solver/estimation/model_family.h"
 #include "solver/estimation/multistart.h"
@@ -45,6 +46,7 @@ struct ResultModel {
   std::vector<std::string> fit_channels;
   int num_fit_harmonics = 3;  // K
   int num_harmonics = 5;      // H of the model (3 for ms)
+  PhasorUncertainty phasor_uncertainty = PhasorUncertainty::kRelativeFloor;  // how the data were weighed
 };
 
 struct ResultParameter {
@@ -100,6 +102,10 @@ struct LevelQuality {
   double relative_rms_error = 0.0;
   double chi_square = 0.0;
   int num_steps = 0;  // "steps"
+  // The phasors' σ term by term (solver/estimation/phasor_uncertainty.h),
+  // each √(Σσ²/Σ|Y|²) over the level's steps ("relative_std"; 0 in older
+  // files). Under the relative floor, model_error holds the floor.
+  PhasorUncertaintyBudget relative_std;
 };
 struct ChannelQuality {
   std::string channel;

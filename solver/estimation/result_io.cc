@@ -177,6 +177,8 @@ void Describe(auto& io, schema::Like<ResultModel> auto& m) {
   // The ranges identify takes (-H 1..50, --fit-harmonics 1..H).
   io.Integer("num_fit_harmonics", m.num_fit_harmonics, 1, option_checks::kMaxHarmonics);
   io.Integer("num_harmonics", m.num_harmonics, 1, option_checks::kMaxHarmonics);
+  // Files from before the propagated uncertainty weighed by the floor.
+  io.Choice("phasor_uncertainty", m.phasor_uncertainty, kPhasorUncertaintyNames, kOptional);
   const bool fits = m.num_fit_harmonics <= m.num_harmonics;
   io.Check(fits,
            Rule(fits, "num_fit_harmonics <= num_harmonics",
@@ -301,6 +303,12 @@ void Describe(auto& io, schema::Like<ResultFile> auto& f) {
                                                   schema::NonNegative().OrNull());
                                   level_io.Number("chi_square", q.chi_square, "1", schema::NonNegative().OrNull());
                                   level_io.Integer("steps", q.num_steps, 0, kMaxCount);
+                                  level_io.Object("relative_std", q.relative_std, kOptional, [](auto& u_io, auto& u) {
+                                    u_io.Number("noise", u.noise, "1", schema::NonNegative());
+                                    u_io.Number("force", u.force, "1", schema::NonNegative());
+                                    u_io.Number("frequency", u.frequency, "1", schema::NonNegative());
+                                    u_io.Number("model_error", u.model_error, "1", schema::NonNegative());
+                                  });
                                 });
            });
 

@@ -322,7 +322,9 @@ ResidualMap Residuals(const ResultFile& result, const signal::Campaign& campaign
   for (const auto& c : channels)
     if (c.fitted) fitted.push_back(c.channel);
   const int k_fit = result.model.num_fit_harmonics;
-  const FitData fit = MakeFitData(campaign, phasors, {.channels = fitted, .num_fit_harmonics = k_fit});
+  const FitData fit = MakeFitData(
+      campaign, phasors,
+      {.channels = fitted, .num_fit_harmonics = k_fit, .uncertainty = result.model.phasor_uncertainty});
   std::vector<double> fit_positions;
   for (const auto& c : fit.channels) fit_positions.push_back(c.position_m);
   const std::vector<Eigen::MatrixXcd> fitted_y = model.family->FittedDisplacements(model, fit_positions);

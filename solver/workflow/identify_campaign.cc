@@ -36,13 +36,15 @@ IdentifyOutcome IdentifyCampaign(const IdentifyRequest& request, const RunObserv
       ReadOrExtractPhasors(campaign, request.phasor_input, std::max(5, request.fit_harmonics), observer);
   IdentifyOutcome out{.family = &family, .output = request.output};
   out.fit = solver::MakeFitData(campaign, phasors,
-                                {.channels = analysis.fit_channels, .num_fit_harmonics = request.fit_harmonics});
+                                {.channels = analysis.fit_channels, .num_fit_harmonics = request.fit_harmonics,
+                                 .uncertainty = request.phasor_uncertainty});
   const solver::FitData& fit = out.fit;
   const solver::FitData validation =
       request.validate_channels.empty()
           ? solver::FitData{}
           : solver::MakeFitData(campaign, phasors,
-                                {.channels = request.validate_channels, .num_fit_harmonics = request.fit_harmonics});
+                                {.channels = request.validate_channels, .num_fit_harmonics = request.fit_harmonics,
+                                 .uncertainty = request.phasor_uncertainty});
   solver::ModelStructure structure = solver::PolynomialModel({.k1_Nm_rad = 100.0});
   if (request.fit_ei_scale) structure.linear.push_back(solver::BendingStiffnessScale());
   // The beam's own damping is unknown in a real test and, left out, ends up

@@ -126,6 +126,8 @@ TEST_F(CommandLine, OptionsOutOfRangeAreBadInputNamedBeforeAnyWork) {
       {"diagnose " + campaign + " --significance 5", "--significance"},
       {"diagnose " + campaign + " --workers -1", "--workers"},
       {"diagnose " + campaign + " -H 1", "--fit-harmonics 3 exceeds the model's -H 1"},
+      {"identify " + campaign + " --phasor-uncertainty floor", "--phasor-uncertainty: floor not in"},
+      {"diagnose " + campaign + " --phasor-uncertainty 1", "--phasor-uncertainty: 1 not in"},
       {"identify " + campaign + " -o /proc/beamid/result.json", "-o /proc/beamid/result.json: cannot write there"},
       {"identify " + campaign + " -o " + folder_.string(), "is a folder"},
       {"extract " + (folder_ / "data").string() + " -o " + (folder_ / "data" / "campaign.json").string(),
@@ -243,10 +245,22 @@ TEST_F(CommandLine, IdentifyRefitsTheDampingLawsAndWritesTheirModelFormIntervals
   }
   EXPECT_EQ(shared, (std::vector<std::string>{"k1", "k2", "k3", "c"}));
 
-  run = Beamid("identify " + campaign + " --fit acc1,acc2 --no-damping-laws -o " + result);
+  EXPECT_EQ(written["model"]["phasor_uncertainty"], "relative_floor");
+
+  run = Beamid("identify " + campaign + " --fit acc1,acc2 --no-damping-laws --phasor-uncertainty propagated -o " +
+               result);
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_THAT(run.output, ::testing::Not(HasSubstr("beam damping laws")));
-  EXPECT_FALSE(nlohmann::json::parse(ReadFile(result)).contains("damping_laws"));
+  const nlohmann::json propagated = nlohmann::json::parse(ReadFile(result));
+  EXPECT_FALSE(propagated.contains("damping_laws"));
+  EXPECT_EQ(propagated["model"]["phasor_uncertainty"], "propagated");
+  // The budget names each term: the noise, the force's and the frequency's
+  // errors, and the model's own at its stated 1e-5 of the phasor.
+  const auto& budget = propagated["quality"]["acc1"]["h1"]["high"]["relative_std"];
+  EXPECT_GT(budget["noise"].get<double>(), 0.0);
+  EXPECT_GT(budget["force"].get<double>(), 0.0);
+  EXPECT_GT(budget["frequency"].get<double>(), 0.0);
+  EXPECT_NEAR(budget["model_error"].get<double>(), 1e-5, 1e-12);
 }
 
 TEST_F(CommandLine, MeasuredBackboneRejectsABadTableNamingFileAndColumn) {

@@ -5,7 +5,7 @@
 // harmonic and level, pooled over noise realisations, divided by its
 // degrees of freedom is 1 within its sampling spread when each phasor's σ
 // holds the record's noise and the force's and frequency's errors
-// propagated into it (FitDataOptions::Uncertainty::kPropagated). The
+// propagated into it (PhasorUncertainty::kPropagated). The
 // relative floor (kRelativeFloor), the positive control, weighs the same
 // residuals far below their noise, and the same check sees it.
 #include <cmath>
@@ -66,10 +66,10 @@ TEST(PhasorCalibration, ChiSquarePerChannelHarmonicAndLevelIsItsDegreesOfFreedom
   for (int r = 0; r < kRealisations; ++r) {
     const signal::PhasorSet phasors = beamid::testing::MeasureAgain(scenario, steps, campaign, 2000 + r);
     AddFit(MakeFitData(campaign, phasors,
-                       {.channels = {"acc1", "acc2"}, .uncertainty = FitDataOptions::Uncertainty::kPropagated}),
+                       {.channels = {"acc1", "acc2"}, .uncertainty = PhasorUncertainty::kPropagated}),
            &propagated);
     AddFit(MakeFitData(campaign, phasors,
-                       {.channels = {"acc1", "acc2"}, .uncertainty = FitDataOptions::Uncertainty::kRelativeFloor}),
+                       {.channels = {"acc1", "acc2"}, .uncertainty = PhasorUncertainty::kRelativeFloor}),
            &floor);
   }
   // Five parameters fitted to 18 cells of 240 residuals each: each cell

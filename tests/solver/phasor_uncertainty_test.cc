@@ -55,12 +55,16 @@ TEST(NeighbourSlope, EqualsTheSingleModeDerivativeAtEveryStepOfAResonanceNarrowe
   EXPECT_NEAR(std::abs(NeighbourSlope(omega, values, noise, 0) - first) / std::abs(first), 0.0, 0.2);
 }
 
-TEST(NeighbourSlope, AHarmonicAtTheNoiseTakesTheSmallerChordAndRepeatedFrequenciesHaveNoSlope) {
+TEST(NeighbourSlope, AHarmonicAtTheNoiseOrAtZeroTakesTheSmallerChordAndRepeatedFrequenciesHaveNoSlope) {
   const std::vector<double> omega = {100.0, 101.0, 103.0};
   const std::vector<Complex> values = {Complex(1e-6, 0.0), Complex(2e-6, 0.0), Complex(0.0, 1e-6)};
   const std::vector<double> noise(3, 1e-6);
   // Chords from step 1: −1e-6 / −1 and (−2e-6 + 1e-6 i) / 2.
   EXPECT_NEAR(std::abs(NeighbourSlope(omega, values, noise, 1) - Complex(1e-6, 0.0)), 0.0, 1e-18);
+  // Noise-free data: a harmonic that is exactly 0 has no 1/Y.
+  const std::vector<double> none(3, 0.0);
+  const std::vector<Complex> zero_beside = {Complex(1.0, 0.0), Complex(0.0), Complex(2.0, 0.0)};
+  EXPECT_EQ(NeighbourSlope(omega, zero_beside, none, 0), Complex(-1.0, 0.0));
   const std::vector<double> dwell = {100.0, 100.0};
   EXPECT_EQ(NeighbourSlope(dwell, {Complex(1.0), Complex(1.1)}, {0.0, 0.0}, 0), Complex(0.0));
   EXPECT_EQ(NeighbourSlope({100.0}, {Complex(1.0)}, {0.0}, 0), Complex(0.0));

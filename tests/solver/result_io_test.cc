@@ -97,7 +97,8 @@ ResultFile HarmonicBalanceResult() {
              .sensor_masses = {{.position_m = 0.1, .mass_kg = 0.005}, {.position_m = 0.33, .mass_kg = 0.0047}},
              .fit_channels = {"acc2", "acc1"},
              .num_fit_harmonics = 3,
-             .num_harmonics = 7};
+             .num_harmonics = 7,
+             .phasor_uncertainty = PhasorUncertainty::kPropagated};
   r.parameters = {{.name = "k1", .unit = "N*m/rad", .value = 150.43, .std = 0.21, .lower_95 = 150.02, .upper_95 = 150.84},
                   {.name = "k2", .unit = "N*m/rad^2", .value = -31.5, .std = 40.5, .lower_95 = -110.9, .upper_95 = 47.9},
                   {.name = "k3", .unit = "N*m/rad^3", .value = 3.01e5, .std = 1.1e3, .lower_95 = 2.99e5, .upper_95 = 3.03e5},
@@ -124,7 +125,11 @@ ResultFile HarmonicBalanceResult() {
         per_level.push_back({.level = levels[l],
                              .relative_rms_error = (c == 1 && k == 2 && l == 1) ? kNaN : Distinct(100 + 10 * c + 3 * k + l),
                              .chi_square = Distinct(200 + 10 * c + 3 * k + l),
-                             .num_steps = 4 + c + k + l});
+                             .num_steps = 4 + c + k + l,
+                             .relative_std = {.noise = Distinct(300 + 10 * c + 3 * k + l),
+                                              .force = Distinct(400 + 10 * c + 3 * k + l),
+                                              .frequency = Distinct(500 + 10 * c + 3 * k + l),
+                                              .model_error = Distinct(600 + 10 * c + 3 * k + l)}});
       q.harmonics.push_back(per_level);
     }
     r.quality.push_back(q);
@@ -242,6 +247,7 @@ void ExpectSame(const ResultFile& a, const ResultFile& b) {
   EXPECT_EQ(a.model.fit_channels, b.model.fit_channels);
   EXPECT_EQ(a.model.num_fit_harmonics, b.model.num_fit_harmonics);
   EXPECT_EQ(a.model.num_harmonics, b.model.num_harmonics);
+  EXPECT_EQ(a.model.phasor_uncertainty, b.model.phasor_uncertainty);
 
   ASSERT_EQ(a.parameters.size(), b.parameters.size());
   for (std::size_t i = 0; i < a.parameters.size(); ++i) {
@@ -359,6 +365,10 @@ void ExpectSame(const ResultFile& a, const ResultFile& b) {
         EXPECT_TRUE(Same(x[l].relative_rms_error, y[l].relative_rms_error));
         EXPECT_TRUE(Same(x[l].chi_square, y[l].chi_square));
         EXPECT_EQ(x[l].num_steps, y[l].num_steps);
+        EXPECT_EQ(x[l].relative_std.noise, y[l].relative_std.noise);
+        EXPECT_EQ(x[l].relative_std.force, y[l].relative_std.force);
+        EXPECT_EQ(x[l].relative_std.frequency, y[l].relative_std.frequency);
+        EXPECT_EQ(x[l].relative_std.model_error, y[l].relative_std.model_error);
       }
     }
   }
@@ -558,6 +568,9 @@ TEST(ResultFile, AFileOfTheEarlierWriterStillReads) {
   EXPECT_EQ(r.model.beam.youngs_modulus_Pa, 2.1e11);
   EXPECT_EQ(r.model.fit_channels, (std::vector<std::string>{"acc1", "acc2"}));
   EXPECT_EQ(r.model.num_fit_harmonics, 2);
+  // Weighed by the floor, the only weighting of its day; no σ budget.
+  EXPECT_EQ(r.model.phasor_uncertainty, PhasorUncertainty::kRelativeFloor);
+  EXPECT_EQ(r.quality[0].harmonics[0][0].relative_std.noise, 0.0);
   ASSERT_EQ(r.model.sensor_masses.size(), 1u);
   EXPECT_EQ(r.model.sensor_masses[0].mass_kg, 0.005);
   // The parameters in parameter_order, not in the file's (sorted) order.
