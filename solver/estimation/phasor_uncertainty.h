@@ -27,9 +27,9 @@
 // large for the step or two beside the jump.
 
 // The first two inputs are errors in the variables the model is driven
-// with: without them every fit weighed the fundamental by its noise alone
-// and read χ² some 1.5–2.5 times its degrees of freedom on data whose
-// physics the model holds exactly.
+// with: weighed by its noise alone, the fundamental read χ² 1.2–2.4 times
+// its degrees of freedom per channel and level on the paper's campaign,
+// data whose physics the model holds.
 #pragma once
 
 #include <complex>
