@@ -1,9 +1,9 @@
 #include "solver/cli/cli_output.h"
 
-#include <map>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <memory>
 #include <optional>
 #include <stdexcept>

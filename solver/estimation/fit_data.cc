@@ -128,9 +128,12 @@ FitData MakeFitData(const signal::Campaign& campaign, const signal::PhasorSet& p
     const signal::HarmonicPhasor& f1 = step.force.Harmonic(1);
     const double force_relative_std = f1.Amplitude() > 0.0 ? std::sqrt(f1.Covariance()(0, 0)) / f1.Amplitude() : 0.0;
     const double omega_std_rad_s = 2.0 * std::numbers::pi * step.frequency_std_hz;
+    // The step and its neighbours on its level: all ∂Y/∂ω needs.
     const auto& [level, index] = place[i];
-    std::vector<double> level_omega;
-    for (const std::size_t j : level_steps[level]) level_omega.push_back(phasors.steps[j].Omega_rad_s());
+    const std::vector<std::size_t>& on_level = level_steps[level];
+    const std::size_t first = index > 0 ? index - 1 : 0, last = std::min(index + 1, on_level.size() - 1);
+    std::vector<double> around_omega;
+    for (std::size_t n = first; n <= last; ++n) around_omega.push_back(phasors.steps[on_level[n]].Omega_rad_s());
     fit.measured.resize(channels, k_max);
     fit.std_amplitude.resize(channels, k_max);
     fit.whitening.resize(channels);
@@ -140,22 +143,22 @@ FitData MakeFitData(const signal::Campaign& campaign, const signal::PhasorSet& p
       if (!p) throw std::invalid_argument(step.file + ": no phasors for channel " + data.channels[c].channel);
       for (int k = 1; k <= k_max; ++k) {
         const signal::HarmonicPhasor& h = p->Harmonic(k);
-        std::vector<std::complex<double>> level_values;
-        std::vector<double> level_noise;
-        for (const std::size_t j : level_steps[level]) {
-          const auto* q = phasors.steps[j].Find(data.channels[c].channel);
-          const signal::HarmonicPhasor& other = q ? q->Harmonic(k) : h;
-          level_values.push_back(other.value);
-          level_noise.push_back(std::sqrt(0.5 * other.Covariance().trace()));
-        }
         PhasorUncertaintyBudget budget;
         Eigen::Matrix2d covariance;
         if (options.uncertainty == PhasorUncertainty::kPropagated) {
+          std::vector<std::complex<double>> around_values;
+          std::vector<double> around_noise;
+          for (std::size_t n = first; n <= last; ++n) {
+            const auto* q = phasors.steps[on_level[n]].Find(data.channels[c].channel);
+            const signal::HarmonicPhasor& other = q ? q->Harmonic(k) : h;
+            around_values.push_back(other.value);
+            around_noise.push_back(std::sqrt(0.5 * other.Covariance().trace()));
+          }
           // Noise-free data (simulations) must not get an infinite weight;
           // a billionth of the channel's largest fundamental never shows
           // beside real noise.
           covariance = PhasorCovariance({h.value, h.Covariance()}, k, force_relative_std,
-                                        NeighbourSlope(level_omega, level_values, level_noise, index),
+                                        NeighbourSlope(around_omega, around_values, around_noise, index - first),
                                         omega_std_rad_s, options.relative_model_error, 1e-9 * largest[c], &budget);
         } else {
           const double floor = options.relative_uncertainty_floor * largest[c];

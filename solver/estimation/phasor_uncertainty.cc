@@ -12,12 +12,6 @@ double RmsStd(const Eigen::Matrix2d& covariance) { return std::sqrt(0.5 * covari
 
 }  // namespace
 
-double PhasorUncertaintyBudget::Inputs() const { return std::hypot(force, frequency); }
-
-double PhasorUncertaintyBudget::Total() const {
-  return std::sqrt(noise * noise + force * force + frequency * frequency + model_error * model_error);
-}
-
 Eigen::Matrix2d PhasorCovariance(const MeasuredPhasor& phasor, int harmonic, double force_relative_std,
                                  std::complex<double> neighbour_slope, double omega_std_rad_s,
                                  double relative_model_error, double numerical_floor_std,

@@ -46,9 +46,6 @@ struct PhasorUncertaintyBudget {
   double force = 0.0;
   double frequency = 0.0;
   double model_error = 0.0;
-
-  double Inputs() const;  // force and frequency together
-  double Total() const;
 };
 
 struct MeasuredPhasor {

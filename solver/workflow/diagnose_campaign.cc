@@ -54,8 +54,9 @@ DiagnoseOutcome DiagnoseCampaign(const DiagnoseRequest& request, const RunObserv
   const signal::PhasorSet phasors =
       ReadOrExtractPhasors(campaign, request.phasor_input, std::max(5, request.fit_harmonics), observer);
   const solver::FitData fit = solver::MakeFitData(
-      campaign, phasors, {.channels = analysis.fit_channels, .num_fit_harmonics = request.fit_harmonics,
-                                 .uncertainty = request.phasor_uncertainty});
+      campaign, phasors,
+      {.channels = analysis.fit_channels, .num_fit_harmonics = request.fit_harmonics,
+       .uncertainty = request.phasor_uncertainty});
   const solver::FitData validation =
       request.validate_channels.empty()
           ? solver::FitData{}
@@ -66,8 +67,9 @@ DiagnoseOutcome DiagnoseCampaign(const DiagnoseRequest& request, const RunObserv
   std::vector<std::string> fitted_channels;
   for (const auto& c : fit.channels) fitted_channels.push_back(c.channel);
   const solver::FitData located = solver::MakeFitData(
-      campaign, phasors, {.channels = fitted_channels, .num_fit_harmonics = std::max(5, request.fit_harmonics),
-                   .uncertainty = request.phasor_uncertainty});
+      campaign, phasors,
+      {.channels = fitted_channels, .num_fit_harmonics = std::max(5, request.fit_harmonics),
+       .uncertainty = request.phasor_uncertainty});
   solver::DiagnosisOptions diagnosis;
   diagnosis.model_harmonics = request.harmonics;
   diagnosis.candidates = request.candidates;
