@@ -138,6 +138,12 @@ FitData MakeFitData(const signal::Campaign& campaign, const signal::PhasorSet& p
     fit.std_amplitude.resize(channels, k_max);
     fit.whitening.resize(channels);
     fit.uncertainty_budget.resize(channels);
+    const bool propagated = options.uncertainty == PhasorUncertainty::kPropagated;
+    // A harmonic fit over whole periods of a record with white noise gives
+    // F_1's cosine and sine parts the same σ: its phase's σ is its amplitude's
+    // relative σ (the extractor keeps only the latter once F_1 is the reference).
+    const double force_phase_std_rad = force_relative_std;
+    if (propagated) fit.shared_errors.assign(3, Eigen::MatrixXcd::Zero(channels, k_max));
     for (int c = 0; c < channels; ++c) {
       const auto* p = step.Find(data.channels[c].channel);
       if (!p) throw std::invalid_argument(step.file + ": no phasors for channel " + data.channels[c].channel);
@@ -145,7 +151,7 @@ FitData MakeFitData(const signal::Campaign& campaign, const signal::PhasorSet& p
         const signal::HarmonicPhasor& h = p->Harmonic(k);
         PhasorUncertaintyBudget budget;
         Eigen::Matrix2d covariance;
-        if (options.uncertainty == PhasorUncertainty::kPropagated) {
+        if (propagated) {
           std::vector<std::complex<double>> around_values;
           std::vector<double> around_noise;
           for (std::size_t n = first; n <= last; ++n) {
@@ -157,9 +163,12 @@ FitData MakeFitData(const signal::Campaign& campaign, const signal::PhasorSet& p
           // Noise-free data (simulations) must not get an infinite weight;
           // a billionth of the channel's largest fundamental never shows
           // beside real noise.
-          covariance = PhasorCovariance({h.value, h.Covariance()}, k, force_relative_std,
-                                        NeighbourSlope(around_omega, around_values, around_noise, index - first),
-                                        omega_std_rad_s, options.relative_model_error, 1e-9 * largest[c], &budget);
+          const std::complex<double> slope = NeighbourSlope(around_omega, around_values, around_noise, index - first);
+          covariance = PhasorCovariance({h.value, h.Covariance()}, k, force_relative_std, slope, omega_std_rad_s,
+                                        options.relative_model_error, 1e-9 * largest[c], &budget);
+          fit.shared_errors[0](c, k - 1) = static_cast<double>(k) * force_relative_std * h.value;
+          fit.shared_errors[1](c, k - 1) = std::complex<double>(0.0, -k * force_phase_std_rad) * h.value;
+          fit.shared_errors[2](c, k - 1) = omega_std_rad_s * slope;
         } else {
           const double floor = options.relative_uncertainty_floor * largest[c];
           covariance = h.Covariance() + floor * floor * Eigen::Matrix2d::Identity();

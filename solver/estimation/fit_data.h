@@ -59,6 +59,14 @@ struct FitStep {
   // [channel][k-1]: what std_amplitude is made of (phasor_uncertainty.h),
   // as the data were read (a corrected recording fault leaves it as it was).
   std::vector<std::vector<PhasorUncertaintyBudget>> uncertainty_budget;
+  // [source]: channels × K, the change of each measured phasor (or of the
+  // model's, which is driven with them) for a one-σ error of what the whole
+  // step shares: the force's amplitude, its phase (every response is
+  // referred to it) and the frequency. Each phasor's own share is in its
+  // covariance already; the correlation across the step's channels and
+  // harmonics enters the parameters' covariance (shared_step_errors.h).
+  // Empty under the relative floor.
+  std::vector<Eigen::MatrixXcd> shared_errors;
   // The extraction found the record cut before it settled and raised its
   // phasors' uncertainty by what is left of the transient (the change
   // between the analysed part's halves, |ΔX_1|/|X_1| of the worst channel;

@@ -58,6 +58,13 @@ class FitProblem {
   // with the states eliminated through the constraints (for the covariance).
   virtual Eigen::VectorXd WeightedResiduals(const Eigen::VectorXd& x) = 0;
   virtual Eigen::MatrixXd ReducedResidualJacobian(const Eigen::VectorXd& x) = 0;
+  // Jᵀ·(Σ − I)·J for that Jacobian J, Σ the whitened residuals' covariance:
+  // what errors shared across residuals add to the information a
+  // phasor-by-phasor whitening counts (shared_step_errors.h). Zero when
+  // the residuals are independent.
+  virtual Eigen::MatrixXd SharedErrorInformation(const Eigen::MatrixXd& reduced_jacobian) const {
+    return Eigen::MatrixXd::Zero(reduced_jacobian.cols(), reduced_jacobian.cols());
+  }
 
   // What a report and `beamid predict` need of the fitted model.
   virtual const ModelStructure& structure() const = 0;

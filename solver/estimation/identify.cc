@@ -451,14 +451,17 @@ IdentifyResult IdentifyWith(const ProblemFactory& make_problem, const ModelStruc
   // N·m/rad³ beside a clamp compliance in rad/(N·m)), beyond double
   // precision, and rounding made eigenvalues of well-determined
   // directions negative (intervals of ±1e143).
+  // Errors a step's phasors share widen it by the sandwich A⁻¹·B·A⁻¹
+  // (shared_step_errors.h).
   const Eigen::MatrixXd information = j.transpose() * j;
   const Eigen::VectorXd scale = information.diagonal().cwiseSqrt().cwiseMax(1e-300);
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> normalised(scale.cwiseInverse().asDiagonal() * information *
-                                                            scale.cwiseInverse().asDiagonal());
+  const auto unscaled = scale.cwiseInverse().asDiagonal();
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> normalised(unscaled * information * unscaled);
   const Eigen::VectorXd values = normalised.eigenvalues().cwiseMax(1e-300);
-  result.covariance = variance_scale * scale.cwiseInverse().asDiagonal() * normalised.eigenvectors() *
-                      values.cwiseInverse().asDiagonal() * normalised.eigenvectors().transpose() *
-                      scale.cwiseInverse().asDiagonal();
+  const Eigen::MatrixXd inverse =
+      normalised.eigenvectors() * values.cwiseInverse().asDiagonal() * normalised.eigenvectors().transpose();
+  const Eigen::MatrixXd shared = unscaled * problem->SharedErrorInformation(j) * unscaled;
+  result.covariance = variance_scale * unscaled * (inverse + inverse * shared * inverse) * unscaled;
   const Eigen::VectorXd std = result.covariance.diagonal().cwiseSqrt();
   result.correlation = std.cwiseInverse().asDiagonal() * result.covariance * std.cwiseInverse().asDiagonal();
   const auto names = initial.Names();

@@ -4,7 +4,9 @@
 // chosen model family (solver/estimation/model_family.h) from that estimate and from a
 // space-filling set of further starts (in parallel), then the Gauss–Newton
 // covariance in the reduced parameter space:
-//     Cov(p) = s²·(JᵀJ)⁻¹,  J = dr/dp along the constraint manifold,
+//     Cov(p) = s²·A⁻¹·B·A⁻¹,  A = JᵀJ,  J = dr/dp along the constraint manifold,
+//     B = A + what errors shared by a step's phasors add (shared_step_errors.h;
+//         B = A when the phasors' errors are independent, as under the relative floor),
 //     s² = max(1, χ²/(n − P))  (the scatter is trusted only when it is worse
 //                               than the stated phasor uncertainties).
 #pragma once

@@ -1,4 +1,5 @@
 #include "solver/estimation/stepped_fit_problem.h"
+#include "solver/estimation/shared_step_errors.h"
 #include "solver/estimation/whitened_misfit.h"
 
 #include <algorithm>
@@ -269,6 +270,10 @@ Eigen::MatrixXd SteppedFitProblem::ReducedResidualJacobian(const Eigen::VectorXd
     offset += static_cast<int>(c.residual.size());
   }
   return j;
+}
+
+Eigen::MatrixXd SteppedFitProblem::SharedErrorInformation(const Eigen::MatrixXd& reduced_jacobian) const {
+  return solver::SharedErrorInformation(data_, reduced_jacobian);
 }
 
 Eigen::MatrixXcd SteppedFitProblem::DisplacementPhasors(const Eigen::VectorXd& x, int step,

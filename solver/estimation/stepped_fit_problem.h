@@ -139,6 +139,7 @@ class SteppedFitProblem : public FitProblem {
   Eigen::VectorXd WeightedResiduals(const Eigen::VectorXd& x) override;
   // dr/dp along the balance: dz/dp = −(∂R/∂z)⁻¹·∂R/∂p per step.
   Eigen::MatrixXd ReducedResidualJacobian(const Eigen::VectorXd& x) override;
+  Eigen::MatrixXd SharedErrorInformation(const Eigen::MatrixXd& reduced_jacobian) const override;
 
   Eigen::MatrixXcd DisplacementPhasors(const Eigen::VectorXd& x, int step,
                                        const std::vector<double>& positions_m) override;

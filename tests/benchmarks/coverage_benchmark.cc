@@ -1,0 +1,41 @@
+// Coverage of identify's 95 % intervals (tests/support/coverage_study.h):
+// 50 realisations of the measurement noise on one simulation of the paper's
+// campaign (15 steps per level), for each physics and each phasor weighting.
+// Counters per parameter: coverage (the fraction of intervals that hold the
+// truth; 0.95 when calibrated), mean_z (bias in σ) and rms_z (1 when the σ
+// are right); mean_chi2 is the fits' mean reduced χ². Runs ~4 min.
+#include <string>
+
+#include <benchmark/benchmark.h>
+
+#include "tests/support/coverage_study.h"
+
+namespace {
+
+using namespace beamid;
+
+constexpr int kRealisations = 50;
+
+void BM_Coverage(benchmark::State& state, const std::string& physics_name, solver::PhasorUncertainty weighting) {
+  const beamid::testing::CoveragePhysics physics = beamid::testing::MakeCoveragePhysics(physics_name);
+  beamid::testing::CoverageStudy study;
+  for (auto _ : state) study = beamid::testing::RunCoverageStudy(physics, {.uncertainty = weighting}, kRealisations, 1000);
+  for (std::size_t j = 0; j < study.parameters.size(); ++j) {
+    const std::string& name = study.parameters[j].name;
+    state.counters["coverage_" + name] = study.Coverage(j);
+    state.counters["mean_z_" + name] = study.MeanZ(j);
+    state.counters["rms_z_" + name] = study.RmsZ(j);
+  }
+  state.counters["mean_chi2"] = study.MeanReducedChiSquare();
+}
+
+BENCHMARK_CAPTURE(BM_Coverage, loss_factor_relative_floor, "loss_factor", solver::PhasorUncertainty::kRelativeFloor)
+    ->Iterations(1)->Unit(benchmark::kSecond);
+BENCHMARK_CAPTURE(BM_Coverage, loss_factor_propagated, "loss_factor", solver::PhasorUncertainty::kPropagated)
+    ->Iterations(1)->Unit(benchmark::kSecond);
+BENCHMARK_CAPTURE(BM_Coverage, rayleigh_relative_floor, "rayleigh", solver::PhasorUncertainty::kRelativeFloor)
+    ->Iterations(1)->Unit(benchmark::kSecond);
+BENCHMARK_CAPTURE(BM_Coverage, rayleigh_propagated, "rayleigh", solver::PhasorUncertainty::kPropagated)
+    ->Iterations(1)->Unit(benchmark::kSecond);
+
+}  // namespace

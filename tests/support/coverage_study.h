@@ -1,0 +1,123 @@
+// Test support: a coverage study of identify's intervals. One noise-free
+// campaign from the independent time-domain simulator (never from the
+// harmonic-balance model being fitted), then independent realisations of
+// the campaign's own measurement noise on those recordings (hb/noise.h, as
+// `beamid simulate` applies it), each extracted and identified; for every
+// parameter it counts how often the 95 % interval holds the truth and sums
+// z = (estimate − truth)/σ. Calibrated intervals cover 95 % and give
+// rms z = 1; a bias shows as mean z ≠ 0.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "hb/scenario.h"
+#include "solver/estimation/fit_data.h"
+#include "solver/estimation/identify.h"
+#include "solver/estimation/model_structure.h"
+#include "tests/support/simulated_campaign.h"
+
+namespace beamid::testing {
+
+struct ParameterCoverage {
+  std::string name;
+  double truth = 0.0;
+  int covered = 0;  // realisations whose 95 % interval held the truth
+  double sum_z = 0.0, sum_z2 = 0.0;
+};
+
+struct CoverageStudy {
+  std::vector<ParameterCoverage> parameters;
+  int realisations = 0;
+  double sum_reduced_chi_square = 0.0;
+
+  double Coverage(std::size_t j) const { return static_cast<double>(parameters[j].covered) / realisations; }
+  double MeanZ(std::size_t j) const { return parameters[j].sum_z / realisations; }
+  double RmsZ(std::size_t j) const { return std::sqrt(parameters[j].sum_z2 / realisations); }
+  double MeanReducedChiSquare() const { return sum_reduced_chi_square / realisations; }
+};
+
+// The physics a study simulates and the model that is fitted to it, whose
+// physics matches the simulation's up to what the name says.
+struct CoveragePhysics {
+  std::string name;
+  hb::Scenario scenario;
+  solver::ModelStructure structure;
+  std::vector<double> truth;  // in structure.Names()' order
+};
+
+// The paper's example campaign with 15 steps per level (LeanPaperBase).
+// "loss_factor": the beam's structural loss factor η = 2e-4, fitted as η; the
+//   simulator dissipates exactly as E(1 + iη) only at the harmonic nearest
+//   each mode (hb/time_simulator.h), so the harmonic-balance model's loss
+//   factor is the simulated law up to the damping at the other harmonics.
+// "rayleigh": Rayleigh beam damping α = 0.03 1/s, β = 4e-7 s (mode 1's
+//   damping ratio ≈ 1.1e-4, as η's), fitted as α, β: the same law in both.
+inline CoveragePhysics MakeCoveragePhysics(const std::string& name) {
+  std::ifstream file("examples/scenarios/paper_base.json");
+  if (!file) throw std::runtime_error("examples/scenarios/paper_base.json: run from the repository's root");
+  nlohmann::json scenario = nlohmann::json::parse(file);
+  for (auto& level : scenario["levels"]) level["frequencies_Hz"] = {{"start", 51.0}, {"stop", 57.3}, {"step", 0.45}};
+  scenario.erase("hidden_positions_m");
+  CoveragePhysics physics{.name = name,
+                          .scenario = {},
+                          .structure = solver::PolynomialModel({.k1_Nm_rad = 100.0}),
+                          .truth = {150.0, 0.0, 3e5, 0.05}};
+  if (name == "loss_factor") {
+    physics.structure.linear.push_back(solver::LossFactor(1e-4));
+    physics.truth.push_back(2e-4);
+  } else if (name == "rayleigh") {
+    scenario["beam"]["loss_factor"] = 0.0;
+    scenario["beam"]["rayleigh_mass_1_s"] = 0.03;
+    scenario["beam"]["rayleigh_stiffness_s"] = 4e-7;
+    physics.structure.linear.push_back(solver::RayleighMassDamping(0.01));
+    physics.structure.linear.push_back(solver::RayleighStiffnessDamping(1e-7));
+    physics.truth.push_back(0.03);
+    physics.truth.push_back(4e-7);
+  } else {
+    throw std::invalid_argument("unknown coverage physics '" + name + "' (loss_factor, rayleigh)");
+  }
+  physics.scenario = hb::ParseScenario(scenario.dump(), "paper_base.json, 15 steps per level, " + name);
+  return physics;
+}
+
+// `realisations` noise draws from seeds first_seed, first_seed + 1, …, each
+// fitted to acc1 and acc2 with `fit_options`' weighting.
+inline CoverageStudy RunCoverageStudy(const CoveragePhysics& physics, solver::FitDataOptions fit_options,
+                                      int realisations, std::uint64_t first_seed) {
+  const std::filesystem::path folder = UniqueTempPath("beamid_coverage_study_" + physics.name);
+  std::filesystem::remove_all(folder);
+  const std::vector<hb::SimulatedStep> steps = SimulateInto(physics.scenario, folder);
+  const signal::Campaign campaign = signal::ReadCampaign(folder);
+  std::filesystem::remove_all(folder);
+
+  CoverageStudy study;
+  for (const std::string& name : physics.structure.Names())
+    study.parameters.push_back({.name = name, .truth = physics.truth[study.parameters.size()]});
+  fit_options.channels = {"acc1", "acc2"};
+  for (int r = 0; r < realisations; ++r) {
+    const signal::PhasorSet phasors = MeasureAgain(physics.scenario, steps, campaign, first_seed + r);
+    const solver::IdentifyResult result =
+        solver::Identify(solver::MakeFitData(campaign, phasors, fit_options), physics.structure, {});
+    for (std::size_t j = 0; j < study.parameters.size(); ++j) {
+      const solver::ParameterEstimate& p = result.parameters.at(j);
+      ParameterCoverage& c = study.parameters[j];
+      const double z = (p.value - c.truth) / p.std;
+      c.sum_z += z;
+      c.sum_z2 += z * z;
+      c.covered += p.lower_95 <= c.truth && c.truth <= p.upper_95;
+    }
+    study.sum_reduced_chi_square += result.reduced_chi_square;
+    ++study.realisations;
+  }
+  return study;
+}
+
+}  // namespace beamid::testing
