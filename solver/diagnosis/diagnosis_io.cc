@@ -140,6 +140,7 @@ void Describe(auto& io, schema::Like<DiagnosisRecord> auto& rec) {
     campaign_io.Text("name", f.campaign_name);
   });
   io.Text("campaign_sha256", file.campaign_sha256, TextRule::kAny, kOmittedWhenEmpty);
+  io.Choice("phasor_uncertainty", file.phasor_uncertainty, kPhasorUncertaintyNames, kOptional);
   io.Text("result_file", file.result_file, TextRule::kNotEmpty, kOmittedWhenEmpty);
   io.Verbatim("result", rec.result, kOmittedWhenEmpty);
   const std::size_t first = rec.result.find_first_not_of(" \t\r\n");

@@ -57,6 +57,8 @@ struct DiagnosisFile {
   std::string result_file;
   std::string embedded_result_json;
   std::string beamid_version = kVersion;  // "" in files older than the key
+  // How the phasors were weighed (fit_data.h); older files: the relative floor.
+  PhasorUncertainty phasor_uncertainty = PhasorUncertainty::kRelativeFloor;
 };
 
 // The fields of the file: path, type, unit, range (docs/formats.md).

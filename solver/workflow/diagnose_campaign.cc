@@ -87,7 +87,8 @@ DiagnoseOutcome DiagnoseCampaign(const DiagnoseRequest& request, const RunObserv
       .diagnosis = out.diagnosis,
       .campaign_folder = std::filesystem::absolute(request.campaign_folder).lexically_normal().string(),
       .campaign_name = campaign.name,
-      .campaign_sha256 = campaign.sha256};
+      .campaign_sha256 = campaign.sha256,
+      .phasor_uncertainty = request.phasor_uncertainty};
   if (!request.result_file.empty())
     file.result_file = std::filesystem::absolute(request.result_file).lexically_normal().string();
   solver::WriteDiagnosisFile(request.output, file);

@@ -12,6 +12,7 @@
 // their model-form intervals in ≥ 85 % of the realisations (the coverage
 // test's bar); on the loss-factor beam the loss factor is accepted and the
 // model-form intervals cover as well.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -52,11 +53,16 @@ struct Tally {
   int loss_factor_accepted = 0;
   int k1_covered = 0, k3_covered = 0, c_covered = 0;  // by the model-form intervals
   int answer_c_covered = 0;  // by the 95 % interval of the law the answer is (AnswerLaw)
+  // The widest model-form interval over the realisations, relative to the truth.
+  double k1_widest = 0.0, k3_widest = 0.0, c_widest = 0.0;
 };
 
-bool Covers(const DampingLawEnvelope& envelope, const std::string& name, double truth) {
+bool Covers(const DampingLawEnvelope& envelope, const std::string& name, double truth, double* widest) {
   for (const auto& i : envelope.intervals)
-    if (i.name == name) return i.lower_95 <= truth && truth <= i.upper_95;
+    if (i.name == name) {
+      *widest = std::max(*widest, (i.upper_95 - i.lower_95) / truth);
+      return i.lower_95 <= truth && truth <= i.upper_95;
+    }
   ADD_FAILURE() << "no model-form interval for " << name;
   return false;
 }
@@ -83,9 +89,9 @@ Tally RunRealisations(const std::string& file_name) {
     const ParameterEstimate& c = result.parameters[3];
     tally.loss_factor_c_covered += c.lower_95 <= 0.05 && 0.05 <= c.upper_95;
     tally.loss_factor_accepted += envelope.laws.front().accepted;
-    tally.k1_covered += Covers(envelope, "k1", 150.0);
-    tally.k3_covered += Covers(envelope, "k3", 3e5);
-    tally.c_covered += Covers(envelope, "c", 0.05);
+    tally.k1_covered += Covers(envelope, "k1", 150.0, &tally.k1_widest);
+    tally.k3_covered += Covers(envelope, "k3", 3e5, &tally.k3_widest);
+    tally.c_covered += Covers(envelope, "c", 0.05, &tally.c_widest);
     const DampingLawFit* answer = AnswerLaw(envelope);
     if (answer == nullptr) {
       ADD_FAILURE() << "no answer law";
@@ -95,9 +101,10 @@ Tally RunRealisations(const std::string& file_name) {
       if (p.name == "c") tally.answer_c_covered += p.lower_95 <= 0.05 && 0.05 <= p.upper_95;
   }
   std::printf("%s: loss-factor fit's c covered %d/%d, loss factor accepted %d/%d; model-form covers k1 %d, k3 %d, c %d "
-              "of %d; the answer's c covered %d\n",
+              "of %d; the answer's c covered %d; widest model-form interval / truth: k1 %.3g, k3 %.3g, c %.3g\n",
               file_name.c_str(), tally.loss_factor_c_covered, kRealisations, tally.loss_factor_accepted, kRealisations,
-              tally.k1_covered, tally.k3_covered, tally.c_covered, kRealisations, tally.answer_c_covered);
+              tally.k1_covered, tally.k3_covered, tally.c_covered, kRealisations, tally.answer_c_covered,
+              tally.k1_widest, tally.k3_widest, tally.c_widest);
   return tally;
 }
 
@@ -105,6 +112,12 @@ void ExpectModelFormCoverage(const Tally& t) {
   EXPECT_GE(t.k1_covered, kMinCoverage * kRealisations);
   EXPECT_GE(t.k3_covered, kMinCoverage * kRealisations);
   EXPECT_GE(t.c_covered, kMinCoverage * kRealisations);
+  // Not by being vague: the widest model-form interval over the realisations
+  // at most about twice what these campaigns give (measured, as a share of
+  // the truth: k1 7.9e-5 to 9.1e-5, k3 7.8e-4 to 8.5e-4, c 0.0093 to 0.0124).
+  EXPECT_LE(t.k1_widest, 2e-4);
+  EXPECT_LE(t.k3_widest, 2e-3);
+  EXPECT_LE(t.c_widest, 0.025);
   // The headline numbers (the accepted law's) hold the truth, not just the envelope.
   EXPECT_GE(t.answer_c_covered, kMinCoverage * kRealisations);
 }

@@ -227,6 +227,7 @@ DiagnosisFile FullFile(bool with_location) {
   file.embedded_result_json =
       R"({"format":"beamid-result/1","parameters":{"k1":{"value":120.5}},"fit":{"chi_square":null}})";
   file.beamid_version = "9.8.7-test";
+  file.phasor_uncertainty = PhasorUncertainty::kPropagated;
   return file;
 }
 
@@ -369,6 +370,7 @@ void ExpectSameFile(const DiagnosisFile& a, const DiagnosisFile& b) {
   EXPECT_EQ(a.result_file, b.result_file);
   EXPECT_EQ(a.embedded_result_json, b.embedded_result_json);
   EXPECT_EQ(a.beamid_version, b.beamid_version);
+  EXPECT_EQ(a.phasor_uncertainty, b.phasor_uncertainty);
   const DiagnosisResult &x = a.diagnosis, &y = b.diagnosis;
   ExpectSameFit(x.base, y.base, "base");
   ASSERT_EQ(x.location.has_value(), y.location.has_value());
@@ -496,6 +498,9 @@ TEST(DiagnosisFile, TheComparisonSeesAChangedField) {
   changed.diagnosis.final_extra_parameters.pop_back();
   EXPECT_EQ(FailuresOf([&] { ExpectSameFile(file, changed); }), 1);
   changed = file;
+  changed.phasor_uncertainty = PhasorUncertainty::kRelativeFloor;
+  EXPECT_EQ(FailuresOf([&] { ExpectSameFile(file, changed); }), 1);
+  changed = file;
   double& upper = changed.diagnosis.final_damping_laws.intervals[0].upper_95;
   upper = std::nextafter(upper, 2.0 * upper);
   EXPECT_EQ(FailuresOf([&] { ExpectSameFile(file, changed); }), 1);
@@ -508,6 +513,7 @@ TEST(DiagnosisFile, WritesTheLayoutTheReportReads) {
   EXPECT_EQ(j["campaign"]["folder"], "campaigns/friction");
   EXPECT_EQ(j["campaign"]["name"], "concealed friction");
   EXPECT_EQ(j["campaign_sha256"], "9f86d081884c7d659a2feaa0c55ad015a3bf4f1b2b0b822cd15d6c15b0f00a08");
+  EXPECT_EQ(j["phasor_uncertainty"], "propagated");
   EXPECT_EQ(j["result_file"], "runs/identify/result.json");
   EXPECT_EQ(j["result"]["format"], "beamid-result/1");
   EXPECT_EQ(j["selected"], nlohmann::json::array({"support_friction"}));
@@ -699,6 +705,7 @@ TEST(DiagnosisFile, ReadsTheFirstLayout) {
   EXPECT_EQ(file.campaign_folder, "out/clamp");
   EXPECT_EQ(file.campaign_name, "clamp");
   EXPECT_EQ(file.campaign_sha256, "");
+  EXPECT_EQ(file.phasor_uncertainty, PhasorUncertainty::kRelativeFloor);  // weighed so before the key
   EXPECT_EQ(file.result_file, "result.json");
   EXPECT_EQ(file.embedded_result_json, "");
   const DiagnosisResult& r = file.diagnosis;

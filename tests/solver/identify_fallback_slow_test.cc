@@ -18,6 +18,7 @@
 
 #include "hb/errors.h"
 #include "solver/estimation/identify.h"
+#include "tests/support/concealed_diagnosis.h"
 #include "tests/support/simulated_campaign.h"
 
 namespace beamid::solver {
@@ -53,13 +54,14 @@ TEST(IdentifyFallback, ContinuationFromTheLinearFitAnswersWhereTheStartsFail) {
         << result.warnings[0];
     EXPECT_TRUE(result.verdict.within_noise) << result.verdict.text;
     const auto& [k1_true, k3_true, c_true] = truth;
-    const std::pair<int, double> checks[] = {{0, k1_true}, {2, k3_true}, {3, c_true}};
-    for (const auto& [index, value] : checks) {
+    // The interval holds the truth without being vague: σ at most about
+    // twice what this campaign gives (measured 2.7e-5, 2.1e-4 and 2.8e-3 of the truth).
+    const std::tuple<int, double, double> checks[] = {{0, k1_true, 6e-5}, {2, k3_true, 4e-4}, {3, c_true, 6e-3}};
+    for (const auto& [index, value, max_relative_std] : checks) {
       const ParameterEstimate& p = result.parameters[static_cast<std::size_t>(index)];
       std::printf("  %s = %.8g (95 %%: %.8g … %.8g), truth %.8g, %.1f s\n", p.name.c_str(), p.value, p.lower_95,
                   p.upper_95, value, result.seconds);
-      EXPECT_LE(p.lower_95, value) << p.name;
-      EXPECT_GE(p.upper_95, value) << p.name;
+      testing::ExpectIntervalHolds(p, value, max_relative_std);
     }
   }
 }

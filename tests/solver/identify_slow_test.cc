@@ -59,6 +59,7 @@ TEST_F(IdentifyOnSimulatedCampaign, RecoversTheSupportWithinTheIssuesTolerances)
   const ParameterEstimate& k2 = result.parameters[1];
   EXPECT_LE(k2.lower_95, kK2);
   EXPECT_GE(k2.upper_95, kK2);
+  EXPECT_LE(k2.std, 10.0);  // measured 5.2 N·m/rad²: not by being vague
   for (const auto& p : result.parameters) std::printf("%s = %.6g ± %.3g %s\n", p.name.c_str(), p.value, p.std, p.unit.c_str());
   std::printf("reduced chi-square %.3g, %.2f s\n", result.reduced_chi_square, result.seconds);
 }

@@ -179,6 +179,7 @@ TEST_F(Workflows, DiagnoseCampaignReturnsTheDiagnosisItWrites) {
                                           .fit_channels = std::vector<std::string>{"acc1", "acc2"},
                                           .validate_channels = {"acc3"},
                                           .candidates = {"support_friction"},
+                                          .phasor_uncertainty = solver::PhasorUncertainty::kPropagated,
                                           .recording_check = false,
                                           .output = (out_ / "diagnosis.json").string()};
   const workflow::DiagnoseOutcome outcome = workflow::DiagnoseCampaign(request);
@@ -190,6 +191,7 @@ TEST_F(Workflows, DiagnoseCampaignReturnsTheDiagnosisItWrites) {
   EXPECT_EQ(written.diagnosis.summary, outcome.diagnosis.summary);
   EXPECT_EQ(written.diagnosis.base.chi_square, outcome.diagnosis.base.chi_square);
   EXPECT_EQ(written.campaign_sha256, campaign_->campaign.sha256);
+  EXPECT_EQ(written.phasor_uncertainty, solver::PhasorUncertainty::kPropagated);  // as the fit weighed the phasors
   // Only the asked candidate was tried.
   for (const auto& c : outcome.diagnosis.candidates) EXPECT_EQ(c.name, "support_friction");
 }
