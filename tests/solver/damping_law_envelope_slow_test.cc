@@ -15,7 +15,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <vector>
 
@@ -39,10 +38,7 @@ constexpr double kMinCoverage = 0.85;
 // coverage test's), its own damping kept, and a distorted force (2 % second,
 // 1 % third harmonic).
 hb::Scenario LeanScenario(const std::string& file_name) {
-  std::ifstream file("examples/scenarios/" + file_name);
-  nlohmann::json scenario = nlohmann::json::parse(file);
-  for (auto& level : scenario["levels"]) level["frequencies_Hz"] = {{"start", 51.0}, {"stop", 57.3}, {"step", 0.45}};
-  scenario.erase("hidden_positions_m");
+  nlohmann::json scenario = beamid::testing::LeanExample(file_name);
   scenario["excitation"]["distortion"] = {{{"harmonic", 2}, {"amplitude_ratio", 0.02}, {"phase_rad", 0.4}},
                                           {{"harmonic", 3}, {"amplitude_ratio", 0.01}, {"phase_rad", -1.1}}};
   return hb::ParseScenario(scenario.dump(), file_name + ", 15 steps per level, distorted force");

@@ -11,7 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -61,11 +61,7 @@ struct CoveragePhysics {
 // "rayleigh": Rayleigh beam damping α = 0.03 1/s, β = 4e-7 s (mode 1's
 //   damping ratio ≈ 1.1e-4, as η's), fitted as α, β: the same law in both.
 inline CoveragePhysics MakeCoveragePhysics(const std::string& name) {
-  std::ifstream file("examples/scenarios/paper_base.json");
-  if (!file) throw std::runtime_error("examples/scenarios/paper_base.json: run from the repository's root");
-  nlohmann::json scenario = nlohmann::json::parse(file);
-  for (auto& level : scenario["levels"]) level["frequencies_Hz"] = {{"start", 51.0}, {"stop", 57.3}, {"step", 0.45}};
-  scenario.erase("hidden_positions_m");
+  nlohmann::json scenario = LeanExample("paper_base.json");
   CoveragePhysics physics{.name = name,
                           .scenario = {},
                           .structure = solver::PolynomialModel({.k1_Nm_rad = 100.0}),
@@ -89,9 +85,11 @@ inline CoveragePhysics MakeCoveragePhysics(const std::string& name) {
 }
 
 // `realisations` noise draws from seeds first_seed, first_seed + 1, …, each
-// fitted to acc1 and acc2 with `fit_options`' weighting.
-inline CoverageStudy RunCoverageStudy(const CoveragePhysics& physics, solver::FitDataOptions fit_options,
-                                      int realisations, std::uint64_t first_seed) {
+// fitted to acc1 and acc2 with `fit_options`' weighting; `each` (if set)
+// sees every realisation's fit.
+inline CoverageStudy RunCoverageStudy(
+    const CoveragePhysics& physics, solver::FitDataOptions fit_options, int realisations, std::uint64_t first_seed,
+    const std::function<void(int realisation, const solver::IdentifyResult&)>& each = {}) {
   const std::filesystem::path folder = UniqueTempPath("beamid_coverage_study_" + physics.name);
   std::filesystem::remove_all(folder);
   const std::vector<hb::SimulatedStep> steps = SimulateInto(physics.scenario, folder);
@@ -114,6 +112,7 @@ inline CoverageStudy RunCoverageStudy(const CoveragePhysics& physics, solver::Fi
       c.sum_z2 += z * z;
       c.covered += p.lower_95 <= c.truth && c.truth <= p.upper_95;
     }
+    if (each) each(r, result);
     study.sum_reduced_chi_square += result.reduced_chi_square;
     ++study.realisations;
   }

@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -148,13 +149,20 @@ inline nlohmann::json PaperSetUpScenario() {
 //   the 0.3 % part keeps every SNR near 50 dB;
 // - force transducer: 0.002 N rms plus 0.2 % of its rms;
 // - 24-bit ADCs over ±500 m/s² and ±50 N; generator clock 25 ppm off.
-// Read from the repository's root (the tests' working directory).
-inline hb::Scenario LeanPaperBase() {
-  std::ifstream file("examples/scenarios/paper_base.json");
+// LeanExample takes any examples/scenarios/ file the same way (15 steps
+// per level, no hidden positions). Read from the repository's root (the
+// tests' working directory).
+inline nlohmann::json LeanExample(const std::string& file_name) {
+  std::ifstream file("examples/scenarios/" + file_name);
+  if (!file) throw std::runtime_error("examples/scenarios/" + file_name + ": run from the repository's root");
   nlohmann::json scenario = nlohmann::json::parse(file);
   for (auto& level : scenario["levels"]) level["frequencies_Hz"] = {{"start", 51.0}, {"stop", 57.3}, {"step", 0.45}};
   scenario.erase("hidden_positions_m");
-  return hb::ParseScenario(scenario.dump(), "paper_base.json, 15 steps per level");
+  return scenario;
+}
+
+inline hb::Scenario LeanPaperBase() {
+  return hb::ParseScenario(LeanExample("paper_base.json").dump(), "paper_base.json, 15 steps per level");
 }
 
 inline ExtractedCampaign SimulateCampaign(const nlohmann::json& scenario_json, const std::string& name) {
