@@ -37,6 +37,26 @@ void PrintParameters(const std::vector<solver::ParameterEstimate>& parameters) {
                p.lower_95, p.upper_95);
 }
 
+// The residual model error, on its own, and its share of each interval.
+void PrintModelErrors(const solver::IdentifyResult& result) {
+  if (result.model_errors.empty()) return;
+  std::string harmonics, shares;
+  for (std::size_t k = 0; k < result.model_errors.size(); ++k) {
+    const solver::ModelErrorEstimate& e = result.model_errors[k];
+    harmonics += e.lower_95 > 0.0 ? fmt::format("{}h{} {:.2g} (95 %: {:.2g} … {:.2g})", k ? ", " : "", k + 1,
+                                                e.relative, e.lower_95, e.upper_95)
+                                  : fmt::format("{}h{} not resolved (95 %: below {:.2g})", k ? ", " : "", k + 1,
+                                                e.upper_95);
+  }
+  for (const auto& p : result.parameters)
+    if (p.std > 0.0)
+      shares += fmt::format("{}{} {:.0f} %", shares.empty() ? "" : ", ", p.name,
+                            100.0 * p.std_model_error * p.std_model_error / (p.std * p.std));
+  fmt::print("  residual model error beyond the phasors' stated sigma, relative to each channel's fundamental: {}\n",
+             harmonics);
+  fmt::print("  the intervals above hold it; its share of each variance: {}\n", shares);
+}
+
 void RunIdentify(const workflow::IdentifyRequest& request, const GlobalOptions& global) {
   const workflow::IdentifyOutcome outcome = workflow::IdentifyCampaign(request, CliObserver(global));
   const solver::IdentifyResult& result = outcome.Result();
@@ -61,6 +81,7 @@ void RunIdentify(const workflow::IdentifyRequest& request, const GlobalOptions& 
     }
     fmt::print("  reduced chi-square {:.3g} (chi-square {:.4g} over {} degrees of freedom)\n", result.reduced_chi_square,
                result.chi_square, result.degrees_of_freedom);
+    PrintModelErrors(result);
     for (const auto& s : outcome.result_file.unsettled_steps)
       fmt::print("  step {} {:.4g} Hz ({}) was recorded before it settled: its uncertainty includes a {:.2f} % change "
                  "between the halves of its analysed part; re-record it with a longer settle\n",

@@ -59,4 +59,18 @@ double ChiSquareUpperTail(double x, double dof) {
   return RegularizedUpperGamma(0.5 * dof, 0.5 * x);
 }
 
+double ChiSquareUpperQuantile(double upper_tail, double dof) {
+  if (!(dof > 0.0) || !(upper_tail > 0.0 && upper_tail < 1.0)) {
+    throw std::invalid_argument("ChiSquareUpperQuantile: need dof > 0 and 0 < upper_tail < 1, got dof = " +
+                                std::to_string(dof) + ", upper_tail = " + std::to_string(upper_tail));
+  }
+  double low = 0.0, high = dof + 10.0 * std::sqrt(2.0 * dof) + 10.0;
+  while (ChiSquareUpperTail(high, dof) > upper_tail) high *= 2.0;
+  for (int i = 0; i < kMaxIterations && high - low > 1e-12 * high; ++i) {
+    const double middle = 0.5 * (low + high);
+    (ChiSquareUpperTail(middle, dof) > upper_tail ? low : high) = middle;
+  }
+  return 0.5 * (low + high);
+}
+
 }  // namespace beamid::solver

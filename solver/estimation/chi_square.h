@@ -16,4 +16,9 @@ double RegularizedUpperGamma(double a, double x);
 // P(χ²(dof) ≥ x); 1 for x ≤ 0, and 1 for dof = 0 (nothing tested).
 double ChiSquareUpperTail(double x, double dof);
 
+// The x with P(χ²(dof) ≥ x) = upper_tail (bisection on the tail, to 1e-12
+// relative), dof > 0 and 0 < upper_tail < 1. Throws std::invalid_argument
+// otherwise.
+double ChiSquareUpperQuantile(double upper_tail, double dof);
+
 }  // namespace beamid::solver

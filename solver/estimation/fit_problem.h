@@ -14,6 +14,7 @@
 
 #include <Eigen/Core>
 
+#include "solver/estimation/model_error.h"
 #include "solver/estimation/model_structure.h"
 
 namespace beamid::solver {
@@ -63,6 +64,17 @@ class FitProblem {
   // phasor-by-phasor whitening counts (shared_step_errors.h). Zero when
   // the residuals are independent.
   virtual Eigen::MatrixXd SharedErrorInformation(const Eigen::MatrixXd& reduced_jacobian) const {
+    return Eigen::MatrixXd::Zero(reduced_jacobian.cols(), reduced_jacobian.cols());
+  }
+  // The residual model error per fitted harmonic at x (model_error.h), for
+  // data whose phasors' σ are calibrated (PhasorUncertainty::kPropagated);
+  // empty otherwise: the relative floor stands in for it.
+  virtual std::vector<ModelErrorEstimate> ModelErrors(const Eigen::VectorXd& /*x*/, int /*degrees_of_freedom*/) {
+    return {};
+  }
+  // What those errors add to JᵀJ for the reduced Jacobian J (model_error.h).
+  virtual Eigen::MatrixXd ModelErrorInformation(const Eigen::VectorXd& /*x*/, const Eigen::MatrixXd& reduced_jacobian,
+                                                const std::vector<ModelErrorEstimate>& /*errors*/) {
     return Eigen::MatrixXd::Zero(reduced_jacobian.cols(), reduced_jacobian.cols());
   }
 

@@ -445,7 +445,12 @@ IdentifyResult IdentifyWith(const ProblemFactory& make_problem, const ModelStruc
   result.chi_square = residuals.squaredNorm();
   result.degrees_of_freedom = std::max(1, problem->num_residuals() - num_parameters);
   result.reduced_chi_square = result.chi_square / result.degrees_of_freedom;
-  const double variance_scale = std::max(1.0, result.reduced_chi_square);
+  // Calibrated phasor σ: what the fit leaves beyond them is the residual
+  // model error, estimated per harmonic and propagated on its own
+  // (model_error.h); otherwise the scatter scales every σ alike when it is
+  // worse than stated.
+  result.model_errors = problem->ModelErrors(x, result.degrees_of_freedom);
+  const double variance_scale = result.model_errors.empty() ? std::max(1.0, result.reduced_chi_square) : 1.0;
   // Inverted scale-free (unit diagonal, the correlation's inverse): in
   // physical units the diagonal spans 20 orders of magnitude (k3 in
   // N·m/rad³ beside a clamp compliance in rad/(N·m)), beyond double
@@ -461,15 +466,20 @@ IdentifyResult IdentifyWith(const ProblemFactory& make_problem, const ModelStruc
   const Eigen::MatrixXd inverse =
       normalised.eigenvectors() * values.cwiseInverse().asDiagonal() * normalised.eigenvectors().transpose();
   const Eigen::MatrixXd shared = unscaled * problem->SharedErrorInformation(j) * unscaled;
-  result.covariance = variance_scale * unscaled * (inverse + inverse * shared * inverse) * unscaled;
+  const Eigen::MatrixXd model_error = unscaled * problem->ModelErrorInformation(x, j, result.model_errors) * unscaled;
+  const Eigen::MatrixXd model_error_covariance = unscaled * inverse * model_error * inverse * unscaled;
+  result.covariance =
+      variance_scale * unscaled * (inverse + inverse * shared * inverse) * unscaled + model_error_covariance;
   const Eigen::VectorXd std = result.covariance.diagonal().cwiseSqrt();
+  const Eigen::VectorXd std_model_error = model_error_covariance.diagonal().cwiseMax(0.0).cwiseSqrt();
   result.correlation = std.cwiseInverse().asDiagonal() * result.covariance * std.cwiseInverse().asDiagonal();
   const auto names = initial.Names();
   const auto units = initial.Units();
   const auto& p = result.starts[best].parameters;
   for (int k = 0; k < num_parameters; ++k) {
     result.parameters.push_back({.name = names[k], .unit = units[k], .value = p[k], .std = std[k],
-                                 .lower_95 = p[k] - 1.96 * std[k], .upper_95 = p[k] + 1.96 * std[k]});
+                                 .lower_95 = p[k] - 1.96 * std[k], .upper_95 = p[k] + 1.96 * std[k],
+                                 .std_model_error = std_model_error[k]});
     if (std[k] > std::max(std::abs(p[k]), 1e-12))
       result.warnings.push_back(names[k] + " is not identifiable from these data: its standard uncertainty (" +
                                 std::to_string(std[k]) + ") exceeds its value");

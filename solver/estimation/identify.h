@@ -8,7 +8,10 @@
 //     B = A + what errors shared by a step's phasors add (shared_step_errors.h;
 //         B = A when the phasors' errors are independent, as under the relative floor),
 //     s² = max(1, χ²/(n − P))  (the scatter is trusted only when it is worse
-//                               than the stated phasor uncertainties).
+//                               than the stated phasor uncertainties);
+// with calibrated phasor σ (PhasorUncertainty::kPropagated) s² = 1 and B
+// holds the residual model error instead, estimated per harmonic from
+// what the fit leaves beyond those σ (model_error.h).
 #pragma once
 
 #include <functional>
@@ -89,6 +92,9 @@ struct ParameterEstimate {
   double std = 0.0;
   double lower_95 = 0.0;
   double upper_95 = 0.0;
+  // The part of std the residual model error adds (model_error.h):
+  // std² = statistical² + std_model_error²; 0 when it is not estimated.
+  double std_model_error = 0.0;
 };
 
 struct IdentifyResult {
@@ -98,6 +104,10 @@ struct IdentifyResult {
   double chi_square = 0.0;
   int degrees_of_freedom = 0;
   double reduced_chi_square = 0.0;
+  // The residual model error ε_k of harmonics 1..K, estimated when the
+  // phasors' σ are calibrated (PhasorUncertainty::kPropagated; empty
+  // otherwise) and propagated into the covariance on its own.
+  std::vector<ModelErrorEstimate> model_errors;
   DirectEstimate direct;
   std::vector<StartOutcome> starts;   // [0]: from the direct estimate
   int best_start = 0;

@@ -28,7 +28,8 @@ PhasorUncertaintyBudget RelativeStd(const PhasorUncertaintyBudget& variance, dou
 }
 
 // Relative RMS error and χ² per fitted channel, harmonic and level.
-std::vector<ChannelQuality> Quality(const FitData& fit, FitProblem& problem, const Eigen::VectorXd& x) {
+std::vector<ChannelQuality> Quality(const FitData& fit, FitProblem& problem, const Eigen::VectorXd& x,
+                                    const std::vector<ModelErrorEstimate>& model_errors) {
   const std::vector<Eigen::MatrixXcd> model = ModelPhasors(fit, problem, x);
   std::vector<ChannelQuality> out;
   for (std::size_t c = 0; c < fit.channels.size(); ++c) {
@@ -53,6 +54,8 @@ std::vector<ChannelQuality> Quality(const FitData& fit, FitProblem& problem, con
             variance.frequency += u.frequency * u.frequency;
             variance.model_error += u.model_error * u.model_error;
           }
+          if (static_cast<std::size_t>(k) <= model_errors.size())
+            variance.model_error += std::norm(model_errors[static_cast<std::size_t>(k - 1)].relative * model[i](c, 0));
           ++count;
         }
         per_level.push_back({.level = level,
@@ -136,7 +139,8 @@ ResultFile MakeResultFile(const FitData& fit, const FitData& validation, FitProb
   for (const auto& c : fit.channels) out.model.fit_channels.push_back(c.channel);
   for (const auto& p : result.parameters)
     out.parameters.push_back(
-        {.name = p.name, .unit = p.unit, .value = p.value, .std = p.std, .lower_95 = p.lower_95, .upper_95 = p.upper_95});
+        {.name = p.name, .unit = p.unit, .value = p.value, .std = p.std, .lower_95 = p.lower_95, .upper_95 = p.upper_95,
+         .std_model_error = p.std_model_error});
   for (const auto& l : structure.linear) out.linear_parameters.push_back(l.name);
   out.covariance = result.covariance;
   out.correlation = result.correlation;
@@ -145,6 +149,7 @@ ResultFile MakeResultFile(const FitData& fit, const FitData& validation, FitProb
   f.chi_square = result.chi_square;
   f.degrees_of_freedom = result.degrees_of_freedom;
   f.reduced_chi_square = result.reduced_chi_square;
+  f.model_errors = result.model_errors;
   f.seconds = result.seconds;
   for (const auto& s : result.starts)
     f.starts.push_back({.start = s.start,
@@ -169,7 +174,7 @@ ResultFile MakeResultFile(const FitData& fit, const FitData& validation, FitProb
                        .relative_residual = result.direct.relative_residual};
   out.warnings = result.warnings;
 
-  out.quality = Quality(fit, problem, result.x);
+  out.quality = Quality(fit, problem, result.x, result.model_errors);
   out.validation = Validation(validation, problem, result.x);
 
   for (int i = 0; i < static_cast<int>(fit.steps.size()); ++i) {

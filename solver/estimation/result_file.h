@@ -55,6 +55,7 @@ struct ResultParameter {
   double value = 0.0;
   double std = 0.0;
   double lower_95 = 0.0, upper_95 = 0.0;  // "ci95"
+  double std_model_error = 0.0;  // std's part from the residual model error (0 in older files)
 };
 
 struct ResultStart {
@@ -93,6 +94,9 @@ struct ResultFit {
   double second_minimum_chi_square_gap = 0.0;
   bool minimum_decisive = true;
   ResultDirectEstimate direct_estimate;
+  // The residual model error per fitted harmonic ([k-1]; empty unless the
+  // phasors' σ are calibrated: solver/estimation/model_error.h).
+  std::vector<ModelErrorEstimate> model_errors;
 };
 
 // Fit quality of one fitted channel: per harmonic ([k-1]: harmonic k,
@@ -104,7 +108,8 @@ struct LevelQuality {
   int num_steps = 0;  // "steps"
   // The phasors' σ term by term (solver/estimation/phasor_uncertainty.h),
   // each √(Σσ²/Σ|Y|²) over the level's steps ("relative_std"; 0 in older
-  // files). Under the relative floor, model_error holds the floor.
+  // files). Under the relative floor, model_error holds the floor; with
+  // calibrated σ, the residual model error ε_k·|Ŷ_1| the fit estimated.
   PhasorUncertaintyBudget relative_std;
 };
 struct ChannelQuality {

@@ -225,6 +225,14 @@ void Describe(auto& io, schema::Like<ResultFit> auto& f) {
     d_io.Number("c", d.c_Nms_rad, "N m s/rad", schema::Any().OrNull());
     d_io.Number("relative_residual", d.relative_residual, "1", schema::NonNegative().OrNull());
   });
+  // Harmonics 1..K in order; written only with calibrated phasor σ.
+  io.List("model_errors", f.model_errors, static_cast<std::size_t>(option_checks::kMaxHarmonics), kOmittedWhenEmpty,
+          [](auto& e_io, auto& e) {
+            e_io.Number("relative", e.relative, "1", schema::NonNegative().OrNull());
+            Interval(e_io, "ci95", e.lower_95, e.upper_95, "1");
+            e_io.Number("chi_square", e.chi_square, "1", schema::NonNegative().OrNull());
+            e_io.Number("degrees_of_freedom", e.degrees_of_freedom, "1", schema::NonNegative().OrNull());
+          });
 }
 
 void Describe(auto& io, schema::Like<ResultUnsettledStep> auto& s) {
@@ -251,6 +259,9 @@ void Describe(auto& io, schema::Like<ResultFile> auto& f) {
              p_io.Number("std", p.std, "the parameter's unit", schema::NonNegative().OrNull());
              p_io.Text("unit", p.unit);
              Interval(p_io, "ci95", p.lower_95, p.upper_95, "the parameter's unit");
+             // Files from before the residual model error was estimated: 0.
+             p_io.Number("std_model_error", p.std_model_error, "the parameter's unit", schema::NonNegative().OrNull(),
+                         kOptional);
            });
   std::vector<std::string> order;
   for (const ResultParameter& p : f.parameters) order.push_back(p.name);

@@ -1,4 +1,6 @@
 #include "solver/estimation/stepped_fit_problem.h"
+
+#include "solver/estimation/model_phasors.h"
 #include "solver/estimation/shared_step_errors.h"
 #include "solver/estimation/whitened_misfit.h"
 
@@ -274,6 +276,18 @@ Eigen::MatrixXd SteppedFitProblem::ReducedResidualJacobian(const Eigen::VectorXd
 
 Eigen::MatrixXd SteppedFitProblem::SharedErrorInformation(const Eigen::MatrixXd& reduced_jacobian) const {
   return solver::SharedErrorInformation(data_, reduced_jacobian);
+}
+
+std::vector<ModelErrorEstimate> SteppedFitProblem::ModelErrors(const Eigen::VectorXd& x, int degrees_of_freedom) {
+  if (data_.uncertainty != PhasorUncertainty::kPropagated) return {};
+  return EstimateModelErrors(data_, ModelPhasors(data_, *this, x), degrees_of_freedom);
+}
+
+Eigen::MatrixXd SteppedFitProblem::ModelErrorInformation(const Eigen::VectorXd& x,
+                                                         const Eigen::MatrixXd& reduced_jacobian,
+                                                         const std::vector<ModelErrorEstimate>& errors) {
+  if (errors.empty()) return FitProblem::ModelErrorInformation(x, reduced_jacobian, errors);
+  return solver::ModelErrorInformation(data_, ModelPhasors(data_, *this, x), errors, reduced_jacobian);
 }
 
 Eigen::MatrixXcd SteppedFitProblem::DisplacementPhasors(const Eigen::VectorXd& x, int step,

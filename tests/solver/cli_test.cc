@@ -255,12 +255,29 @@ TEST_F(CommandLine, IdentifyRefitsTheDampingLawsAndWritesTheirModelFormIntervals
   EXPECT_FALSE(propagated.contains("damping_laws"));
   EXPECT_EQ(propagated["model"]["phasor_uncertainty"], "propagated");
   // The budget names each term: the noise, the force's and the frequency's
-  // errors, and the model's own at its stated 1e-5 of the phasor.
+  // errors, and the residual model error the fit estimated per harmonic
+  // (relative to the model's phasor, so within the fit's error of ε_k).
   const auto& budget = propagated["quality"]["acc1"]["h1"]["high"]["relative_std"];
   EXPECT_GT(budget["noise"].get<double>(), 0.0);
   EXPECT_GT(budget["force"].get<double>(), 0.0);
   EXPECT_GT(budget["frequency"].get<double>(), 0.0);
-  EXPECT_NEAR(budget["model_error"].get<double>(), 1e-5, 1e-12);
+  const auto& model_errors = propagated["fit"]["model_errors"];
+  ASSERT_EQ(model_errors.size(), 3u);
+  const double epsilon_1 = model_errors[0]["relative"].get<double>();
+  EXPECT_NEAR(budget["model_error"].get<double>(), epsilon_1, 0.01 * epsilon_1 + 1e-15);
+  for (const auto& e : model_errors) {
+    const double relative = e["relative"].get<double>();
+    EXPECT_LE(e["ci95"][0].get<double>(), relative);
+    EXPECT_GE(e["ci95"][1].get<double>(), relative);
+    // A residual model error only where the stated σ leave an excess.
+    EXPECT_EQ(relative > 0.0, e["chi_square"].get<double>() > e["degrees_of_freedom"].get<double>());
+  }
+  for (const auto& [name, p] : propagated["parameters"].items()) {
+    EXPECT_GE(p["std_model_error"].get<double>(), 0.0) << name;
+    EXPECT_LE(p["std_model_error"].get<double>(), p["std"].get<double>()) << name;
+  }
+  // Under the floor nothing is estimated: the floor stands in for it.
+  EXPECT_FALSE(written["fit"].contains("model_errors"));
 }
 
 TEST_F(CommandLine, MeasuredBackboneRejectsABadTableNamingFileAndColumn) {

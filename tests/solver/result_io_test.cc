@@ -56,7 +56,10 @@ ResultFit Fit(int num_parameters) {
                                   .k2_Nm_rad2 = -12.5,
                                   .k3_Nm_rad3 = 2.9e5,
                                   .c_Nms_rad = 0.049,
-                                  .relative_residual = kNaN}};
+                                  .relative_residual = kNaN},
+              .model_errors = {{.relative = 3.5e-5, .lower_95 = 1.25e-5, .upper_95 = 5.5e-5, .chi_square = 530.5,
+                                .degrees_of_freedom = 478.25},
+                               {.degrees_of_freedom = 478.25}}};
   for (int s = 0; s < 3; ++s) {
     ResultStart start{.objective = 206.25 + s,
                       .converged = s != 2,
@@ -99,7 +102,8 @@ ResultFile HarmonicBalanceResult() {
              .num_fit_harmonics = 3,
              .num_harmonics = 7,
              .phasor_uncertainty = PhasorUncertainty::kPropagated};
-  r.parameters = {{.name = "k1", .unit = "N*m/rad", .value = 150.43, .std = 0.21, .lower_95 = 150.02, .upper_95 = 150.84},
+  r.parameters = {{.name = "k1", .unit = "N*m/rad", .value = 150.43, .std = 0.21, .lower_95 = 150.02, .upper_95 = 150.84,
+                   .std_model_error = 0.0625},
                   {.name = "k2", .unit = "N*m/rad^2", .value = -31.5, .std = 40.5, .lower_95 = -110.9, .upper_95 = 47.9},
                   {.name = "k3", .unit = "N*m/rad^3", .value = 3.01e5, .std = 1.1e3, .lower_95 = 2.99e5, .upper_95 = 3.03e5},
                   {.name = "c", .unit = "N*m*s/rad", .value = 0.0502, .std = 1.5e-4, .lower_95 = 0.0499, .upper_95 = 0.0505},
@@ -258,6 +262,7 @@ void ExpectSame(const ResultFile& a, const ResultFile& b) {
     EXPECT_TRUE(Same(a.parameters[i].std, b.parameters[i].std));
     EXPECT_TRUE(Same(a.parameters[i].lower_95, b.parameters[i].lower_95));
     EXPECT_TRUE(Same(a.parameters[i].upper_95, b.parameters[i].upper_95));
+    EXPECT_TRUE(Same(a.parameters[i].std_model_error, b.parameters[i].std_model_error));
   }
   EXPECT_EQ(a.linear_parameters, b.linear_parameters);
   ASSERT_EQ(a.damping_laws.laws.size(), b.damping_laws.laws.size());
@@ -350,6 +355,14 @@ void ExpectSame(const ResultFile& a, const ResultFile& b) {
   EXPECT_TRUE(Same(f.direct_estimate.k3_Nm_rad3, g.direct_estimate.k3_Nm_rad3));
   EXPECT_TRUE(Same(f.direct_estimate.c_Nms_rad, g.direct_estimate.c_Nms_rad));
   EXPECT_TRUE(Same(f.direct_estimate.relative_residual, g.direct_estimate.relative_residual));
+  ASSERT_EQ(f.model_errors.size(), g.model_errors.size());
+  for (std::size_t k = 0; k < f.model_errors.size(); ++k) {
+    EXPECT_TRUE(Same(f.model_errors[k].relative, g.model_errors[k].relative));
+    EXPECT_TRUE(Same(f.model_errors[k].lower_95, g.model_errors[k].lower_95));
+    EXPECT_TRUE(Same(f.model_errors[k].upper_95, g.model_errors[k].upper_95));
+    EXPECT_TRUE(Same(f.model_errors[k].chi_square, g.model_errors[k].chi_square));
+    EXPECT_TRUE(Same(f.model_errors[k].degrees_of_freedom, g.model_errors[k].degrees_of_freedom));
+  }
   EXPECT_EQ(a.warnings, b.warnings);
 
   ASSERT_EQ(a.quality.size(), b.quality.size());
