@@ -3,7 +3,7 @@
 // campaign (15 steps per level), for each physics and each phasor weighting.
 // Counters per parameter: coverage (the fraction of intervals that hold the
 // truth; 0.95 when calibrated), mean_z (bias in σ) and rms_z (1 when the σ
-// are right); mean_chi2 is the fits' mean reduced χ². Runs ~90 s on 2 cores.
+// are right); mean_chi2 is the fits' mean reduced χ². Runs 94–173 s on 2 cores.
 #include <string>
 
 #include <benchmark/benchmark.h>
