@@ -28,7 +28,7 @@ double Misfit(const std::vector<ModelErrorPhasor>& phasors, double relative) {
 double RelativeErrorAt(const std::vector<ModelErrorPhasor>& phasors, double target, double sum_residual2,
                        double mean_scale2) {
   if (Misfit(phasors, 0.0) <= target) return 0.0;
-  // Bracket from the plain estimate Σ|r|²/(ν·mean |Ŷ|²) and widen until Q is below target.
+  // Bracket from the plain estimate Σ|r|²/(ν·mean a²) and widen until Q is below target.
   double high = std::sqrt(sum_residual2 / (target * mean_scale2));
   while (Misfit(phasors, high) > target) high *= 2.0;
   double low = 0.0;
@@ -109,8 +109,10 @@ Eigen::MatrixXd ModelErrorInformation(const FitData& data, const std::vector<Eig
       for (int k = 1; k <= std::min(k_max, static_cast<int>(errors.size())); ++k) {
         const double std = errors[static_cast<std::size_t>(k - 1)].relative * std::abs(model[s](c, 0));
         if (std == 0.0) continue;
-        const Eigen::Matrix2d& whitening = data.steps[s].whitening[static_cast<std::size_t>(c)][static_cast<std::size_t>(k - 1)];
-        const auto rows = whitened_jacobian.middleRows<2>(static_cast<Eigen::Index>(s) * rows_per_step + 2 * (c * k_max + k - 1));
+        const Eigen::Matrix2d& whitening =
+            data.steps[s].whitening[static_cast<std::size_t>(c)][static_cast<std::size_t>(k - 1)];
+        const auto rows =
+            whitened_jacobian.middleRows<2>(static_cast<Eigen::Index>(s) * rows_per_step + 2 * (c * k_max + k - 1));
         const Eigen::MatrixXd t = whitening.transpose() * rows;  // L⁻ᵀ·J_i
         extra += std * std * t.transpose() * t;
       }

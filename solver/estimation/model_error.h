@@ -7,11 +7,13 @@
 //
 // (Ŷ the fitted model's phasors) holds what the fit actually missed. The
 // error of every harmonic is relative to the fundamental, not to the
-// harmonic itself: on the paper's campaign from the independent simulator
-// the third harmonic's excess is as large at 1 N as at 9 N in proportion to
-// the fundamental, where the harmonic itself is 700 times smaller, and an
-// error relative to it put the low level's excess onto the high level's
-// third harmonic (k3's intervals 1.5 times too wide). ε_k is the
+// harmonic itself, as measured on the paper's campaign from the
+// independent simulator: relative to the fundamental, the ε one noise
+// realisation gives makes every channel, harmonic and level of another
+// read χ²/ν 0.80–1.16; relative to the harmonic, which is some 700 times
+// smaller at 1 N than at 9 N, the low level's excess went onto the high
+// level's third harmonic (χ²/ν 0.75 there) and k3's intervals were 1.5
+// times too wide. ε_k is the
 // method-of-moments (Paule–Mandel) estimate: the root of
 //
 //   Q(ε) = Σ_i r_iᵀ·(C_i + ε²·a_i²·I)⁻¹·r_i = ν_k,
