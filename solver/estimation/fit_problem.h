@@ -66,15 +66,13 @@ class FitProblem {
   virtual Eigen::MatrixXd SharedErrorInformation(const Eigen::MatrixXd& reduced_jacobian) const {
     return Eigen::MatrixXd::Zero(reduced_jacobian.cols(), reduced_jacobian.cols());
   }
-  // The residual model error per fitted harmonic at x (model_error.h), for
-  // data whose phasors' σ are calibrated (PhasorUncertainty::kPropagated);
-  // empty otherwise: the relative floor stands in for it.
-  virtual std::vector<ModelErrorEstimate> ModelErrors(const Eigen::VectorXd& /*x*/, int /*degrees_of_freedom*/) {
-    return {};
-  }
-  // What those errors add to JᵀJ for the reduced Jacobian J (model_error.h).
+  // The residual model error per fitted harmonic at x (model_error.h) into
+  // `errors`, and what it adds to JᵀJ for the reduced Jacobian J, for data
+  // whose phasors' σ are calibrated (PhasorUncertainty::kPropagated); no
+  // estimates and zero otherwise: the relative floor stands in for it.
   virtual Eigen::MatrixXd ModelErrorInformation(const Eigen::VectorXd& /*x*/, const Eigen::MatrixXd& reduced_jacobian,
-                                                const std::vector<ModelErrorEstimate>& /*errors*/) {
+                                                int /*degrees_of_freedom*/, std::vector<ModelErrorEstimate>* errors) {
+    errors->clear();
     return Eigen::MatrixXd::Zero(reduced_jacobian.cols(), reduced_jacobian.cols());
   }
 

@@ -449,7 +449,8 @@ IdentifyResult IdentifyWith(const ProblemFactory& make_problem, const ModelStruc
   // model error, estimated per harmonic and propagated on its own
   // (model_error.h); otherwise the scatter scales every σ alike when it is
   // worse than stated.
-  result.model_errors = problem->ModelErrors(x, result.degrees_of_freedom);
+  const Eigen::MatrixXd model_error_information =
+      problem->ModelErrorInformation(x, j, result.degrees_of_freedom, &result.model_errors);
   const double variance_scale = result.model_errors.empty() ? std::max(1.0, result.reduced_chi_square) : 1.0;
   // Inverted scale-free (unit diagonal, the correlation's inverse): in
   // physical units the diagonal spans 20 orders of magnitude (k3 in
@@ -466,7 +467,7 @@ IdentifyResult IdentifyWith(const ProblemFactory& make_problem, const ModelStruc
   const Eigen::MatrixXd inverse =
       normalised.eigenvectors() * values.cwiseInverse().asDiagonal() * normalised.eigenvectors().transpose();
   const Eigen::MatrixXd shared = unscaled * problem->SharedErrorInformation(j) * unscaled;
-  const Eigen::MatrixXd model_error = unscaled * problem->ModelErrorInformation(x, j, result.model_errors) * unscaled;
+  const Eigen::MatrixXd model_error = unscaled * model_error_information * unscaled;
   const Eigen::MatrixXd model_error_covariance = unscaled * inverse * model_error * inverse * unscaled;
   result.covariance =
       variance_scale * unscaled * (inverse + inverse * shared * inverse) * unscaled + model_error_covariance;

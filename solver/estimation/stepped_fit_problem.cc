@@ -278,16 +278,15 @@ Eigen::MatrixXd SteppedFitProblem::SharedErrorInformation(const Eigen::MatrixXd&
   return solver::SharedErrorInformation(data_, reduced_jacobian);
 }
 
-std::vector<ModelErrorEstimate> SteppedFitProblem::ModelErrors(const Eigen::VectorXd& x, int degrees_of_freedom) {
-  if (data_.uncertainty != PhasorUncertainty::kPropagated) return {};
-  return EstimateModelErrors(data_, ModelPhasors(data_, *this, x), degrees_of_freedom);
-}
-
 Eigen::MatrixXd SteppedFitProblem::ModelErrorInformation(const Eigen::VectorXd& x,
                                                          const Eigen::MatrixXd& reduced_jacobian,
-                                                         const std::vector<ModelErrorEstimate>& errors) {
-  if (errors.empty()) return FitProblem::ModelErrorInformation(x, reduced_jacobian, errors);
-  return solver::ModelErrorInformation(data_, ModelPhasors(data_, *this, x), errors, reduced_jacobian);
+                                                         int degrees_of_freedom,
+                                                         std::vector<ModelErrorEstimate>* errors) {
+  if (data_.uncertainty != PhasorUncertainty::kPropagated)
+    return FitProblem::ModelErrorInformation(x, reduced_jacobian, degrees_of_freedom, errors);
+  const std::vector<Eigen::MatrixXcd> model = ModelPhasors(data_, *this, x);
+  *errors = EstimateModelErrors(data_, model, degrees_of_freedom);
+  return solver::ModelErrorInformation(data_, model, *errors, reduced_jacobian);
 }
 
 Eigen::MatrixXcd SteppedFitProblem::DisplacementPhasors(const Eigen::VectorXd& x, int step,

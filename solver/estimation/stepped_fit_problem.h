@@ -140,9 +140,8 @@ class SteppedFitProblem : public FitProblem {
   // dr/dp along the balance: dz/dp = −(∂R/∂z)⁻¹·∂R/∂p per step.
   Eigen::MatrixXd ReducedResidualJacobian(const Eigen::VectorXd& x) override;
   Eigen::MatrixXd SharedErrorInformation(const Eigen::MatrixXd& reduced_jacobian) const override;
-  std::vector<ModelErrorEstimate> ModelErrors(const Eigen::VectorXd& x, int degrees_of_freedom) override;
   Eigen::MatrixXd ModelErrorInformation(const Eigen::VectorXd& x, const Eigen::MatrixXd& reduced_jacobian,
-                                        const std::vector<ModelErrorEstimate>& errors) override;
+                                        int degrees_of_freedom, std::vector<ModelErrorEstimate>* errors) override;
 
   Eigen::MatrixXcd DisplacementPhasors(const Eigen::VectorXd& x, int step,
                                        const std::vector<double>& positions_m) override;
