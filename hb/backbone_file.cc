@@ -17,8 +17,8 @@ namespace {
 
 using internal::CsvNumber;
 
-constexpr schema::Format kFormat{kBackboneFormat, "backbone file",
-                                 "give the PREFIX.json of 'beamid backbone' on a model"};
+constexpr schema::Format kBackboneFileSchema{kBackboneFormat, "backbone file",
+                                             "give the PREFIX.json of 'beamid backbone' on a model"};
 
 // A bound on what a file can make the reader hold: `backbone --max-points`
 // stays far below it.
@@ -117,7 +117,7 @@ std::string BackboneFileToCsv(const BackboneFile& file) {
 }
 
 BackboneFile BackboneFileFromJson(const std::string& text, const std::string& source) {
-  BackboneFile file = schema::FromJson<BackboneFile>(text, source, kFormat);
+  BackboneFile file = schema::FromJson<BackboneFile>(text, source, kBackboneFileSchema);
   if (!file.points.empty())
     for (const BackboneFileSensorPhasors& s : file.points.front().sensors)
       file.sensors.push_back({s.channel, s.position_m});

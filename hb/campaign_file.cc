@@ -7,9 +7,10 @@
 namespace beamid::hb {
 namespace {
 
-constexpr schema::Format kFormat{kCampaignFileFormat, "campaign description",
-                                 "correct campaign.json as docs/campaign-format.md describes it (SI units, as each "
-                                 "key's suffix says)"};
+constexpr schema::Format kCampaignFileSchema{
+    kCampaignFileFormat, "campaign description",
+    "correct campaign.json as docs/campaign-format.md describes it (SI units, as each "
+    "key's suffix says)"};
 
 // A bound on the work a file can cause: a stepped-sine test has hundreds.
 constexpr std::size_t kMaxSteps = 100'000;
@@ -75,7 +76,7 @@ std::string CampaignFileToJson(const CampaignFile& file) {
 }
 
 CampaignFile CampaignFileFromJson(const std::string& text, const std::string& source) {
-  return schema::FromJson<CampaignFile>(text, source, kFormat);
+  return schema::FromJson<CampaignFile>(text, source, kCampaignFileSchema);
 }
 
 }  // namespace beamid::hb

@@ -15,7 +15,7 @@ namespace {
 
 using internal::CsvNumber;
 
-constexpr schema::Format kFormat{kFrcFormat, "frequency response file", "give the PREFIX.json of 'beamid frc'"};
+constexpr schema::Format kFrcFileSchema{kFrcFormat, "frequency response file", "give the PREFIX.json of 'beamid frc'"};
 
 // Bounds on what a file can make the reader hold: `frc --max-points` and
 // the force levels of one run stay far below them.
@@ -124,7 +124,7 @@ std::string FrcFileToCsv(const FrcFile& file) {
 }
 
 FrcFile FrcFileFromJson(const std::string& text, const std::string& source) {
-  FrcFile file = schema::FromJson<FrcFile>(text, source, kFormat);
+  FrcFile file = schema::FromJson<FrcFile>(text, source, kFrcFileSchema);
   for (const FrcCurve& c : file.curves)
     if (!c.points.empty()) {
       for (const FrcSensorPhasors& s : c.points.front().sensors) file.sensors.push_back({s.channel, s.position_m});

@@ -933,6 +933,11 @@ constexpr bool Writes(const Io&, bool written) {
   return true;
 }
 
+// True while the declaration is walked to document the format, so that a
+// key or a value that depends on the data can be written as a placeholder.
+template <typename Io>
+constexpr bool kDocumenting = std::is_same_v<std::remove_const_t<Io>, Documenter>;
+
 // A field of one variant of the format (a voltage drive's amplifier): the
 // writer and the reader take it in that variant (`in_variant`), the
 // documentation lists it always, so that the reader also knows it as one of

@@ -14,8 +14,8 @@
 namespace beamid::hb {
 namespace {
 
-constexpr schema::Format kFormat{kModelFileFormat, "model file",
-                                 "give a model file (docs/model-file.md) or a scenario (docs/simulator.md)"};
+constexpr schema::Format kModelFileSchema{kModelFileFormat, "model file",
+                                          "give a model file (docs/model-file.md) or a scenario (docs/simulator.md)"};
 
 // A scenario is a model file too (see the header): "format" names either.
 enum class ModelFormat { kModel, kScenario };
@@ -26,10 +26,6 @@ constexpr schema::Name<ModelFormat> kFormatNames[] = {{ModelFormat::kModel, kMod
 enum class Drive { kForce, kVoltage, kBaseAcceleration };
 constexpr schema::Name<Drive> kDriveNames[] = {
     {Drive::kForce, "force"}, {Drive::kVoltage, "voltage"}, {Drive::kBaseAcceleration, "base_acceleration"}};
-
-[[noreturn]] void Fail(const std::string& source, const std::string& problem, const std::string& fix) {
-  throw InputError(source + ": " + problem + ". Fix: " + fix);
-}
 
 }  // namespace
 
@@ -83,7 +79,7 @@ std::vector<schema::FieldDoc> ModelFileFields() { return schema::Fields<ModelFil
 std::unique_ptr<SupportLaw> ModelFile::MakeSupportLaw() const { return MakePolynomialSupportLaw(polynomial, jenkins, one_sided_stiffness_Nm_rad); }
 
 ModelFile ParseModelFile(const std::string& json_text, const std::string& source) {
-  ModelFile model = schema::FromJson<ModelFile>(json_text, source, kFormat);
+  ModelFile model = schema::FromJson<ModelFile>(json_text, source, kModelFileSchema);
   for (std::size_t i = 0; i < model.sensors.size(); ++i) {
     ModelSensor& sensor = model.sensors[i];
     if (sensor.channel.empty()) sensor.channel = "x" + std::to_string(i + 1);
@@ -93,13 +89,13 @@ ModelFile ParseModelFile(const std::string& json_text, const std::string& source
   try {
     model.beam.Validate();
   } catch (const std::invalid_argument& e) {
-    Fail(source, e.what(), "give the beam in SI (m, Pa, kg/m³)");
+    throw InputError(source, "", e.what(), "give the beam in SI (m, Pa, kg/m³)");
   }
   const double length = model.beam.length_m;
   auto on_beam = [&](double x, const std::string& what) {
     if (x > length)
-      Fail(source, fmt::format("{} at {} m lies beyond the beam's length {} m", what, x, length),
-           "give a position on the beam, 0 .. beam.length_m");
+      throw InputError(source, "", fmt::format("{} at {} m lies beyond the beam's length {} m", what, x, length),
+                       "give a position on the beam, 0 .. beam.length_m");
   };
   on_beam(model.force_position_m, "excitation.position_m");
   for (const auto& s : model.sensors) on_beam(s.position_m, "sensor " + s.channel);

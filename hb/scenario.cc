@@ -88,8 +88,8 @@ int Scenario::NumSteps() const {
 }
 namespace {
 
-constexpr schema::Format kFormat{kScenarioFormat, "simulation scenario",
-                                 "give a simulation scenario (docs/simulator.md)"};
+constexpr schema::Format kScenarioSchema{kScenarioFormat, "simulation scenario",
+                                         "give a simulation scenario (docs/simulator.md)"};
 
 // Bounds on what a file can make the simulator run: far above any test's.
 constexpr std::size_t kMaxLevels = 1'000;
@@ -386,10 +386,6 @@ std::vector<schema::FieldDoc> ScenarioFields() { return schema::Fields<Scenario>
 
 namespace {
 
-[[noreturn]] void Fail(const std::string& source, const std::string& problem, const std::string& fix) {
-  throw InputError(source + ": " + problem + ". Fix: " + fix);
-}
-
 // ---------------------------------------------------------------- consistency of the whole
 
 void ValidateBeams(const Scenario& s, const std::string& source) {
@@ -397,7 +393,7 @@ void ValidateBeams(const Scenario& s, const std::string& source) {
     s.beam.Validate();
     s.nominal_beam.Validate();
   } catch (const std::invalid_argument& e) {
-    Fail(source, e.what(), "give the beam in SI (m, Pa, kg/m³)");
+    throw InputError(source, "", e.what(), "give the beam in SI (m, Pa, kg/m³)");
   }
 }
 
@@ -405,61 +401,65 @@ void CheckPositionsAndChannels(const Scenario& s, const std::string& source) {
   const double length = s.beam.length_m;
   auto inside = [&](double x, const std::string& what, bool allow_ends) {
     if (!(x >= 0.0 && x <= length) || (!allow_ends && (x <= 0.0 || x >= length)))
-      Fail(source, fmt::format("{} = {} m lies outside the beam (0, {}) m", what, x, length),
-           "give a position on the beam (beam.length_m)");
+      throw InputError(source, "", fmt::format("{} = {} m lies outside the beam (0, {}) m", what, x, length),
+                       "give a position on the beam (beam.length_m)");
   };
   if (!s.BaseExcitation()) inside(s.force_position_m, "excitation.position_m", false);
   std::set<std::string> channels{s.force_channel};
   if (s.force_channel == "time_s")
-    Fail(source, "excitation.channel is time_s, the time column's name", "name the channel otherwise");
+    throw InputError(source, "", "excitation.channel is time_s, the time column's name", "name the channel otherwise");
   for (size_t i = 0; i < s.sensors.size(); ++i) {
     const ScenarioSensor& sensor = s.sensors[i];
     inside(sensor.position_m, fmt::format("sensors[{}].position_m", i), false);
     // The test plan may place a sensor at the support's end (x = L), not at the clamp.
     if (sensor.stated_position_m && !(*sensor.stated_position_m > 0.0 && *sensor.stated_position_m <= length))
-      Fail(source,
-           fmt::format("sensors[{}].stated_position_m = {} m lies outside the beam (0, {}] m", i,
-                       *sensor.stated_position_m, length),
-           "give where the test plan says sensor " + sensor.channel + " is");
+      throw InputError(source, "",
+                       fmt::format("sensors[{}].stated_position_m = {} m lies outside the beam (0, {}] m", i,
+                                   *sensor.stated_position_m, length),
+                       "give where the test plan says sensor " + sensor.channel + " is");
     if (!channels.insert(sensor.channel).second)
-      Fail(source, fmt::format("sensors[{}].channel: channel name '{}' is used twice", i, sensor.channel),
-           "give every channel its own name");
+      throw InputError(source, "",
+                       fmt::format("sensors[{}].channel: channel name '{}' is used twice", i, sensor.channel),
+                       "give every channel its own name");
   }
   for (double x : s.hidden_positions_m) inside(x, "hidden_positions_m", true);
   for (const PointMass& m : s.attachments.point_masses) inside(m.position_m, "attachments point mass position_m", true);
   for (const auto& [channel, noise] : s.channel_noise)
     if (!channels.count(channel))
-      Fail(source, "noise.channels names '" + channel + "', which is not a channel",
-           "name the excitation's channel or a sensor's");
+      throw InputError(source, "", "noise.channels names '" + channel + "', which is not a channel",
+                       "name the excitation's channel or a sensor's");
 }
 
 void CheckLevelsAndFrequencies(const Scenario& s, const std::string& source) {
   std::set<std::string> labels;
   for (std::size_t i = 0; i < s.levels.size(); ++i)
     if (!labels.insert(s.levels[i].label).second)
-      Fail(source, fmt::format("levels[{}].label: level label '{}' is used twice", i, s.levels[i].label),
-           "give every level its own label");
+      throw InputError(source, "",
+                       fmt::format("levels[{}].label: level label '{}' is used twice", i, s.levels[i].label),
+                       "give every level its own label");
   const double nyquist_hz = 0.5 * s.timing.sample_rate_hz;
   for (const ScenarioLevel& level : s.levels)
     for (double f : level.frequencies_hz)
       if (5.0 * f >= nyquist_hz)
-        Fail(source,
-             fmt::format("level {} runs {} Hz, whose 5th harmonic is above the Nyquist frequency of sample_rate_Hz",
-                         level.label, f),
-             "raise timing.sample_rate_Hz");
+        throw InputError(
+            source, "",
+            fmt::format("level {} runs {} Hz, whose 5th harmonic is above the Nyquist frequency of sample_rate_Hz",
+                        level.label, f),
+            "raise timing.sample_rate_Hz");
   double max_frequency_hz = 0.0;
   for (const ScenarioLevel& level : s.levels)
     for (double f : level.frequencies_hz) max_frequency_hz = std::max(max_frequency_hz, f);
   for (const ForceHarmonic& h : s.force_distortion)
     if (h.harmonic * max_frequency_hz >= nyquist_hz)
-      Fail(source, fmt::format("excitation.distortion harmonic {} exceeds the Nyquist frequency", h.harmonic),
-           "raise timing.sample_rate_Hz");
+      throw InputError(source, "",
+                       fmt::format("excitation.distortion harmonic {} exceeds the Nyquist frequency", h.harmonic),
+                       "raise timing.sample_rate_Hz");
 }
 
 }  // namespace
 
 Scenario ParseScenario(const std::string& json_text, const std::string& source) {
-  Scenario s = schema::FromJson<Scenario>(json_text, source, kFormat);
+  Scenario s = schema::FromJson<Scenario>(json_text, source, kScenarioSchema);
   if (s.BaseExcitation()) s.force_position_m = 0.0;
   ValidateBeams(s, source);
   CheckPositionsAndChannels(s, source);

@@ -7,6 +7,6 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
-cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release >/dev/null
+bash scripts/configure.sh build/release -DCMAKE_BUILD_TYPE=Release
 cmake --build build/release -j"$(nproc)" --target beamid
 bash examples/paper_setup/run.sh "${1:-build/demo}" build/release/beamid

@@ -12,7 +12,7 @@ cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh  # clang and libFuzzer (libclang-rt-14-dev) among them
 seconds=${1:-600}
 build=build/fuzz
-CXX=clang++ cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBEAMID_FUZZ=ON -DBUILD_TESTING=OFF >/dev/null
+CXX=clang++ bash scripts/configure.sh "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBEAMID_FUZZ=ON -DBUILD_TESTING=OFF
 cmake --build "$build" -j"$(nproc)" >/dev/null
 corpus="$build/corpus"
 "$build/tests/fuzz/write_seeds" "$corpus"

@@ -3,7 +3,7 @@
 # (idempotent: a second run installs nothing and needs no network).
 set -euo pipefail
 packages=(
-  build-essential cmake pkg-config
+  build-essential cmake ninja-build pkg-config
   libeigen3-dev libfftw3-dev coinor-libipopt-dev libgtest-dev libbenchmark-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev gnuplot-nox zlib1g-dev libssl-dev
   chromium

@@ -9,12 +9,12 @@ cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 jobs=$(nproc)
 
-cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release >/dev/null
+bash scripts/configure.sh build/release -DCMAKE_BUILD_TYPE=Release
 cmake --build build/release -j"$jobs"
 ctest --test-dir build/release -j"$jobs" --output-on-failure --timeout 600
 
 if [ "${SKIP_SANITIZERS:-0}" != "1" ]; then
-  cmake -S . -B build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBEAMID_SANITIZE=ON -DBUILD_BENCHMARKS=OFF >/dev/null
+  bash scripts/configure.sh build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBEAMID_SANITIZE=ON -DBUILD_BENCHMARKS=OFF
   # Only what `ctest -L fast` runs: the program and the fast tests.
   cmake --build build/sanitize -j"$jobs" --target beamid_fast_tests
   ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \

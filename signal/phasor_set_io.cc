@@ -17,8 +17,8 @@ constexpr const char* kConvention =
     "the force fundamental X_1 is real and positive (harmonic k by k times the angle); std_re, std_im and "
     "correlation give the standard uncertainty of (Re X_k, Im X_k)";
 
-constexpr schema::Format kFormat{kPhasorFormat, "phasors file",
-                                 "give the phasors file written by 'beamid extract' (see docs/signal.md), unedited"};
+constexpr schema::Format kPhasorSetSchema{
+    kPhasorFormat, "phasors file", "give the phasors file written by 'beamid extract' (see docs/signal.md), unedited"};
 
 // extract's -H takes 1..50.
 constexpr int kMaxPhasorHarmonics = 50;
@@ -149,7 +149,7 @@ std::vector<schema::FieldDoc> PhasorSetFields() { return schema::Fields<PhasorSe
 std::string PhasorSetToJson(const PhasorSet& set) { return schema::ToJson(set); }
 
 PhasorSet PhasorSetFromJson(std::string_view json_text, const std::string& source) {
-  return schema::FromJson<PhasorSet>(std::string(json_text), source, kFormat);
+  return schema::FromJson<PhasorSet>(std::string(json_text), source, kPhasorSetSchema);
 }
 
 std::string PhasorSetToCsv(const PhasorSet& set) {

@@ -19,27 +19,22 @@
 namespace beamid::signal {
 namespace {
 
-enum class Role { kFrequency, kForce, kResponse, kPhase };
+enum class ColumnRole { kFrequency, kForce, kResponse, kPhase };
 
 struct Column {
   std::string header;  // as written, for messages
-  Role role = Role::kFrequency;
+  ColumnRole role = ColumnRole::kFrequency;
   bool is_std = false;
   std::string unit;                       // normalised, "" when not given
   std::optional<Quantity> quantity;       // a response column that names it
   int index = 0;
 };
 
-std::string Trim(std::string_view text) {
+std::string TrimBlanksAndQuotes(std::string_view text) {
   const auto first = text.find_first_not_of(" \t\r\"'");
   if (first == std::string_view::npos) return "";
   const auto last = text.find_last_not_of(" \t\r\"'");
   return std::string(text.substr(first, last - first + 1));
-}
-
-std::string Lower(std::string text) {
-  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
-  return text;
 }
 
 // The unit spellings of signal/table_reader.h, without the time units (no
@@ -59,11 +54,11 @@ std::pair<std::string, std::string> SplitNameAndUnit(const std::string& header) 
     const auto a = header.find(open), b = header.rfind(close);
     if (a != std::string::npos && b != std::string::npos && b > a) {
       name = header.substr(0, a);
-      unit = Trim(header.substr(a + 1, b - a - 1));
+      unit = TrimBlanksAndQuotes(header.substr(a + 1, b - a - 1));
       break;
     }
   }
-  name = Lower(Trim(name));
+  name = internal::Lowercase(TrimBlanksAndQuotes(name));
   std::replace_if(name.begin(), name.end(), [](char c) { return c == ' ' || c == '-' || c == '.'; }, '_');
   while (!name.empty() && name.back() == '_') name.pop_back();
   if (unit.empty()) {
@@ -101,11 +96,17 @@ std::optional<Column> Classify(const std::string& header, int index) {
     if ((amplitude = StripAffix(name, "", amp))) break;
   // "F_amp", "F [N]": the force, not the frequency.
   if (name == "f" && (amplitude || NormaliseUnit(unit) == std::optional<std::string>("N"))) name = "force";
-  static const std::array<std::pair<std::string_view, Role>, 10> kGeneric = {{
-      {"frequency", Role::kFrequency}, {"freq", Role::kFrequency},   {"f", Role::kFrequency},
-      {"force", Role::kForce},         {"excitation", Role::kForce}, {"input", Role::kForce},
-      {"response", Role::kResponse},   {"output", Role::kResponse},  {"phase", Role::kPhase},
-      {"response_phase", Role::kPhase},
+  static const std::array<std::pair<std::string_view, ColumnRole>, 10> kGeneric = {{
+      {"frequency", ColumnRole::kFrequency},
+      {"freq", ColumnRole::kFrequency},
+      {"f", ColumnRole::kFrequency},
+      {"force", ColumnRole::kForce},
+      {"excitation", ColumnRole::kForce},
+      {"input", ColumnRole::kForce},
+      {"response", ColumnRole::kResponse},
+      {"output", ColumnRole::kResponse},
+      {"phase", ColumnRole::kPhase},
+      {"response_phase", ColumnRole::kPhase},
   }};
   static const std::array<std::pair<std::string_view, Quantity>, 8> kResponses = {{
       {"acceleration", Quantity::kAcceleration}, {"accel", Quantity::kAcceleration},
@@ -120,7 +121,7 @@ std::optional<Column> Classify(const std::string& header, int index) {
     }
   for (const auto& [word, quantity] : kResponses)
     if (name == word) {
-      column.role = Role::kResponse;
+      column.role = ColumnRole::kResponse;
       // A bare "amplitude" says nothing of the quantity: its unit must.
       if (word != "amplitude") column.quantity = quantity;
       return column;
@@ -128,12 +129,16 @@ std::optional<Column> Classify(const std::string& header, int index) {
   return std::nullopt;  // some other column (coherence, THD...): ignored
 }
 
-std::string_view RoleName(Role role) {
+std::string_view RoleName(ColumnRole role) {
   switch (role) {
-    case Role::kFrequency: return "frequency";
-    case Role::kForce: return "force amplitude";
-    case Role::kResponse: return "response amplitude";
-    case Role::kPhase: return "phase";
+    case ColumnRole::kFrequency:
+      return "frequency";
+    case ColumnRole::kForce:
+      return "force amplitude";
+    case ColumnRole::kResponse:
+      return "response amplitude";
+    case ColumnRole::kPhase:
+      return "phase";
   }
   return "";
 }
@@ -171,7 +176,7 @@ class TableParser {
                "keep one of them or rename the other");
       columns_.push_back(*column);
     }
-    for (Role role : {Role::kFrequency, Role::kForce, Role::kResponse, Role::kPhase}) {
+    for (ColumnRole role : {ColumnRole::kFrequency, ColumnRole::kForce, ColumnRole::kResponse, ColumnRole::kPhase}) {
       if (Main(role) != nullptr) continue;
       std::string found;
       // A few cells, printable: a table's header may be anything.
@@ -191,20 +196,20 @@ class TableParser {
       Fail(column.header, "unknown unit '" + column.unit + "'", "use one of: " + accepted);
     };
     switch (column.role) {
-      case Role::kFrequency:
+      case ColumnRole::kFrequency:
         if (!unit || (*unit != "" && *unit != "Hz" && *unit != "rad/s")) unknown("Hz, rad/s");
         return *unit == "rad/s" ? 1.0 / (2 * std::numbers::pi) : 1.0;
-      case Role::kForce:
+      case ColumnRole::kForce:
         if (!unit || (*unit != "" && *unit != "N")) unknown("N");
         return 1.0;
-      case Role::kPhase:
+      case ColumnRole::kPhase:
         if (!unit || (*unit != "rad" && *unit != "deg")) {
           if (column.unit.empty())
             Fail(column.header, "the phase has no unit", "write phase_rad or phase_deg (or phase [deg])");
           unknown("rad, deg");
         }
         return *unit == "deg" ? std::numbers::pi / 180 : 1.0;
-      case Role::kResponse: {
+      case ColumnRole::kResponse: {
         const Quantity q = *response_quantity_;
         if (unit && unit->empty()) return 1.0;  // the quantity's SI unit
         const auto factor = unit ? UnitToSiFactor(q, *unit) : std::nullopt;
@@ -216,7 +221,7 @@ class TableParser {
   }
 
   void ResolveUnits() {
-    const Column& response = *Main(Role::kResponse);
+    const Column& response = *Main(ColumnRole::kResponse);
     response_quantity_ = response.quantity;
     if (!response_quantity_) {
       const auto unit = NormaliseUnit(response.unit);
@@ -255,7 +260,7 @@ class TableParser {
         Fail(c.header, "line " + std::to_string(line_number) + ": '" + cell + "' is not a finite number",
              "write a number there or drop the row");
       const int slot = static_cast<int>(c.role) + (c.is_std ? 4 : 0);
-      if ((c.is_std && value < 0) || (!c.is_std && c.role != Role::kPhase && value <= 0))
+      if ((c.is_std && value < 0) || (!c.is_std && c.role != ColumnRole::kPhase && value <= 0))
         Fail(c.header, "line " + std::to_string(line_number) + ": " + cell + (c.is_std ? " is negative" : " is not positive"),
              "frequencies and amplitudes are positive, uncertainties not negative");
       values[static_cast<std::size_t>(slot)] = value * factor_[static_cast<std::size_t>(slot)];
@@ -264,8 +269,9 @@ class TableParser {
   }
 
   FirstHarmonicLevel MakeLevel(const std::vector<std::array<double, 8>>& rows) const {
-    FirstHarmonicLevel level{.label = label_, .source = source_,
-                             .channel = Main(Role::kResponse)->header,
+    FirstHarmonicLevel level{.label = label_,
+                             .source = source_,
+                             .channel = Main(ColumnRole::kResponse)->header,
                              .response_quantity = *response_quantity_};
     for (const auto& r : rows) {
       FirstHarmonicPoint p;
@@ -285,7 +291,7 @@ class TableParser {
 
   std::string source_, label_;
   int num_cells_ = 0;
-  const Column* Main(Role role) const {
+  const Column* Main(ColumnRole role) const {
     for (const auto& c : columns_)
       if (c.role == role && !c.is_std) return &c;
     return nullptr;

@@ -64,12 +64,6 @@ bool OnlyBlankOrComments(std::string_view text) {
   return true;
 }
 
-std::string Lower(std::string_view text) {
-  std::string out(text);
-  std::transform(out.begin(), out.end(), out.begin(), [](unsigned char c) { return std::tolower(c); });
-  return out;
-}
-
 std::string SeparatorName(char c) { return c == '\t' ? "tab" : std::string("'") + c + "'"; }
 
 }  // namespace
@@ -90,7 +84,7 @@ std::optional<std::string> NormaliseUnit(std::string_view spelling) {
       {"second", "s"},    {"seconds", "s"},    {"ms", "ms"},        {"msec", "ms"},      {"millisecond", "ms"},
       {"milliseconds", "ms"}, {"m/s^-2", "m/s^2"}, {"newton", "N"},
   }};
-  const std::string key = Lower(Unquote(spelling));
+  const std::string key = internal::Lowercase(Unquote(spelling));
   for (const auto& [s, unit] : kSpellings)
     if (key == s) return std::string(unit);
   return std::nullopt;

@@ -1,5 +1,8 @@
 #include "signal/internal/text.h"
 
+#include <algorithm>
+#include <cctype>
+
 namespace beamid::signal::internal {
 namespace {
 
@@ -66,6 +69,12 @@ std::string Excerpt(std::string_view text, std::size_t max_chars) {
     }
   }
   if (at < text.size()) out += "\xE2\x80\xA6 (" + std::to_string(text.size()) + " bytes)";
+  return out;
+}
+
+std::string Lowercase(std::string_view text) {
+  std::string out(text);
+  std::transform(out.begin(), out.end(), out.begin(), [](unsigned char c) { return std::tolower(c); });
   return out;
 }
 

@@ -25,6 +25,10 @@ inline std::string FormatNumber(double value) {
 // code points beyond U+10FFFF).
 bool IsValidUtf8(std::string_view text);
 
+// `text` with ASCII letters in lower case (headers and unit spellings are
+// compared so).
+std::string Lowercase(std::string_view text);
+
 // At most `max_chars` characters of `text` for a message: valid UTF-8 that
 // is printable, control characters and bytes that are not UTF-8 written as
 // \xNN (a tab as \t), and a longer text cut with "… (N bytes)".

@@ -13,8 +13,8 @@ using schema::kOptional;
 using schema::Presence;
 using schema::TextRule;
 
-constexpr schema::Format kFormat{kMeasuredBackboneFormat, "measured backbone",
-                                 "give a .json written by 'beamid backbone --measured'"};
+constexpr schema::Format kMeasuredBackboneSchema{kMeasuredBackboneFormat, "measured backbone",
+                                                 "give a .json written by 'beamid backbone --measured'"};
 
 // Descriptions for a reader of the file; they are the same in every file, so
 // the struct does not carry them (and an earlier file's wording reads).
@@ -231,7 +231,7 @@ std::vector<schema::FieldDoc> MeasuredBackboneFileFields() { return schema::Fiel
 std::string MeasuredBackboneFileToJson(const MeasuredBackboneFile& file) { return schema::ToJson(file); }
 
 MeasuredBackboneFile MeasuredBackboneFileFromJson(const std::string& text, const std::string& source) {
-  MeasuredBackboneFile file = schema::FromJson<MeasuredBackboneFile>(text, source, kFormat);
+  MeasuredBackboneFile file = schema::FromJson<MeasuredBackboneFile>(text, source, kMeasuredBackboneSchema);
   // Files written before the damping rate have one verdict, on ζ; the
   // writer always writes both or neither.
   DampingTrend& t = file.damping_trend;

@@ -44,5 +44,4 @@ inline bool RegisterCommand(std::string name, CommandSetup setup) {
 #define BEAMID_CONCAT_INNER(a, b) a##b
 #define BEAMID_CONCAT(a, b) BEAMID_CONCAT_INNER(a, b)
 #define BEAMID_REGISTER_COMMAND(name, setup) \
-  static const bool BEAMID_CONCAT(beamid_command_registered_, __LINE__) = \
-      ::beamid::cli::RegisterCommand(name, setup)
+  static const bool BEAMID_CONCAT(beamid_command_registered_, __COUNTER__) = ::beamid::cli::RegisterCommand(name, setup)

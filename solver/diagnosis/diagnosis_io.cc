@@ -27,8 +27,8 @@ using schema::Limits;
 using schema::Presence;
 using schema::TextRule;
 
-constexpr schema::Format kFormat{kDiagnosisFormat, "diagnosis",
-                                 "give a diagnosis.json written by 'beamid diagnose', or repair that field"};
+constexpr schema::Format kDiagnosisSchema{kDiagnosisFormat, "diagnosis",
+                                          "give a diagnosis.json written by 'beamid diagnose', or repair that field"};
 
 // Bounds on what a file can make the reader hold, far above what one
 // diagnosis writes.
@@ -353,7 +353,7 @@ std::string DiagnosisFileToJson(const DiagnosisFile& file) {
 }
 
 DiagnosisFile DiagnosisFileFromJson(const std::string& text, const std::string& source) {
-  DiagnosisRecord rec = schema::FromJson<DiagnosisRecord>(text, source, kFormat);
+  DiagnosisRecord rec = schema::FromJson<DiagnosisRecord>(text, source, kDiagnosisSchema);
   DiagnosisFile file = std::move(rec.file);
   DiagnosisResult& r = file.diagnosis;
   if (!rec.result.empty()) {

@@ -23,19 +23,17 @@ using schema::kOptional;
 using schema::Presence;
 using schema::TextRule;
 
-constexpr schema::Format kFormat{kPredictionFormat, "prediction",
-                                 "give a prediction file written by 'beamid predict', or repair that field"};
+constexpr schema::Format kPredictionSchema{kPredictionFormat, "prediction",
+                                           "give a prediction file written by 'beamid predict', or repair that field"};
 constexpr std::string_view kQuantities[] = {"displacement_m", "velocity_m_s", "acceleration_m_s2"};
 
 // Bounds on what a file can make the reader hold: predict writes one step
 // per fitted step and one period of a few hundred samples.
-constexpr std::size_t kMaxSteps = 1'000'000;
+constexpr std::size_t kMaxPredictedSteps = 1'000'000;
 constexpr std::size_t kMaxSamples = 1'000'000;
 
 template <typename Io>
 constexpr bool kWriting = std::is_same_v<std::remove_const_t<Io>, schema::Writer>;
-template <typename Io>
-constexpr bool kDocumenting = std::is_same_v<std::remove_const_t<Io>, schema::Documenter>;
 
 // A value JSON cannot hold (1e400 is refused): on reading, what an absent
 // optional phasor leaves behind.
@@ -115,8 +113,9 @@ void Describe(auto& io, schema::Like<PredictionFile> auto& f) {
   io.Check(KnownQuantity(f.compared_quantity),
            "compared_quantity is displacement_m, velocity_m_s, acceleration_m_s2 or \"\"", "compared_quantity");
   // The documentation names the compared quantity <q>.
-  const std::string quantity = kDocumenting<std::remove_reference_t<decltype(io)>> ? "<q>" : f.compared_quantity;
-  io.List("steps", f.steps, kMaxSteps, Presence::kRequired, [&](auto& step_io, auto& s) {
+  const std::string quantity =
+      schema::kDocumenting<std::remove_reference_t<decltype(io)>> ? "<q>" : f.compared_quantity;
+  io.List("steps", f.steps, kMaxPredictedSteps, Presence::kRequired, [&](auto& step_io, auto& s) {
     step_io.Text("level", s.level);
     step_io.Text("file", s.file);
     step_io.Number("frequency_Hz", s.frequency_hz, "Hz", schema::Positive().OrNull());
@@ -136,10 +135,10 @@ std::vector<schema::FieldDoc> PredictionFileFields() { return schema::Fields<Pre
 std::string PredictionFileToJson(const PredictionFile& file) { return schema::ToJson(file); }
 
 PredictionFile PredictionFileFromJson(const std::string& text, const std::string& source) {
-  nlohmann::ordered_json json = ParseJsonObject(text, source, kFormat.what, kFormat.fix);
+  nlohmann::ordered_json json = ParseJsonObject(text, source, kPredictionSchema.what, kPredictionSchema.fix);
   if (!json.contains("compared_quantity")) json["compared_quantity"] = QuantityOfTheKeys(json);
   PredictionFile file;
-  schema::Reader::ReadInto(JsonField(json, "", source, kFormat.tag, kFormat.fix), file);
+  schema::Reader::ReadInto(JsonField(json, "", source, kPredictionSchema.tag, kPredictionSchema.fix), file);
   return file;
 }
 

@@ -27,8 +27,8 @@ using schema::kOptional;
 using schema::Presence;
 using schema::TextRule;
 
-constexpr schema::Format kFormat{kResultFormat, "beamid result",
-                                 "give the result.json that 'beamid identify' wrote (format beamid-result/1)"};
+constexpr schema::Format kResultSchema{kResultFormat, "beamid result",
+                                       "give the result.json that 'beamid identify' wrote (format beamid-result/1)"};
 
 // Bounds on what a file can make the reader hold. identify fits the law's few
 // parameters and a few linear ones (the covariance is parameters²); a fit
@@ -41,16 +41,13 @@ constexpr std::size_t kMaxWarnings = 10'000;
 constexpr int kMaxCount = 1'000'000'000;
 constexpr std::size_t kMaxPhasors = option_checks::kMaxHarmonics + 1;
 
-template <typename Io>
-constexpr bool kDocumenting = std::is_same_v<std::remove_const_t<Io>, schema::Documenter>;
-
 std::string HarmonicKey(std::size_t index) { return "h" + std::to_string(index + 1); }
 
 // The keys "h1".."hK" of harmonics 1..K; the documentation names them once
 // as "h<k>".
 template <typename Io>
 std::vector<std::string> HarmonicKeys(int num_fit_harmonics) {
-  if constexpr (kDocumenting<Io>) return {"h<k>"};
+  if constexpr (schema::kDocumenting<Io>) return {"h<k>"};
   std::vector<std::string> keys;
   for (int k = 0; k < num_fit_harmonics; ++k) keys.push_back(HarmonicKey(static_cast<std::size_t>(k)));
   return keys;
@@ -374,7 +371,7 @@ std::vector<schema::FieldDoc> ResultFileFields() { return schema::Fields<ResultF
 std::string ResultFileToJson(const ResultFile& result) { return schema::ToJson(result); }
 
 ResultFile ResultFileFromJson(const std::string& text, const std::string& source) {
-  ResultFile result = schema::FromJson<ResultFile>(text, source, kFormat);
+  ResultFile result = schema::FromJson<ResultFile>(text, source, kResultSchema);
   // The laws as written; acceptance and intervals judged again from them (one rule).
   if (!result.damping_laws.laws.empty()) JudgeDampingLaws(&result.damping_laws);
   return result;

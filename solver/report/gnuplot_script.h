@@ -6,6 +6,8 @@
 // command (a shell escape, a "< command" pipe, `set output`).
 #pragma once
 
+#include <cstddef>
+#include <iterator>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -27,5 +29,12 @@ std::string GnuplotText(std::string_view text, GnuplotTextUse use = GnuplotTextU
 // empty row ends a line segment (gnuplot breaks lines at blank lines). The
 // name is beamid's own: letters, digits and '_' (std::logic_error otherwise).
 std::string Datablock(const std::string& name, const std::vector<std::vector<double>>& rows);
+
+// The colour of the i-th series (a level, a channel) in every plot of a
+// report, so that one level keeps its colour from figure to figure.
+inline const char* SeriesColour(std::size_t i) {
+  constexpr const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"};
+  return kColours[i % std::size(kColours)];
+}
 
 }  // namespace beamid::solver

@@ -15,13 +15,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string ReadAll(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 }  // namespace
 
 std::string GnuplotSvg(const std::string& script, const SvgSize& size) {
@@ -40,11 +33,12 @@ std::string GnuplotSvg(const std::string& script, const SvgSize& size) {
                                          .stdout_file = svg_file,
                                          .stderr_file = error_file});
   if (status != 0)
-    throw EnvironmentError(
-        fmt::format("gnuplot failed to draw a plot (exit status {}): {}", status, ReadAll(error_file).substr(0, 2000)));
-  std::string svg = ReadAll(svg_file);
+    throw EnvironmentError(fmt::format("gnuplot failed to draw a plot (exit status {}): {}", status,
+                                       ReadWholeFile(error_file).substr(0, 2000)));
+  std::string svg = ReadWholeFile(svg_file);
   const std::size_t start = svg.find("<svg");
-  if (start == std::string::npos) throw EnvironmentError("gnuplot wrote no SVG: " + ReadAll(error_file).substr(0, 2000));
+  if (start == std::string::npos)
+    throw EnvironmentError("gnuplot wrote no SVG: " + ReadWholeFile(error_file).substr(0, 2000));
   return svg.substr(start);
 }
 

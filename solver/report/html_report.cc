@@ -1,19 +1,19 @@
 #include "solver/report/html_report.h"
 
-#include "solver/report/held_out_summary.h"
-#include "solver/report/html_escape.h"
-#include "solver/report/html_page.h"
-#include "solver/report/report_outcome.h"
+#include <fmt/core.h>
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <optional>
 
-#include <fmt/core.h>
-
 #include "solver/report/diagnosis_residual_map.h"
+#include "solver/report/gnuplot_script.h"
 #include "solver/report/gnuplot_svg.h"
+#include "solver/report/held_out_summary.h"
+#include "solver/report/html_escape.h"
+#include "solver/report/html_page.h"
+#include "solver/report/report_outcome.h"
 #include "solver/report/response_plots.h"
 #include "solver/report/stacked_plot.h"
 #include "solver/report/uncertain_number.h"
@@ -22,10 +22,6 @@ namespace beamid::solver {
 namespace {
 
 using Rows = std::vector<std::vector<double>>;
-
-constexpr const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"};
-
-const char* Colour(std::size_t i) { return kColours[i % std::size(kColours)]; }
 
 std::string Figure(const std::string& id, const std::string& svg, const std::string& caption) {
   return fmt::format("<figure class=\"plot\" id=\"{}\">\n{}\n<figcaption>{}</figcaption>\n</figure>\n", HtmlEscape(id),
@@ -348,7 +344,7 @@ std::string HeldOutSelectedPlotSvg(const SelectedResponse& selected, const Repor
         rows.push_back({p.frequency_hz, std::abs(p.measured), std::abs(p.base_model), std::abs(p.final_model)});
     std::sort(rows.begin(), rows.end());
     plot.datablocks += Datablock(fmt::format("h{}", l), rows);
-    const std::string c = Colour(l);
+    const std::string c = SeriesColour(l);
     const std::string dots = "with points pt 7 ps 0.7 lc rgb '" + c + "'",
                       base = "with lines lw 1 dt 2 lc rgb '" + c + "'",
                       crosses = "with linespoints pt 2 lw 1.5 lc rgb '" + c + "'";

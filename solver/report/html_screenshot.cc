@@ -46,16 +46,9 @@ std::string FileUrl(const fs::path& file) {
 
 namespace {
 
-std::string ReadAll(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 // What Chromium said last, for an error message.
 std::string LogTail(const fs::path& log) {
-  const std::string message = ReadAll(log);
+  const std::string message = ReadWholeFile(log);
   return message.substr(message.size() > 2000 ? message.size() - 2000 : 0);
 }
 
@@ -94,7 +87,7 @@ constexpr const char* kLayoutProbe = R"(<script>(function () {
 
 PageLayout MeasurePage(const fs::path& html_file, int width_px, double timeout_s) {
   const fs::path chromium = RequireChromium();
-  std::string page = ReadAll(html_file);
+  std::string page = ReadWholeFile(html_file);
   const std::size_t end = page.rfind("</body>");
   page.insert(end == std::string::npos ? page.size() : end, kLayoutProbe);
   const TempFolder folder("chromium");
@@ -114,7 +107,7 @@ PageLayout MeasurePage(const fs::path& html_file, int width_px, double timeout_s
                                          .stdout_file = dom,
                                          .stderr_file = log,
                                          .timeout_s = timeout_s});
-  const std::string text = ReadAll(dom);
+  const std::string text = ReadWholeFile(dom);
   const std::string key = "data-beamid-layout=\"";
   const std::size_t at = text.find(key);
   PageLayout layout;

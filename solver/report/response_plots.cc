@@ -15,9 +15,6 @@ namespace {
 
 using Rows = std::vector<std::vector<double>>;
 
-constexpr const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"};
-const char* Colour(std::size_t i) { return kColours[i % std::size(kColours)]; }
-
 double At(const std::vector<double>& values, std::size_t i) { return i < values.size() ? values[i] : NAN; }
 
 double HigherAt(const std::vector<std::vector<double>>& values, std::size_t channel, int k) {
@@ -145,7 +142,7 @@ std::string ResponsePlotSvg(const ReportCurves& curves, std::size_t channel, con
     for (std::size_t i = 0; i < level.measured.size(); ++i)
       if (!level.measured[i].flag.empty()) flagged.push_back(measured[i]);
     any_unstable = any_unstable || !unstable.empty();
-    const std::string c = Colour(l);
+    const std::string c = SeriesColour(l);
     plot.datablocks += Datablock(fmt::format("s{}", l), stable) + Datablock(fmt::format("u{}", l), unstable) +
                        Datablock(fmt::format("ps{}", l), phase_stable) +
                        Datablock(fmt::format("pu{}", l), phase_unstable) + Datablock(fmt::format("m{}", l), measured);
@@ -225,7 +222,7 @@ std::string HarmonicsPlotSvg(const ReportCurves& curves, std::size_t channel) {
         any = any || a > 0;
       }
       for (const auto& p : level.model) any = any || HigherAt(p.higher_harmonics, channel, k) > 0;
-      const std::string c = Colour(l);
+      const std::string c = SeriesColour(l);
       const std::string name = fmt::format("h{}l{}", k, l);
       plot.datablocks +=
           Datablock("s" + name, stable) + Datablock("u" + name, unstable) + Datablock("m" + name, measured);
@@ -237,9 +234,9 @@ std::string HarmonicsPlotSvg(const ReportCurves& curves, std::size_t channel) {
   }
   for (std::size_t l = 0; l < curves.levels.size(); ++l) {
     plot.keys.push_back(
-        {fmt::format("with lines lw 2 lc rgb '{}'", Colour(l)), "model " + LevelLabel(curves.levels[l])});
-    plot.keys.push_back(
-        {fmt::format("with points pt 7 ps 0.7 lc rgb '{}'", Colour(l)), "measured " + LevelLabel(curves.levels[l])});
+        {fmt::format("with lines lw 2 lc rgb '{}'", SeriesColour(l)), "model " + LevelLabel(curves.levels[l])});
+    plot.keys.push_back({fmt::format("with points pt 7 ps 0.7 lc rgb '{}'", SeriesColour(l)),
+                         "measured " + LevelLabel(curves.levels[l])});
   }
   return StackedPlotSvg(plot);
 }

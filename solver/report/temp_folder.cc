@@ -4,6 +4,8 @@
 
 #include <cerrno>
 #include <cstring>
+#include <fstream>
+#include <sstream>
 #include <vector>
 
 #include "hb/errors.h"
@@ -28,6 +30,13 @@ TempFolder::TempFolder(const std::string& purpose) {
 TempFolder::~TempFolder() {
   std::error_code error;
   fs::remove_all(path_, error);
+}
+
+std::string ReadWholeFile(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
 }
 
 }  // namespace beamid::solver

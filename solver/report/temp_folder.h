@@ -24,4 +24,8 @@ class TempFolder {
   std::filesystem::path path_;
 };
 
+// The whole of a file (what an external program wrote, a page to lay out);
+// "" when it is missing or unreadable, which the caller's own check reports.
+std::string ReadWholeFile(const std::filesystem::path& path);
+
 }  // namespace beamid::solver
