@@ -41,12 +41,9 @@ set(BEAMID_TEST_PCH ${BEAMID_LIBRARY_PCH} <gtest/gtest.h> <gmock/gmock.h>)
 # Eigen's decompositions and products, instantiated and optimised once per
 # file otherwise, are then done once per eight (solver/diagnosis: 93 s of
 # CPU file by file, 50 s so). A file's own helpers therefore carry names no
-# other file of its folder uses. The fuzz build sets per-file flags on its
-# readers, so it compiles file by file.
+# other file of its folder uses. The fuzz build compiles its readers, which
+# get flags of their own, file by file, and the rest in batches.
 option(BEAMID_UNITY_BUILD "Compile each folder's files eight to a translation unit" ON)
-if(BEAMID_FUZZ)
-  set(BEAMID_UNITY_BUILD OFF)
-endif()
 function(beamid_unity_build target)
   if(BEAMID_UNITY_BUILD)
     set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 8)
@@ -87,6 +84,7 @@ function(beamid_add_folder_library)
     # The readers of files under UBSan and the fuzzer's coverage as well (CMakeLists.txt).
     foreach(source ${sources})
       if(source MATCHES "${BEAMID_READER_SOURCES}")
+        set_property(SOURCE ${source} PROPERTY SKIP_UNITY_BUILD_INCLUSION ON)
         set_property(SOURCE ${source} APPEND PROPERTY COMPILE_OPTIONS
                      -O1 -fsanitize=fuzzer-no-link,undefined -fno-sanitize-recover=undefined)
       endif()
@@ -146,9 +144,6 @@ function(beamid_add_test source)
     string(COMPARE EQUAL "${label}" "fast" may_host)
     beamid_share_precompiled_header(${target} BEAMID_TEST_PCH_HOST ${may_host} ${BEAMID_TEST_PCH})
   endif()
-  # A suite that builds its data once (SetUpTestSuite: a simulated campaign,
-  # an identification) runs as one ctest test: one process per test case
-  # would build the data again for each.
   # A slow test starts before every fast one, and a slow suite run as one
   # process (below) before a slow test case (ctest runs the costliest
   # first): a two-minute test started last would run alone at the end, on
@@ -158,6 +153,9 @@ function(beamid_add_test source)
   else()
     set(cost 1)
   endif()
+  # A suite that builds its data once (SetUpTestSuite: a simulated campaign,
+  # an identification) runs as one ctest test: one process per test case
+  # would build the data again for each.
   file(READ ${source} text)
   if(text MATCHES "SetUpTestSuite")
     math(EXPR cost "2 * ${cost}")
