@@ -97,15 +97,9 @@ std::optional<Column> Classify(const std::string& header, int index) {
   // "F_amp", "F [N]": the force, not the frequency.
   if (name == "f" && (amplitude || NormaliseUnit(unit) == std::optional<std::string>("N"))) name = "force";
   static const std::array<std::pair<std::string_view, ColumnRole>, 10> kGeneric = {{
-      {"frequency", ColumnRole::kFrequency},
-      {"freq", ColumnRole::kFrequency},
-      {"f", ColumnRole::kFrequency},
-      {"force", ColumnRole::kForce},
-      {"excitation", ColumnRole::kForce},
-      {"input", ColumnRole::kForce},
-      {"response", ColumnRole::kResponse},
-      {"output", ColumnRole::kResponse},
-      {"phase", ColumnRole::kPhase},
+      {"frequency", ColumnRole::kFrequency}, {"freq", ColumnRole::kFrequency},   {"f", ColumnRole::kFrequency},
+      {"force", ColumnRole::kForce},         {"excitation", ColumnRole::kForce}, {"input", ColumnRole::kForce},
+      {"response", ColumnRole::kResponse},   {"output", ColumnRole::kResponse},  {"phase", ColumnRole::kPhase},
       {"response_phase", ColumnRole::kPhase},
   }};
   static const std::array<std::pair<std::string_view, Quantity>, 8> kResponses = {{
@@ -131,14 +125,10 @@ std::optional<Column> Classify(const std::string& header, int index) {
 
 std::string_view RoleName(ColumnRole role) {
   switch (role) {
-    case ColumnRole::kFrequency:
-      return "frequency";
-    case ColumnRole::kForce:
-      return "force amplitude";
-    case ColumnRole::kResponse:
-      return "response amplitude";
-    case ColumnRole::kPhase:
-      return "phase";
+    case ColumnRole::kFrequency: return "frequency";
+    case ColumnRole::kForce: return "force amplitude";
+    case ColumnRole::kResponse: return "response amplitude";
+    case ColumnRole::kPhase: return "phase";
   }
   return "";
 }
@@ -269,8 +259,7 @@ class TableParser {
   }
 
   FirstHarmonicLevel MakeLevel(const std::vector<std::array<double, 8>>& rows) const {
-    FirstHarmonicLevel level{.label = label_,
-                             .source = source_,
+    FirstHarmonicLevel level{.label = label_, .source = source_,
                              .channel = Main(ColumnRole::kResponse)->header,
                              .response_quantity = *response_quantity_};
     for (const auto& r : rows) {
