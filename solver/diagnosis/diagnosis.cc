@@ -75,13 +75,12 @@ void TestAgainstReference(double reference, const FitSummary& base, int num_cand
   outcome->likelihood_ratio = (reference - chi_square) / scale;
   outcome->p_value = ChiSquareUpperTail(outcome->likelihood_ratio, outcome->test_dof);
   outcome->residual_drop = base.chi_square / std::max(chi_square, 1e-300);
-  // A base that already fits within the model's own errors has nothing
-  // to explain: a flexible candidate can still shave a share of its χ²
-  // (measured: a Jenkins element took 38 % off one of ten base-physics
-  // noise realisations), which is not a cause.
+  // No gate on the base's own misfit: one hid every cause behind a base
+  // reduced χ² up to 4, whatever the noise (under the relative floor the
+  // base of a clean campaign reads 0.03). The test alone holds its rate:
+  // measured over 50 base-physics realisations per weighting (docs/diagnose.md).
   outcome->significant = outcome->p_value < per_candidate_significance &&
-                         reference - chi_square >= options.min_relative_improvement * reference &&
-                         base.reduced_chi_square > options.acceptable_reduced_chi_square;
+                         reference - chi_square >= options.min_relative_improvement * reference;
 }
 
 namespace {
@@ -669,8 +668,8 @@ CandidateRefits RefitCandidates(const FitData& fit, const BaseFit& base, const s
   refits.models.resize(run.library.size());
   refits.outcomes.resize(run.library.size());
   // The significant linear candidate of least χ² within the noise, or the
-  // base itself when it fits within the noise (then no candidate can be a
-  // cause: each needs a base misfit beyond it).
+  // base itself when it fits within the noise: then the costly candidates
+  // (minutes each) are not refitted; the cheap ones are tested all the same.
   std::string explained_by =
       !explained_by_recording.empty() ? explained_by_recording
       : base.summary.reduced_chi_square <= options.acceptable_reduced_chi_square ? "the base model"

@@ -10,9 +10,7 @@
 //   (a significant but negligible gain is not a cause); a candidate balanced
 //   with more harmonics than the base is tested against the refit with those
 //   harmonics and no parameters of its own (harmonic_truncation) instead of
-//   χ²_base, when that fits better; and the base misfit
-//   exceeds acceptable_reduced_chi_square (a base within the model's own
-//   errors has nothing to explain);
+//   χ²_base, when that fits better;
 // ranked by BIC = χ² + P·ln(n) (AIC = χ² + 2P also reported) and VALIDATED
 // on the held-out channels: a significant candidate that predicts them
 // decisively better than the in-sample winner is named instead (a refit can
@@ -71,9 +69,11 @@ struct DiagnosisOptions {
   double significance = 0.01;
   // Share of the base χ² a cause must remove.
   double min_relative_improvement = 0.2;
-  // The base fits "within the noise" up to this reduced χ²: the model's own
-  // errors (time integrator, extraction) keep it above 1 on correct physics;
-  // `beamid identify` warns above the same value.
+  // A fit lies "within the noise" up to this reduced χ² (the rest after a
+  // named cause; "unexplained" needs a base beyond it; costly candidates are
+  // refitted only when neither the base nor a cheap one is within it): the
+  // model's own errors keep it above 1 on correct physics; `beamid identify`
+  // warns above the same value. It gates no test of a cause.
   double acceptable_reduced_chi_square = 4.0;
   int num_workers = 0;              // 0: one per hardware core
   IpoptOptions ipopt;     // the base fit's

@@ -34,7 +34,14 @@ void FitDataOptions::Validate() const {
   // At 1 or above the model's error would exceed the phasor itself.
   if (!(relative_model_error >= 0.0 && relative_model_error < 1.0))
     Refuse("FitDataOptions.relative_model_error", FormatValue(relative_model_error), "at least 0 and below 1");
-  RequireNonNegative("FitDataOptions.force_harmonic_chi2_threshold", force_harmonic_chi2_threshold);
+  if (!(force_harmonic_family_significance > 0.0 && force_harmonic_family_significance < 1.0))
+    Refuse("FitDataOptions.force_harmonic_family_significance", FormatValue(force_harmonic_family_significance),
+           "above 0 and below 1");
+}
+
+double FitDataOptions::ForceHarmonicChiSquareThreshold(int num_tested) const {
+  // χ² with 2 dof has the upper tail e^(−q/2).
+  return -2.0 * std::log(force_harmonic_family_significance / std::max(1, num_tested));
 }
 
 FitData MakeFitData(const signal::Campaign& campaign, const signal::PhasorSet& phasors,
@@ -109,6 +116,10 @@ FitData MakeFitData(const signal::Campaign& campaign, const signal::PhasorSet& p
     }
   }
 
+  int force_harmonics_tested = 0;
+  for (const auto& step : phasors.steps)
+    for (const auto& h : step.force.harmonics) force_harmonics_tested += h.harmonic >= 2;
+  const double force_threshold = options.ForceHarmonicChiSquareThreshold(force_harmonics_tested);
   for (std::size_t i = 0; i < phasors.steps.size(); ++i) {
     const signal::StepPhasors& step = phasors.steps[i];
     FitStep fit;
@@ -120,7 +131,7 @@ FitData MakeFitData(const signal::Campaign& campaign, const signal::PhasorSet& p
     fit.unsettled_change_relative = step.quality.unsettled_change_relative;
     fit.force_N = Eigen::VectorXcd::Zero(phasors.num_harmonics + 1);
     for (const auto& h : step.force.harmonics) {
-      if (h.harmonic >= 2 && !IsSignificant(h, options.force_harmonic_chi2_threshold)) continue;
+      if (h.harmonic >= 2 && !IsSignificant(h, force_threshold)) continue;
       fit.force_N[h.harmonic] = h.value;
     }
     // F_1 is the phase reference (real, positive): its real part's σ is

@@ -45,7 +45,8 @@ TEST(OptionsValidation, FitDataRefusesEachFieldOutOfRange) {
   refused({.relative_uncertainty_floor = 0.0}, "relative_uncertainty_floor");
   refused({.relative_model_error = -1e-6}, "relative_model_error");
   refused({.relative_model_error = 1.0}, "relative_model_error");
-  refused({.force_harmonic_chi2_threshold = -1.0}, "force_harmonic_chi2_threshold");
+  refused({.force_harmonic_family_significance = 0.0}, "force_harmonic_family_significance");
+  refused({.force_harmonic_family_significance = 1.0}, "force_harmonic_family_significance");
 }
 
 TEST(OptionsValidation, FitProblemsRefuseEachFieldOutOfRange) {
