@@ -106,8 +106,8 @@ void AddPhasorUncertaintyOption(CLI::App* command, solver::PhasorUncertainty* un
       ->add_option_function<std::string>(
           "--phasor-uncertainty", [uncertainty, names](const std::string& name) { *uncertainty = names.at(name); },
           "How each phasor is weighed: relative_floor (its noise, raised to 1e-4 of the channel's largest "
-          "fundamental) or propagated (its noise, the force's and the frequency's errors propagated into it, and "
-          "1e-5 of it for the model's own error; docs/identify.md)")
+          "fundamental) or propagated (its noise and the force's and the frequency's errors propagated into it; the "
+          "model's residual error is estimated by the fit and reported on its own; docs/identify.md)")
       ->check(CLI::IsMember(keys))
       ->type_name("TEXT")
       ->default_str("relative_floor");

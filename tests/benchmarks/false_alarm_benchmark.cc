@@ -22,6 +22,7 @@
 
 #include "solver/diagnosis/diagnosis.h"
 #include "tests/support/simulated_campaign.h"
+#include "tests/support/wilson_interval.h"
 
 namespace {
 
@@ -30,19 +31,6 @@ using namespace beamid;
 namespace support = beamid::testing;
 
 constexpr int kRealisations = 50;
-
-struct Rate {
-  double value, low, high;
-};
-
-// Wilson's score interval at 95 % for `count` successes in `n` draws.
-Rate WilsonInterval(int count, int n) {
-  constexpr double z = 1.959963984540054;
-  const double p = static_cast<double>(count) / n, z2n = z * z / n;
-  const double centre = (p + 0.5 * z2n) / (1.0 + z2n);
-  const double half = z / (1.0 + z2n) * std::sqrt(p * (1.0 - p) / n + 0.25 * z2n / n);
-  return {p, std::max(0.0, centre - half), std::min(1.0, centre + half)};
-}
 
 bool NoiseDrivesTheModel(const solver::FitData& data) {
   for (const solver::FitStep& step : data.steps)
@@ -82,11 +70,12 @@ void BM_FalseAlarms(benchmark::State& state, solver::PhasorUncertainty weighting
     }
   }
   std::filesystem::remove_all(written.folder);
-  const Rate alarm = WilsonInterval(alarms, kRealisations), driven = WilsonInterval(noise_driven, kRealisations);
-  state.counters["alarm_rate"] = alarm.value;
+  const support::RateInterval alarm = support::WilsonInterval(alarms, kRealisations),
+                             driven = support::WilsonInterval(noise_driven, kRealisations);
+  state.counters["alarm_rate"] = alarm.rate;
   state.counters["alarm_low"] = alarm.low;
   state.counters["alarm_high"] = alarm.high;
-  state.counters["noise_drive_rate"] = driven.value;
+  state.counters["noise_drive_rate"] = driven.rate;
   state.counters["noise_drive_high"] = driven.high;
   state.counters["base_reduced_chi2"] = chi2_sum / kRealisations;
 }
