@@ -649,6 +649,20 @@ LocationStage Locate(const FitData& fit, const BaseFit& base, const FitData& loc
   return stage;
 }
 
+namespace {
+
+// A significant candidate that brings a base misfit beyond the noise within
+// it, better than `best_chi_square`: nothing costlier needs to be tried. A
+// base within the noise already says nothing of which candidate explains a
+// significant gain, so none does there.
+bool ExplainsBetter(const CandidateOutcome& o, const FitSummary& base, double best_chi_square,
+                    const DiagnosisOptions& options) {
+  return o.significant && base.reduced_chi_square > options.acceptable_reduced_chi_square &&
+         o.fit.reduced_chi_square <= options.acceptable_reduced_chi_square && o.fit.chi_square < best_chi_square;
+}
+
+}  // namespace
+
 CandidateRefits RefitCandidates(const FitData& fit, const BaseFit& base, const std::optional<MisfitLocation>& location,
                                 const DiagnosisOptions& options, const RefitProgress& progress,
                                 const std::string& explained_by_recording, int num_candidates) {
@@ -667,13 +681,12 @@ CandidateRefits RefitCandidates(const FitData& fit, const BaseFit& base, const s
   CandidateRefits refits;
   refits.models.resize(run.library.size());
   refits.outcomes.resize(run.library.size());
-  // The significant linear candidate of least χ² within the noise, or the
-  // base itself when it fits within the noise: then the costly candidates
-  // (minutes each) are not refitted; the cheap ones are tested all the same.
-  std::string explained_by =
-      !explained_by_recording.empty() ? explained_by_recording
-      : base.summary.reduced_chi_square <= options.acceptable_reduced_chi_square ? "the base model"
-                                                                                 : "";
+  // The linear candidate that explains the misfit best (ExplainsBetter), or
+  // the base itself when it fits within the noise and no linear candidate is
+  // significant: then the costly candidates are not refitted.
+  const bool base_within_noise = base.summary.reduced_chi_square <= options.acceptable_reduced_chi_square;
+  std::string explained_by = explained_by_recording;
+  bool any_significant = false;
   double explained_chi_square = base.summary.chi_square;
   auto test = [&](int c) {
     CandidateOutcome outcome = DescribeCandidate(run, c, location);
@@ -688,12 +701,13 @@ CandidateRefits RefitCandidates(const FitData& fit, const BaseFit& base, const s
     tested[c] = true;
     test(c);
     const CandidateOutcome& o = refits.outcomes[c];
-    if (o.significant && o.fit.reduced_chi_square <= options.acceptable_reduced_chi_square &&
-        o.fit.chi_square < explained_chi_square) {
+    any_significant |= o.significant;
+    if (ExplainsBetter(o, base.summary, explained_chi_square, options)) {
       explained_by = o.name;
       explained_chi_square = o.fit.chi_square;
     }
   }
+  if (explained_by.empty() && base_within_noise && !any_significant) explained_by = "the base model";
   if (explained_by.empty() && !costly.empty())
     RunRefits(fit, options, progress, &run, costly, static_cast<int>(cheap.size()));
   for (int c = 0; c < static_cast<int>(run.library.size()); ++c) {
@@ -869,8 +883,7 @@ DiagnosisResult Diagnose(const FitData& fit, const FitData& validation, const Fi
   std::string explained_by;
   double explained_chi_square = base.summary.chi_square;
   for (const CandidateOutcome& o : artefacts.outcomes)
-    if (o.significant && o.fit.reduced_chi_square <= options.acceptable_reduced_chi_square &&
-        o.fit.chi_square < explained_chi_square) {
+    if (ExplainsBetter(o, base.summary, explained_chi_square, options)) {
       explained_by = o.name;
       explained_chi_square = o.fit.chi_square;
     }

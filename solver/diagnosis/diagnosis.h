@@ -69,11 +69,13 @@ struct DiagnosisOptions {
   double significance = 0.01;
   // Share of the base χ² a cause must remove.
   double min_relative_improvement = 0.2;
-  // A fit lies "within the noise" up to this reduced χ² (the rest after a
-  // named cause; "unexplained" needs a base beyond it; costly candidates are
-  // refitted only when neither the base nor a cheap one is within it): the
-  // model's own errors keep it above 1 on correct physics; `beamid identify`
-  // warns above the same value. It gates no test of a cause.
+  // A fit lies "within the noise" up to this reduced χ²: the rest after a
+  // named cause; "unexplained" needs a base beyond it; a fault of the
+  // recording or a linear candidate that brings a base beyond it within it
+  // spares the costlier refits, as does a base within it where no linear
+  // candidate is significant. The model's own errors keep it above 1 on
+  // correct physics; `beamid identify` warns above the same value. It gates
+  // no test of a cause.
   double acceptable_reduced_chi_square = 4.0;
   int num_workers = 0;              // 0: one per hardware core
   IpoptOptions ipopt;     // the base fit's
