@@ -8,7 +8,8 @@
 // Wilson interval (`low@`, `high@`). The smallest size named in at least
 // 90 % is the detection threshold the docs quote (docs/diagnose.md).
 // One benchmark per cause; each runs sizes × realisations diagnoses of
-// 4–5 s on 2 cores: select with --benchmark_filter.
+// about 15 s on 2 cores (faults and physics refitted where the base lies
+// within the noise), some 16 min a cause: select with --benchmark_filter.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
