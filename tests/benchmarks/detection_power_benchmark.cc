@@ -8,8 +8,8 @@
 // Wilson interval (`low@`, `high@`). The smallest size named in at least
 // 90 % is the detection threshold the docs quote (docs/diagnose.md).
 // One benchmark per cause; each runs sizes × realisations diagnoses of
-// about 15 s on 2 cores (faults and physics refitted where the base lies
-// within the noise), some 16 min a cause: select with --benchmark_filter.
+// 5–17 s on 2 cores (the longer where faults and physics compete), 6–16 min
+// a cause: select with --benchmark_filter.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
