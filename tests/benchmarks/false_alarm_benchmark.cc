@@ -56,11 +56,12 @@ void BM_FalseAlarms(benchmark::State& state, solver::PhasorUncertainty weighting
       };
       solver::DiagnosisOptions options;
       options.num_workers = 2;
-      const solver::DiagnosisResult result = solver::Diagnose(fit_data({"acc1", "acc2"}, 3), fit_data({"acc3"}, 3),
-                                                              fit_data({"acc1", "acc2"}, 5), options);
+      const solver::FitData fitted = fit_data({"acc1", "acc2"}, 3);
+      const solver::DiagnosisResult result =
+          solver::Diagnose(fitted, fit_data({"acc3"}, 3), fit_data({"acc1", "acc2"}, 5), options);
       const bool alarm = result.verdict != solver::DiagnosisVerdict::kNoSignificantDiscrepancy;
       alarms += alarm;
-      noise_driven += NoiseDrivesTheModel(fit_data({"acc1", "acc2"}, 3));
+      noise_driven += NoiseDrivesTheModel(fitted);
       if (alarm)
         std::fprintf(stderr, "realisation %d: %s; base reduced chi2 %.3g; best %s (drop %.3gx, p %.2g)\n", r,
                      solver::ToString(result.verdict).c_str(), result.base.reduced_chi_square,
