@@ -71,7 +71,8 @@ struct DiagnosisOptions {
   double min_relative_improvement = 0.2;
   // A fit lies "within the noise" up to this reduced χ²: the rest after a
   // named cause; "unexplained" needs a base beyond it; a fault of the
-  // recording or a linear candidate that brings a base beyond it within it
+  // recording (but a freed step, which physics peaking at one step also
+  // explains) or a linear candidate that brings a base beyond it within it
   // spares the costlier refits, as does a base within it where no linear
   // candidate is significant. The model's own errors keep it above 1 on
   // correct physics; `beamid identify` warns above the same value. It gates
