@@ -23,6 +23,7 @@
 #include <nlohmann/json.hpp>
 
 #include "solver/diagnosis/diagnosis.h"
+#include "tests/support/proof_diagnosis.h"
 #include "tests/support/simulated_campaign.h"
 #include "tests/support/wilson_interval.h"
 
@@ -60,14 +61,8 @@ void BM_DetectionPower(benchmark::State& state, const Cause& cause) {
       int named = 0;
       for (int r = 0; r < kRealisations; ++r) {
         const signal::PhasorSet phasors = support::MeasureAgain(scenario, steps, written.campaign, 6000 + r);
-        auto fit_data = [&](std::vector<std::string> channels, int harmonics) {
-          return solver::MakeFitData(written.campaign, phasors,
-                                     {.channels = std::move(channels), .num_fit_harmonics = harmonics});
-        };
-        solver::DiagnosisOptions options;
-        options.num_workers = 2;
-        const solver::DiagnosisResult result = solver::Diagnose(fit_data({"acc1", "acc2"}, 3), fit_data({"acc3"}, 3),
-                                                                fit_data({"acc1", "acc2"}, 5), options);
+        const solver::DiagnosisResult result =
+            support::DiagnoseProofData(support::MakeProofData(written.campaign, phasors));
         named += Named(result, cause.names);
         std::string selected;
         for (const std::string& s : result.selected) selected += (selected.empty() ? "" : " + ") + s;

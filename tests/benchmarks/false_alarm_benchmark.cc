@@ -21,6 +21,7 @@
 #include <benchmark/benchmark.h>
 
 #include "solver/diagnosis/diagnosis.h"
+#include "tests/support/proof_diagnosis.h"
 #include "tests/support/simulated_campaign.h"
 #include "tests/support/wilson_interval.h"
 
@@ -49,19 +50,11 @@ void BM_FalseAlarms(benchmark::State& state, solver::PhasorUncertainty weighting
   for (auto _ : state) {
     for (int r = 0; r < kRealisations; ++r) {
       const signal::PhasorSet phasors = support::MeasureAgain(scenario, steps, written.campaign, 5000 + r);
-      auto fit_data = [&](std::vector<std::string> channels, int harmonics) {
-        return solver::MakeFitData(written.campaign, phasors,
-                                   {.channels = std::move(channels), .num_fit_harmonics = harmonics,
-                                    .uncertainty = weighting});
-      };
-      solver::DiagnosisOptions options;
-      options.num_workers = 2;
-      const solver::FitData fitted = fit_data({"acc1", "acc2"}, 3);
-      const solver::DiagnosisResult result =
-          solver::Diagnose(fitted, fit_data({"acc3"}, 3), fit_data({"acc1", "acc2"}, 5), options);
+      const support::ProofData data = support::MakeProofData(written.campaign, phasors, {.uncertainty = weighting});
+      const solver::DiagnosisResult result = support::DiagnoseProofData(data);
       const bool alarm = result.verdict != solver::DiagnosisVerdict::kNoSignificantDiscrepancy;
       alarms += alarm;
-      noise_driven += NoiseDrivesTheModel(fitted);
+      noise_driven += NoiseDrivesTheModel(data.fit);
       if (alarm)
         std::fprintf(stderr, "realisation %d: %s; base reduced chi2 %.3g; best %s (drop %.3gx, p %.2g)\n", r,
                      solver::ToString(result.verdict).c_str(), result.base.reduced_chi_square,

@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "solver/diagnosis/diagnosis.h"
+#include "tests/support/proof_diagnosis.h"
 #include "tests/support/simulated_campaign.h"
 
 namespace beamid::solver {
@@ -34,10 +35,8 @@ TEST(DiagnosisOnBasePhysics, RaisesNoFalseAlarmOverTenNoiseRealisations) {
   for (int r = 0; r < kRealisations; ++r) {
     const testing::ExtractedCampaign campaign =
         testing::WriteAndExtract(scenario, steps, 1000 + r, "beamid_diagnosis_base_" + std::to_string(r));
-    DiagnosisOptions options;
-    options.num_workers = 2;
-    const DiagnosisResult result = Diagnose(campaign.Fit({"acc1", "acc2"}), campaign.Fit({"acc3"}),
-                                            campaign.Fit({"acc1", "acc2"}, 5), options);
+    const DiagnosisResult result =
+        testing::DiagnoseProofData(testing::MakeProofData(campaign.campaign, campaign.phasors));
     std::filesystem::remove_all(campaign.folder);
     if (r < kControls) controls.push_back(campaign);
     const CandidateOutcome& best = result.candidates.front();
@@ -63,10 +62,8 @@ TEST(DiagnosisOnBasePhysics, RaisesNoFalseAlarmOverTenNoiseRealisations) {
             h.std_real *= 1.0 + kControlGainError;
             h.std_imag *= 1.0 + kControlGainError;
           }
-    DiagnosisOptions options;
-    options.num_workers = 2;
-    const DiagnosisResult result = Diagnose(campaign.Fit({"acc1", "acc2"}), campaign.Fit({"acc3"}),
-                                            campaign.Fit({"acc1", "acc2"}, 5), options);
+    const DiagnosisResult result =
+        testing::DiagnoseProofData(testing::MakeProofData(campaign.campaign, campaign.phasors));
     std::printf("control: %s; base reduced chi2 %.3g\n", ToString(result.verdict).c_str(),
                 result.base.reduced_chi_square);
     EXPECT_EQ(result.selected.front(), "sensor_gain(acc1)") << result.summary;

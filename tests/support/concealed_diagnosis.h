@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "solver/diagnosis/diagnosis.h"
+#include "tests/support/proof_diagnosis.h"
 #include "tests/support/simulated_campaign.h"
 
 namespace beamid::testing {
@@ -22,9 +23,7 @@ constexpr double kMinResidualDrop = 5.0;
 inline solver::DiagnosisResult DiagnoseScenario(const nlohmann::json& scenario, const std::string& name,
                                                 solver::DiagnosisOptions options = {}) {
   const ExtractedCampaign campaign = SimulateCampaign(scenario, "beamid_diagnosis_" + name);
-  options.num_workers = 2;
-  solver::DiagnosisResult result = solver::Diagnose(campaign.Fit({"acc1", "acc2"}), campaign.Fit({"acc3"}),
-                                                    campaign.Fit({"acc1", "acc2"}, 5), options);
+  solver::DiagnosisResult result = DiagnoseProofData(MakeProofData(campaign.campaign, campaign.phasors), options);
   std::filesystem::remove_all(campaign.folder);
   std::printf("%s: verdict '%s', selected %s, %.2f s\n", name.c_str(), ToString(result.verdict).c_str(),
               result.selected.front().c_str(), result.seconds);
