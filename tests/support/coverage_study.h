@@ -12,7 +12,6 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
-#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -35,6 +34,14 @@ struct ParameterCoverage {
   int covered = 0;    // realisations whose 95 % interval held the truth
   int estimated = 0;  // realisations that estimated it (z sums over those)
   double sum_z = 0.0, sum_z2 = 0.0;
+
+  void Add(const solver::ParameterEstimate& estimate) {
+    const double z = (estimate.value - truth) / estimate.std;
+    sum_z += z;
+    sum_z2 += z * z;
+    ++estimated;
+    covered += estimate.lower_95 <= truth && truth <= estimate.upper_95;
+  }
 };
 
 struct CoverageStudy {
@@ -108,15 +115,7 @@ inline CoverageStudy RunCoverageStudy(
     const signal::PhasorSet phasors = MeasureAgain(physics.scenario, steps, campaign, first_seed + r);
     const solver::IdentifyResult result =
         solver::Identify(solver::MakeFitData(campaign, phasors, fit_options), physics.structure, {});
-    for (std::size_t j = 0; j < study.parameters.size(); ++j) {
-      const solver::ParameterEstimate& p = result.parameters.at(j);
-      ParameterCoverage& c = study.parameters[j];
-      const double z = (p.value - c.truth) / p.std;
-      c.sum_z += z;
-      c.sum_z2 += z * z;
-      ++c.estimated;
-      c.covered += p.lower_95 <= c.truth && c.truth <= p.upper_95;
-    }
+    for (std::size_t j = 0; j < study.parameters.size(); ++j) study.parameters[j].Add(result.parameters.at(j));
     if (each) each(r, result);
     study.sum_reduced_chi_square += result.reduced_chi_square;
     ++study.realisations;
@@ -187,17 +186,9 @@ inline DiagnosisCoverageStudy RunDiagnosisCoverageStudy(const ConcealedCause& ca
         DiagnoseProofData(MakeProofData(written.campaign, phasors, {.uncertainty = weighting}));
     const bool named = result.selected.front() == cause.cause;
     study.named += named;
-    for (ParameterCoverage& c : study.coverage.parameters) {
-      std::optional<solver::ParameterEstimate> estimate;
+    for (ParameterCoverage& c : study.coverage.parameters)
       for (const solver::ParameterEstimate& p : result.final_fit.parameters)
-        if (p.name == c.name) estimate = p;
-      if (!named || !estimate) continue;
-      const double z = (estimate->value - c.truth) / estimate->std;
-      c.sum_z += z;
-      c.sum_z2 += z * z;
-      ++c.estimated;
-      c.covered += estimate->lower_95 <= c.truth && c.truth <= estimate->upper_95;
-    }
+        if (named && p.name == c.name) c.Add(p);
     study.coverage.sum_reduced_chi_square += result.final_fit.reduced_chi_square;
     ++study.coverage.realisations;
   }
