@@ -136,18 +136,10 @@ const Cause kClock{"ppm",
 // sticks, as the paper's support) slipping at this moment (N·m). Its effect
 // is not monotonic in the moment: one that never slips over the measured
 // rotations is a linear spring, one that slips at once a weak damper; the
-// rates show the band of moments the diagnosis names. The simulator's step
-// and settling as examples/scenarios/paper_friction.json.
+// rates show the band of moments the diagnosis names.
 const Cause kFriction{"Nm",
                       {0.02, 0.05, 0.15, 0.4},
-                      [](nlohmann::json& s, double moment) {
-                        s["support"] = {{"polynomial", {{"k1_Nm_rad", 100.0}, {"k2_Nm_rad2", 0.0},
-                                                        {"k3_Nm_rad3", 3e5}, {"c_Nms_rad", 0.05}}},
-                                        {"jenkins", {{"stiffness_Nm_rad", 50.0}, {"slip_moment_Nm", moment}}}};
-                        s["timing"]["max_time_step_s"] = 9.765625e-06;
-                        s["timing"]["settle_min_s"] = 1.0;
-                        s["timing"]["settle_tolerance"] = 5e-4;
-                      },
+                      [](nlohmann::json& s, double moment) { support::AddSupportFriction(s, 100.0, 50.0, moment); },
                       {"support_friction"}};
 
 BENCHMARK_CAPTURE(BM_DetectionPower, mass_at_drive, kMassAtDrive)->Iterations(1)->Unit(benchmark::kSecond);

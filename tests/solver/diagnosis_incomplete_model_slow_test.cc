@@ -63,13 +63,8 @@ TEST(DiagnosisOfAnIncompleteModel, IdentifyAnswersAndDiagnoseNamesTheMassesAtThe
 
 TEST(DiagnosisOfAnIncompleteModel, FrictionAloneLeavesAMisfitAndThePairWithClampComplianceIsNamed) {
   nlohmann::json s = WithDistortedForce(testing::PaperSetUpScenario());
-  s["support"]["polynomial"]["k1_Nm_rad"] = 100.0;
-  s["support"]["jenkins"] = {{"stiffness_Nm_rad", 50.0}, {"slip_moment_Nm", 0.15}};
+  testing::AddSupportFriction(s, 100.0, 50.0, 0.15);
   s["attachments"] = {{"clamp_rotational_stiffness_Nm_rad", 3e4}};
-  // As the friction proof: a slipping support settles slowly.
-  s["timing"]["max_time_step_s"] = 9.765625e-06;
-  s["timing"]["settle_min_s"] = 1.0;
-  s["timing"]["settle_tolerance"] = 5e-4;
   const DiagnosisResult result = DiagnoseScenario(s, "friction_and_clamp");
   ASSERT_EQ(result.verdict, DiagnosisVerdict::kCombinationNamed);
   ASSERT_EQ(result.selected.size(), 2u);

@@ -24,11 +24,7 @@ using testing::ExpectNamed;
 
 TEST(DiagnosisOnConcealedEffects, NamesFrictionAtTheSupport) {
   nlohmann::json s = testing::PaperSetUpScenario();
-  s["support"]["polynomial"]["k1_Nm_rad"] = 100.0;
-  s["support"]["jenkins"] = {{"stiffness_Nm_rad", 50.0}, {"slip_moment_Nm", 0.15}};
-  s["timing"]["max_time_step_s"] = 9.765625e-06;
-  s["timing"]["settle_min_s"] = 1.0;
-  s["timing"]["settle_tolerance"] = 5e-4;
+  testing::AddSupportFriction(s, 100.0, 50.0, 0.15);
   const DiagnosisResult result = DiagnoseScenario(s, "friction");
   ExpectNamed(result, "support_friction");
   // Within 1 %, not within the intervals: this campaign's steps settle only
@@ -53,11 +49,7 @@ TEST(DiagnosisOnConcealedEffects, TheNamedFrictionCarriesModelFormIntervalsOverT
   s["beam"]["loss_factor"] = 0.0;
   s["beam"]["rayleigh_mass_1_s"] = 0.1;
   s["beam"]["rayleigh_stiffness_s"] = 1e-7;
-  s["support"]["polynomial"]["k1_Nm_rad"] = 100.0;
-  s["support"]["jenkins"] = {{"stiffness_Nm_rad", 45.0}, {"slip_moment_Nm", 0.15}};
-  s["timing"]["max_time_step_s"] = 9.765625e-06;
-  s["timing"]["settle_min_s"] = 1.0;
-  s["timing"]["settle_tolerance"] = 5e-4;
+  testing::AddSupportFriction(s, 100.0, 45.0, 0.15);
   const DiagnosisResult result = DiagnoseScenario(s, "friction_rayleigh");
   ExpectNamed(result, "support_friction");
   const DampingLawEnvelope& laws = result.final_damping_laws;

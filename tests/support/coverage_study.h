@@ -148,11 +148,7 @@ inline ConcealedCause MakeConcealedCause(const std::string& name) {
     cause.cause = "sensor_gain(acc2)";
     cause.truth.emplace_back("gain_error_acc2", 0.01);
   } else if (name == "friction") {
-    scenario["support"]["polynomial"]["k1_Nm_rad"] = 100.0;
-    scenario["support"]["jenkins"] = {{"stiffness_Nm_rad", 50.0}, {"slip_moment_Nm", 0.15}};
-    scenario["timing"]["max_time_step_s"] = 9.765625e-06;
-    scenario["timing"]["settle_min_s"] = 1.0;
-    scenario["timing"]["settle_tolerance"] = 5e-4;
+    AddSupportFriction(scenario, 100.0, 50.0, 0.15);
     cause.cause = "support_friction";
     cause.truth[0].second = 100.0;
     cause.truth.emplace_back("jenkins_stiffness", 50.0);

@@ -165,6 +165,19 @@ inline hb::Scenario LeanPaperBase() {
   return hb::ParseScenario(LeanExample("paper_base.json").dump(), "paper_base.json, 15 steps per level");
 }
 
+// A Jenkins element (a spring in series with a Coulomb slider) beside the
+// polynomial support, whose k1 becomes `k1_Nm_rad`, with the simulator's step
+// and settling of examples/scenarios/paper_friction.json: a slipping support
+// settles slowly, so the steps settle to 5e-4 (1e-5 would take minutes).
+inline void AddSupportFriction(nlohmann::json& scenario, double k1_Nm_rad, double stiffness_Nm_rad,
+                               double slip_moment_Nm) {
+  scenario["support"]["polynomial"]["k1_Nm_rad"] = k1_Nm_rad;
+  scenario["support"]["jenkins"] = {{"stiffness_Nm_rad", stiffness_Nm_rad}, {"slip_moment_Nm", slip_moment_Nm}};
+  scenario["timing"]["max_time_step_s"] = 9.765625e-06;
+  scenario["timing"]["settle_min_s"] = 1.0;
+  scenario["timing"]["settle_tolerance"] = 5e-4;
+}
+
 inline ExtractedCampaign SimulateCampaign(const nlohmann::json& scenario_json, const std::string& name) {
   const hb::Scenario scenario = hb::ParseScenario(scenario_json.dump(), name);
   return WriteAndExtract(scenario, SimulateSteps(scenario), scenario.seed, name);
