@@ -153,12 +153,16 @@ void PrintDampingLaws(const solver::DampingLawEnvelope& envelope) {
                  law.accepted ? "fits: accepted" : "rejected by the data");
     else
       fmt::print("    {:<23} {}\n", law.law, law.status);
-  fmt::print("  model-form 95 % intervals (envelope over the accepted damping laws):\n");
-  for (const auto& i : envelope.intervals)
-    fmt::print("    {:<10} {:.6g} … {:.6g} {}{}\n", i.name, i.lower_95, i.upper_95, i.unit,
-               i.depends_on_damping_law ? "   [DEPENDS ON THE DAMPING LAW: another law that fits puts it outside the "
-                                          "statistical interval]"
-                                        : "");
+  fmt::print("  total 95 % intervals: {}\n", solver::TotalIntervalParts(envelope));
+  for (const auto& i : envelope.intervals) {
+    std::string flags;
+    if (i.depends_on_damping_law) flags += "   [DEPENDS ON THE DAMPING LAW: another law that fits puts it outside the "
+                                           "statistical interval]";
+    if (i.depends_on_truncation) flags += "   [DEPENDS ON THE HARMONIC TRUNCATION: more harmonics put it outside the "
+                                          "statistical interval; analyse with more (-H)]";
+    fmt::print("    {:<10} {:.6g} … {:.6g} {}  ({:.2g}× the statistical width; truncation shift {:+.2g}){}\n", i.name,
+               i.lower_95, i.upper_95, i.unit, i.WidthRatio(), i.truncation_shift, flags);
+  }
 }
 
 }  // namespace beamid::cli

@@ -284,8 +284,16 @@ std::string ResidualPlot(const ResidualMap& map, double largest = 1.0) {
          "plot $r using 1:2:(0.5):(0.5):3 with boxxyerror fs solid 1.0 noborder lc palette notitle\n";
 }
 
-// With the damping laws refitted: a column of the model-form interval (the
-// envelope over the laws the data accept), flagged where it depends on the law.
+// What the table's total intervals hold, under it.
+std::string IntervalParts(const DampingLawEnvelope& envelope) {
+  if (envelope.intervals.empty()) return "";
+  return "<p class=\"interval-parts\">The total 95 % intervals hold " + HtmlEscape(TotalIntervalParts(envelope)) +
+         ".</p>\n";
+}
+
+// With the damping laws refitted: a column of the total interval (the
+// envelope over the laws the data accept, widened by the harmonic
+// truncation's shift), flagged where it depends on the law or the truncation.
 // With `base`: a last column of the base fit's value of each parameter, blank
 // for those the base model lacks (a diagnosis's selected model).
 // (result.json's parameters and a damping law's fit hold the same fields.)
@@ -295,7 +303,8 @@ std::string ParameterRows(const std::vector<Parameter>& parameters, const std::v
   std::string html =
       "<table class=\"parameters\"><tr><th>parameter</th><th>value</th><th>standard uncertainty</th>"
       "<th>95 % interval</th>" +
-      std::string(intervals.empty() ? "" : "<th>95 % over the beam's damping laws</th>") + "<th>unit</th>" +
+      std::string(intervals.empty() ? "" : "<th>total 95 % (damping laws, harmonic truncation)</th>") +
+      "<th>unit</th>" +
       std::string(base == nullptr ? "" : "<th>base fit (rejected)</th>") + "</tr>\n";
   for (const auto& p : parameters) {
     // Every number of the row at the decimal place of the value's σ.
@@ -305,8 +314,9 @@ std::string ParameterRows(const std::vector<Parameter>& parameters, const std::v
       const auto i = std::find_if(intervals.begin(), intervals.end(), [&](const auto& m) { return m.name == p.name; });
       model_form = i == intervals.end()
                        ? "<td>(a damping parameter)</td>"
-                       : fmt::format("<td>{} … {}{}</td>", format.Format(i->lower_95), format.Format(i->upper_95),
-                                     i->depends_on_damping_law ? " <b>[depends on the damping law]</b>" : "");
+                       : fmt::format("<td>{} … {}{}{}</td>", format.Format(i->lower_95), format.Format(i->upper_95),
+                                     i->depends_on_damping_law ? " <b>[depends on the damping law]</b>" : "",
+                                     i->depends_on_truncation ? " <b>[depends on the harmonic truncation]</b>" : "");
     }
     if (base != nullptr) {
       const auto b = std::find_if(base->begin(), base->end(), [&](const auto& q) { return q.name == p.name; });
@@ -324,7 +334,8 @@ std::string ParameterRows(const std::vector<Parameter>& parameters, const std::v
 // each beside it, and their model-form intervals over the beam damping laws
 // when the diagnosis refitted the selected model under them.
 std::string SelectedParameterTable(const DiagnosisResult& d) {
-  return ParameterRows(d.final_fit.parameters, d.final_damping_laws.intervals, &d.base.parameters);
+  return ParameterRows(d.final_fit.parameters, d.final_damping_laws.intervals, &d.base.parameters) +
+         IntervalParts(d.final_damping_laws);
 }
 
 // The held-out channels' first harmonic at every step: measured, the base
@@ -366,12 +377,13 @@ std::string ParameterTable(const ResultFile& result, const IdentificationOutcome
   const auto& intervals = result.damping_laws.intervals;
   const auto answer = std::find_if(laws.begin(), laws.end(),
                                    [&](const DampingLawFit& law) { return law.law == outcome.answer_damping_law; });
-  if (!outcome.assumed_damping_law_rejected || answer == laws.end()) return ParameterRows(result.parameters, intervals);
+  if (!outcome.assumed_damping_law_rejected || answer == laws.end())
+    return ParameterRows(result.parameters, intervals) + IntervalParts(result.damping_laws);
   return fmt::format("<p class=\"answer\"><b>The data reject the loss factor the fit assumes</b>; they accept the "
                      "<b>{}</b> damping law (reduced χ² {} against {}), whose parameters are the answer:</p>\n",
                      HtmlEscape(outcome.answer_damping_law), Number(outcome.answer_reduced_chi_square),
                      Number(outcome.reduced_chi_square)) +
-         ParameterRows(answer->parameters, intervals) +
+         ParameterRows(answer->parameters, intervals) + IntervalParts(result.damping_laws) +
          "<p>Under the rejected loss factor (for comparison only):</p>\n" + ParameterRows(result.parameters, {});
 }
 

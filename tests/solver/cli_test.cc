@@ -5,6 +5,7 @@
 // request; failure to converge ends with exit code 3.
 #include <sys/wait.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -226,7 +227,7 @@ TEST_F(CommandLine, IdentifyRefitsTheDampingLawsAndWritesTheirModelFormIntervals
   ProgramRun run = Beamid("identify " + campaign + " --fit acc1,acc2 -o " + result);
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_THAT(run.output, HasSubstr("beam damping laws (the fit assumes loss_factor):"));
-  EXPECT_THAT(run.output, HasSubstr("model-form 95 % intervals (envelope over the accepted damping laws):"));
+  EXPECT_THAT(run.output, HasSubstr("total 95 % intervals: the statistical part with the residual model error, the accepted damping laws ("));
   const nlohmann::json written = nlohmann::json::parse(ReadFile(result));
   ASSERT_TRUE(written.contains("damping_laws"));
   std::vector<std::string> laws;
@@ -244,6 +245,17 @@ TEST_F(CommandLine, IdentifyRefitsTheDampingLawsAndWritesTheirModelFormIntervals
     }
   }
   EXPECT_EQ(shared, (std::vector<std::string>{"k1", "k2", "k3", "c"}));
+  // The harmonic truncation's refit (5 → 9 harmonics) is in the file, and
+  // each total interval is the damping-law envelope widened by its shift.
+  const auto& truncation = written["damping_laws"]["truncation"];
+  EXPECT_EQ(truncation["model_harmonics"], 5);
+  EXPECT_EQ(truncation["refit_harmonics"], 9);
+  EXPECT_TRUE(truncation["converged"].get<bool>()) << truncation["status"];
+  for (const auto& interval : written["damping_laws"]["model_form_intervals"]) {
+    const double shift = std::abs(interval["truncation_shift"].get<double>());
+    EXPECT_DOUBLE_EQ(interval["ci95"][0].get<double>(), interval["damping_law_ci95"][0].get<double>() - shift);
+    EXPECT_DOUBLE_EQ(interval["ci95"][1].get<double>(), interval["damping_law_ci95"][1].get<double>() + shift);
+  }
 
   EXPECT_EQ(written["model"]["phasor_uncertainty"], "relative_floor");
 

@@ -138,5 +138,46 @@ TEST(DampingLawEnvelope, ALossFactorBeamKeepsTheLossFactorAndTheModelFormInterva
   ExpectModelFormCoverage(t);
 }
 
+// The truncation's shift is one Gauss–Newton step at H + 4 harmonics from
+// the optimum at H: to first order, a full refit at H + 4. Checked against
+// that refit where truncation moves the fit most, 3 harmonics balanced for
+// 3 fitted.
+TEST(DampingLawEnvelope, TheTruncationShiftIsAFullRefitWithMoreHarmonicsToFirstOrder) {
+  const hb::Scenario scenario = beamid::testing::LeanPaperBase();
+  const std::filesystem::path folder = beamid::testing::UniqueTempPath("beamid_truncation_test");
+  std::filesystem::remove_all(folder);
+  const std::vector<hb::SimulatedStep> steps = beamid::testing::SimulateInto(scenario, folder);
+  const signal::Campaign campaign = signal::ReadCampaign(folder);
+  std::filesystem::remove_all(folder);
+  const FitData fit = MakeFitData(campaign, beamid::testing::MeasureAgain(scenario, steps, campaign, 2100),
+                                  {.channels = {"acc1", "acc2"}});
+  ModelStructure structure = PolynomialModel({.k1_Nm_rad = 100.0});
+  structure.linear.push_back(LossFactor(1e-4));
+  IdentifyOptions options;
+  options.model.num_harmonics = 3;
+  const IdentifyResult result = Identify(fit, structure, options);
+  const DampingLawEnvelope envelope = FitDampingLaws(fit, structure, result, options);
+  ASSERT_TRUE(envelope.truncation.has_value());
+  ASSERT_TRUE(envelope.truncation->converged) << envelope.truncation->status;
+  EXPECT_EQ(envelope.truncation->refit_harmonics, 7);
+
+  ModelStructure at_optimum = structure;
+  std::vector<double> values;
+  for (const auto& p : result.parameters) values.push_back(p.value);
+  at_optimum.SetValues(values);
+  IdentifyOptions more = options;
+  more.model.num_harmonics = 7;
+  more.use_direct_estimate = false;
+  const IdentifyResult refit = Identify(fit, at_optimum, more);
+  for (std::size_t j = 0; j < result.parameters.size(); ++j) {
+    const ParameterEstimate& p = result.parameters[j];
+    const double step = envelope.truncation->parameters[j].value - p.value;
+    const double full = refit.parameters[j].value - p.value;
+    std::printf("  %-12s σ %.3g: shift by the step %.4g, by the full refit %.4g\n", p.name.c_str(), p.std, step,
+                full);
+    EXPECT_NEAR(step, full, 0.1 * std::abs(full) + 0.01 * p.std) << p.name;
+  }
+}
+
 }  // namespace
 }  // namespace beamid::solver

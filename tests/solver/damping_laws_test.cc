@@ -88,5 +88,52 @@ TEST(DampingLaws, AFailedRefitIsNeverAcceptedNorInTheEnvelope) {
   EXPECT_DOUBLE_EQ(IntervalOf(e, "c").upper_95, 0.05 + 1.96 * 0.001);
 }
 
+TruncationRefit Truncation(double k1, double c) {
+  return {.model_harmonics = 5,
+          .refit_harmonics = 9,
+          .converged = true,
+          .status = "solved",
+          .parameters = {Estimate("k1", k1, 0.01), Estimate("c", c, 0.001), Estimate("loss_factor", 1e-3, 1e-4)}};
+}
+
+// The total interval: the envelope over the accepted laws, widened on both
+// sides by the truncation refit's shift, with its parts kept apart.
+TEST(DampingLaws, TheTotalIntervalWidensTheEnvelopeByTheTruncationShiftOnBothSides) {
+  DampingLawEnvelope e{.laws = {Law("loss_factor", 0.0500, 100.0, 100, "loss_factor"),
+                                Law("rayleigh", 0.0505, 95.0, 99, "rayleigh_mass_1_s")},
+                       .truncation = Truncation(150.03, 0.0499)};
+  JudgeDampingLaws(&e);
+  const ModelFormInterval& c = IntervalOf(e, "c");
+  EXPECT_DOUBLE_EQ(c.statistical_lower_95, 0.0500 - 1.96 * 0.001);
+  EXPECT_DOUBLE_EQ(c.damping_law_upper_95, 0.0505 + 1.96 * 0.001);
+  EXPECT_NEAR(c.truncation_shift, -0.0001, 1e-15);
+  EXPECT_NEAR(c.lower_95, 0.0500 - 1.96 * 0.001 - 0.0001, 1e-15);
+  EXPECT_NEAR(c.upper_95, 0.0505 + 1.96 * 0.001 + 0.0001, 1e-15);
+  EXPECT_NEAR(c.WidthRatio(), (0.0005 + 2 * 1.96 * 0.001 + 0.0002) / (2 * 1.96 * 0.001), 1e-12);
+  EXPECT_FALSE(c.depends_on_truncation);  // 0.0499 inside 0.05 ± 0.00196
+  const ModelFormInterval& k1 = IntervalOf(e, "k1");
+  EXPECT_TRUE(k1.depends_on_truncation);  // 150.03 outside 150 ± 0.0196
+  EXPECT_NEAR(k1.upper_95 - k1.lower_95, 2 * 1.96 * 0.01 + 2 * 0.03, 1e-12);
+  EXPECT_EQ(TotalIntervalParts(e),
+            "the statistical part with the residual model error, the accepted damping laws (loss_factor, rayleigh), "
+            "the harmonic truncation (5 → 9 harmonics)");
+}
+
+// A truncation refit that failed adds nothing, and the headline says the
+// intervals lack it rather than implying they hold it.
+TEST(DampingLaws, AFailedTruncationRefitAddsNoShiftAndTheHeadlineSaysSo) {
+  TruncationRefit failed = Truncation(151.0, 0.06);
+  failed.converged = false;
+  failed.status = "failed: maximum number of iterations exceeded";
+  DampingLawEnvelope e{.laws = {Law("loss_factor", 0.05, 100.0, 100, "loss_factor")}, .truncation = failed};
+  JudgeDampingLaws(&e);
+  EXPECT_DOUBLE_EQ(IntervalOf(e, "k1").truncation_shift, 0.0);
+  EXPECT_DOUBLE_EQ(IntervalOf(e, "k1").upper_95, 150.0 + 1.96 * 0.01);
+  EXPECT_NE(TotalIntervalParts(e).find("NOT the harmonic truncation"), std::string::npos) << TotalIntervalParts(e);
+  e.truncation.reset();
+  JudgeDampingLaws(&e);
+  EXPECT_NE(TotalIntervalParts(e).find("was not refitted"), std::string::npos) << TotalIntervalParts(e);
+}
+
 }  // namespace
 }  // namespace beamid::solver

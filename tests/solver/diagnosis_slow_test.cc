@@ -59,6 +59,7 @@ TEST(DiagnosisOnConcealedEffects, TheNamedFrictionCarriesModelFormIntervalsOverT
                 law.reduced_chi_square, law.accepted ? "accepted" : "rejected");
     for (const auto& p : law.parameters) std::printf("    %-20s %.6g ± %.2g\n", p.name.c_str(), p.value, p.std);
   }
+  std::printf("  total intervals hold %s\n", TotalIntervalParts(laws).c_str());
   EXPECT_FALSE(laws.laws.front().accepted) << "the data must reject the loss factor on a Rayleigh-damped beam";
   const auto rayleigh = std::find_if(laws.laws.begin(), laws.laws.end(),
                                      [](const DampingLawFit& l) { return l.law == "rayleigh"; });
@@ -71,9 +72,10 @@ TEST(DiagnosisOnConcealedEffects, TheNamedFrictionCarriesModelFormIntervalsOverT
                                        [&](const ModelFormInterval& i) { return i.name == name; });
     ASSERT_NE(interval, laws.intervals.end());
     const ParameterEstimate loss_factor_fit = testing::FinalParameter(result, name);
-    std::printf("  %s model-form 95 %%: %.6g … %.6g, the loss-factor fit's: %.6g … %.6g (truth %.6g)\n",
-                name.c_str(), interval->lower_95, interval->upper_95, loss_factor_fit.lower_95,
-                loss_factor_fit.upper_95, truth);
+    std::printf("  %s total 95 %%: %.6g … %.6g (truncation shift %.3g), the loss-factor fit's: %.6g … %.6g "
+                "(truth %.6g)\n",
+                name.c_str(), interval->lower_95, interval->upper_95, interval->truncation_shift,
+                loss_factor_fit.lower_95, loss_factor_fit.upper_95, truth);
     const auto distance = [&](double lower, double upper) {
       return truth < lower ? lower - truth : truth > upper ? truth - upper : 0.0;
     };

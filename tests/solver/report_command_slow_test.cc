@@ -134,7 +134,7 @@ TEST_F(ReportCommand, WritesOneSelfContainedPageWithEveryPlot) {
   EXPECT_THAT(html, HasSubstr("stroke-dasharray"));
   for (const char* parameter : {"k1", "k2", "k3", "c"}) EXPECT_THAT(html, HasSubstr(std::string("<td>") + parameter + "</td>"));
   // identify refitted the beam's damping laws: their envelope is a column.
-  EXPECT_THAT(html, HasSubstr("<th>95 % over the beam's damping laws</th>"));
+  EXPECT_THAT(html, HasSubstr("<th>total 95 % (damping laws, harmonic truncation)</th>"));
   EXPECT_THAT(html, HasSubstr("Held-out acc3"));
 }
 
