@@ -121,10 +121,23 @@ inline void ExpectIntervalHolds(const solver::ParameterEstimate& p, double truth
 }
 
 // A named cause's parameter; each caller states its bound (about twice the
-// standard uncertainty measured on its campaign).
+// standard uncertainty measured on its campaign). When the selected model's
+// damping laws were refitted, its total interval (damping laws, harmonic
+// truncation) holds the truth too, and is at most 3× the statistical one:
+// these campaigns' physics is the model's once the cause is named.
 inline void ExpectWithinInterval(const solver::DiagnosisResult& result, const std::string& name, double truth,
                                  double max_relative_std) {
   ExpectIntervalHolds(FinalParameter(result, name), truth, max_relative_std);
+  if (result.blame == solver::Blame::kModel) {
+    EXPECT_FALSE(result.final_damping_laws.intervals.empty()) << "the named physics carries no total intervals";
+  }
+  for (const auto& total : result.final_damping_laws.intervals)
+    if (total.name == name) {
+      EXPECT_LE(total.lower_95, truth) << name << "'s total interval";
+      EXPECT_GE(total.upper_95, truth) << name << "'s total interval";
+      EXPECT_LE(total.WidthRatio(), 3.0) << name << "'s total interval, " << total.lower_95 << " … "
+                                         << total.upper_95;
+    }
 }
 
 }  // namespace beamid::testing
