@@ -5,6 +5,8 @@
 #include <memory>
 #include <stdexcept>
 
+#include <fmt/format.h>
+
 namespace beamid::solver {
 namespace {
 
@@ -239,15 +241,36 @@ CandidatePhysics InstrumentMasses() {
   };
 }
 
+constexpr const char* kModulusCheck =
+    "measure the thickness at several points (EI grows with its cube: 1.6 % thickness is 4.8 % EI) and take the "
+    "modulus from the material's certificate";
+// |EI_scale − 1| below which a clock error (EI_scale ≈ 1 + 2ε) is as likely:
+// a clock 1000 ppm off is a large fault, a modulus 0.2 % off a small one.
+constexpr double kClockLikeEiChange = 2e-3;
+
 CandidatePhysics ModulusError() {
   return {
       .name = "modulus_error",
       .description = "a bending stiffness EI different from the nominal one (Young's modulus or thickness)",
-      .rig_check = "measure the thickness at several points (EI grows with its cube: 1.6 % thickness is 4.8 % EI) and "
-                   "take the modulus from the material's certificate",
+      .rig_check = kModulusCheck,
       .extend = [](const ModelStructure& base,
                    const BaseFitContext& context) { return WithLinear(base, {BendingStiffnessScale()}, {{1.0}}, context); },
       .signature = LinearStiffnessSignature,
+      // An acquisition clock off by ε reads every frequency (1 + ε) times
+      // the true one, which a beam whose EI is (1 + ε)² times the nominal
+      // one gives too: below a few hundred ppm the data cannot tell them
+      // apart (the clock's fault of the recording is named only above
+      // ~500 ppm, docs/diagnose.md).
+      .rig_check_for =
+          [](const std::vector<ParameterEstimate>& fitted) {
+            for (const auto& p : fitted)
+              if (p.name == "EI_scale" && std::abs(p.value - 1.0) < kClockLikeEiChange)
+                return std::string(kModulusCheck) +
+                       fmt::format("; a change this small ({:+.0f} ppm of EI) is also what an acquisition clock "
+                                   "about {:.0f} ppm off gives: check the clock against a reference frequency first",
+                                   1e6 * (p.value - 1.0), 0.5e6 * std::abs(p.value - 1.0));
+            return std::string(kModulusCheck);
+          },
   };
 }
 

@@ -20,6 +20,7 @@
 
 #include "solver/estimation/fit_data.h"
 #include "solver/diagnosis/misfit_location.h"
+#include "solver/estimation/identify.h"
 #include "solver/estimation/model_structure.h"
 
 namespace beamid::solver {
@@ -56,6 +57,9 @@ struct CandidatePhysics {
   std::function<CandidateExtension(const ModelStructure& base, const BaseFitContext& context)> extend;
   // How well the located misfit matches the candidate's signature, 0..1.
   std::function<double(const MisfitLocation& location)> signature;
+  // The check for the fitted parameters (their names and values), when it
+  // depends on them; empty: rig_check as it stands.
+  std::function<std::string(const std::vector<ParameterEstimate>& fitted)> rig_check_for;
 };
 
 // Friction at the support: a Jenkins element (spring k_t in series with a
