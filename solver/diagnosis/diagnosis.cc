@@ -295,7 +295,6 @@ void HeaviestFirst(RefitRun* run) {
   });
 }
 
-// The selected candidates extended from the base optimum, and one job per start.
 // The beam's loss factor in every refit of physics when the diagnosis fits
 // it, tested as one more parameter. The base keeps it only where it lowers
 // the base's misfit; a base far from the data (a modulus 5 % off) often drops
@@ -309,6 +308,7 @@ void WithLossFactor(const DiagnosisOptions& options, CandidateExtension* extensi
   ++extension->test_dof;
 }
 
+// The selected candidates extended from the base optimum, and one job per start.
 RefitRun PlanRefits(const FitData& fit, const BaseFit& base, const DiagnosisOptions& options) {
   const BaseFitContext context = ContextOf(fit, base.model);
   RefitRun run;

@@ -9,7 +9,6 @@
 
 #include "solver/estimation/fit_problem.h"
 
-
 namespace beamid::solver {
 namespace {
 
@@ -158,7 +157,8 @@ std::string TotalIntervalParts(const DampingLawEnvelope& envelope) {
   std::string laws;
   for (const auto& law : envelope.laws)
     if (law.accepted) laws += (laws.empty() ? "" : ", ") + law.law;
-  std::string parts = "the statistical part with the residual model error, the accepted damping laws (" + laws + ")";
+  std::string parts = "the statistical part (with the residual model error where the weighting estimates it), the "
+                      "accepted damping laws (" + laws + ")";
   const auto& t = envelope.truncation;
   if (!t) return parts + "; the harmonic truncation was not refitted";
   if (!t->converged)

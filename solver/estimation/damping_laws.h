@@ -17,16 +17,16 @@
 // worse than another is ruled out by the data even then.
 // Every parameter the laws share gets a total 95 % interval, the model-form
 // interval: the envelope of the accepted laws' 95 % intervals (each holds
-// the statistical part and the residual model error, model_error.h),
-// widened on both sides by the harmonic truncation's shift |p(H') − p(H)|,
-// p(H') the fitted law's optimum moved by one Gauss–Newton step of the fit
-// with H' = H + 4 harmonics in the balance (its first-order refit). The
-// shift estimates what the harmonics beyond H' would
-// move too: response harmonics decay at least like 1/k² (a kink in the
-// support's moment), so the ones from H + 1 to H + 4 hold about half of the
-// tail or more. A parameter depends on the damping law (on the truncation)
-// when an accepted law's value (the refit's value) lies outside the fitted
-// law's 95 % interval.
+// the statistical part and, under propagated weighting, the residual model
+// error, model_error.h), widened on both sides by the harmonic truncation's
+// shift |p(H') − p(H)|, p(H') the fitted law's optimum moved by one
+// Gauss–Newton step of the fit with H' = H + 4 harmonics in the balance
+// (its first-order refit). The shift stands for what the harmonics beyond
+// H' would move too: response harmonics decay at least like 1/k² (a kink
+// in the support's moment), so the ones from H + 1 to H + 4 hold about half
+// of the tail or more. A parameter depends on the damping law (on the
+// truncation) when an accepted law's value (the refit's value) lies outside
+// the fitted law's 95 % interval.
 #pragma once
 
 #include <limits>
@@ -65,7 +65,7 @@ struct ModelFormInterval {
   std::string unit;
   double lower_95 = 0.0;  // the total interval
   double upper_95 = 0.0;
-  double statistical_lower_95 = 0.0;  // the answer law's own (statistics and residual model error)
+  double statistical_lower_95 = 0.0;  // the answer law's own interval
   double statistical_upper_95 = 0.0;
   double damping_law_lower_95 = 0.0;  // the envelope over the accepted laws
   double damping_law_upper_95 = 0.0;
@@ -86,8 +86,8 @@ struct DampingLawEnvelope {
 };
 
 // What the total intervals hold, for the headline that shows them: "the
-// statistical part with the residual model error, the damping laws
-// loss_factor and rayleigh, the harmonic truncation (5 → 9 harmonics)".
+// statistical part (…), the accepted damping laws (loss_factor, rayleigh),
+// the harmonic truncation (5 → 9 harmonics)".
 std::string TotalIntervalParts(const DampingLawEnvelope& envelope);
 
 // The laws a damping-law envelope refits.

@@ -227,7 +227,8 @@ TEST_F(CommandLine, IdentifyRefitsTheDampingLawsAndWritesTheirModelFormIntervals
   ProgramRun run = Beamid("identify " + campaign + " --fit acc1,acc2 -o " + result);
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_THAT(run.output, HasSubstr("beam damping laws (the fit assumes loss_factor):"));
-  EXPECT_THAT(run.output, HasSubstr("total 95 % intervals: the statistical part with the residual model error, the accepted damping laws ("));
+  EXPECT_THAT(run.output, HasSubstr("total 95 % intervals: the statistical part (with the residual model error where the weighting "
+                                    "estimates it), the accepted damping laws ("));
   const nlohmann::json written = nlohmann::json::parse(ReadFile(result));
   ASSERT_TRUE(written.contains("damping_laws"));
   std::vector<std::string> laws;

@@ -115,8 +115,8 @@ TEST(DampingLaws, TheTotalIntervalWidensTheEnvelopeByTheTruncationShiftOnBothSid
   EXPECT_TRUE(k1.depends_on_truncation);  // 150.03 outside 150 ± 0.0196
   EXPECT_NEAR(k1.upper_95 - k1.lower_95, 2 * 1.96 * 0.01 + 2 * 0.03, 1e-12);
   EXPECT_EQ(TotalIntervalParts(e),
-            "the statistical part with the residual model error, the accepted damping laws (loss_factor, rayleigh), "
-            "the harmonic truncation (5 → 9 harmonics)");
+            "the statistical part (with the residual model error where the weighting estimates it), the accepted "
+            "damping laws (loss_factor, rayleigh), the harmonic truncation (5 → 9 harmonics)");
 }
 
 // A truncation refit that failed adds nothing, and the headline says the
