@@ -44,6 +44,23 @@ hb::Scenario LeanScenario(const std::string& file_name) {
   return hb::ParseScenario(scenario.dump(), file_name + ", 15 steps per level, distorted force");
 }
 
+// The scenario's campaign, simulated into a temporary folder and read back;
+// *steps: the simulated steps, for noise realisations of it.
+signal::Campaign Simulate(const hb::Scenario& scenario, std::vector<hb::SimulatedStep>* steps) {
+  const std::filesystem::path folder = beamid::testing::UniqueTempPath("beamid_damping_law_test");
+  std::filesystem::remove_all(folder);
+  *steps = beamid::testing::SimulateInto(scenario, folder);
+  const signal::Campaign campaign = signal::ReadCampaign(folder);
+  std::filesystem::remove_all(folder);
+  return campaign;
+}
+
+ModelStructure PolynomialWithLossFactor() {
+  ModelStructure structure = PolynomialModel({.k1_Nm_rad = 100.0});
+  structure.linear.push_back(LossFactor(1e-4));
+  return structure;
+}
+
 struct Tally {
   int loss_factor_c_covered = 0;   // the loss-factor fit's own 95 % interval of c
   int loss_factor_accepted = 0;
@@ -65,14 +82,9 @@ bool Covers(const DampingLawEnvelope& envelope, const std::string& name, double 
 
 Tally RunRealisations(const std::string& file_name) {
   const hb::Scenario scenario = LeanScenario(file_name);
-  const std::filesystem::path folder = beamid::testing::UniqueTempPath("beamid_damping_law_test");
-  std::filesystem::remove_all(folder);
-  const std::vector<hb::SimulatedStep> steps = beamid::testing::SimulateInto(scenario, folder);
-  const signal::Campaign campaign = signal::ReadCampaign(folder);
-  std::filesystem::remove_all(folder);
-
-  ModelStructure structure = PolynomialModel({.k1_Nm_rad = 100.0});
-  structure.linear.push_back(LossFactor(1e-4));
+  std::vector<hb::SimulatedStep> steps;
+  const signal::Campaign campaign = Simulate(scenario, &steps);
+  const ModelStructure structure = PolynomialWithLossFactor();
   const IdentifyOptions options;
   Tally tally;
   for (int r = 0; r < kRealisations; ++r) {
@@ -144,15 +156,11 @@ TEST(DampingLawEnvelope, ALossFactorBeamKeepsTheLossFactorAndTheModelFormInterva
 // 3 fitted.
 TEST(DampingLawEnvelope, TheTruncationShiftIsAFullRefitWithMoreHarmonicsToFirstOrder) {
   const hb::Scenario scenario = beamid::testing::LeanPaperBase();
-  const std::filesystem::path folder = beamid::testing::UniqueTempPath("beamid_truncation_test");
-  std::filesystem::remove_all(folder);
-  const std::vector<hb::SimulatedStep> steps = beamid::testing::SimulateInto(scenario, folder);
-  const signal::Campaign campaign = signal::ReadCampaign(folder);
-  std::filesystem::remove_all(folder);
+  std::vector<hb::SimulatedStep> steps;
+  const signal::Campaign campaign = Simulate(scenario, &steps);
   const FitData fit = MakeFitData(campaign, beamid::testing::MeasureAgain(scenario, steps, campaign, 2100),
                                   {.channels = {"acc1", "acc2"}});
-  ModelStructure structure = PolynomialModel({.k1_Nm_rad = 100.0});
-  structure.linear.push_back(LossFactor(1e-4));
+  const ModelStructure structure = PolynomialWithLossFactor();
   IdentifyOptions options;
   options.model.num_harmonics = 3;
   const IdentifyResult result = Identify(fit, structure, options);
