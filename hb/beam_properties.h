@@ -5,7 +5,10 @@
 // optional Rayleigh damping C = α·M + β·K of the beam (and of the point
 // masses on it), in the frequency domain ρA·(ω² − iαω) for ρA·ω² and
 // EI·(1 + iη + iβω) for EI: the other damping law a real beam may follow
-// (air and joint losses grow with velocity, not with strain).
+// (air and joint losses grow with velocity, not with strain); and an optional
+// modal loss factor η_m, the loss factor matched per mode at the harmonic that
+// drives it, as time-domain codes integrate a loss factor
+// (hb/matched_modal_loss.h).
 #pragma once
 
 #include <stdexcept>
@@ -21,6 +24,9 @@ struct BeamProperties {
   double density_kg_m3 = 7850.0;
   // η: hysteretic (structural) loss factor of the material; 0 = undamped.
   double loss_factor = 0.0;
+  // η_m: mode j of the beam dissipates as E(1 + iη_m) at the harmonic of the
+  // drive nearest its frequency (hb/matched_modal_loss.h); 0 = none.
+  double modal_loss_factor = 0.0;
   // α [1/s] and β [s] of the Rayleigh damping; 0 = none.
   double rayleigh_mass_1_s = 0.0;
   double rayleigh_stiffness_s = 0.0;
@@ -48,6 +54,8 @@ struct BeamProperties {
     within(density_kg_m3, 1.0, 1e5, "density_kg_m3", "1 to 1e5 kg/m³");
     if (!(loss_factor >= 0.0 && loss_factor < 1.0))
       throw std::invalid_argument("beam: loss_factor must lie in [0, 1)");
+    if (!(modal_loss_factor >= 0.0 && modal_loss_factor < 1.0))
+      throw std::invalid_argument("beam: modal_loss_factor must lie in [0, 1)");
     within(rayleigh_mass_1_s, 0.0, 1e4, "rayleigh_mass_1_s", "0 to 1e4 1/s");
     within(rayleigh_stiffness_s, 0.0, 1.0, "rayleigh_stiffness_s", "0 to 1 s");
   }

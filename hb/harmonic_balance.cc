@@ -8,6 +8,7 @@
 #include <Eigen/LU>
 
 #include "hb/internal/real_fft.h"
+#include "hb/matched_modal_loss.h"
 #include "hb/option_checks.h"
 
 namespace beamid::hb {
@@ -105,8 +106,12 @@ LinearHarmonics ComputeLinearHarmonics(const LinearBeam& beam, double omega_rad_
   linear.blocked_moment_per_force.resize(h + 1);
   linear.displacement_per_force.resize(count, h + 1);
   linear.displacement_per_rotation.resize(count, h + 1);
+  const MatchedModalLoss* modal_loss = beam.matched_modal_loss();
+  MatchedModalLoss::ModeValues modes;
+  if (modal_loss) modes = modal_loss->At(positions_m);
   for (int k = 0; k <= h; ++k) {
-    const auto c = beam.CondenseOnSupportRotation(k * omega_rad_s, positions_m);
+    auto c = beam.CondenseOnSupportRotation(k * omega_rad_s, positions_m);
+    if (modal_loss && k > 0) modal_loss->Correct(modes, omega_rad_s, k, &c);
     const bool real = k == 0;
     auto part = [real](Complex v) { return real ? Complex(v.real()) : v; };
     linear.rotational_stiffness[k] = part(c.rotational_stiffness_Nm_rad);

@@ -10,6 +10,7 @@
 #include <Eigen/LU>
 
 #include "hb/internal/beam_mesh.h"
+#include "hb/matched_modal_loss.h"
 #include "hb/option_checks.h"
 
 namespace beamid::hb {
@@ -157,6 +158,8 @@ LinearBeam::LinearBeam(const LinearBeamModel& model, double force_position_m, co
       !(model.attachments.support_translational_stiffness_N_m > 0.0))
     throw std::invalid_argument("clamp and support spring stiffnesses must be > 0 (infinite = rigid)");
   mesh_ = MakeMesh(model_, force_position_m, options);
+  if (model_.beam.modal_loss_factor > 0.0)
+    matched_modal_loss_ = std::make_shared<const MatchedModalLoss>(model_, force_position_m, options);
 }
 
 std::vector<double> LinearBeam::NaturalFrequencies_rad_s(int count) const {

@@ -35,6 +35,7 @@ struct LinearBeamModel {
 };
 
 struct BeamMesh;  // hb/internal/beam_mesh.h
+class MatchedModalLoss;  // hb/matched_modal_loss.h
 
 // A complex steady-state deflection shape at one angular frequency, valid at
 // every x in [0, L] (evaluated exactly inside each segment).
@@ -99,10 +100,18 @@ class LinearBeam {
   Condensed CondenseOnSupportRotation(double omega_rad_s,
                                       const std::vector<double>& output_positions_m) const;
 
+  // The beam's modal loss factor (BeamProperties::modal_loss_factor), which
+  // depends on the drive's fundamental as well as on the frequency: applied
+  // by ComputeLinearHarmonics (hb/harmonic_balance.h) to what
+  // CondenseOnSupportRotation returns; nullptr when η_m = 0. The other
+  // members of this class leave it out.
+  const MatchedModalLoss* matched_modal_loss() const { return matched_modal_loss_.get(); }
+
  private:
   LinearBeamModel model_;
   double force_position_m_;
   std::shared_ptr<const BeamMesh> mesh_;
+  std::shared_ptr<const MatchedModalLoss> matched_modal_loss_;
 };
 
 }  // namespace beamid::hb

@@ -90,7 +90,10 @@ MultipleScalesModel::MultipleScalesModel(const BeamProperties& beam,
   mode_ = closed_form_.ModeShape(0);
   omega0_rad_s_ = closed_form_.NaturalFrequencies_rad_s(1).front();
   modal_mass_kg_ = beam.MassPerLength_kg_m() * mode_.SquareIntegral(0);
-  modal_loss_stiffness_N_m_ = beam.loss_factor * beam.BendingStiffness_Nm2() * mode_.SquareIntegral(2);
+  // One mode at its driving harmonic, where a modal loss factor is the loss
+  // factor (hb/matched_modal_loss.h).
+  modal_loss_stiffness_N_m_ =
+      (beam.loss_factor + beam.modal_loss_factor) * beam.BendingStiffness_Nm2() * mode_.SquareIntegral(2);
   support_slope_per_m_ = mode_.Value(beam.length_m, 1);
   mode_at_force_ = mode_.Value(force_position_m);
   static_rotation_per_moment_rad_Nm_ = closed_form_.RotationPerEndMoment_rad_Nm(0.0);

@@ -16,9 +16,10 @@ constexpr const char* kLossFactor = "loss_factor";
 constexpr int kTruncationHarmonics = 4;  // H' = H + 4
 
 // A law's parameters, started where mode 1 (near the steps' mean ω)
-// dissipates as with the fitted η: ζ = η/2 = α/(2ω) = β·ω/2.
+// dissipates as with the fitted η: η_m = η, ζ = η/2 = α/(2ω) = β·ω/2.
 std::vector<LinearParameter> LawParameters(const std::string& law, double eta, double omega_rad_s) {
   const double alpha = eta * omega_rad_s, beta = eta / omega_rad_s;
+  if (law == "modal_loss_factor") return {ModalLossFactor(eta)};
   if (law == "rayleigh") return {RayleighMassDamping(0.5 * alpha), RayleighStiffnessDamping(0.5 * beta)};
   if (law == "mass_proportional") return {RayleighMassDamping(alpha)};
   if (law == "stiffness_proportional") return {RayleighStiffnessDamping(beta)};
@@ -85,7 +86,7 @@ TruncationRefit TruncationStep(const FitData& data, const ModelStructure& fitted
 }  // namespace
 
 std::vector<std::string> DampingLawNames() {
-  return {kLossFactor, "rayleigh", "mass_proportional", "stiffness_proportional"};
+  return {kLossFactor, "modal_loss_factor", "rayleigh", "mass_proportional", "stiffness_proportional"};
 }
 
 DampingLawFit DampingLawFitOf(const std::string& law, const std::vector<ParameterEstimate>& parameters,

@@ -6,6 +6,8 @@
 // the noise can still put c and k1 outside their statistical intervals when
 // the law is wrong. The laws refitted here, from the fitted optimum:
 //     loss_factor              η                       (the fit itself)
+//     modal_loss_factor        η_m    mode j: η_m·k/k_j at harmonic k, k_j
+//                                     its driving harmonic (hb/matched_modal_loss.h)
 //     rayleigh                 α, β   ζ_j = α/(2ω_j) + β·ω_j/2
 //     mass_proportional        α
 //     stiffness_proportional   β
@@ -42,7 +44,7 @@
 namespace beamid::solver {
 
 struct DampingLawFit {
-  std::string law;  // loss_factor, rayleigh, mass_proportional, stiffness_proportional
+  std::string law;  // loss_factor, modal_loss_factor, rayleigh, mass_proportional, stiffness_proportional
   bool converged = false;
   std::string status;  // "solved" or why the refit failed
   std::vector<ParameterEstimate> parameters;

@@ -88,6 +88,14 @@ LinearParameter LossFactor(double initial) {
           .apply = [](hb::LinearBeamModel& model, double eta) { model.beam.loss_factor = std::max(eta, 0.0); }};
 }
 
+LinearParameter ModalLossFactor(double initial) {
+  return {.name = "modal_loss_factor",
+          .unit = "1",
+          .initial = initial,
+          .bounds = {.lower = 0.0, .upper = 0.05, .typical = 1e-3},
+          .apply = [](hb::LinearBeamModel& model, double eta) { model.beam.modal_loss_factor = std::max(eta, 0.0); }};
+}
+
 LinearParameter RayleighMassDamping(double initial) {
   return {.name = "rayleigh_mass_1_s",
           .unit = "1/s",
@@ -105,12 +113,13 @@ LinearParameter RayleighStiffnessDamping(double initial) {
 }
 
 LinearParameter LinearParameterByName(const std::string& name, double value) {
-  for (LinearParameter p : {BendingStiffnessScale(), LossFactor(), RayleighMassDamping(), RayleighStiffnessDamping()})
+  for (LinearParameter p :
+       {BendingStiffnessScale(), LossFactor(), ModalLossFactor(), RayleighMassDamping(), RayleighStiffnessDamping()})
     if (p.name == name) {
       p.initial = value;
       return p;
     }
-  throw std::invalid_argument("unknown linear parameter '" + name + "' (known: EI_scale, loss_factor, rayleigh_mass_1_s, rayleigh_stiffness_s)");
+  throw std::invalid_argument("unknown linear parameter '" + name + "' (known: EI_scale, loss_factor, modal_loss_factor, rayleigh_mass_1_s, rayleigh_stiffness_s)");
 }
 
 }  // namespace beamid::solver

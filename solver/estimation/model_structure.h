@@ -65,13 +65,19 @@ LinearParameter BendingStiffnessScale();
 // keeps c from absorbing the beam's own damping.
 LinearParameter LossFactor(double initial = 1e-3);
 
+// The beam's loss factor matched per mode at its driving harmonic, η_m
+// (hb/matched_modal_loss.h): the damping of time-domain codes and of a
+// constant modal damping ratio, which the loss factor cannot represent.
+LinearParameter ModalLossFactor(double initial = 1e-3);
+
 // The beam's Rayleigh damping C = α·M + β·K (hb/beam_properties.h): α [1/s]
 // and β [s], the damping laws a loss factor cannot represent (mode j's ratio
 // α/(2ω_j) + β·ω_j/2 against η/2 for every mode).
 LinearParameter RayleighMassDamping(double initial = 0.0);
 LinearParameter RayleighStiffnessDamping(double initial = 0.0);
 
-// The linear parameter of that name ("EI_scale", "loss_factor", "rayleigh_…"), to rebuild
+// The linear parameter of that name ("EI_scale", "loss_factor", "modal_loss_factor",
+// "rayleigh_…"), to rebuild
 // a fitted model from a result file; throws std::invalid_argument otherwise.
 LinearParameter LinearParameterByName(const std::string& name, double value);
 

@@ -233,7 +233,8 @@ TEST_F(CommandLine, IdentifyRefitsTheDampingLawsAndWritesTheirModelFormIntervals
   ASSERT_TRUE(written.contains("damping_laws"));
   std::vector<std::string> laws;
   for (const auto& law : written["damping_laws"]["laws"]) laws.push_back(law["law"]);
-  EXPECT_EQ(laws, (std::vector<std::string>{"loss_factor", "rayleigh", "mass_proportional", "stiffness_proportional"}));
+  EXPECT_EQ(laws, (std::vector<std::string>{"loss_factor", "modal_loss_factor", "rayleigh", "mass_proportional",
+                                           "stiffness_proportional"}));
   std::vector<std::string> shared;
   for (const auto& interval : written["damping_laws"]["model_form_intervals"]) {
     shared.push_back(interval["name"]);
