@@ -51,7 +51,8 @@ MatchedModalLoss::MatchedModalLoss(const LinearBeamModel& model, double force_po
     omega_rad_s_.push_back(w);
     below_.push_back(std::move(below));
     above_.push_back(std::move(above));
-    scale_.push_back(half_step / std::sqrt(rotation_squared));
+    rotation_.push_back(std::sqrt(rotation_squared));
+    scale_.push_back(half_step / rotation_.back());
   }
 }
 
@@ -61,7 +62,7 @@ MatchedModalLoss::ModeValues MatchedModalLoss::At(const std::vector<double>& pos
   ModeValues v{.rotation = Eigen::VectorXd(n), .at_force = Eigen::VectorXd(n), .at_positions = Eigen::MatrixXd(n, count)};
   for (int j = 0; j < n; ++j) {
     auto mode = [&](double x) { return scale_[j] * (below_[j].Displacement_m(x) - above_[j].Displacement_m(x)).real(); };
-    v.rotation[j] = scale_[j] * (below_[j].SupportRotation_rad() - above_[j].SupportRotation_rad()).real();
+    v.rotation[j] = rotation_[j];
     v.at_force[j] = mode(force_position_m_);
     for (Eigen::Index i = 0; i < count; ++i) v.at_positions(j, i) = mode(positions_m[static_cast<std::size_t>(i)]);
   }

@@ -19,7 +19,7 @@
 // over the modes below LinearBeamOptions::max_frequency_hz, 5 kHz at least
 // (mode j's share of the loss at harmonic k is η_m·kω/ω_j of its
 // quasi-static flexibility, which falls like 1/j²: together they fall like
-// 1/j⁴; within 4e-4 of every mode's sum up to the 5th harmonic of the
+// 1/j⁴; within 5e-4 of every mode's sum up to the 5th harmonic of the
 // paper's beam, tests/hb/matched_modal_loss_test.cc). The modes
 // are mass-normalised from the residues of the receptances at θ:
 //     φ_j(x)·φ_j'(L) = lim (ω_j² − Ω²)·H_xθ(Ω),
@@ -69,10 +69,10 @@ class MatchedModalLoss {
   double rayleigh_stiffness_s_ = 0.0;
   double force_position_m_ = 0.0;
   std::vector<double> omega_rad_s_;
-  // Per mode: the θ-free beam's response to a unit moment at Ω² = ω_j²(1 ∓ ε)
-  // and the scale that turns their difference into φ_j.
+  // Per mode: the θ-free beam's response to a unit moment at Ω² = ω_j²(1 ∓ ε),
+  // the scale that turns their difference into φ_j, and φ_j'(L).
   std::vector<BeamDeflection> below_, above_;
-  std::vector<double> scale_;
+  std::vector<double> scale_, rotation_;
 };
 
 }  // namespace beamid::hb
