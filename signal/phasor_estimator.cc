@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "hb/option_checks.h"
@@ -79,6 +80,7 @@ void PhasorEstimatorOptions::Validate() const {
   RequireNonNegative("PhasorEstimatorOptions.note_drift_relative", note_drift_relative);
   RequireNonNegative("PhasorEstimatorOptions.min_converter_steps", min_converter_steps);
   driven_span.Validate();
+  transient.Validate();
 }
 
 StepPhasors EstimateStepPhasors(const Recording& recording, const Campaign& campaign, const Step& step,
@@ -145,7 +147,15 @@ StepPhasors EstimateStepPhasors(const Recording& recording, const Campaign& camp
   // 3–4. Frequency and phasors on the steady part.
   const FrequencyEstimate frequency =
       EstimateFrequency(steady_samples.col(0), fs, step.frequency_hz, frequency_options, first.frequency_hz);
-  const HarmonicFit fit = FitHarmonics(steady_samples, fs, frequency.frequency_hz, options.num_harmonics);
+  HarmonicFit fit = FitHarmonics(steady_samples, fs, frequency.frequency_hz, options.num_harmonics);
+  std::vector<bool> used;
+  for (const auto* spec : specs) used.push_back(campaign.Use(spec->channel) == ChannelUse::kUsed);
+  // The ringing is judged on the responses: the force is the reference.
+  std::vector<bool> rings = used;
+  rings.front() = false;
+  const SettlingTransient ringing = options.settling_transient
+                                        ? RemoveSettlingTransient(steady_samples, fs, rings, fit, options.transient)
+                                        : SettlingTransient{};
 
   // 5. Reference and pack.
   std::vector<ChannelPhasors> channels = ReferencePhasors(fit, 0, specs);
@@ -185,6 +195,24 @@ StepPhasors EstimateStepPhasors(const Recording& recording, const Campaign& camp
     (steady.drift_relative > options.note_drift_relative ? quality.warnings : quality.notes).push_back(steady.reason);
   quality.analysed_duration_s = static_cast<double>(steady_samples.rows()) / fs;
   quality.settling = steady.reason;
+  if (ringing.removed) {
+    quality.ringing = true;
+    quality.ringing_relative = ringing.amplitude_relative;
+    quality.ringing_decay_rate_per_s = ringing.decay_rate_per_s;
+    quality.ringing_beat_hz = ringing.beat_hz;
+    quality.ringing_channel = specs[ringing.channel]->channel;
+    const auto three_digits = [](double value) {
+      char buffer[32];
+      std::snprintf(buffer, sizeof buffer, "%.3g", value);
+      return std::string(buffer);
+    };
+    quality.warnings.push_back(
+        "still ringing from the frequency step: a free vibration beating " + three_digits(ringing.beat_hz) +
+        " Hz from the drive and decaying at " + three_digits(ringing.decay_rate_per_s) + " 1/s was " +
+        three_digits(100.0 * ringing.amplitude_relative) + " % of '" + quality.ringing_channel +
+        "' at the start of the analysed part; it was fitted out and the phasors' uncertainty includes the "
+        "separation (wait longer after each frequency step)");
+  }
   quality.snr_db = result.force.snr_db;
   std::vector<const ChannelPhasors*> all{&result.force};
   for (const auto& response : result.responses) all.push_back(&response);
@@ -215,8 +243,6 @@ StepPhasors EstimateStepPhasors(const Recording& recording, const Campaign& camp
     // conservative there, never overconfident.
     std::vector<ChannelPhasors> all_channels{result.force};
     all_channels.insert(all_channels.end(), result.responses.begin(), result.responses.end());
-    std::vector<bool> used;
-    for (const auto* spec : specs) used.push_back(campaign.Use(spec->channel) == ChannelUse::kUsed);
     const SettlingUncertainty unsettled =
         options.settling_uncertainty ? AddSettlingUncertainty(steady_samples, fs, frequency.frequency_hz,
                                                               fit.num_harmonics, specs, used, all_channels)

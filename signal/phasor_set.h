@@ -66,6 +66,15 @@ struct StepQuality {
   bool unsettled = false;
   double unsettled_change_relative = 0.0;
   std::string unsettled_channel;
+  // Ringing of the last frequency step, fitted out of the phasors
+  // (signal/settling_transient.h): its amplitude at the analysed part's start
+  // over |X_1| in the channel where that is largest, its decay rate and its
+  // beat against the drive.
+  bool ringing = false;
+  double ringing_relative = 0.0;
+  double ringing_decay_rate_per_s = 0.0;
+  double ringing_beat_hz = 0.0;
+  std::string ringing_channel;
 };
 
 struct StepPhasors {

@@ -86,6 +86,12 @@ void Describe(auto& io, schema::Like<StepQuality> auto& q) {
     u_io.Number("change_relative", u.unsettled_change_relative, "1", schema::NonNegative());
     u_io.Text("channel", u.unsettled_channel, schema::TextRule::kNotEmpty);
   });
+  io.OptionalObject("ringing", q.ringing, q, [](auto& r_io, auto& r) {
+    r_io.Number("amplitude_relative", r.ringing_relative, "1", schema::NonNegative());
+    r_io.Number("decay_rate_per_s", r.ringing_decay_rate_per_s, "1/s", schema::NonNegative());
+    r_io.Number("beat_Hz", r.ringing_beat_hz, "Hz", schema::NonNegative());
+    r_io.Text("channel", r.ringing_channel, schema::TextRule::kNotEmpty);
+  });
 }
 
 void Describe(auto& io, schema::Like<StepPhasors> auto& step) {

@@ -65,6 +65,9 @@ BEAMID_REGISTER_COMMAND("extract", [](CLI::App& app, const GlobalOptions& global
   sub->add_flag("--skip-bad-steps", request->skip_bad_steps,
                 "Leave out the steps whose recordings hold errors (listed, and kept in the phasors file as "
                 "skipped); without it the run stops with the list");
+  sub->add_flag("--remove-ringing", request->remove_ringing,
+                "Fit the free vibration each frequency step leaves out of the phasors where it is significant "
+                "(the step is flagged; see docs/extract.md)");
   sub->callback([request, &global] { RunExtract(*request, global); });
 });
 

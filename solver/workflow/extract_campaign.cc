@@ -29,6 +29,7 @@ ExtractOutcome ExtractCampaign(const ExtractRequest& request, const RunObserver&
   campaign.Analyse(request.channels);
   signal::ExtractOptions extract;
   extract.skip_bad_steps = request.skip_bad_steps;
+  extract.estimator.settling_transient = request.remove_ringing;
   extract.estimator.num_harmonics = request.harmonics;
   extract.num_threads = request.threads;
   ObservedTask progress(observer, "extract");

@@ -21,6 +21,7 @@ struct ExtractRequest {
   int threads = 0;                    // worker threads (0: one per core; up to 256)
   std::vector<std::string> channels;  // the sensors analysed; empty: every one not ignored
   bool skip_bad_steps = false;        // leave out (and list) the steps whose recordings hold errors
+  bool remove_ringing = false;        // fit the frequency step's ringing out of the phasors (signal/settling_transient.h)
 
   // Throws InputError naming the field (by its command-line option) and the
   // fix: a value out of range, an output that would replace an input
