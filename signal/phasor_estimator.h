@@ -54,7 +54,7 @@ struct PhasorEstimatorOptions {
   // simulator's friction campaign it brings the ringing steps' phasors to
   // the settled ones (rms z 7.3 → 1.3) but, with them weighed less, the
   // steps near the jump that approach their state too slowly to be seen
-  // ringing pull the fit further (docs/extract.md).
+  // ringing pull the fit further (docs/signal.md, step 7).
   bool settling_transient = false;
   SettlingTransientOptions transient;
 

@@ -32,6 +32,7 @@ constexpr int kRefineSteps = 10;
 // records is measured by the tests).
 constexpr double kIndependentCells = 32.0;
 constexpr double kRankTolerance = 1e-9;
+constexpr double kNodeFraction = 0.1;
 
 // Upper-tail normal quantile: the z with P(N(0,1) ≥ z) = tail, by Newton.
 double NormalUpperQuantile(double tail) {
@@ -185,8 +186,12 @@ SettlingTransient RemoveSettlingTransient(const Eigen::Ref<const Eigen::MatrixXd
   const Eigen::MatrixXd coefficients = inverse_normal * (design.transpose() * samples);
   const Eigen::MatrixXd joint_residual = samples - design * coefficients;
 
+  // A ringing the record cannot tell from the response (no decay and
+  // hardly a beat over the record: the columns nearly repeat the
+  // fundamental's) is not removed: the split between the two would be the
+  // pseudo-inverse's choice, not the data's.
   const int ringing_rank = rank - static_cast<int>(p);
-  if (ringing_rank <= 0) return result;
+  if (rank < design.cols()) return result;
   double drop = 0.0;
   for (Eigen::Index c = 0; c < num_channels; ++c)
     drop += weights(c) * (residual.col(c).squaredNorm() - joint_residual.col(c).squaredNorm());
@@ -197,19 +202,22 @@ SettlingTransient RemoveSettlingTransient(const Eigen::Ref<const Eigen::MatrixXd
                                             static_cast<double>(ringing_rank * num_judged));
   if (drop <= result.threshold) return result;
 
-  result.removed = true;
   const double tau_start = basis.Tau_s(0);
+  // The size is told against each channel's own fundamental, among the
+  // channels not near a node (there even a faint ringing is "large").
+  double largest_fundamental = 0.0;
+  for (Eigen::Index c = 0; c < num_channels; ++c)
+    if (weights(c) > 0.0)
+      largest_fundamental = std::max(largest_fundamental, std::abs(fit.channels[static_cast<std::size_t>(c)].phasors(0)));
+  // σ and ν were estimated too: their errors move the ringing, and with it
+  // the phasors, most where the ringing is large. Each channel's covariance
+  // is the nonlinear fit's (variable projection), with the ringing's
+  // derivatives ∂/∂σ = −τ·ring and ∂/∂ν among the columns; ν, σ taken per
+  // channel, which can only widen it.
+  std::vector<Eigen::MatrixXd> inverse_normals(static_cast<std::size_t>(num_channels));
   for (Eigen::Index c = 0; c < num_channels; ++c) {
     if (weights(c) == 0.0) continue;  // the reference and the channels nobody uses keep their fit
-    ChannelFit& channel = fit.channels[static_cast<std::size_t>(c)];
     const Eigen::VectorXd column = coefficients.col(c);
-    channel.mean = column(0);
-    channel.residual_rms = std::sqrt(joint_residual.col(c).squaredNorm() / n);
-    // σ and ν were estimated too: their errors move the ringing, and with it
-    // the phasors, most where the ringing is large. The covariance is the
-    // nonlinear fit's (variable projection), with the ringing's derivatives
-    // ∂/∂σ = −τ·ring and ∂/∂ν among the columns; ν, σ taken per channel,
-    // which can only widen it.
     const Eigen::VectorXd ring = design.rightCols(num_ringing) * column.tail(num_ringing);
     Eigen::MatrixXd design_c(n, design.cols() + 2);
     design_c.leftCols(design.cols()) = design;
@@ -221,14 +229,30 @@ SettlingTransient RemoveSettlingTransient(const Eigen::Ref<const Eigen::MatrixXd
       design_c(i, design.cols() + 1) = tau * beat_derivative;
     }
     int rank_c = 0;
-    const Eigen::MatrixXd inverse_normal_c = PseudoInverse(design_c.transpose() * design_c, rank_c);
+    Eigen::MatrixXd& inverse = inverse_normals[static_cast<std::size_t>(c)];
+    inverse = PseudoInverse(design_c.transpose() * design_c, rank_c);
+    // Separating a ringing that beats less than once over the record costs
+    // the fundamental 10–300 times its variance (measured on the
+    // simulator's campaigns), which the covariance holds; where the columns
+    // are no longer independent the split would be the pseudo-inverse's.
+    if (rank_c < design.cols()) return result;
+  }
+
+  result.removed = true;
+  for (Eigen::Index c = 0; c < num_channels; ++c) {
+    if (weights(c) == 0.0) continue;
+    ChannelFit& channel = fit.channels[static_cast<std::size_t>(c)];
+    const Eigen::VectorXd column = coefficients.col(c);
+    channel.mean = column(0);
+    channel.residual_rms = std::sqrt(joint_residual.col(c).squaredNorm() / n);
+    const Eigen::MatrixXd& inverse_normal_c = inverse_normals[static_cast<std::size_t>(c)];
     for (int k = 1; k <= fit.num_harmonics; ++k) {
       channel.phasors(k - 1) = internal::HarmonicBasis::Phasor(column, k);
       Eigen::Matrix2d covariance = inverse_normal_c.block<2, 2>(2 * k - 1, 2 * k - 1);
       covariance(0, 1) = covariance(1, 0) = -covariance(0, 1);
       channel.covariances[static_cast<std::size_t>(k - 1)] = channel.noise_variance(k - 1) * covariance;
     }
-    if (std::abs(channel.phasors(0)) == 0.0) continue;
+    if (std::abs(channel.phasors(0)) < kNodeFraction * largest_fundamental) continue;
     // The ringing's complex amplitude in the fundamental's band at the start.
     Complex start = Complex(column(p), -column(p + 1)) * std::exp(Complex(-best_decay, best_beat) * tau_start);
     if (num_ringing == 4)

@@ -31,9 +31,9 @@
 // Not covered: ringing at the drive frequency itself (ν = 0) over a record
 // shorter than its decay. A pair of undamped components ω ± ν with small ν
 // bends the same way over so short a record, the search may take it, and the
-// phasors then miss by more than their covariance (measured: χ² 65 for
-// 0.5 % ringing decaying at 2.5/s over 0.55 s). Hence off by default
-// (PhasorEstimatorOptions::settling_transient).
+// phasors then miss by more than their covariance (in a trial, 0.5 %
+// ringing decaying at 2.5/s over 0.55 s: χ² 65 on two degrees of freedom).
+// Hence off by default (PhasorEstimatorOptions::settling_transient).
 #pragma once
 
 #include <string>
@@ -59,7 +59,9 @@ struct SettlingTransient {
   double chi_square_drop = 0.0;   // Δχ² of the judged channels
   double threshold = 0.0;         // what noise alone exceeds with probability false_alarm
   // The ringing's fundamental-band amplitude at the start of the analysed
-  // part over |X_1|, for the judged channel where it is largest, and that channel.
+  // part over |X_1|, for the judged channel where it is largest, and that
+  // channel; channels whose |X_1| is below a tenth of the largest (near a
+  // node) are not compared.
   double amplitude_relative = 0.0;
   std::size_t channel = 0;
 };

@@ -110,7 +110,7 @@ void AddPhasorUncertaintyOption(CLI::App* command, solver::PhasorUncertainty* un
           "model's residual error is estimated by the fit and reported on its own; docs/identify.md)")
       ->check(CLI::IsMember(keys))
       ->type_name("TEXT")
-      ->default_str("relative_floor");
+      ->default_str("propagated");
 }
 
 workflow::RunObserver CliObserver(const GlobalOptions& global) {

@@ -67,7 +67,7 @@ BEAMID_REGISTER_COMMAND("extract", [](CLI::App& app, const GlobalOptions& global
                 "skipped); without it the run stops with the list");
   sub->add_flag("--remove-ringing", request->remove_ringing,
                 "Fit the free vibration each frequency step leaves out of the phasors where it is significant "
-                "(the step is flagged; see docs/extract.md)");
+                "(the step is flagged; see docs/signal.md, step 7)");
   sub->callback([request, &global] { RunExtract(*request, global); });
 });
 

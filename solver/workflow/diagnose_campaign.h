@@ -26,7 +26,7 @@ struct DiagnoseRequest {
   PhasorInput phasor_input;
   int harmonics = 5;          // H of the base model (1..50)
   int fit_harmonics = 3;      // harmonics 1..K fitted (1..50, K <= H)
-  solver::PhasorUncertainty phasor_uncertainty = solver::PhasorUncertainty::kRelativeFloor;
+  solver::PhasorUncertainty phasor_uncertainty = solver::PhasorUncertainty::kPropagated;
   int workers = 0;            // parallel refits (0: one per core; up to 256)
   double significance = 0.01;  // family-wise significance of naming a cause (1e-12 .. 0.5)
   bool recording_check = true;  // try the measurement artefacts before the physics

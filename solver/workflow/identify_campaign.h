@@ -32,7 +32,7 @@ struct IdentifyRequest {
   PhasorInput phasor_input;
   int harmonics = 5;      // H of the model (1..50)
   int fit_harmonics = 3;  // harmonics 1..K fitted (1..50, K <= H)
-  solver::PhasorUncertainty phasor_uncertainty = solver::PhasorUncertainty::kRelativeFloor;
+  solver::PhasorUncertainty phasor_uncertainty = solver::PhasorUncertainty::kPropagated;
   int starts = 0;         // further starts besides the direct estimate (0..1000)
   int workers = 0;        // worker processes for the starts (0: one per core; up to 256)
   bool fit_ei_scale = false;     // also fit a scale of the nominal bending stiffness

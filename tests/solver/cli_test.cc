@@ -259,23 +259,16 @@ TEST_F(CommandLine, IdentifyRefitsTheDampingLawsAndWritesTheirModelFormIntervals
     EXPECT_DOUBLE_EQ(interval["ci95"][1].get<double>(), interval["damping_law_ci95"][1].get<double>() + shift);
   }
 
-  EXPECT_EQ(written["model"]["phasor_uncertainty"], "relative_floor");
-
-  run = Beamid("identify " + campaign + " --fit acc1,acc2 --no-damping-laws --phasor-uncertainty propagated -o " +
-               result);
-  ASSERT_EQ(run.exit_code, 0) << run.output;
-  EXPECT_THAT(run.output, ::testing::Not(HasSubstr("beam damping laws")));
-  const nlohmann::json propagated = nlohmann::json::parse(ReadFile(result));
-  EXPECT_FALSE(propagated.contains("damping_laws"));
-  EXPECT_EQ(propagated["model"]["phasor_uncertainty"], "propagated");
+  // The default weighing propagates each phasor's errors.
+  EXPECT_EQ(written["model"]["phasor_uncertainty"], "propagated");
   // The budget names each term: the noise, the force's and the frequency's
   // errors, and the residual model error the fit estimated per harmonic
   // (relative to the model's phasor, so within the fit's error of ε_k).
-  const auto& budget = propagated["quality"]["acc1"]["h1"]["high"]["relative_std"];
+  const auto& budget = written["quality"]["acc1"]["h1"]["high"]["relative_std"];
   EXPECT_GT(budget["noise"].get<double>(), 0.0);
   EXPECT_GT(budget["force"].get<double>(), 0.0);
   EXPECT_GT(budget["frequency"].get<double>(), 0.0);
-  const auto& model_errors = propagated["fit"]["model_errors"];
+  const auto& model_errors = written["fit"]["model_errors"];
   ASSERT_EQ(model_errors.size(), 3u);
   const double epsilon_1 = model_errors[0]["relative"].get<double>();
   EXPECT_NEAR(budget["model_error"].get<double>(), epsilon_1, 0.01 * epsilon_1 + 1e-15);
@@ -286,12 +279,20 @@ TEST_F(CommandLine, IdentifyRefitsTheDampingLawsAndWritesTheirModelFormIntervals
     // A residual model error only where the stated σ leave an excess.
     EXPECT_EQ(relative > 0.0, e["chi_square"].get<double>() > e["degrees_of_freedom"].get<double>());
   }
-  for (const auto& [name, p] : propagated["parameters"].items()) {
+  for (const auto& [name, p] : written["parameters"].items()) {
     EXPECT_GE(p["std_model_error"].get<double>(), 0.0) << name;
     EXPECT_LE(p["std_model_error"].get<double>(), p["std"].get<double>()) << name;
   }
+
+  run = Beamid("identify " + campaign + " --fit acc1,acc2 --no-damping-laws --phasor-uncertainty relative_floor -o " +
+               result);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_THAT(run.output, ::testing::Not(HasSubstr("beam damping laws")));
+  const nlohmann::json floor = nlohmann::json::parse(ReadFile(result));
+  EXPECT_FALSE(floor.contains("damping_laws"));
+  EXPECT_EQ(floor["model"]["phasor_uncertainty"], "relative_floor");
   // Under the floor nothing is estimated: the floor stands in for it.
-  EXPECT_FALSE(written["fit"].contains("model_errors"));
+  EXPECT_FALSE(floor["fit"].contains("model_errors"));
 }
 
 TEST_F(CommandLine, MeasuredBackboneRejectsABadTableNamingFileAndColumn) {

@@ -68,10 +68,12 @@ TEST_F(Workflows, IdentifyCampaignFindsWhatADirectIdentifyFindsAndWritesIt) {
   const workflow::IdentifyRequest request = Request("result.json");
   const workflow::IdentifyOutcome outcome = workflow::IdentifyCampaign(request);
 
-  // The same fit by hand: the campaign's phasors, the polynomial support with
-  // the beam's loss factor fitted, H = 5.
-  const solver::FitData fit = solver::MakeFitData(campaign_->campaign, campaign_->phasors,
-                                                  {.channels = {"acc1", "acc2"}, .num_fit_harmonics = 3});
+  // The same fit by hand: the campaign's phasors weighed as the workflow
+  // does by default (propagated), the polynomial support with the beam's
+  // loss factor fitted, H = 5.
+  const solver::FitData fit = solver::MakeFitData(
+      campaign_->campaign, campaign_->phasors,
+      {.channels = {"acc1", "acc2"}, .num_fit_harmonics = 3, .uncertainty = solver::PhasorUncertainty::kPropagated});
   solver::ModelStructure structure = solver::PolynomialModel({.k1_Nm_rad = 100.0});
   structure.linear.push_back(solver::LossFactor(1e-4));
   solver::IdentifyOptions options;
