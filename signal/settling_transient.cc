@@ -22,7 +22,8 @@ using Complex = std::complex<double>;
 // detection cuts it.
 constexpr double kMaxBeatBins = 4.0;
 constexpr double kMaxDecayPerRecord = 12.0;
-// A coarse grid, then two finer ones around its best point.
+// A coarse grid, then three finer ones around its best point, each with a
+// fifth of the spacing before.
 constexpr int kBeatSteps = 20;
 constexpr int kDecaySteps = 24;
 constexpr int kRefineSteps = 10;
@@ -47,8 +48,9 @@ double NormalUpperQuantile(double tail) {
   return z;
 }
 
-// χ²(dof) quantile at an upper tail (Wilson–Hilferty; within 1 % of the exact
-// quantile for dof ≥ 2 at the tails used here).
+// χ²(dof) quantile at an upper tail, by the Wilson–Hilferty cube-root
+// normal approximation (solver/ holds the exact one; signal/ does not
+// depend on it).
 double ChiSquareUpperQuantile(double tail, double dof) {
   const double z = NormalUpperQuantile(tail);
   const double a = 2.0 / (9.0 * dof);
