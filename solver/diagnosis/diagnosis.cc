@@ -657,8 +657,13 @@ LocationStage Locate(const FitData& fit, const BaseFit& base, const FitData& loc
     hb::LinearBeamModel reference = fitted.ApplyLinear({.beam = fit.beam, .attachments = fit.sensor_masses});
     reference.support_stiffness_Nm_rad = fitted.law->InitialStiffness_Nm_rad();
     reference.support_damping_Nms_rad = fitted.law->InitialDamping_Nms_rad();
-    stage.location = LocateMisfit(located, base.model.Phasors(located), fit.num_fit_harmonics, reference,
-                                  {.num_fitted_parameters = static_cast<int>(base.summary.parameters.size())});
+    MisfitLocationOptions options{.num_fitted_parameters = static_cast<int>(base.summary.parameters.size())};
+    // Propagated σ already hold every error stated beforehand. No allowance
+    // is added, and the fit's estimated residual error is not either: it is
+    // the misfit this test is for, and allowing it makes every base fit
+    // pass (its estimate brings χ² to its dof by construction).
+    if (located.uncertainty == PhasorUncertainty::kPropagated) options.model_relative_error = 0.0;
+    stage.location = LocateMisfit(located, base.model.Phasors(located), fit.num_fit_harmonics, reference, options);
   } catch (const std::exception& e) {
     stage.error = e.what();
   }
@@ -819,8 +824,8 @@ int ChoosePair(const std::vector<CandidateOutcome>& pairs, const FitSummary& fir
 }
 
 Verdict DecideVerdict(const FitSummary& base, const std::optional<MisfitLocation>& location,
-                      const std::vector<CandidateOutcome>& candidates, const DiagnosisOptions& options,
-                      RankedBy validated_on) {
+                      PhasorUncertainty weighting, const std::vector<CandidateOutcome>& candidates,
+                      const DiagnosisOptions& options, RankedBy validated_on) {
   Verdict v;
   v.ranking.resize(candidates.size());
   for (int c = 0; c < static_cast<int>(v.ranking.size()); ++c) v.ranking[c] = c;
@@ -861,8 +866,14 @@ Verdict DecideVerdict(const FitSummary& base, const std::optional<MisfitLocation
       }
     }
   } else {
-    const bool misfit =
-        base.reduced_chi_square > options.acceptable_reduced_chi_square && (!location || location->significant);
+    // Under propagated σ the location's test states its own false-alarm
+    // rate, and a misfit it finds is reported whatever the reduced χ²; the
+    // relative floor's σ are not a noise model, so there a misfit must also
+    // exceed the acceptable reduced χ².
+    const bool misfit = location && weighting == PhasorUncertainty::kPropagated
+                            ? location->significant
+                            : base.reduced_chi_square > options.acceptable_reduced_chi_square &&
+                                  (!location || location->significant);
     v.verdict = misfit ? DiagnosisVerdict::kUnexplained : DiagnosisVerdict::kNoSignificantDiscrepancy;
     v.selected = {"none"};
   }
@@ -939,7 +950,7 @@ DiagnosisResult Diagnose(const FitData& fit, const FitData& validation, const Fi
       if (refits.models[c]) ApplyHeldOut(ValidateOnLeftOutLevels(*refits.models[c], options), &refits.outcomes[c].fit);
   }
   const RankedBy validated_on = by_levels ? RankedBy::kLevelsLeftOut : RankedBy::kHeldOutChannels;
-  const Verdict verdict = DecideVerdict(result.base, result.location, refits.outcomes, options, validated_on);
+  const Verdict verdict = DecideVerdict(result.base, result.location, fit.uncertainty, refits.outcomes, options, validated_on);
   for (int c : verdict.ranking) result.candidates.push_back(refits.outcomes[c]);
   result.verdict = verdict.verdict;
   result.ranked_by = verdict.ranked_by;

@@ -20,8 +20,10 @@
 // when neither in sample nor held out separates the two best, the verdict is
 // "causes indistinguishable" and names both. After the cause, the summary
 // says whether the rest of the misfit lies within the noise. Without a
-// significant candidate the verdict is "no significant discrepancy" when the
-// base fits within the noise, else "unexplained" with the location's findings.
+// significant candidate the verdict is "unexplained", with the location's
+// findings, when the location's test finds a misfit (and, under the relative
+// floor, the base's reduced χ² exceeds the acceptable one), else "no
+// significant discrepancy".
 //
 // Diagnose runs it as named stages, each a function returning a struct and
 // usable on its own (a robust base fit or a measurement-artefact check can
@@ -70,7 +72,8 @@ struct DiagnosisOptions {
   // Share of the base χ² a cause must remove.
   double min_relative_improvement = 0.2;
   // A fit lies "within the noise" up to this reduced χ²: the rest after a
-  // named cause; "unexplained" needs a base beyond it; a fault of the
+  // named cause; "unexplained" needs a base beyond it under the relative
+  // floor (under propagated σ the location's test decides); a fault of the
   // recording (but a freed step, which physics peaking at one step also
   // explains) or a linear candidate that brings a base beyond it within it
   // spares the costlier refits, as does a base within it where no linear
@@ -354,9 +357,9 @@ int ChoosePair(const std::vector<CandidateOutcome>& pairs, const FitSummary& fir
 // held-out channels decisively better moved to the front (header); the best
 // named as the cause when significant — with the runner-up as "causes
 // indistinguishable" when neither in sample nor held out separates them —
-// else "unexplained" when the base misfit exceeds
-// acceptable_reduced_chi_square and the location (when there is one) finds
-// it significant, else "no significant discrepancy".
+// else "unexplained" when the location (when there is one) finds a
+// significant misfit — and, under the relative floor, the base misfit
+// exceeds acceptable_reduced_chi_square — else "no significant discrepancy".
 struct Verdict {
   std::vector<int> ranking;  // indices into the candidates, best first
   int cause = -1;            // index of the named cause; -1 when none
@@ -370,9 +373,12 @@ bool SeparatedInSample(const FitSummary& a, const FitSummary& b);
 bool SeparatedHeldOut(const FitSummary& a, const FitSummary& b);
 // validated_on: what the held-out fields measure (the held-out channels or
 // the levels left out in turn), the ranked_by when they decide.
+// weighting: how the data's σ were made; under kPropagated the location's
+// test alone tells a misfit (its false-alarm rate is the one it states),
+// under the relative floor the base must also exceed the acceptable reduced χ².
 Verdict DecideVerdict(const FitSummary& base, const std::optional<MisfitLocation>& location,
-                      const std::vector<CandidateOutcome>& candidates, const DiagnosisOptions& options,
-                      RankedBy validated_on = RankedBy::kHeldOutChannels);
+                      PhasorUncertainty weighting, const std::vector<CandidateOutcome>& candidates,
+                      const DiagnosisOptions& options, RankedBy validated_on = RankedBy::kHeldOutChannels);
 
 // CSV of the response curves: level, frequency, channel, held_out, then
 // amplitude and phase of measured, base and final first harmonics.

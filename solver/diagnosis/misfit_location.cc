@@ -439,11 +439,15 @@ std::string GroupFinding(const MisfitGroupTest& g, const std::vector<MisfitGroup
 // largest first, then harmonic truncation and asymmetry.
 std::vector<std::string> ResidualFindings(const MisfitLocation& out, const FitData& data, int fitted_harmonics,
                                           const MisfitLocationOptions& options) {
-  // Not the fit's χ²: each residual's variance here adds the model's own error.
+  // Not the fit's χ²: these are the located harmonics, and each residual's
+  // variance adds the model's own error where one is allowed.
+  const std::string allowance = options.model_relative_error > 0.0
+                                    ? " with the model's own error of " +
+                                          Number(100.0 * options.model_relative_error, "%.2g") +
+                                          " % of the fundamental allowed"
+                                    : " against the phasors' stated uncertainty alone";
   const std::string overall = "chi-square " + Number(out.chi2, "%.1f") + " for " + std::to_string(out.dof) +
-                              " degrees of freedom with the model's own error of " +
-                              Number(100.0 * options.model_relative_error, "%.2g") + " % of the fundamental allowed (" +
-                              PValue(out.p_value) + ")";
+                              " degrees of freedom" + allowance + " (" + PValue(out.p_value) + ")";
   if (!out.significant)
     return {"No significant discrepancy: " + overall +
             "; no channel, harmonic, level or band of the residuals exceeds the noise at the " +

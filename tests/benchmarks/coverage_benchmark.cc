@@ -50,6 +50,8 @@ BENCHMARK_CAPTURE(BM_Coverage, loss_factor_relative_floor, "loss_factor", solver
     ->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK_CAPTURE(BM_Coverage, loss_factor_propagated, "loss_factor", solver::PhasorUncertainty::kPropagated)
     ->Iterations(1)->Unit(benchmark::kSecond);
+BENCHMARK_CAPTURE(BM_Coverage, modal_loss_factor_propagated, "modal_loss_factor",
+                  solver::PhasorUncertainty::kPropagated)->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK_CAPTURE(BM_Coverage, rayleigh_relative_floor, "rayleigh", solver::PhasorUncertainty::kRelativeFloor)
     ->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK_CAPTURE(BM_Coverage, rayleigh_propagated, "rayleigh", solver::PhasorUncertainty::kPropagated)

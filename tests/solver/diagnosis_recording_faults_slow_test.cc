@@ -17,6 +17,7 @@
 #include <fstream>
 #include <string>
 #include <tuple>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -78,9 +79,12 @@ void ExpectSupportWithinIntervals(const std::vector<ParameterEstimate>& paramete
   }
 }
 
-DiagnosisResult DiagnoseCampaign(const FaultyCampaign& c, const std::string& name) {
+// candidates: the physics refitted beside the recording's faults (empty: all).
+DiagnosisResult DiagnoseCampaign(const FaultyCampaign& c, const std::string& name,
+                                 const std::vector<std::string>& candidates = {}) {
   DiagnosisOptions options;
   options.num_workers = 2;
+  options.candidates = candidates;
   const DiagnosisResult result = Diagnose(c.fit, c.validation, c.located, options);
   std::printf("%s: %s (to blame: %s), %.1f s\n  %s\n", name.c_str(), ToString(result.verdict).c_str(),
               ToString(result.blame).c_str(), result.seconds, result.summary.c_str());
@@ -143,7 +147,13 @@ TEST(RecordingFaults, AStepRecordedBeforeItSettledIsWeighedByWhatIsLeftOfItsTran
     EXPECT_TRUE(robust.fit.verdict.within_noise);
     ExpectSupportWithinIntervals(robust.fit.parameters, c.scenario);
     // And the diagnosis names that step as the recording's fault, no physics.
-    const DiagnosisResult result = DiagnoseCampaign(unweighed, "unsettled step, unweighed");
+    // The physics it competes with is what moves the resonance, as a step
+    // at the peak misfits most when the resonance moves (masses, the
+    // modulus, the clamp); the nonlinear and truncation candidates are left
+    // out: their refits took this diagnosis from 14 s to 138 s.
+    const DiagnosisResult result =
+        DiagnoseCampaign(unweighed, "unsettled step, unweighed",
+                         {"added_mass", "instrument_masses", "modulus_error", "clamp_compliance"});
     const std::string step = "outlying_step(high 55 Hz)";
     testing::ExpectNamed(result, step, testing::HeldOut::kFirstHarmonic, Blame::kRecording);
     EXPECT_NE(result.summary.find("re-record high 55 Hz (" + early_file + ")"), std::string::npos);

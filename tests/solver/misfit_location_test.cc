@@ -169,6 +169,13 @@ TEST(LocateMisfit, ANoiseOnlyFindingSaysNoSignificantDiscrepancy) {
   ASSERT_FALSE(location.significant);
   ASSERT_FALSE(location.findings.empty());
   EXPECT_NE(location.findings[0].find("No significant discrepancy"), std::string::npos) << location.findings[0];
+  EXPECT_NE(location.findings[0].find("0.1 % of the fundamental allowed"), std::string::npos) << location.findings[0];
+  // Without an allowance the finding says what the residuals were weighed by.
+  MisfitLocationOptions stated = kNoLoops;
+  stated.model_relative_error = 0.0;
+  const MisfitLocation against_noise = LocateMisfit(s.data, s.model, kFitted, kUnusedBeam, stated);
+  EXPECT_NE(against_noise.findings[0].find("against the phasors' stated uncertainty alone"), std::string::npos)
+      << against_noise.findings[0];
 }
 
 Synthetic WithAcc2Truth(const Acc2Truth& truth, std::mt19937& rng) {

@@ -69,6 +69,8 @@ struct CoveragePhysics {
 //   simulator dissipates exactly as E(1 + iη) only at the harmonic nearest
 //   each mode (hb/time_simulator.h), so the harmonic-balance model's loss
 //   factor is the simulated law up to the damping at the other harmonics.
+// "modal_loss_factor": the same beam fitted as the modal loss factor η_m
+//   (hb/matched_modal_loss.h), the simulator's own law.
 // "rayleigh": Rayleigh beam damping α = 0.03 1/s, β = 4e-7 s (mode 1's
 //   damping ratio ≈ 1.1e-4, as η's), fitted as α, β: the same law in both.
 inline CoveragePhysics MakeCoveragePhysics(const std::string& name) {
@@ -80,6 +82,9 @@ inline CoveragePhysics MakeCoveragePhysics(const std::string& name) {
   if (name == "loss_factor") {
     physics.structure.linear.push_back(solver::LossFactor(1e-4));
     physics.truth.push_back(2e-4);
+  } else if (name == "modal_loss_factor") {
+    physics.structure.linear.push_back(solver::ModalLossFactor(1e-4));
+    physics.truth.push_back(2e-4);
   } else if (name == "rayleigh") {
     scenario["beam"]["loss_factor"] = 0.0;
     scenario["beam"]["rayleigh_mass_1_s"] = 0.03;
@@ -89,7 +94,7 @@ inline CoveragePhysics MakeCoveragePhysics(const std::string& name) {
     physics.truth.push_back(0.03);
     physics.truth.push_back(4e-7);
   } else {
-    throw std::invalid_argument("unknown coverage physics '" + name + "' (loss_factor, rayleigh)");
+    throw std::invalid_argument("unknown coverage physics '" + name + "' (loss_factor, modal_loss_factor, rayleigh)");
   }
   physics.scenario = hb::ParseScenario(scenario.dump(), "paper_base.json, 15 steps per level, " + name);
   return physics;
