@@ -115,15 +115,10 @@ const Cause kClamp{"Nm_rad",
                    [](nlohmann::json& s, double k) { s["attachments"]["clamp_rotational_stiffness_Nm_rad"] = k; },
                    {"clamp_compliance"}};
 // acc2's calibration off, in per cent.
-const Cause kSensorGain{"pct",
-                        {0.02, 0.05, 0.1},
-                        [](nlohmann::json& s, double pct) { Sensor(s, "acc2")["gain_error_relative"] = 0.01 * pct; },
-                        {"sensor_gain(acc2)"}};
+void OffsetAcc2Gain(nlohmann::json& s, double pct) { Sensor(s, "acc2")["gain_error_relative"] = 0.01 * pct; }
+const Cause kSensorGain{"pct", {0.02, 0.05, 0.1}, OffsetAcc2Gain, {"sensor_gain(acc2)"}};
 // The same under propagated σ, whose test sees smaller errors.
-const Cause kSensorGainSmall{"pct",
-                             {0.005, 0.01, 0.02},
-                             [](nlohmann::json& s, double pct) { Sensor(s, "acc2")["gain_error_relative"] = 0.01 * pct; },
-                             {"sensor_gain(acc2)"}};
+const Cause kSensorGainSmall{"pct", {0.005, 0.01, 0.02}, OffsetAcc2Gain, {"sensor_gain(acc2)"}};
 // acc2 glued this far (mm) from where campaign.json says.
 const Cause kSensorPosition{"mm",
                             {0.5, 1, 2},
