@@ -120,7 +120,7 @@ const Cause kClamp{"Nm_rad",
 void OffsetAcc2Gain(nlohmann::json& s, double pct) { Sensor(s, "acc2")["gain_error_relative"] = 0.01 * pct; }
 const Cause kSensorGain{"pct", {0.02, 0.05, 0.1}, OffsetAcc2Gain, {"sensor_gain(acc2)"}};
 // The same under propagated σ, whose test sees smaller errors.
-const Cause kSensorGainSmall{"pct", {0.005, 0.01, 0.02}, OffsetAcc2Gain, {"sensor_gain(acc2)"}};
+const Cause kSensorGainSmall{"pct", {0.005, 0.01, 0.02, 0.05}, OffsetAcc2Gain, {"sensor_gain(acc2)"}};
 // acc2 glued this far (mm) from where campaign.json says.
 const Cause kSensorPosition{"mm",
                             {0.5, 1, 2},
