@@ -42,9 +42,9 @@ void BM_Coverage(benchmark::State& state, const std::string& physics_name, solve
   ReportCoverage(state, study);
 }
 
-void BM_DiagnosisCoverage(benchmark::State& state, const std::string& cause_name,
-                          solver::PhasorUncertainty weighting) {
-  const beamid::testing::ConcealedCause cause = beamid::testing::MakeConcealedCause(cause_name);
+void BM_DiagnosisCoverage(benchmark::State& state, const std::string& cause_name, solver::PhasorUncertainty weighting,
+                          beamid::testing::CoverageSettling settling = beamid::testing::CoverageSettling::kAsThePaper) {
+  const beamid::testing::ConcealedCause cause = beamid::testing::MakeConcealedCause(cause_name, settling);
   beamid::testing::DiagnosisCoverageStudy study;
   for (auto _ : state) study = beamid::testing::RunDiagnosisCoverageStudy(cause, weighting, kRealisations, 7000);
   ReportCoverage(state, study.coverage);
@@ -70,6 +70,9 @@ BENCHMARK_CAPTURE(BM_Coverage, rayleigh_settled_propagated, "rayleigh", solver::
 BENCHMARK_CAPTURE(BM_DiagnosisCoverage, sensor_gain_relative_floor, "sensor_gain",
                   solver::PhasorUncertainty::kRelativeFloor)->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK_CAPTURE(BM_DiagnosisCoverage, sensor_gain_propagated, "sensor_gain", solver::PhasorUncertainty::kPropagated)
+    ->Iterations(1)->Unit(benchmark::kSecond);
+BENCHMARK_CAPTURE(BM_DiagnosisCoverage, sensor_gain_exact_propagated, "sensor_gain",
+                  solver::PhasorUncertainty::kPropagated, beamid::testing::CoverageSettling::kTight)
     ->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK_CAPTURE(BM_DiagnosisCoverage, friction_relative_floor, "friction", solver::PhasorUncertainty::kRelativeFloor)
     ->Iterations(1)->Unit(benchmark::kSecond);
