@@ -28,7 +28,8 @@ void PrintStudy(const beamid::testing::CoverageStudy& study) {
 }
 
 // 50 realisations: rms z has a sampling σ of about 1/√100 = 0.1; 95 %
-// coverage reads 90 % or less with probability 0.04.
+// coverage reads 90 % or less with probability 0.04, 100 % with 0.08 (the
+// fixed seeds read 92–98 %).
 void ExpectCalibrated(const beamid::testing::CoverageStudy& study, std::size_t j) {
   const std::string& name = study.parameters[j].name;
   EXPECT_GE(study.Coverage(j), 0.90) << name;
