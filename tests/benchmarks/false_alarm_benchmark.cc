@@ -42,17 +42,15 @@ bool NoiseDrivesTheModel(const solver::FitData& data) {
 }
 
 // What is simulated beside the base model's support: the paper's campaign as
-// it is (its beam damped by a loss factor, which the simulator integrates
-// as the modal law while the diagnosis fits E(1 + iη); steps settled to
-// 1e-5), every step settled (SettleTightly), or settled with an undamped
-// beam and diagnosed without the loss factor: the physics the diagnosed
-// model holds exactly.
+// it is (steps settled to 1e-5, the beam's loss factor integrated as the
+// modal law), every step settled (SettleTightly), or the physics the
+// diagnosed model holds exactly (MakeBasePhysicsExact).
 enum class Physics { kPaper, kSettled, kExact };
 
 void BM_FalseAlarms(benchmark::State& state, solver::PhasorUncertainty weighting, Physics physics = Physics::kPaper) {
   nlohmann::json json = support::PaperSetUpScenario();
-  if (physics != Physics::kPaper) support::SettleTightly(json);
-  if (physics == Physics::kExact) json["beam"]["loss_factor"] = 0.0;
+  if (physics == Physics::kSettled) support::SettleTightly(json);
+  if (physics == Physics::kExact) support::MakeBasePhysicsExact(json);
   const solver::DiagnosisOptions options{.fit_loss_factor = physics != Physics::kExact};
   const hb::Scenario scenario = hb::ParseScenario(json.dump(), "false alarm benchmark scenario");
   const std::vector<hb::SimulatedStep> steps = support::SimulateSteps(scenario);

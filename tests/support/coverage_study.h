@@ -133,17 +133,28 @@ inline CoveragePhysics MakeCoveragePhysics(const std::string& name,
   return physics;
 }
 
+// The physics' noise-free campaign as simulated, and its campaign.json read back.
+struct SimulatedCoverageCampaign {
+  std::vector<hb::SimulatedStep> steps;
+  signal::Campaign campaign;
+};
+
+inline SimulatedCoverageCampaign SimulateCoverageCampaign(const CoveragePhysics& physics) {
+  const std::filesystem::path folder = UniqueTempPath("beamid_coverage_study_" + physics.name);
+  std::filesystem::remove_all(folder);
+  SimulatedCoverageCampaign simulated{.steps = SimulateInto(physics.scenario, folder), .campaign = {}};
+  simulated.campaign = signal::ReadCampaign(folder);
+  std::filesystem::remove_all(folder);
+  return simulated;
+}
+
 // `realisations` noise draws from seeds first_seed, first_seed + 1, …, each
 // fitted to acc1 and acc2 with `fit_options`' weighting; `each` (if set)
 // sees every realisation's fit.
 inline CoverageStudy RunCoverageStudy(
     const CoveragePhysics& physics, solver::FitDataOptions fit_options, int realisations, std::uint64_t first_seed,
     const std::function<void(int realisation, const solver::IdentifyResult&)>& each = {}) {
-  const std::filesystem::path folder = UniqueTempPath("beamid_coverage_study_" + physics.name);
-  std::filesystem::remove_all(folder);
-  const std::vector<hb::SimulatedStep> steps = SimulateInto(physics.scenario, folder);
-  const signal::Campaign campaign = signal::ReadCampaign(folder);
-  std::filesystem::remove_all(folder);
+  const auto [steps, campaign] = SimulateCoverageCampaign(physics);
 
   CoverageStudy study;
   for (const std::string& name : physics.structure.Names())
@@ -170,10 +181,10 @@ inline CoverageStudy RunCoverageStudy(
 // "friction": a Jenkins element (50 N·m/rad, slipping at 0.15 N·m) beside
 //   k1 = 100, named support_friction; the simulator's steps settle to 5e-4
 //   as examples/scenarios/paper_friction.json's.
-// kExact: every step settled (SettleTightly) and the beam undamped, diagnosed
-// without a loss factor, so that beside the cause the diagnosed model holds
-// the simulated physics exactly (the simulator integrates the beam's loss
-// factor as the modal law, the diagnosis fits E(1 + iη)).
+// kExact: MakeBasePhysicsExact (simulated_campaign.h), so that beside the
+// cause the diagnosed model holds the simulated physics exactly.
+enum class ConcealedPhysics { kAsThePaper, kExact };
+
 struct ConcealedCause {
   std::string name;
   hb::Scenario scenario;
@@ -183,15 +194,14 @@ struct ConcealedCause {
 };
 
 inline ConcealedCause MakeConcealedCause(const std::string& name,
-                                         CoverageSettling settling = CoverageSettling::kAsThePaper) {
+                                         ConcealedPhysics physics = ConcealedPhysics::kAsThePaper) {
   nlohmann::json scenario = PaperSetUpScenario();
   ConcealedCause cause{.name = name, .scenario = {}, .cause = {},
                        .truth = {{"k1", 150.0}, {"k2", 0.0}, {"k3", 3e5}, {"c", 0.05}, {"loss_factor", 2e-4}},
-                       .exact = settling == CoverageSettling::kTight};
+                       .exact = physics == ConcealedPhysics::kExact};
   if (cause.exact) {
-    SettleTightly(scenario);
-    scenario["beam"]["loss_factor"] = 0.0;
-    cause.truth.pop_back();
+    MakeBasePhysicsExact(scenario);
+    cause.truth.pop_back();  // no loss factor
   }
   if (name == "sensor_gain") {
     for (nlohmann::json& sensor : scenario["sensors"])

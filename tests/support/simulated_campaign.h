@@ -136,6 +136,15 @@ inline void SettleTightly(nlohmann::json& scenario) {
   scenario["timing"]["settle_max_s"] = 40.0;
 }
 
+// Settled as above and the beam undamped: diagnosed without a loss factor
+// (DiagnosisOptions::fit_loss_factor false), the diagnosed model then holds
+// the simulated physics exactly, where the simulator integrates a loss
+// factor as the modal law and the diagnosis fits E(1 + iη).
+inline void MakeBasePhysicsExact(nlohmann::json& scenario) {
+  SettleTightly(scenario);
+  scenario["beam"]["loss_factor"] = 0.0;
+}
+
 // The paper's set-up with base physics (polynomial support), three levels
 // (1, 4, 9 N) of nine steps around the resonance, realistic noise, each step
 // settled to 1e-5 or cut at 8 s (tests/support/paper_scenario.h).
