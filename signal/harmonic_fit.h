@@ -14,6 +14,15 @@
 // 3 bins from every multiple of f (unmodelled harmonics are not noise). So
 // coloured noise gives each harmonic its own floor. The cross-covariances
 // between harmonics, O(1/N) relative, are neglected.
+// The floor is itself an estimate, from ν_k effective degrees of freedom
+// (M bins whose Hann periodogram values correlate as 4/9 between
+// neighbours and 1/36 two apart: ν = 2M²/(M + 2·(4/9)·n₁ + 2·(1/36)·n₂),
+// n₁, n₂ the pairs of used bins one and two apart; ~30 for a 0.5 s record
+// at 55 Hz). A phasor's error over σ̂_k is then Student-t, whose variance is
+// ν/(ν − 2), not 1: the stated covariance is σ̂_k²·ν/(ν − 2)·[(BᵀB)⁻¹]_kk,
+// the standard uncertainty of GUM Supplement 1 for a Type A estimate, so
+// that residuals whitened by it have unit mean square (with σ̂_k² alone a
+// fit's reduced χ² reads ~1.05 on data its model holds).
 #pragma once
 
 #include <complex>
@@ -27,7 +36,8 @@ struct ChannelFit {
   double mean = 0.0;                         // X_0
   Eigen::VectorXcd phasors;                  // X_k at index k−1 (k = 1..H), origin at the segment centre
   std::vector<Eigen::Matrix2d> covariances;  // of (Re X_k, Im X_k), same index
-  Eigen::VectorXd noise_variance;            // σ_k², same index [unit²]
+  Eigen::VectorXd noise_variance;            // σ̂_k², same index [unit²]
+  Eigen::VectorXd noise_dof;                 // ν_k of σ̂_k², same index
   double residual_rms = 0.0;                 // over the whole band
 };
 
@@ -36,6 +46,11 @@ struct HarmonicFit {
   int num_harmonics = 0;  // H actually fitted (reduced below Nyquist if needed)
   std::vector<ChannelFit> channels;  // one per column of samples
 };
+
+// ν/(ν − 2): a phasor's variance over the noise floor σ̂² estimated with ν
+// degrees of freedom (header); 3 below ν = 3, where the floor rests on a
+// handful of bins.
+double StudentVarianceFactor(double dof);
 
 // samples: one column per channel. Harmonics above Nyquist are left out
 // (num_harmonics of the result says how many were fitted).

@@ -252,6 +252,9 @@ SettlingTransient RemoveSettlingTransient(const Eigen::Ref<const Eigen::MatrixXd
       channel.phasors(k - 1) = internal::HarmonicBasis::Phasor(column, k);
       Eigen::Matrix2d covariance = inverse_normal_c.block<2, 2>(2 * k - 1, 2 * k - 1);
       covariance(0, 1) = covariance(1, 0) = -covariance(0, 1);
+      // The floor is the one read before the ringing was removed, whose
+      // leakage keeps it wide (these phasors' rms z reads ~0.83): Student's
+      // factor (harmonic_fit.h) would only widen it further.
       channel.covariances[static_cast<std::size_t>(k - 1)] = channel.noise_variance(k - 1) * covariance;
     }
     if (std::abs(channel.phasors(0)) < kNodeFraction * largest_fundamental) continue;

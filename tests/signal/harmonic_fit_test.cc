@@ -2,6 +2,7 @@
 // noise: exactness for random non-integer numbers of periods, the FFTW
 // wrapper against a direct DFT, and the noise floor per harmonic.
 #include <complex>
+#include <cstdio>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -122,6 +123,50 @@ TEST(HarmonicFitTest, NoiseFloorFollowsColouredNoise) {
   }
   // The floor differs by an order of magnitude between harmonic 1 and 5.
   EXPECT_GT(fit.channels[0].noise_variance(0), 5.0 * fit.channels[0].noise_variance(4));
+}
+
+// A short record (0.5 s at 55 Hz, as the paper's steps): the floor rests on
+// ~28 bins, and σ̂_k², unbiased, leaves |X_k − X_true|²/σ̂_k² with mean
+// ν/(ν − 2) ≈ 1.07. The stated covariance must whiten the phasors' errors
+// to unit mean square over many records, and the degrees of freedom must
+// predict the floor's own scatter (var σ̂²/σ² = 2/ν).
+TEST(HarmonicFitTest, StatedCovarianceWhitensThePhasorErrorsToUnitMeanSquare) {
+  std::mt19937 rng(29);
+  std::normal_distribution<double> normal;
+  const int harmonics = 5, n = 2560, runs = 1000;
+  Tone tone = RandomTone(rng, harmonics, 55.3);
+  tone.sample_rate_hz = 5120.0;
+  const Eigen::VectorXd clean = Synthesize(tone, n);
+  const double sigma = 1e-2;
+  double whitened_sum = 0.0, floor_sum = 0.0, floor_sum2 = 0.0, dof_sum = 0.0;
+  int whitened_count = 0, floor_count = 0;
+  Eigen::VectorXd x(n);
+  for (int run = 0; run < runs; ++run) {
+    for (int i = 0; i < n; ++i) x(i) = clean(i) + sigma * normal(rng);
+    const ChannelFit fit = FitHarmonics(x, tone.sample_rate_hz, tone.frequency_hz, harmonics).channels[0];
+    for (int k = 1; k <= harmonics; ++k) {
+      const std::complex<double> error = fit.phasors(k - 1) - tone.phasors[static_cast<std::size_t>(k - 1)];
+      const Eigen::Vector2d e(error.real(), error.imag());
+      whitened_sum += e.dot(fit.covariances[static_cast<std::size_t>(k - 1)].inverse() * e);
+      whitened_count += 2;
+      const double relative = fit.noise_variance(k - 1) / (sigma * sigma);
+      floor_sum += relative;
+      floor_sum2 += relative * relative;
+      dof_sum += fit.noise_dof(k - 1);
+      ++floor_count;
+    }
+  }
+  const double dof = dof_sum / floor_count;
+  std::printf("mean square of whitened errors %.4f, noise floor's degrees of freedom %.1f\n",
+              whitened_sum / whitened_count, dof);
+  EXPECT_GT(dof, 20.0);
+  EXPECT_LT(dof, 40.0);
+  // 10⁴ whitened components: the mean's sampling σ is ~0.015; σ̂² alone reads ~1.07.
+  EXPECT_NEAR(whitened_sum / whitened_count, 1.0, 0.035);
+  const double floor_mean = floor_sum / floor_count;
+  EXPECT_NEAR(floor_mean, 1.0, 0.02);  // the floor itself is unbiased
+  const double floor_variance = floor_sum2 / floor_count - floor_mean * floor_mean;
+  EXPECT_NEAR(floor_variance * dof / 2.0, 1.0, 0.15);
 }
 
 }  // namespace

@@ -134,9 +134,12 @@ TEST_F(PhasorCalibration, ChiSquarePerChannelHarmonicAndLevelIsItsDegreesOfFreed
 
 // The residual model error a fit estimates (model_error.h) predicts the
 // misfit of another realisation: with it, every cell of the next
-// realisation's fit reads χ²/ν = 1 within its spread, and the third
-// harmonic, which the stated σ alone leave above 1 pooled over every cell
-// (the positive control), reads 1 within the pooled spread.
+// realisation's fit reads χ²/ν = 1 within its spread, and so does each
+// harmonic pooled over every cell. The third harmonic's excess over the
+// stated σ alone, which this model error was first estimated to explain
+// (1.15 pooled), was mostly the noise floor's own uncertainty: with
+// Student's factor in the stated covariance (signal/harmonic_fit.h) it
+// reads 1 within the pooled spread too (1.07 against 1 ± 0.037).
 TEST_F(PhasorCalibration, TheEstimatedModelErrorPredictsTheMisfitOfAnotherRealisation) {
   std::map<Cell, Pooled> cross, stated;
   for (int r = 0; r < kRealisations; ++r) {
@@ -166,7 +169,7 @@ TEST_F(PhasorCalibration, TheEstimatedModelErrorPredictsTheMisfitOfAnotherRealis
                 Reduced(stated_by_harmonic.at(k)), Spread(p));
     EXPECT_NEAR(Reduced(p), 1.0, 3.0 * Spread(p)) << "h" << k;
   }
-  EXPECT_GT(Reduced(stated_by_harmonic.at(3)), 1.0 + 3.0 * Spread(stated_by_harmonic.at(3)));
+  EXPECT_NEAR(Reduced(stated_by_harmonic.at(3)), 1.0, 3.0 * Spread(stated_by_harmonic.at(3)));
 }
 
 }  // namespace

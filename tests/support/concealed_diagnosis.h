@@ -31,10 +31,10 @@ inline solver::DiagnosisResult DiagnoseScenario(const nlohmann::json& scenario, 
               result.base.reduced_chi_square, 100 * result.base.held_out_h1_relative_error,
               result.base.held_out_chi_square);
   for (const auto& c : result.candidates)
-    std::printf("  %-20s chi2 %.4g drop %.3gx BIC %.5g p %.2g held-out h1 %.3f %% chi2 %.4g score %.2f %s\n",
+    std::printf("  %-20s chi2 %.4g drop %.3gx BIC %.5g p %.2g held-out h1 %.3f %% chi2 %.4g score %.2f %s [%s]\n",
                 c.name.c_str(), c.fit.chi_square, c.residual_drop, c.fit.bic, c.p_value,
                 100 * c.fit.held_out_h1_relative_error, c.fit.held_out_chi_square, c.signature_score,
-                c.significant ? "significant" : "");
+                c.significant ? "significant" : "", c.status_message.c_str());
   for (const auto& p : result.final_fit.parameters)
     std::printf("  %-20s %.6g ± %.2g (95 %%: %.6g … %.6g) %s\n", p.name.c_str(), p.value, 1.96 * p.std, p.lower_95,
                 p.upper_95, p.unit.c_str());
