@@ -25,11 +25,15 @@ using Complex = std::complex<double>;
 
 ModelStructure BaseStructure(const DiagnosisOptions& options) {
   ModelStructure structure = PolynomialModel({.k1_Nm_rad = 100.0});
-  if (options.fit_loss_factor) structure.linear.push_back(LossFactor(options.loss_factor_start));
+  if (options.fit_loss_factor) structure.linear.push_back(BeamLossFactor(options));
   return structure;
 }
 
 }  // namespace
+
+LinearParameter BeamLossFactor(const DiagnosisOptions& options) {
+  return options.modal_loss_factor ? ModalLossFactor(options.loss_factor_start) : LossFactor(options.loss_factor_start);
+}
 
 FitSummary SummarizeFit(const ModelStructure& structure, int harmonics, double chi2, int num_residuals,
                         const std::vector<double>& values, const std::vector<double>& std, int extra_parameters) {
@@ -302,8 +306,9 @@ void HeaviestFirst(RefitRun* run) {
 // within ±0.00001, against 0.05, with no interval over the damping laws.
 void WithLossFactor(const DiagnosisOptions& options, CandidateExtension* extension) {
   const auto names = extension->structure.Names();
-  if (!options.fit_loss_factor || std::find(names.begin(), names.end(), "loss_factor") != names.end()) return;
-  extension->structure.linear.push_back(LossFactor(options.loss_factor_start));
+  const LinearParameter loss = BeamLossFactor(options);
+  if (!options.fit_loss_factor || std::find(names.begin(), names.end(), loss.name) != names.end()) return;
+  extension->structure.linear.push_back(loss);
   for (auto& start : extension->starts) start.push_back(options.loss_factor_start);
   ++extension->test_dof;
 }

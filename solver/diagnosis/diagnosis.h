@@ -66,6 +66,10 @@ struct DiagnosisOptions {
   int model_harmonics = 5;          // H of the base model
   bool fit_loss_factor = true;      // the beam's η beside the support (as `beamid identify`)
   double loss_factor_start = 1e-4;
+  // The beam's η fitted as the modal loss factor η_m (hb/matched_modal_loss.h,
+  // the time-domain simulator's law) instead of E(1 + iη): for campaigns
+  // whose damping law is known, where the named model must hold it exactly.
+  bool modal_loss_factor = false;
   std::vector<std::string> candidates;  // names to try (empty: the whole library)
   // Family-wise significance of naming a cause (Bonferroni over the candidates).
   double significance = 0.01;
@@ -108,6 +112,10 @@ struct DiagnosisOptions {
   // value and the range, so that a bad option fails before minutes of fits.
   void Validate() const;
 };
+
+// The beam's damping parameter a diagnosis fits beside the support
+// (DiagnosisOptions::fit_loss_factor): η or η_m, from loss_factor_start.
+LinearParameter BeamLossFactor(const DiagnosisOptions& options);
 
 // One fitted model's quality.
 struct FitSummary {

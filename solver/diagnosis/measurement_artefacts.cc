@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <thread>
 
 #include <Eigen/Geometry>
@@ -35,6 +36,9 @@ constexpr double kConvergedRelative = 1e-3;
 // and its further rounds (a physics refit each) would cost the diagnosis
 // seconds on every campaign whose misfit is physics.
 constexpr double kUnpromisingShare = 0.9;
+// The rounds' contraction beyond which the artefact and the physics are
+// taken as one direction: its σ widens at most tenfold.
+constexpr double kMaxContraction = 0.99;
 
 // Gauss–Newton for one scalar of the misfit of `channels`: residual(θ) per
 // step, channel and harmonic, its derivative by the callback; returns θ and
@@ -294,21 +298,80 @@ void RefitPhysics(const FitData& fit, const BaseFit& base, const ModelStructure&
                                              out->scaled_at, r.x, out->values);
 }
 
+// One refit of the rounds: the artefact's value its data were corrected
+// with, the physics it gave, and the artefact's estimate at that physics
+// (NaN until a round has made it).
+struct ArtefactRound {
+  double used = 0.0;
+  std::vector<double> values;
+  double estimate = std::numeric_limits<double>::quiet_NaN();
+};
+
+// The rounds give the artefact's and the physics' uncertainties conditional
+// on each other; with both free (the joint fit's marginal variances, for a
+// linearised fit) they are wider wherever the two are correlated, as a
+// gain's with the support's stiffnesses. Two refits at values a apart give
+// the physics' response to the artefact, s = Δθ/a, and the estimate's
+// response to that, r = Δĝ/a: the rounds' contraction, 1 − S/I_gg for the
+// artefact's information I_gg and its Schur complement S. Then
+//   σ_g² = σ_g|θ² / (1 − r),   σ_θj² = σ_θj|g² + s_j²·σ_g²
+// (the block inverse of the joint information). The pair used is the two
+// rounds furthest apart; when they lie within σ_g|θ of each other the
+// differences would be the refits' tolerance, and one refit is made at
+// 3 σ_g|θ from the optimum.
+void MarginaliseOverArtefact(const FitData& fit, const BaseFit& base, const ModelStructure& structure,
+                             const IdentifyOptions& refit, const MeasurementArtefact& artefact,
+                             std::vector<ArtefactRound> rounds, ArtefactFit* out) {
+  const double conditional = out->estimate.std;
+  if (!(conditional > 0.0)) return;
+  std::erase_if(rounds, [](const ArtefactRound& r) { return std::isnan(r.estimate); });
+  const ArtefactRound* a = nullptr;
+  const ArtefactRound* b = nullptr;
+  for (const ArtefactRound& i : rounds)
+    for (const ArtefactRound& j : rounds)
+      if (&i != &j && (!a || std::abs(j.used - i.used) > std::abs(b->used - a->used))) {
+        a = &i;
+        b = &j;
+      }
+  ArtefactRound extra;
+  if (!a || std::abs(b->used - a->used) < conditional) {
+    if (rounds.empty()) return;
+    MeasurementArtefact moved = artefact;
+    moved.value = artefact.value + 3.0 * conditional;
+    ArtefactFit shifted;
+    shifted.values = out->values;
+    RefitPhysics(fit, base, structure, refit, moved, &shifted);
+    extra = {.used = moved.value, .values = shifted.values, .estimate = Estimate(fit, *shifted.model, artefact).value};
+    a = &rounds.back();
+    b = &extra;
+  }
+  const double spacing = b->used - a->used;
+  const double contraction = std::clamp((b->estimate - a->estimate) / spacing, 0.0, kMaxContraction);
+  const double marginal = conditional / std::sqrt(1.0 - contraction);
+  for (std::size_t j = 0; j < out->std.size() && j < a->values.size() && j < b->values.size(); ++j)
+    out->std[j] = std::hypot(out->std[j], (b->values[j] - a->values[j]) / spacing * marginal);
+  out->estimate.std = marginal;
+}
+
 // Block coordinate descent (header), accelerated: the rounds converge
 // linearly (measured on a 5 % gain error: each removes ~2/3 of the distance
 // to the joint optimum), so Aitken's Δ² extrapolates three successive
-// estimates to where they head.
+// estimates to where they head. The uncertainties are then the joint
+// fit's (MarginaliseOverArtefact).
 ArtefactFit FitArtefact(const FitData& fit, const BaseFit& base, const ModelStructure& structure,
                         const IdentifyOptions& refit, MeasurementArtefact* artefact) {
   ArtefactFit out;
   out.values = structure.Values();
   const FittedModel* at = &base.model;
   std::vector<double> sequence;
+  std::vector<ArtefactRound> rounds;
+  bool promising = true;
   for (int round = 0; round < kMaxRounds; ++round) {
     if (artefact->kind == ArtefactKind::kOutlyingStep) {
       if (round > 0) break;
     } else {
       out.estimate = Estimate(fit, *at, *artefact);
+      if (!rounds.empty()) rounds.back().estimate = out.estimate.value;
       const double used = artefact->value;
       if (round > 0 && std::abs(out.estimate.value - used) <= kConvergedRelative * std::abs(out.estimate.value)) {
         out.estimate.value = used;
@@ -327,9 +390,17 @@ ArtefactFit FitArtefact(const FitData& fit, const BaseFit& base, const ModelStru
       artefact->value = out.estimate.value = next;
     }
     RefitPhysics(fit, base, structure, refit, *artefact, &out);
+    rounds.push_back({.used = artefact->value, .values = out.values});
     at = out.model.get();
-    if (out.chi_square > kUnpromisingShare * base.summary.chi_square) break;
+    if (out.chi_square > kUnpromisingShare * base.summary.chi_square) {
+      promising = false;
+      break;
+    }
   }
+  // An unpromising artefact is no explanation (kUnpromisingShare): its
+  // uncertainties stay conditional rather than cost another refit.
+  if (artefact->kind != ArtefactKind::kOutlyingStep && promising)
+    MarginaliseOverArtefact(fit, base, structure, refit, *artefact, std::move(rounds), &out);
   return out;
 }
 
@@ -443,9 +514,10 @@ CandidateRefits RefitMeasurementArtefacts(const FitData& fit, const FitData& val
   ModelStructure structure = base.model.structure;
   int added = 0;
   const auto names = structure.Names();
-  if (options.fit_loss_factor && std::find(names.begin(), names.end(), "loss_factor") == names.end()) {
+  const LinearParameter loss = BeamLossFactor(options);
+  if (options.fit_loss_factor && std::find(names.begin(), names.end(), loss.name) == names.end()) {
     std::vector<double> values = structure.Values();
-    structure.linear.push_back(LossFactor(options.loss_factor_start));
+    structure.linear.push_back(loss);
     values.push_back(options.loss_factor_start);
     structure.SetValues(values);
     added = 1;

@@ -13,7 +13,8 @@
 // for the gain), then the base physics refitted from the base optimum on the
 // data corrected by them, then the parameters once more at the refit and,
 // when they moved, the physics again (block coordinate descent to the joint
-// optimum). The corrections are exact transformations of the data:
+// optimum), with the joint fit's uncertainties: each round's are
+// conditional on the other block's values. The corrections are exact transformations of the data:
 //   gain: Y' = Y/(1 + g), L⁻¹' = (1 + g)·L⁻¹;
 //   delay: Y' = e^{ikωτ}·Y, L⁻¹' = L⁻¹·R(−kωτ) (R the rotation of (Re, Im));
 //   position: the channel at x_c + δ;

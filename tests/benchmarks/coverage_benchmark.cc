@@ -107,6 +107,9 @@ BENCHMARK_CAPTURE(BM_Coverage, rayleigh_propagated, "rayleigh", solver::PhasorUn
 BENCHMARK_CAPTURE(BM_Coverage, rayleigh_settled_propagated, "rayleigh", solver::PhasorUncertainty::kPropagated,
                   beamid::testing::CoverageSettling::kTight)->Iterations(1)->Unit(benchmark::kSecond);
 
+BENCHMARK_CAPTURE(BM_DiagnosisCoverage, none_exact_propagated, "none", solver::PhasorUncertainty::kPropagated,
+                  beamid::testing::ConcealedPhysics::kExact)
+    ->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK_CAPTURE(BM_DiagnosisCoverage, sensor_gain_relative_floor, "sensor_gain",
                   solver::PhasorUncertainty::kRelativeFloor)->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK_CAPTURE(BM_DiagnosisCoverage, sensor_gain_propagated, "sensor_gain", solver::PhasorUncertainty::kPropagated)
@@ -117,6 +120,9 @@ BENCHMARK_CAPTURE(BM_DiagnosisCoverage, sensor_gain_exact_propagated, "sensor_ga
 BENCHMARK_CAPTURE(BM_DiagnosisCoverage, friction_relative_floor, "friction", solver::PhasorUncertainty::kRelativeFloor)
     ->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK_CAPTURE(BM_DiagnosisCoverage, friction_propagated, "friction", solver::PhasorUncertainty::kPropagated)
+    ->Iterations(1)->Unit(benchmark::kSecond);
+BENCHMARK_CAPTURE(BM_DiagnosisCoverage, friction_exact_propagated, "friction", solver::PhasorUncertainty::kPropagated,
+                  beamid::testing::ConcealedPhysics::kExact)
     ->Iterations(1)->Unit(benchmark::kSecond);
 
 }  // namespace

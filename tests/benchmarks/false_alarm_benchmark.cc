@@ -51,7 +51,7 @@ void BM_FalseAlarms(benchmark::State& state, solver::PhasorUncertainty weighting
   nlohmann::json json = support::PaperSetUpScenario();
   if (physics == Physics::kSettled) support::SettleTightly(json);
   if (physics == Physics::kExact) support::MakeBasePhysicsExact(json);
-  const solver::DiagnosisOptions options{.fit_loss_factor = physics != Physics::kExact};
+  const solver::DiagnosisOptions options{.modal_loss_factor = physics == Physics::kExact};
   const hb::Scenario scenario = hb::ParseScenario(json.dump(), "false alarm benchmark scenario");
   const std::vector<hb::SimulatedStep> steps = support::SimulateSteps(scenario);
   const support::ExtractedCampaign written = support::WriteAndExtract(scenario, steps, 1, "beamid_false_alarm");

@@ -53,7 +53,9 @@ struct CoverageStudy {
   // squares over the realisations: whether the noise moves it.
   std::vector<double> sum_start_s, sum_start2_s;
 
-  double Coverage(std::size_t j) const { return static_cast<double>(parameters[j].covered) / realisations; }
+  double Coverage(std::size_t j) const {
+    return static_cast<double>(parameters[j].covered) / std::max(1, parameters[j].estimated);
+  }
   double MeanZ(std::size_t j) const { return parameters[j].sum_z / parameters[j].estimated; }
   double RmsZ(std::size_t j) const { return std::sqrt(parameters[j].sum_z2 / parameters[j].estimated); }
   double MeanReducedChiSquare() const { return sum_reduced_chi_square / realisations; }
@@ -176,6 +178,7 @@ inline CoverageStudy RunCoverageStudy(
 // A cause concealed in the paper set-up (3 levels × 9 steps, as the
 // diagnosis proofs), the name the diagnosis must select for it, and the
 // truth of the named model's parameters.
+// "none": nothing concealed; the diagnosis must name nothing.
 // "sensor_gain": acc2 reads 1 % high (a calibration factor off), named
 //   sensor_gain(acc2) with gain_error_acc2 beside the base physics.
 // "friction": a Jenkins element (50 N·m/rad, slipping at 0.15 N·m) beside
@@ -199,11 +202,10 @@ inline ConcealedCause MakeConcealedCause(const std::string& name,
   ConcealedCause cause{.name = name, .scenario = {}, .cause = {},
                        .truth = {{"k1", 150.0}, {"k2", 0.0}, {"k3", 3e5}, {"c", 0.05}, {"loss_factor", 2e-4}},
                        .exact = physics == ConcealedPhysics::kExact};
-  if (cause.exact) {
-    MakeBasePhysicsExact(scenario);
-    cause.truth.pop_back();  // no loss factor
-  }
-  if (name == "sensor_gain") {
+  if (cause.exact) cause.truth.back().first = "modal_loss_factor";
+  if (name == "none") {
+    cause.cause = "none";  // the base, whose fit the diagnosis reports when it finds nothing
+  } else if (name == "sensor_gain") {
     for (nlohmann::json& sensor : scenario["sensors"])
       if (sensor["channel"] == "acc2") sensor["gain_error_relative"] = 0.01;
     cause.cause = "sensor_gain(acc2)";
@@ -215,8 +217,10 @@ inline ConcealedCause MakeConcealedCause(const std::string& name,
     cause.truth.emplace_back("jenkins_stiffness", 50.0);
     cause.truth.emplace_back("jenkins_slip_moment", 0.15);
   } else {
-    throw std::invalid_argument("unknown concealed cause '" + name + "' (sensor_gain, friction)");
+    throw std::invalid_argument("unknown concealed cause '" + name + "' (none, sensor_gain, friction)");
   }
+  // After the cause: the friction's own settling would undo it.
+  if (cause.exact) MakeBasePhysicsExact(scenario);
   cause.scenario = hb::ParseScenario(scenario.dump(), "paper set-up, " + name + (cause.exact ? ", exact" : ""));
   return cause;
 }
@@ -242,7 +246,7 @@ inline DiagnosisCoverageStudy RunDiagnosisCoverageStudy(const ConcealedCause& ca
     study.coverage.AddWindowStarts(phasors);
     const solver::DiagnosisResult result =
         DiagnoseProofData(MakeProofData(written.campaign, phasors, {.uncertainty = weighting}),
-                          {.fit_loss_factor = !cause.exact});
+                          {.modal_loss_factor = cause.exact});
     const bool named = result.selected.front() == cause.cause;
     study.named += named;
     for (ParameterCoverage& c : study.coverage.parameters)
