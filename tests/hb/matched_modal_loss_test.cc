@@ -156,5 +156,38 @@ TEST(MatchedModalLoss, ModesAreMassNormalisedAndCoverTheBandOfFiveKilohertzAtLea
   EXPECT_GT(sum, 0.9 * flexibility);
 }
 
+// The modes are kept per undamped beam (a fit rebuilds the beam at every
+// η_m): a beam that differs in anything they depend on (its modulus, a
+// point mass, the clamp) must get its own, one that differs in its damping
+// alone the same. Mode j of a beam whose E is 1 % higher lies √1.01 higher.
+TEST(MatchedModalLossTest, ModesAreSharedBetweenDampingsAndNeverBetweenBeams) {
+  LinearBeamModel model{.beam = {.modal_loss_factor = 1e-4}, .attachments = Attachments()};
+  const MatchedModalLoss first(model, kForcePosition_m, {});
+  model.beam.modal_loss_factor = 3e-4;
+  model.beam.loss_factor = 1e-4;
+  const MatchedModalLoss damped_otherwise(model, kForcePosition_m, {});
+  EXPECT_EQ(&first.natural_frequencies_rad_s(), &damped_otherwise.natural_frequencies_rad_s());
+
+  // The clamp's spring does not scale with E: a rigid clamp here.
+  LinearBeamModel rigid{.beam = {.modal_loss_factor = 1e-4}};
+  const MatchedModalLoss rigid_modes(rigid, kForcePosition_m, {});
+  rigid.beam.youngs_modulus_Pa *= 1.01;
+  const MatchedModalLoss stiffer_modes(rigid, kForcePosition_m, {});
+  ASSERT_GE(stiffer_modes.num_modes(), 3);
+  for (int j = 0; j < 3; ++j)
+    EXPECT_NEAR(stiffer_modes.natural_frequencies_rad_s()[j] / rigid_modes.natural_frequencies_rad_s()[j],
+                std::sqrt(1.01), 1e-9) << "mode " << j;
+
+  LinearBeamModel heavier = model;
+  heavier.attachments.point_masses[0].mass_kg += 0.01;
+  const MatchedModalLoss heavier_modes(heavier, kForcePosition_m, {});
+  EXPECT_LT(heavier_modes.natural_frequencies_rad_s()[0], first.natural_frequencies_rad_s()[0]);
+
+  LinearBeamModel clamped = model;
+  clamped.attachments.clamp_rotational_stiffness_Nm_rad *= 2.0;
+  const MatchedModalLoss clamped_modes(clamped, kForcePosition_m, {});
+  EXPECT_GT(clamped_modes.natural_frequencies_rad_s()[0], first.natural_frequencies_rad_s()[0]);
+}
+
 }  // namespace
 }  // namespace beamid::hb
