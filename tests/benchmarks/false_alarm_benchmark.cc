@@ -43,14 +43,13 @@ bool NoiseDrivesTheModel(const solver::FitData& data) {
 
 // What is simulated beside the base model's support: the paper's campaign as
 // it is (steps settled to 1e-5, the beam's loss factor integrated as the
-// modal law), every step settled (SettleTightly), or the physics the
-// diagnosed model holds exactly (MakeBasePhysicsExact).
+// modal law), every step settled (SettleTightly), or settled and diagnosed
+// with that law: the physics the diagnosed model holds exactly.
 enum class Physics { kPaper, kSettled, kExact };
 
 void BM_FalseAlarms(benchmark::State& state, solver::PhasorUncertainty weighting, Physics physics = Physics::kPaper) {
   nlohmann::json json = support::PaperSetUpScenario();
-  if (physics == Physics::kSettled) support::SettleTightly(json);
-  if (physics == Physics::kExact) support::MakeBasePhysicsExact(json);
+  if (physics != Physics::kPaper) support::SettleTightly(json);
   const solver::DiagnosisOptions options{.modal_loss_factor = physics == Physics::kExact};
   const hb::Scenario scenario = hb::ParseScenario(json.dump(), "false alarm benchmark scenario");
   const std::vector<hb::SimulatedStep> steps = support::SimulateSteps(scenario);

@@ -184,8 +184,9 @@ inline CoverageStudy RunCoverageStudy(
 // "friction": a Jenkins element (50 N·m/rad, slipping at 0.15 N·m) beside
 //   k1 = 100, named support_friction; the simulator's steps settle to 5e-4
 //   as examples/scenarios/paper_friction.json's.
-// kExact: MakeBasePhysicsExact (simulated_campaign.h), so that beside the
-// cause the diagnosed model holds the simulated physics exactly.
+// kExact: SettleTightly (simulated_campaign.h) and diagnosed with the modal
+// loss factor, so that beside the cause the diagnosed model holds the
+// simulated physics exactly.
 enum class ConcealedPhysics { kAsThePaper, kExact };
 
 struct ConcealedCause {
@@ -220,7 +221,7 @@ inline ConcealedCause MakeConcealedCause(const std::string& name,
     throw std::invalid_argument("unknown concealed cause '" + name + "' (none, sensor_gain, friction)");
   }
   // After the cause: the friction's own settling would undo it.
-  if (cause.exact) MakeBasePhysicsExact(scenario);
+  if (cause.exact) SettleTightly(scenario);
   cause.scenario = hb::ParseScenario(scenario.dump(), "paper set-up, " + name + (cause.exact ? ", exact" : ""));
   return cause;
 }

@@ -130,19 +130,16 @@ inline signal::PhasorSet MeasureAgain(const hb::Scenario& scenario, const std::v
 // (at most 40 s) instead of 1e-5. What the frequency step's ringing leaves
 // at 1e-5 scatters the identified damping 1.3–1.4 times its σ under
 // propagated σ (docs/identify.md, "Coverage, measured"); settled this far
-// the recordings hold the model's physics alone.
+// the recordings hold the model's physics alone. Diagnosed with the beam's
+// damping as the modal loss factor (DiagnosisOptions::modal_loss_factor),
+// the simulator's own law, the diagnosed model then holds the simulated
+// physics exactly. (An undamped beam would not do: its higher modes'
+// transients outlast settle_max_s, and every step of the paper set-up was
+// cut at 40 s unsettled, k1 and k3 scattering 1.2–1.3 times their σ.)
 inline void SettleTightly(nlohmann::json& scenario) {
   scenario["timing"]["settle_tolerance"] = 1e-8;
   scenario["timing"]["settle_max_s"] = 40.0;
 }
-
-// Settled as above: diagnosed with the beam's damping as the modal loss
-// factor (DiagnosisOptions::modal_loss_factor), the simulator's own law, the
-// diagnosed model then holds the simulated physics exactly. (An undamped
-// beam would not do: its higher modes' transients outlast settle_max_s, and
-// every step of the paper set-up was cut at 40 s unsettled, k1 and k3
-// scattering 1.2–1.3 times their σ.)
-inline void MakeBasePhysicsExact(nlohmann::json& scenario) { SettleTightly(scenario); }
 
 // The paper's set-up with base physics (polynomial support), three levels
 // (1, 4, 9 N) of nine steps around the resonance, realistic noise, each step
