@@ -5,6 +5,7 @@
 
 #include "solver/estimation/internal/ipopt_program.h"
 #include "solver/estimation/internal/worker_processes.h"
+#include "solver/estimation/parameter_covariance.h"
 #include "solver/estimation/start_record_io.h"
 
 #include <algorithm>
@@ -16,7 +17,6 @@
 
 #include <Eigen/Cholesky>
 #include <fmt/format.h>
-#include <Eigen/Eigenvalues>
 
 namespace beamid::solver {
 namespace {
@@ -452,27 +452,11 @@ IdentifyResult IdentifyWith(const ProblemFactory& make_problem, const ModelStruc
   const Eigen::MatrixXd model_error_information =
       problem->ModelErrorInformation(x, j, result.degrees_of_freedom, &result.model_errors);
   const double variance_scale = result.model_errors.empty() ? std::max(1.0, result.reduced_chi_square) : 1.0;
-  // Inverted scale-free (unit diagonal, the correlation's inverse): in
-  // physical units the diagonal spans 20 orders of magnitude (k3 in
-  // N·m/rad³ beside a clamp compliance in rad/(N·m)), beyond double
-  // precision, and rounding made eigenvalues of well-determined
-  // directions negative (intervals of ±1e143).
-  // Errors a step's phasors share widen it by the sandwich A⁻¹·B·A⁻¹
-  // (shared_step_errors.h).
-  const Eigen::MatrixXd information = j.transpose() * j;
-  const Eigen::VectorXd scale = information.diagonal().cwiseSqrt().cwiseMax(1e-300);
-  const auto unscaled = scale.cwiseInverse().asDiagonal();
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> normalised(unscaled * information * unscaled);
-  const Eigen::VectorXd values = normalised.eigenvalues().cwiseMax(1e-300);
-  const Eigen::MatrixXd inverse =
-      normalised.eigenvectors() * values.cwiseInverse().asDiagonal() * normalised.eigenvectors().transpose();
-  const Eigen::MatrixXd shared = unscaled * problem->SharedErrorInformation(j) * unscaled;
-  const Eigen::MatrixXd model_error = unscaled * model_error_information * unscaled;
-  const Eigen::MatrixXd model_error_covariance = unscaled * inverse * model_error * inverse * unscaled;
-  result.covariance =
-      variance_scale * unscaled * (inverse + inverse * shared * inverse) * unscaled + model_error_covariance;
+  const ParameterCovariance covariance =
+      SandwichCovariance(j, problem->SharedErrorInformation(j), model_error_information, variance_scale);
+  result.covariance = covariance.total;
   const Eigen::VectorXd std = result.covariance.diagonal().cwiseSqrt();
-  const Eigen::VectorXd std_model_error = model_error_covariance.diagonal().cwiseMax(0.0).cwiseSqrt();
+  const Eigen::VectorXd std_model_error = covariance.model_error.diagonal().cwiseMax(0.0).cwiseSqrt();
   result.correlation = std.cwiseInverse().asDiagonal() * result.covariance * std.cwiseInverse().asDiagonal();
   const auto names = initial.Names();
   const auto units = initial.Units();
@@ -485,8 +469,7 @@ IdentifyResult IdentifyWith(const ProblemFactory& make_problem, const ModelStruc
       result.warnings.push_back(names[k] + " is not identifiable from these data: its standard uncertainty (" +
                                 std::to_string(std[k]) + ") exceeds its value");
   }
-  // Collinearity on the scale-free information matrix.
-  if (normalised.eigenvalues().minCoeff() < 1e-8 * normalised.eigenvalues().maxCoeff())
+  if (covariance.collinear)
     result.warnings.push_back("the parameters are nearly collinear: some combination of them is not identifiable");
   result.minima = SummarizeMinima(result.starts, bounds, result.degrees_of_freedom, options.decisive_chi_square_gap);
   result.starts_at_best = result.minima.minima.front().num_starts;

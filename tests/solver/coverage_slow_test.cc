@@ -32,7 +32,8 @@ void PrintStudy(const beamid::testing::CoverageStudy& study) {
 
 // 50 realisations: rms z has a sampling σ of about 1/√100 = 0.1; 95 %
 // coverage reads 90 % or less with probability 0.04, 100 % with 0.08 (the
-// fixed seeds read 92–98 %).
+// fixed seeds read 92–98 %). 100: rms z's σ is 0.07, and 90 % or less has
+// probability 0.03, 100 % 0.006.
 void ExpectCalibrated(const beamid::testing::CoverageStudy& study, std::size_t j) {
   const std::string& name = study.parameters[j].name;
   EXPECT_GE(study.Coverage(j), 0.90) << name;
@@ -76,20 +77,18 @@ TEST(DiagnosisCoverage, TheNamedRecordingFaultsIntervalsHoldOnThePhysicsTheModel
   // acc2 reads 1 % high, 20 times the smallest gain error named 9 times in
   // 10; beside it the diagnosed model holds the simulated physics exactly
   // (steps settled, the beam's damping fitted as the simulator's law).
+  // 100 realisations: the gain's rms z has a sampling σ of about 0.07, so a
+  // calibrated interval reads below 0.8 with probability 0.002; 50 did not
+  // suffice (the first 50 seeds read 0.77, the next 50 1.13).
   const beamid::testing::ConcealedCause cause =
       beamid::testing::MakeConcealedCause("sensor_gain", beamid::testing::ConcealedPhysics::kExact);
   const beamid::testing::DiagnosisCoverageStudy study =
-      beamid::testing::RunDiagnosisCoverageStudy(cause, PhasorUncertainty::kPropagated, 50, 7000);
+      beamid::testing::RunDiagnosisCoverageStudy(cause, PhasorUncertainty::kPropagated, 100, 7000);
   PrintStudy(study.coverage);
   // A realisation may name a pair (a false alarm beside the fault): at most one in 25.
-  EXPECT_GE(study.named, 48);
+  EXPECT_GE(study.named, 96);
   ASSERT_EQ(study.coverage.parameters.size(), 6u);  // k1, k2, k3, c, η_m, the gain error
-  for (std::size_t j = 0; j + 1 < study.coverage.parameters.size(); ++j) ExpectCalibrated(study.coverage, j);
-  // The gain's interval errs wide (measured: coverage 100 %, rms z 0.76),
-  // not narrow: asserted on that side only until it is understood.
-  const std::size_t gain = study.coverage.parameters.size() - 1;
-  EXPECT_GE(study.coverage.Coverage(gain), 0.90);
-  EXPECT_LE(study.coverage.RmsZ(gain), 1.25);
+  for (std::size_t j = 0; j < study.coverage.parameters.size(); ++j) ExpectCalibrated(study.coverage, j);
 }
 
 }  // namespace
