@@ -312,14 +312,14 @@ Eigen::VectorXd WhitenedResiduals(const FitData& data, const std::vector<Eigen::
 // The artefact's and the physics' uncertainties with both free: the joint
 // fit's covariance, linearised at the rounds' optimum. The rounds' own are
 // each conditional on the other, too narrow where a gain and the support's
-// stiffnesses are correlated; and the artefact's scalar fit counts its
-// channel's errors as independent, where a gain is read against the other
-// channels, and the force's and frequency's errors, which every channel of
-// a step shares, cancel from it (its interval was 1.3 times too wide: rms
-// z 0.76 over 50 realisations). Here the artefact's column, the whitened
-// residuals' change per unit of its parameter with the physics held
-// (central differences one conditional σ wide), joins the refit's reduced
-// Jacobian, and the covariance is identify's (parameter_covariance.h).
+// stiffnesses are correlated, and the artefact's scalar fit counts its
+// channel's phasors as independent where a step's channels share the
+// force's and the frequency's errors. Here the artefact's column, the
+// whitened residuals' change per unit of its parameter with the physics
+// held (central differences one conditional σ wide), joins the refit's
+// reduced Jacobian, and the covariance is identify's, those shared errors
+// and the residual model error included (parameter_covariance.h). Over
+// 200 realisations a named gain covers 96.5 % at rms z 1.00.
 void JointUncertainties(const FitData& fit, const MeasurementArtefact& artefact, ArtefactFit* out) {
   const double h = out->estimate.std;
   if (!(h > 0.0) || !out->model) return;
