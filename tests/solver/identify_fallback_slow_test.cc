@@ -5,7 +5,7 @@
 // a shaker's force with 2 % second and 1 % third harmonic)
 // fitted from starts far from the truth — a strongly softening or a very
 // stiff cubic, states not seeded at the measurements, no continuation of the
-// best end point — the ordinary search gives up; with the linear fit's
+// best end point — where the ordinary search gives up, with the linear fit's
 // continuation the same call returns the fit of the direct estimate's
 // search, its intervals holding the truth, and says how it was found.
 #include <cstdio>
@@ -33,7 +33,13 @@ TEST(IdentifyFallback, ContinuationFromTheLinearFitAnswersWhereTheStartsFail) {
   std::filesystem::remove_all(campaign.folder);
   const std::tuple<double, double, double> truth{150.0, 3e5, 0.05};  // k1, k3, c (tests/support/paper_scenario.h)
 
-  for (const auto& [k1, k3, c] : {std::tuple{150.0, -1e8, 0.05}, std::tuple{5.0, 3e7, 1.0}}) {
+  // Whether one far start converges or gives up rests on the last bits of
+  // the arithmetic (it converged on one CPU and not on another): the rescue
+  // is asserted on every start the ordinary search gives up on, and at least
+  // one of them must.
+  int gave_up = 0;
+  for (const auto& [k1, k3, c] :
+       {std::tuple{150.0, -1e8, 0.05}, std::tuple{5.0, 3e7, 1.0}, std::tuple{500.0, -3e8, 0.01}}) {
     SCOPED_TRACE("start k1 = " + std::to_string(k1) + ", k3 = " + std::to_string(k3));
     ModelStructure structure = PolynomialModel({.k1_Nm_rad = k1, .k3_Nm_rad3 = k3, .c_Nms_rad = c});
     structure.linear.push_back(LossFactor(1e-4));
@@ -43,7 +49,13 @@ TEST(IdentifyFallback, ContinuationFromTheLinearFitAnswersWhereTheStartsFail) {
     options.continuation_iterations = 0;
 
     options.linear_continuation = false;
-    EXPECT_THROW(Identify(fit, structure, options), NumericalError);
+    try {
+      Identify(fit, structure, options);
+      std::printf("  start k1 = %g, k3 = %g: the ordinary search converged\n", k1, k3);
+      continue;
+    } catch (const NumericalError&) {
+      ++gave_up;
+    }
 
     options.linear_continuation = true;
     IdentifyResult result;
@@ -64,6 +76,7 @@ TEST(IdentifyFallback, ContinuationFromTheLinearFitAnswersWhereTheStartsFail) {
       testing::ExpectIntervalHolds(p, value, max_relative_std);
     }
   }
+  EXPECT_GE(gave_up, 1) << "every far start converged: the test has no subject (choose starts farther out)";
 }
 
 }  // namespace
