@@ -7,11 +7,20 @@
 
 #include <fmt/format.h>
 
+#include "hb/option_checks.h"
+
 namespace beamid::solver {
 namespace {
 
 // Harmonics of a balance beyond the base's: 2H + 1, at least 9.
-int ExtendedHarmonics(const BaseFitContext& context) { return std::max(2 * context.model_harmonics + 1, 9); }
+int ExtendedHarmonics(const BaseFitContext& context) {
+  return std::min(std::max(2 * context.model_harmonics + 1, 9), option_checks::kMaxHarmonics);
+}
+
+// Harmonics that resolve a slipping element's kink: 4H + 1, at least 21.
+int KinkedLawHarmonics(const BaseFitContext& context) {
+  return std::min(std::max(4 * context.model_harmonics + 1, 21), option_checks::kMaxHarmonics);
+}
 
 // exp(−((x − target)/width)²): 1 at the target, small a few widths away; 0 for NaN.
 double Near(double x, double target, double width) {
@@ -130,7 +139,7 @@ CandidatePhysics SupportFriction() {
                 base, std::make_unique<hb::JenkinsSupportLaw>(hb::JenkinsSupportLaw::Parameters_{1.0, 1.0}),
                 {{.lower = 1e-4 * k1, .upper = 100.0 * k1, .typical = k1}, {.lower = 1e-7, .upper = 1e3, .typical = 0.1}},
                 {"jenkins_stiffness", "jenkins_slip_moment"}, starts);
-            extension.model_harmonics = context.model_harmonics;
+            extension.model_harmonics = KinkedLawHarmonics(context);
             return extension;
           },
       .signature =

@@ -435,15 +435,15 @@ void RunRefits(const FitData& fit, const DiagnosisOptions& options, const RefitP
 }
 
 // What candidate c is tested against: the base, or, for one balanced with
-// more harmonics, the better of the base and the converged refit with no
-// parameters of its own at those harmonics (else the harmonics' gain on a
-// truncated base would be credited to its parameters).
+// more harmonics, the better of the base and the converged refits with no
+// parameters of their own at those harmonics or fewer (else the harmonics'
+// gain on a truncated base would be credited to its parameters).
 double ReferenceChiSquare(const RefitRun& run, int c, double base_chi_square, int base_harmonics) {
   double reference = base_chi_square;
   const CandidateExtension& e = run.extensions[c];
   if (e.model_harmonics == base_harmonics || e.extra_parameters.empty()) return reference;
   for (int t = 0; t < static_cast<int>(run.library.size()); ++t)
-    if (run.extensions[t].extra_parameters.empty() && run.extensions[t].model_harmonics == e.model_harmonics &&
+    if (run.extensions[t].extra_parameters.empty() && run.extensions[t].model_harmonics <= e.model_harmonics &&
         run.best_job[t] >= 0)
       reference = std::min(reference, run.outcomes[run.best_job[t]].refit.chi_square);
   return reference;

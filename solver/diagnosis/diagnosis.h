@@ -9,8 +9,8 @@
 //   and the refit removes at least min_relative_improvement of χ²_base
 //   (a significant but negligible gain is not a cause); a candidate balanced
 //   with more harmonics than the base is tested against the refit with those
-//   harmonics and no parameters of its own (harmonic_truncation) instead of
-//   χ²_base, when that fits better;
+//   harmonics or fewer and no parameters of its own (harmonic_truncation)
+//   instead of χ²_base, when that fits better;
 // ranked by BIC = χ² + P·ln(n) (AIC = χ² + 2P also reported) and VALIDATED
 // on the held-out channels: a significant candidate that predicts them
 // decisively better than the in-sample winner is named instead (a refit can

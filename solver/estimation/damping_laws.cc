@@ -190,7 +190,8 @@ DampingLawEnvelope FitDampingLaws(const FitData& data, const ModelStructure& fit
   IdentifyOptions refit = options;
   refit.num_starts = 0;
   refit.num_workers = 1;
-  refit.continuation_iterations = 0;  // a law that does not converge from the optimum is listed as failed
+  refit.continuation_iterations = 0;  // a law that does not converge from the optimum is listed as failed,
+  refit.polish_end_point = true;      // unless its end point is stationary (a kinked law's balance)
   for (const std::string& law : DampingLawNames()) {
     if (law == kLossFactor) continue;
     ModelStructure structure = fitted;
@@ -206,6 +207,7 @@ DampingLawEnvelope FitDampingLaws(const FitData& data, const ModelStructure& fit
       const IdentifyResult r = IdentifyWith(
           [&] { return refit.family->MakeProblem(data, structure, refit.model); }, structure, start, refit);
       fit = DampingLawFitOf(law, r.parameters, r.chi_square, r.degrees_of_freedom);
+      fit.status = r.starts[static_cast<std::size_t>(r.best_start)].status;  // "solved", or how it stopped
     } catch (const std::exception& e) {
       fit.status = std::string("failed: ") + e.what();
     }

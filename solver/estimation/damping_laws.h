@@ -46,7 +46,9 @@ namespace beamid::solver {
 struct DampingLawFit {
   std::string law;  // loss_factor, modal_loss_factor, rayleigh, mass_proportional, stiffness_proportional
   bool converged = false;
-  std::string status;  // "solved" or why the refit failed
+  // "solved", "stationary after Gauss–Newton steps …" (a balance whose
+  // tolerance Ipopt could not meet), or why the refit failed
+  std::string status;
   std::vector<ParameterEstimate> parameters;
   double chi_square = std::numeric_limits<double>::quiet_NaN();
   double reduced_chi_square = std::numeric_limits<double>::quiet_NaN();
@@ -98,7 +100,9 @@ std::vector<std::string> DampingLawNames();
 // Refits `fitted` (which must hold a "loss_factor" linear parameter; else the
 // envelope is empty) under the other laws from `result`'s optimum, with
 // `options`' family and model, one start each, then under its own law with
-// H + 4 harmonics (one Gauss–Newton step), and judges them as above. A refit that fails is listed
+// H + 4 harmonics (one Gauss–Newton step), and judges them as above. A refit
+// that stops short of Ipopt's tolerance is finished by Gauss–Newton steps
+// (IdentifyOptions::polish_end_point); one that fails even so is listed
 // with its status and never accepted (a failed truncation refit adds no
 // shift, and the parts say so).
 DampingLawEnvelope FitDampingLaws(const FitData& data, const ModelStructure& fitted, const IdentifyResult& result,

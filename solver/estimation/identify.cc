@@ -3,6 +3,7 @@
 #include "hb/errors.h"
 #include "hb/option_checks.h"
 
+#include "solver/estimation/gauss_newton_polish.h"
 #include "solver/estimation/internal/ipopt_program.h"
 #include "solver/estimation/internal/worker_processes.h"
 #include "solver/estimation/parameter_covariance.h"
@@ -277,10 +278,26 @@ int ContinueFromBestEndPoint(const ProblemFactory& make_problem, const IdentifyO
         (nearest < 0 || result.starts[i].objective < result.starts[nearest].objective))
       nearest = i;
   std::string tried = "no start converged (first start: " + result.starts[0].status + ")";
-  if (options.continuation_iterations == 0) throw NumericalError(tried);
+  if (options.continuation_iterations == 0 && !options.polish_end_point) throw NumericalError(tried);
   if (nearest < 0) throw NumericalError(tried + "; no start reached a point to continue from");
   const std::unique_ptr<FitProblem> problem = make_problem();
   StartOutcome& outcome = result.starts[nearest];
+  if (options.polish_end_point) {
+    if (const std::optional<PolishedPoint> polished = PolishInReducedSpace(*problem, outcome.parameters)) {
+      outcome.parameters = polished->parameters;
+      outcome.objective = 0.5 * polished->chi_square;
+      outcome.scaled_at = polished->parameters;
+      finals[nearest] = polished->x;
+      outcome.success = true;
+      outcome.status = fmt::format(
+          "stationary after Gauss–Newton steps from the best end point (chi-square could fall by {:.2g} more)",
+          polished->decrement);
+      result.warnings.push_back(tried + "; " + outcome.status);
+      return nearest;
+    }
+    if (options.continuation_iterations == 0)
+      throw NumericalError(tried + "; Gauss–Newton steps from the best end point did not reach a stationary point");
+  }
   problem->FeasiblePoint(outcome.scaled_at);
   // In chunks, so that a fit that has stopped improving ends there: on a
   // model that misses the data, parameters the data cannot tell apart (the

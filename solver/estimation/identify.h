@@ -79,6 +79,13 @@ struct IdentifyOptions {
   // before (solver/estimation/identify.cc). Off for refits that are cut
   // short on purpose, as continuation_iterations.
   bool linear_continuation = true;
+  // When no start converged: Gauss–Newton steps in the parameters from the
+  // best end point, each with the balance solved, until χ² could fall by at
+  // most 0.1 (the point is then a fraction of a σ from the linearised
+  // optimum; solver/estimation/identify.cc). For refits from a neighbouring
+  // optimum whose balance is non-smooth, where Ipopt circles the optimum
+  // without meeting its tolerance (the damping-law refits).
+  bool polish_end_point = false;
 
   // Throws InputError naming the field, its value and the allowed range
   // (model and ipopt included).

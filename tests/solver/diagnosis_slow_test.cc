@@ -30,8 +30,8 @@ TEST(DiagnosisOnConcealedEffects, NamesFrictionAtTheSupport) {
   ExpectNamed(result, "support_friction");
   // Within 1 %, not within the intervals: this campaign's steps settle only
   // to 5e-4 (a slipping support settles slowly; 1e-5 would take minutes),
-  // which leaves the estimates 2–2.6 σ off (k_t 49.974 ± 0.013, M_slip
-  // 0.14989 ± 0.00004).
+  // which leaves the estimates 4–4.6 σ off under the relative floor (k_t
+  // 49.937 ± 0.014, M_slip 0.14981 ± 0.00005).
   EXPECT_NEAR(testing::FinalParameter(result, "jenkins_stiffness").value, 50.0, 0.01 * 50.0);
   EXPECT_NEAR(testing::FinalParameter(result, "jenkins_slip_moment").value, 0.15, 0.01 * 0.15);
 }
@@ -39,11 +39,13 @@ TEST(DiagnosisOnConcealedEffects, NamesFrictionAtTheSupport) {
 // The named cause's parameters carry a total interval over the beam's
 // damping laws and the harmonic truncation, as identify's do. On a beam
 // whose own damping is Rayleigh (not the loss factor the fit assumes) the
-// data must reject the loss factor and accept a Rayleigh-type law, and the
-// friction element's intervals must move from the loss-factor fit's towards
-// the truth while staying a few percent wide. They need not reach it: this
-// campaign's steps settle only to 5e-4, which the total does not hold (the
-// truncation barely moves them: 45.0759 → 45.0750 with 9 harmonics).
+// data must reject the loss factor and accept the Rayleigh law, whose refit
+// with the kink balanced at 21 harmonics stops short of Ipopt's tolerance
+// and is found by Gauss–Newton steps from its end point; the friction
+// element's total intervals must hold every accepted law's and the truth
+// while staying a few percent wide. (Balanced with 5 harmonics the
+// loss-factor fit missed the stiffness by 0.08 %, 3σ; with 21 its interval
+// holds the truth on its own.)
 TEST(DiagnosisOnConcealedEffects, TheNamedFrictionCarriesModelFormIntervalsOverTheDampingLaws) {
   nlohmann::json s = testing::PaperSetUpScenario();
   s["beam"]["loss_factor"] = 0.0;
@@ -64,7 +66,7 @@ TEST(DiagnosisOnConcealedEffects, TheNamedFrictionCarriesModelFormIntervalsOverT
   const auto rayleigh = std::find_if(laws.laws.begin(), laws.laws.end(),
                                      [](const DampingLawFit& l) { return l.law == "rayleigh"; });
   ASSERT_NE(rayleigh, laws.laws.end());
-  EXPECT_TRUE(rayleigh->accepted);
+  EXPECT_TRUE(rayleigh->accepted) << rayleigh->status;
   for (const auto& [name, truth] : {std::pair<std::string, double>{"jenkins_stiffness", 45.0},
                                     std::pair<std::string, double>{"jenkins_slip_moment", 0.15}}) {
     SCOPED_TRACE(name);
@@ -76,11 +78,8 @@ TEST(DiagnosisOnConcealedEffects, TheNamedFrictionCarriesModelFormIntervalsOverT
                 "(truth %.6g)\n",
                 name.c_str(), interval->lower_95, interval->upper_95, interval->truncation_shift,
                 loss_factor_fit.lower_95, loss_factor_fit.upper_95, truth);
-    const auto distance = [&](double lower, double upper) {
-      return truth < lower ? lower - truth : truth > upper ? truth - upper : 0.0;
-    };
-    EXPECT_LT(distance(interval->lower_95, interval->upper_95),
-              0.5 * distance(loss_factor_fit.lower_95, loss_factor_fit.upper_95));
+    EXPECT_LE(interval->lower_95, truth);
+    EXPECT_GE(interval->upper_95, truth);
     EXPECT_LT(interval->upper_95 - interval->lower_95, 0.05 * truth) << "wider than 5 %";
     for (const auto& law : laws.laws) {
       if (!law.accepted) continue;
