@@ -81,8 +81,8 @@ struct IdentifyOptions {
   bool linear_continuation = true;
   // When no start converged: Gauss–Newton steps in the parameters from the
   // best end point, each with the balance solved, until χ² could fall by at
-  // most 0.1 (the point is then a fraction of a σ from the linearised
-  // optimum; solver/estimation/identify.cc). For refits from a neighbouring
+  // most 0.1·max(1, χ²/ν) (the point is then within a third of a σ of the
+  // linearised optimum; solver/estimation/gauss_newton_polish.h). For refits from a neighbouring
   // optimum whose balance is non-smooth, where Ipopt circles the optimum
   // without meeting its tolerance (the damping-law refits).
   bool polish_end_point = false;
