@@ -105,11 +105,13 @@ function(beamid_add_folder_library)
   endif()
 endfunction()
 
-# beamid_add_test(<source> LIBS ...): one GoogleTest executable named after the
-# file, each test case a ctest test (but see SetUpTestSuite below). Files named *_slow_test.cc get the ctest label "slow", all others
-# "fast" (the sanitizer CI job runs the fast ones).
+# beamid_add_test(<source> [TIMEOUT_S <s>] LIBS ...): one GoogleTest executable
+# named after the file, each test case a ctest test (but see SetUpTestSuite
+# below). Files named *_slow_test.cc get the ctest label "slow", all others
+# "fast" (the sanitizer CI job runs the fast ones). TIMEOUT_S: a study that
+# runs longer than ctest's default timeout (scripts/test.sh) states its own.
 function(beamid_add_test source)
-  cmake_parse_arguments(ARG "" "" "LIBS" ${ARGN})
+  cmake_parse_arguments(ARG "" "TIMEOUT_S" "LIBS" ${ARGN})
   get_filename_component(name ${source} NAME_WE)
   get_filename_component(folder ${source} DIRECTORY)
   get_filename_component(folder ${folder} NAME)
@@ -148,7 +150,10 @@ function(beamid_add_test source)
   # process (below) before a slow test case (ctest runs the costliest
   # first): a two-minute test started last would run alone at the end, on
   # one core of two. After a first run ctest orders by measured times.
-  if(label STREQUAL "slow")
+  if(ARG_TIMEOUT_S)
+    set(cost 1000)  # the longest of all: first
+    set(timeout TIMEOUT ${ARG_TIMEOUT_S})
+  elseif(label STREQUAL "slow")
     set(cost 100)
   else()
     set(cost 1)
@@ -160,11 +165,11 @@ function(beamid_add_test source)
   if(text MATCHES "SetUpTestSuite")
     math(EXPR cost "2 * ${cost}")
     add_test(NAME ${target} COMMAND ${target} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
-    set_tests_properties(${target} PROPERTIES LABELS ${label} COST ${cost})
+    set_tests_properties(${target} PROPERTIES LABELS ${label} COST ${cost} ${timeout})
   else()
     gtest_discover_tests(${target}
       WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
-      PROPERTIES LABELS ${label} COST ${cost}
+      PROPERTIES LABELS ${label} COST ${cost} ${timeout}
       DISCOVERY_TIMEOUT 60)
   endif()
 endfunction()

@@ -47,13 +47,12 @@ void BM_Coverage(benchmark::State& state, const std::string& physics_name, solve
   ReportCoverage(state, study);
 }
 
-void BM_DiagnosisCoverage(benchmark::State& state, const std::string& cause_name, solver::PhasorUncertainty weighting,
-                          beamid::testing::ConcealedPhysics physics = beamid::testing::ConcealedPhysics::kAsThePaper,
-                          int realisations = kRealisations,
-                          beamid::testing::CoverageRecords records = beamid::testing::CoverageRecords::kOneSimulation) {
+void BM_DiagnosisCoverage(benchmark::State& state, const std::string& cause_name,
+                          const beamid::testing::DiagnosisCoverageOptions& options,
+                          beamid::testing::ConcealedPhysics physics = beamid::testing::ConcealedPhysics::kAsThePaper) {
   const beamid::testing::ConcealedCause cause = beamid::testing::MakeConcealedCause(cause_name, physics);
   beamid::testing::DiagnosisCoverageStudy study;
-  for (auto _ : state) study = beamid::testing::RunDiagnosisCoverageStudy(cause, weighting, realisations, 7000, records);
+  for (auto _ : state) study = beamid::testing::RunDiagnosisCoverageStudy(cause, options);
   ReportCoverage(state, study.coverage);
   state.counters["named"] = static_cast<double>(study.named) / study.coverage.realisations;
 }
@@ -111,30 +110,38 @@ BENCHMARK_CAPTURE(BM_Coverage, rayleigh_propagated, "rayleigh", solver::PhasorUn
 BENCHMARK_CAPTURE(BM_Coverage, rayleigh_settled_propagated, "rayleigh", solver::PhasorUncertainty::kPropagated,
                   beamid::testing::CoverageSettling::kTight)->Iterations(1)->Unit(benchmark::kSecond);
 
-BENCHMARK_CAPTURE(BM_DiagnosisCoverage, none_exact_propagated, "none", solver::PhasorUncertainty::kPropagated,
-                  beamid::testing::ConcealedPhysics::kExact)
+using beamid::testing::ConcealedPhysics;
+using beamid::testing::CoverageCandidates;
+using beamid::testing::CoverageRecords;
+constexpr solver::PhasorUncertainty kFloor = solver::PhasorUncertainty::kRelativeFloor;
+
+BENCHMARK_CAPTURE(BM_DiagnosisCoverage, none_exact_propagated, "none", {}, ConcealedPhysics::kExact)
     ->Iterations(1)->Unit(benchmark::kSecond);
-BENCHMARK_CAPTURE(BM_DiagnosisCoverage, sensor_gain_relative_floor, "sensor_gain",
-                  solver::PhasorUncertainty::kRelativeFloor)->Iterations(1)->Unit(benchmark::kSecond);
-BENCHMARK_CAPTURE(BM_DiagnosisCoverage, sensor_gain_propagated, "sensor_gain", solver::PhasorUncertainty::kPropagated)
+BENCHMARK_CAPTURE(BM_DiagnosisCoverage, sensor_gain_relative_floor, "sensor_gain", {.weighting = kFloor})
+    ->Iterations(1)->Unit(benchmark::kSecond);
+BENCHMARK_CAPTURE(BM_DiagnosisCoverage, sensor_gain_propagated, "sensor_gain", {})
     ->Iterations(1)->Unit(benchmark::kSecond);
 // 200 realisations: 50 read the gain's rms z anywhere in 0.77–1.13.
-BENCHMARK_CAPTURE(BM_DiagnosisCoverage, sensor_gain_exact_propagated, "sensor_gain",
-                  solver::PhasorUncertainty::kPropagated, beamid::testing::ConcealedPhysics::kExact, 200)
+BENCHMARK_CAPTURE(BM_DiagnosisCoverage, sensor_gain_exact_propagated, "sensor_gain", {.realisations = 200},
+                  ConcealedPhysics::kExact)
     ->Iterations(1)->Unit(benchmark::kSecond);
-BENCHMARK_CAPTURE(BM_DiagnosisCoverage, friction_relative_floor, "friction", solver::PhasorUncertainty::kRelativeFloor)
+BENCHMARK_CAPTURE(BM_DiagnosisCoverage, friction_relative_floor, "friction", {.weighting = kFloor})
     ->Iterations(1)->Unit(benchmark::kSecond);
-BENCHMARK_CAPTURE(BM_DiagnosisCoverage, friction_propagated, "friction", solver::PhasorUncertainty::kPropagated)
-    ->Iterations(1)->Unit(benchmark::kSecond);
-BENCHMARK_CAPTURE(BM_DiagnosisCoverage, friction_exact_propagated, "friction", solver::PhasorUncertainty::kPropagated,
-                  beamid::testing::ConcealedPhysics::kExact)
+BENCHMARK_CAPTURE(BM_DiagnosisCoverage, friction_propagated, "friction", {})->Iterations(1)->Unit(benchmark::kSecond);
+BENCHMARK_CAPTURE(BM_DiagnosisCoverage, friction_exact_propagated, "friction", {}, ConcealedPhysics::kExact)
     ->Iterations(1)->Unit(benchmark::kSecond);
 // The same with each realisation simulated anew (CoverageRecords): the
 // slipping steps never settle, and one simulation's non-periodic part, shared
 // by every realisation above, biases k2 by −0.8 of its σ.
 BENCHMARK_CAPTURE(BM_DiagnosisCoverage, friction_exact_resimulated_propagated, "friction",
-                  solver::PhasorUncertainty::kPropagated, beamid::testing::ConcealedPhysics::kExact, kRealisations,
-                  beamid::testing::CoverageRecords::kSimulatedPerRealisation)
+                  {.records = CoverageRecords::kSimulatedPerRealisation}, ConcealedPhysics::kExact)
+    ->Iterations(1)->Unit(benchmark::kSecond);
+// The same with the cause the only candidate (CoverageCandidates), as
+// coverage_slow_test runs it.
+BENCHMARK_CAPTURE(BM_DiagnosisCoverage, friction_exact_resimulated_alone_propagated, "friction",
+                  {.records = CoverageRecords::kSimulatedPerRealisation,
+                   .candidates = CoverageCandidates::kTheCauseAlone},
+                  ConcealedPhysics::kExact)
     ->Iterations(1)->Unit(benchmark::kSecond);
 
 }  // namespace

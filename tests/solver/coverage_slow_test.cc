@@ -12,8 +12,7 @@
 // Then the same with Rayleigh beam damping, fitted as such; and the model a
 // diagnosis names for a recording fault (a sensor's gain off), whose fault
 // and physics are fitted by turns and reported with the joint fit's
-// uncertainties.
-#include <cstdio>
+// uncertainties (the named friction's: diagnosis_friction_coverage_slow_test).
 #include <string>
 
 #include <gtest/gtest.h>
@@ -24,23 +23,8 @@
 namespace beamid::solver {
 namespace {
 
-void PrintStudy(const beamid::testing::CoverageStudy& study) {
-  for (std::size_t j = 0; j < study.parameters.size(); ++j)
-    std::printf("%-22s coverage %5.1f %%, mean z %+.2f, rms z %.2f\n", study.parameters[j].name.c_str(),
-                100.0 * study.Coverage(j), study.MeanZ(j), study.RmsZ(j));
-}
-
-// 50 realisations: rms z has a sampling σ of about 1/√100 = 0.1; 95 %
-// coverage reads 90 % or less with probability 0.04, 100 % with 0.08 (the
-// fixed seeds read 92–98 %). 100: rms z's σ is 0.07, and 90 % or less has
-// probability 0.03, 100 % 0.006.
-void ExpectCalibrated(const beamid::testing::CoverageStudy& study, std::size_t j) {
-  const std::string& name = study.parameters[j].name;
-  EXPECT_GE(study.Coverage(j), 0.90) << name;
-  EXPECT_LE(study.Coverage(j), 0.99) << name << ": intervals too wide";
-  EXPECT_GE(study.RmsZ(j), 0.8) << name << ": intervals too wide";
-  EXPECT_LE(study.RmsZ(j), 1.25) << name << ": intervals too narrow";
-}
+using beamid::testing::ExpectCalibrated;
+using beamid::testing::PrintStudy;
 
 TEST(IdentificationCoverage, PropagatedIntervalsOfEveryParameterAreCalibratedOnThePhysicsTheModelHolds) {
   // The paper's example with the simulator's own damping law (the modal loss
@@ -83,7 +67,7 @@ TEST(DiagnosisCoverage, TheNamedRecordingFaultsIntervalsHoldOnThePhysicsTheModel
   const beamid::testing::ConcealedCause cause =
       beamid::testing::MakeConcealedCause("sensor_gain", beamid::testing::ConcealedPhysics::kExact);
   const beamid::testing::DiagnosisCoverageStudy study =
-      beamid::testing::RunDiagnosisCoverageStudy(cause, PhasorUncertainty::kPropagated, 100, 7000);
+      beamid::testing::RunDiagnosisCoverageStudy(cause, {.realisations = 100});
   PrintStudy(study.coverage);
   // A realisation may name a pair (a false alarm beside the fault): at most one in 25.
   EXPECT_GE(study.named, 96);
