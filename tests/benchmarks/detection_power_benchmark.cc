@@ -149,6 +149,8 @@ const Cause kFriction{"Nm",
                       {0.02, 0.05, 0.15, 0.4},
                       [](nlohmann::json& s, double moment) { support::AddSupportFriction(s, 100.0, 50.0, moment); },
                       {"support_friction"}};
+// Smaller moments: a slider that slips at once, a Coulomb damper.
+const Cause kSmallFriction{"Nm", {1e-4, 1e-3, 1e-2}, kFriction.conceal, {"support_friction"}};
 
 BENCHMARK_CAPTURE(BM_DetectionPower, mass_at_drive, kMassAtDrive)->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK_CAPTURE(BM_DetectionPower, mass_at_drive_propagated, kSmallMassAtDrive, solver::PhasorUncertainty::kPropagated)
@@ -168,6 +170,9 @@ BENCHMARK_CAPTURE(BM_DetectionPower, clock_propagated, kLargeClock, solver::Phas
     ->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK_CAPTURE(BM_DetectionPower, friction, kFriction)->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK_CAPTURE(BM_DetectionPower, friction_propagated, kFriction, solver::PhasorUncertainty::kPropagated)
+    ->Iterations(1)->Unit(benchmark::kSecond);
+BENCHMARK_CAPTURE(BM_DetectionPower, small_friction_propagated, kSmallFriction,
+                  solver::PhasorUncertainty::kPropagated)
     ->Iterations(1)->Unit(benchmark::kSecond);
 
 }  // namespace
