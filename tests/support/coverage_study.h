@@ -278,7 +278,7 @@ inline constexpr double kSettleShift_s = 0.37;
 // kWholeLibrary: diagnosed as `beamid diagnose` does. kTheCauseAlone: the
 // cause is the only candidate, without the recording's faults, pairs or the
 // damping laws' refits; the named model's statistical intervals are the
-// same, at a third of the time (the friction's: 12 s a realisation, not 33).
+// same, for a fraction of the time (the friction's diagnosis: 3.4 s, not 24).
 enum class CoverageCandidates { kWholeLibrary, kTheCauseAlone };
 
 struct DiagnosisCoverageOptions {
