@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <numbers>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -41,6 +42,13 @@ double RotationQuantile(const BaseFitContext& context, double q) {
   if (a.empty()) return 1e-3;
   std::sort(a.begin(), a.end());
   return a[std::min(a.size() - 1, static_cast<std::size_t>(q * (a.size() - 1) + 0.5))];
+}
+
+// The steps' mean angular frequency [rad/s].
+double MeanOmega_rad_s(const BaseFitContext& context) {
+  double sum = 0.0;
+  for (const FitStep& step : context.data->steps) sum += step.omega_rad_s;
+  return sum / static_cast<double>(std::max<std::size_t>(1, context.data->steps.size()));
 }
 
 // Appends the extra linear parameters to a copy of the base and builds the
@@ -135,9 +143,31 @@ CandidatePhysics SupportFriction() {
               law.push_back(k_t * RotationQuantile(context, quantile));
               starts.push_back(law);
             }
+            // A slider that slips at once is a Coulomb damper beside the spring the
+            // base already found, which took its dissipation into c: from the starts
+            // above, which share k1 and leave c, every refit returns to the base's
+            // optimum. These keep k1 and hand a share of the viscous dissipation per
+            // cycle at the median step, π c ω θ², to the slider's 4 M θ.
+            constexpr std::size_t kViscousIndex = 3;  // c in the polynomial's (k1, k2, k3, c)
+            const double theta = RotationQuantile(context, 0.5);
+            const double omega = MeanOmega_rad_s(context);
+            for (const double dissipation_share : {0.1, 0.4}) {
+              std::vector<double> law = BaseLawValues(base);
+              const double c = law[kViscousIndex];
+              law[kViscousIndex] = (1.0 - dissipation_share) * c;
+              law.push_back(0.3 * k1);
+              law.push_back(dissipation_share * std::numbers::pi * c * omega * theta / 4.0);
+              starts.push_back(law);
+            }
+            // The slip moment's scale is the data's smallest: Ipopt pushes a start
+            // to at least a hundredth of its variable's scale from a bound, and at
+            // a scale of 0.1 N·m that moved a Coulomb slider of 1e-4 N·m to 1e-3,
+            // from where the refit returned to the base.
+            const double slip_scale_Nm = std::max(0.01 * k1 * RotationQuantile(context, 0.0), 1e-6);
             CandidateExtension extension = InParallelWithBaseLaw(
                 base, std::make_unique<hb::JenkinsSupportLaw>(hb::JenkinsSupportLaw::Parameters_{1.0, 1.0}),
-                {{.lower = 1e-4 * k1, .upper = 100.0 * k1, .typical = k1}, {.lower = 1e-7, .upper = 1e3, .typical = 0.1}},
+                {{.lower = 1e-4 * k1, .upper = 100.0 * k1, .typical = k1},
+                 {.lower = 1e-7, .upper = 1e3, .typical = slip_scale_Nm}},
                 {"jenkins_stiffness", "jenkins_slip_moment"}, starts);
             extension.model_harmonics = KinkedLawHarmonics(context);
             return extension;

@@ -21,9 +21,11 @@ namespace beamid::testing {
 constexpr double kMinResidualDrop = 5.0;
 
 inline solver::DiagnosisResult DiagnoseScenario(const nlohmann::json& scenario, const std::string& name,
-                                                solver::DiagnosisOptions options = {}) {
+                                                solver::DiagnosisOptions options = {},
+                                                solver::FitDataOptions fit_options = {}) {
   const ExtractedCampaign campaign = SimulateCampaign(scenario, "beamid_diagnosis_" + name);
-  solver::DiagnosisResult result = DiagnoseProofData(MakeProofData(campaign.campaign, campaign.phasors), options);
+  solver::DiagnosisResult result =
+      DiagnoseProofData(MakeProofData(campaign.campaign, campaign.phasors, fit_options), options);
   std::filesystem::remove_all(campaign.folder);
   std::printf("%s: verdict '%s', selected %s, %.2f s\n", name.c_str(), ToString(result.verdict).c_str(),
               result.selected.front().c_str(), result.seconds);
