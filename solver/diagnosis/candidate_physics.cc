@@ -44,13 +44,6 @@ double RotationQuantile(const BaseFitContext& context, double q) {
   return a[std::min(a.size() - 1, static_cast<std::size_t>(q * (a.size() - 1) + 0.5))];
 }
 
-// The steps' mean angular frequency [rad/s].
-double MeanOmega_rad_s(const BaseFitContext& context) {
-  double sum = 0.0;
-  for (const FitStep& step : context.data->steps) sum += step.omega_rad_s;
-  return sum / static_cast<double>(std::max<std::size_t>(1, context.data->steps.size()));
-}
-
 // Appends the extra linear parameters to a copy of the base and builds the
 // starts: the base optimum, the extras at each of `extra_starts`.
 CandidateExtension WithLinear(const ModelStructure& base, std::vector<LinearParameter> extras,
@@ -150,7 +143,7 @@ CandidatePhysics SupportFriction() {
             // cycle at the median step, π c ω θ², to the slider's 4 M θ.
             constexpr std::size_t kViscousIndex = 3;  // c in the polynomial's (k1, k2, k3, c)
             const double theta = RotationQuantile(context, 0.5);
-            const double omega = MeanOmega_rad_s(context);
+            const double omega = context.data->MeanOmega_rad_s();
             for (const double dissipation_share : {0.1, 0.4}) {
               std::vector<double> law = BaseLawValues(base);
               const double c = law[kViscousIndex];

@@ -39,12 +39,6 @@ const ParameterEstimate* Find(const std::vector<ParameterEstimate>& parameters, 
   return it == parameters.end() ? nullptr : &*it;
 }
 
-double MeanOmega_rad_s(const FitData& data) {
-  double sum = 0.0;
-  for (const auto& s : data.steps) sum += s.omega_rad_s;
-  return data.steps.empty() ? 1.0 : sum / static_cast<double>(data.steps.size());
-}
-
 // The optimum at H moved by one Gauss–Newton step of the fit balanced with
 // H' harmonics: Δp = −J⁺·r, r and J the whitened residuals and their reduced
 // Jacobian at (p̂, the balance at H'). At p̂, Jᵀr at H is zero, so the step
@@ -203,7 +197,7 @@ DampingLawEnvelope FitDampingLaws(const FitData& data, const ModelStructure& fit
     structure.linear.erase(structure.linear.begin() + static_cast<std::ptrdiff_t>(loss_index - structure.law_bounds.size()));
     std::vector<double> start = ValuesOf(parameters);
     start.erase(start.begin() + static_cast<std::ptrdiff_t>(loss_index));
-    for (LinearParameter& p : LawParameters(law, eta, MeanOmega_rad_s(data))) {
+    for (LinearParameter& p : LawParameters(law, eta, data.MeanOmega_rad_s())) {
       start.push_back(p.initial);
       structure.linear.push_back(std::move(p));
     }

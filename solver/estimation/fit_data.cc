@@ -200,4 +200,10 @@ FitData MakeFitData(const signal::Campaign& campaign, const signal::PhasorSet& p
   return data;
 }
 
+double FitData::MeanOmega_rad_s() const {
+  double sum = 0.0;
+  for (const auto& s : steps) sum += s.omega_rad_s;
+  return steps.empty() ? 1.0 : sum / static_cast<double>(steps.size());
+}
+
 }  // namespace beamid::solver

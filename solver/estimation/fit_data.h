@@ -88,6 +88,7 @@ struct FitData {
   PhasorUncertainty uncertainty = PhasorUncertainty::kRelativeFloor;  // how the σ were made
 
   int NumResiduals() const { return static_cast<int>(2 * channels.size() * num_fit_harmonics * steps.size()); }
+  double MeanOmega_rad_s() const;  // the steps' mean angular frequency (1 without steps)
 };
 
 struct FitDataOptions {
