@@ -152,11 +152,14 @@ CandidatePhysics SupportFriction() {
               law.push_back(dissipation_share * std::numbers::pi * c * omega * theta / 4.0);
               starts.push_back(law);
             }
-            // The slip moment's scale is the data's smallest: Ipopt pushes a start
-            // to at least a hundredth of its variable's scale from a bound, and at
-            // a scale of 0.1 N·m that moved a Coulomb slider of 1e-4 N·m to 1e-3,
-            // from where the refit returned to the base.
-            const double slip_scale_Nm = std::max(0.01 * k1 * RotationQuantile(context, 0.0), 1e-6);
+            // The slip moment's scale is a tenth of the moment the support carries
+            // at the median step. Ipopt pushes a start to at least a hundredth of
+            // its variable's scale from a bound: at a fixed 0.1 N·m that moved a
+            // Coulomb slider of 1e-4 N·m to 1e-3, from where the refit returned to
+            // the base. At the smallest step's moment (10⁻⁴ of this), a slider of
+            // 0.15 N·m was 600 scales away, and on some processors every start
+            // ran to the lower bound; here both converge.
+            const double slip_scale_Nm = std::max(0.1 * k1 * RotationQuantile(context, 0.5), 1e-6);
             CandidateExtension extension = InParallelWithBaseLaw(
                 base, std::make_unique<hb::JenkinsSupportLaw>(hb::JenkinsSupportLaw::Parameters_{1.0, 1.0}),
                 {{.lower = 1e-4 * k1, .upper = 100.0 * k1, .typical = k1},
