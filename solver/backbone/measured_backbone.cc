@@ -37,6 +37,9 @@ struct LevelData {
   std::vector<PointCovariance> point_covariance;
   Eigen::MatrixXd extra_covariance;  // of raw's entries after the points
   int order = 2;  // derivative order of the response quantity
+  // The response's relative noise estimated from the sweep when the table
+  // states none (0 when it does).
+  double noise_from_sweep_relative_rms = 0.0;
   // The frequency-sorted index of each step, in the campaign's (run) order.
   std::vector<int> sorted_index_of_run;
   int size() const { return static_cast<int>(point_covariance.size()); }
@@ -55,6 +58,47 @@ struct PointView {
 PointView At(const Eigen::VectorXd& raw, int i) {
   const double* r = raw.data() + kInputsPerPoint * i;
   return {r[0], {r[1], r[2]}, {r[3], r[4]}};
+}
+
+// Steps a sweep needs before its own scatter says anything about its noise.
+constexpr int kMinStepsForSweepNoise = 7;
+
+// A table that states no uncertainty still has noise, and without a σ every
+// difference between steps would read as physics (a jump, a flag, a σ of
+// zero). Along a branch of one mode the inverse receptance G = F/X_d is
+// nearly straight in ω² (A·G = ω_n² − ω² + 2iω·ζω_n), so a step's departure
+// from the chord through its neighbours, e = G_i − (w₋G_{i−1} + w₊G_{i+1}),
+// is noise: with relative noise r on X_d (E|δX|² = r²|X|²),
+// E|e|² = r²(|G_i|² + w₋²|G_{i−1}|² + w₊²|G_{i+1}|²) =: r²·D_i, and |e|²/D_i
+// is r² times a unit exponential variable, whose median is ln 2. The
+// median over the sweep ignores the few steps where the curve bends (the
+// top of a fold, a jump). Every response then gets that σ, as the table's
+// own would have been used.
+void EstimateNoiseFromSweepIfNoneStated(LevelData& data) {
+  const int n = data.size();
+  for (int i = 0; i < n; ++i)
+    if (data.point_covariance[i].trace() > 0) return;
+  if (n < kMinStepsForSweepNoise) return;
+  std::vector<double> normalised;
+  for (int i = 1; i + 1 < n; ++i) {
+    const PointView a = At(data.raw, i - 1), b = At(data.raw, i), c = At(data.raw, i + 1);
+    const double xa = a.omega * a.omega, xb = b.omega * b.omega, xc = c.omega * c.omega;
+    if (!(xa < xb && xb < xc)) continue;
+    const double w_before = (xc - xb) / (xc - xa), w_after = (xb - xa) / (xc - xa);
+    const std::complex<double> e = b.G() - (w_before * a.G() + w_after * c.G());
+    const double d = std::norm(b.G()) + w_before * w_before * std::norm(a.G()) + w_after * w_after * std::norm(c.G());
+    if (d > 0 && std::isfinite(std::norm(e) / d)) normalised.push_back(std::norm(e) / d);
+  }
+  if (normalised.size() < 3) return;
+  auto middle = normalised.begin() + normalised.size() / 2;
+  std::nth_element(normalised.begin(), middle, normalised.end());
+  const double relative = std::sqrt(*middle / std::log(2.0));
+  if (!(relative > 0)) return;
+  data.noise_from_sweep_relative_rms = relative;
+  for (int i = 0; i < n; ++i) {
+    const double variance = 0.5 * std::pow(relative * std::abs(At(data.raw, i).disp), 2);
+    data.point_covariance[i].block<2, 2>(3, 3) = variance * Eigen::Matrix2d::Identity();
+  }
 }
 
 LevelData MakeLevelData(const signal::FirstHarmonicLevel& level) {
@@ -82,6 +126,7 @@ LevelData MakeLevelData(const signal::FirstHarmonicLevel& level) {
     data.point_covariance[i].block<2, 2>(1, 1) = p.force.Covariance();
     data.point_covariance[i].block<2, 2>(3, 3) = disp.Covariance();
   }
+  EstimateNoiseFromSweepIfNoneStated(data);
   return data;
 }
 
@@ -278,10 +323,25 @@ int PeakIndex(const Eigen::VectorXd& raw, int n) {
   return best;
 }
 
-// The quadratic through three points (x, y): y = c0 + c1·x + c2·x².
-Eigen::Vector3d Quadratic(const double x[3], const double y[3]) {
+// x = ω² spans a fraction ~ζ of its value across a peak (2.5·10⁵ ± 10³ at
+// 80 Hz, ζ = 0.002): a quadratic in raw ω² is the difference of terms 10⁸
+// times larger than the curvature it must find. Both fits below work in
+// u = (x − centre)/half_width instead, where u, u² are of order one.
+struct CentredAxis {
+  double centre = 0, half_width = 1;
+  double U(double x) const { return (x - centre) / half_width; }
+  double X(double u) const { return centre + half_width * u; }
+};
+
+CentredAxis AxisOver(double x_first, double x_last) {
+  const double half_width = 0.5 * std::abs(x_last - x_first);
+  return {.centre = 0.5 * (x_first + x_last), .half_width = half_width > 0 ? half_width : 1.0};
+}
+
+// The quadratic through three points (u, y): y = c0 + c1·u + c2·u².
+Eigen::Vector3d Quadratic(const double u[3], const double y[3]) {
   Eigen::Matrix3d m;
-  for (int k = 0; k < 3; ++k) m.row(k) << 1.0, x[k], x[k] * x[k];
+  for (int k = 0; k < 3; ++k) m.row(k) << 1.0, u[k], u[k] * u[k];
   return m.colPivHouseholderQr().solve(Eigen::Vector3d(y[0], y[1], y[2]));
 }
 
@@ -315,53 +375,72 @@ Eigen::VectorXd PeakAndHalfPower(const Eigen::VectorXd& raw, int n, int m, std::
   // the top: three steps alone, when two lie close together, turn noise into
   // a vertex anywhere.
   const int count = top.second - top.first + 1;
+  const CentredAxis top_axis = AxisOver(x_of(top.first), x_of(top.second));
   Eigen::MatrixXd basis(count, 3);
   Eigen::VectorXd y(count), a(count);
   for (int k = 0; k < count; ++k) {
     const int i = top.first + k;
-    const double weight = 1 / y_of(i);
-    basis.row(k) << weight, weight * x_of(i), weight * x_of(i) * x_of(i);
+    const double weight = 1 / y_of(i), u = top_axis.U(x_of(i));
+    basis.row(k) << weight, weight * u, weight * u * u;
     y[k] = 1.0;
     a[k] = weight * std::abs(At(raw, i).disp);
   }
   const auto qr = basis.colPivHouseholderQr();
   const Eigen::Vector3d peak = qr.solve(y), amplitude = qr.solve(a);
-  const double x_peak = -peak[1] / (2 * peak[2]);
-  const double y_peak = peak[0] + peak[1] * x_peak + peak[2] * x_peak * x_peak;
-  if (!(peak[2] > 0 && x_peak >= x_of(top.first) && x_peak <= x_of(top.second)))
+  const double u_peak = -peak[1] / (2 * peak[2]);
+  const double y_peak = peak[0] + peak[1] * u_peak + peak[2] * u_peak * u_peak;
+  if (!(peak[2] > 0 && u_peak >= -1 && u_peak <= 1))
     return Eigen::VectorXd::Constant(7, std::numeric_limits<double>::quiet_NaN());
+  const double x_peak = top_axis.X(u_peak);
   const double level = 2 * y_peak;
-  auto crossing = [&](int from, int step) {
-    for (int i = from; i + step >= 0 && i + step < n; i += step) {
-      if (y_of(i + step) <= level) continue;
-      // Three steps around the crossing: i − step, i, i + step (or i, i + step, i + 2·step).
-      int c = i;
-      if (c - step < 0 || c - step >= n) c = i + step;
-      if (c + step < 0 || c + step >= n) c = i;
-      double xs[3], ys[3];
-      for (int k = -1; k <= 1; ++k) {
-        xs[k + 1] = x_of(c + k * step);
-        ys[k + 1] = y_of(c + k * step);
-      }
-      const Eigen::Vector3d q = Quadratic(xs, ys);
-      const double disc = q[1] * q[1] - 4 * q[2] * (q[0] - level);
-      const double lo = std::min(x_of(i), x_of(i + step)), hi = std::max(x_of(i), x_of(i + step));
-      if (disc >= 0 && q[2] != 0)
-        for (double sign : {-1.0, 1.0}) {
-          const double root = (-q[1] + sign * std::sqrt(disc)) / (2 * q[2]);
-          if (root >= lo && root <= hi) return std::sqrt(root);
-        }
-      // Not one mode's shape there: linear interpolation.
-      return std::sqrt(x_of(i) + (level - y_of(i)) / (y_of(i + step) - y_of(i)) * (x_of(i + step) - x_of(i)));
+  // The crossing of the level on one side (step −1 below the vertex, +1
+  // above), bracketed by the vertex or the last step above the level and the
+  // first step below it. The step nearest the vertex may itself lie outside
+  // the half-power band when the steps are coarse.
+  auto crossing = [&](int step) {
+    int near = m;
+    while ((x_of(near) - x_peak) * step < 0) {
+      if (near + step < 0 || near + step >= n) return std::numeric_limits<double>::quiet_NaN();
+      near += step;
     }
-    return std::numeric_limits<double>::quiet_NaN();
+    double x_in = x_peak, y_in = y_peak;
+    int out = near;
+    while (y_of(out) <= level) {
+      x_in = x_of(out), y_in = y_of(out);
+      if (out + step < 0 || out + step >= n) return std::numeric_limits<double>::quiet_NaN();
+      out += step;
+    }
+    // Three steps around the crossing: out − 2·step, out − step, out (or the
+    // nearest three inside the sweep).
+    int c = out - step;
+    if (c - step < 0 || c - step >= n) c = out;
+    if (c + step < 0 || c + step >= n) c = out - step;
+    const CentredAxis axis = AxisOver(x_of(c - step), x_of(c + step));
+    double us[3], ys[3];
+    for (int k = -1; k <= 1; ++k) {
+      us[k + 1] = axis.U(x_of(c + k * step));
+      ys[k + 1] = y_of(c + k * step) / level;
+    }
+    // In units of the level, the crossing is where the quadratic is 1.
+    const Eigen::Vector3d q = Quadratic(us, ys);
+    const double disc = q[1] * q[1] - 4 * q[2] * (q[0] - 1);
+    const double lo = std::min(axis.U(x_in), axis.U(x_of(out))), hi = std::max(axis.U(x_in), axis.U(x_of(out)));
+    // Both roots without cancellation (the quadratic is nearly straight
+    // between close steps): h = −(c1 + sign(c1)·√disc)/2, roots h/c2 and (c0 − 1)/h.
+    if (disc >= 0) {
+      const double h = -0.5 * (q[1] + std::copysign(std::sqrt(disc), q[1]));
+      for (double root : {q[2] != 0 ? h / q[2] : NAN, h != 0 ? (q[0] - 1) / h : NAN})
+        if (root >= lo && root <= hi) return std::sqrt(axis.X(root));
+    }
+    // Not one mode's shape there: linear interpolation.
+    return std::sqrt(x_in + (level - y_in) / (y_of(out) - y_in) * (x_of(out) - x_in));
   };
-  const double w1 = crossing(m, -1), w2 = crossing(m, +1);
+  const double w1 = crossing(-1), w2 = crossing(+1);
   const double r = (w2 * w2 - w1 * w1) / (4 * x_peak);
   const double zeta = std::sqrt(0.5 * (1 - 1 / std::sqrt(1 + 4 * r * r)));
   Eigen::VectorXd out(7);
   out << std::sqrt(x_peak) / kTwoPi, 1 / std::sqrt(y_peak),
-      amplitude[0] + amplitude[1] * x_peak + amplitude[2] * x_peak * x_peak, std::copysign(zeta, r), w1 / kTwoPi,
+      amplitude[0] + amplitude[1] * u_peak + amplitude[2] * u_peak * u_peak, std::copysign(zeta, r), w1 / kTwoPi,
       w2 / kTwoPi, std::sqrt(x_peak / (1 - 2 * zeta * zeta)) / kTwoPi;
   return out;
 }
@@ -534,21 +613,43 @@ void Regenerate(const SingleModeFit& fit, const LevelData& data, double window, 
   out.regeneration_noise_relative_rms = count ? std::sqrt(noise_sq / count) : 0.0;
 }
 
-// LevelResonance::damping_ratio from the three estimators.
-void CombineDampingRatios(LevelResonance& r) {
+// The steps between the half-power frequencies (−1 without both).
+int StepsInHalfPowerBand(const LevelData& data, const LevelResonance& r) {
+  if (!r.half_power_lower_frequency_hz.valid || !r.half_power_upper_frequency_hz.valid) return -1;
+  int count = 0;
+  for (int i = 0; i < data.size(); ++i) {
+    const double f_hz = At(data.raw, i).omega / kTwoPi;
+    if (f_hz >= r.half_power_lower_frequency_hz.value && f_hz <= r.half_power_upper_frequency_hz.value) ++count;
+  }
+  return count;
+}
+
+bool HalfPowerTooCoarse(const LevelData& data, const LevelResonance& r) {
+  const int steps = StepsInHalfPowerBand(data, r);
+  return steps >= 0 && steps < kMinStepsInHalfPowerBand;
+}
+
+// LevelResonance::damping_ratio from the three estimators; a half-power ζ
+// read between steps too coarse for it stays out (flagged where it is shown)
+// rather than widening the level's σ to cover it.
+void CombineDampingRatios(const LevelData& data, LevelResonance& r) {
   const std::tuple<const Estimate*, const char*> estimators[] = {{&r.quadrature_damping_ratio, "phase resonance"},
                                                                  {&r.local_damping_ratio, "local fit"},
                                                                  {&r.half_power_damping_ratio, "half-power"}};
+  const bool half_power_too_coarse = HalfPowerTooCoarse(data, r);
+  const auto usable = [&](const Estimate* e) {
+    return e->valid && std::isfinite(e->value) && !(e == &r.half_power_damping_ratio && half_power_too_coarse);
+  };
   const Estimate* primary = nullptr;
   const char* primary_name = "";
   for (const auto& [e, name] : estimators)
-    if (e->valid && std::isfinite(e->value) && !primary) primary = e, primary_name = name;
+    if (usable(e) && !primary) primary = e, primary_name = name;
   if (!primary) return;
   double spread = 0.0;
   bool beyond_noise = false;
   std::string values;
   for (const auto& [e, name] : estimators) {
-    if (!e->valid || !std::isfinite(e->value)) continue;
+    if (!usable(e)) continue;
     const double difference = std::abs(e->value - primary->value);
     spread = std::max(spread, difference);
     const double noise = std::hypot(e->std, primary->std);
@@ -599,6 +700,13 @@ void FlagLevel(const LevelData& data, bool regenerated, const MeasuredBackboneOp
       add(LevelFlagKind::kPeakOutsideBand, quantity,
           fmt::format("the {} frequency {:.6g} Hz lies outside the measured band {:.6g} … {:.6g} Hz", name,
                       estimate->value, f_min, f_max));
+  if (HalfPowerTooCoarse(data, r))
+    add(LevelFlagKind::kCoarseSteps, "half_power_damping_ratio",
+        fmt::format("steps coarser than the resonance: {} step(s) between the half-power frequencies {:.6g} and "
+                    "{:.6g} Hz, {} needed: half-power unreliable (left out of the level's ζ); step more finely "
+                    "across the peak",
+                    StepsInHalfPowerBand(data, r), r.half_power_lower_frequency_hz.value,
+                    r.half_power_upper_frequency_hz.value, kMinStepsInHalfPowerBand));
   for (const auto& jump : r.jumps)
     add(LevelFlagKind::kJump, "sweep",
         fmt::format("the response jumps between the steps at {:.6g} and {:.6g} Hz ({}-sweep): |X/F| × {:.3g}, phase "
@@ -701,6 +809,7 @@ std::string_view LevelFlagName(LevelFlagKind kind) {
     case LevelFlagKind::kRegenerationBeyondNoise: return "regeneration_beyond_noise";
     case LevelFlagKind::kJump: return "jump";
     case LevelFlagKind::kPhaseConvention: return "phase_convention";
+    case LevelFlagKind::kCoarseSteps: return "coarse_steps";
   }
   return "";
 }
@@ -708,11 +817,11 @@ std::string_view LevelFlagName(LevelFlagKind kind) {
 LevelFlagKind LevelFlagKindFromName(std::string_view name) {
   for (LevelFlagKind kind : {LevelFlagKind::kDampingNotPositive, LevelFlagKind::kPeakOutsideBand,
                              LevelFlagKind::kRegenerationBeyondNoise, LevelFlagKind::kJump,
-                             LevelFlagKind::kPhaseConvention})
+                             LevelFlagKind::kPhaseConvention, LevelFlagKind::kCoarseSteps})
     if (name == LevelFlagName(kind)) return kind;
   throw InputError("unknown level flag \"" + std::string(name) +
-                   "\": give damping_not_positive, peak_outside_band, regeneration_beyond_noise, jump or "
-                   "phase_convention");
+                   "\": give damping_not_positive, peak_outside_band, regeneration_beyond_noise, jump, "
+                   "phase_convention or coarse_steps");
 }
 
 bool LevelResonance::HasFlag(LevelFlagKind kind) const {
@@ -727,6 +836,7 @@ std::string LevelResonance::FlagNote(std::string_view quantity) const {
                                   : f.kind == LevelFlagKind::kPeakOutsideBand  ? "outside the measured band"
                                   : f.kind == LevelFlagKind::kJump             ? "jump"
                                   : f.kind == LevelFlagKind::kPhaseConvention  ? "phase convention"
+                                  : f.kind == LevelFlagKind::kCoarseSteps      ? "steps coarser than the resonance"
                                                                                : "beyond the noise";
     note += (note.empty() ? "[FLAG: " : "; ") + std::string(what);
   }
@@ -826,6 +936,7 @@ MeasuredBackbone Analyse(const std::vector<signal::FirstHarmonicLevel>& levels, 
     r.label = levels[l].label;
     r.num_points = data[l].size();
     r.num_fit_points = static_cast<int>(level_points[l].size());
+    r.noise_from_sweep_relative_rms = data[l].noise_from_sweep_relative_rms;
     r.control = DetectControl(data[l], options.constant_tolerance);
     const SingleModeFit& modal_fit = result.fit.ok ? result.fit : linear_level >= 0 ? local_fits[linear_level] : local_fits[l];
     r.jumps = DetectSweepJumps(SweepPointsInRunOrder(data[l]), options.jumps);
@@ -834,8 +945,13 @@ MeasuredBackbone Analyse(const std::vector<signal::FirstHarmonicLevel>& levels, 
     FindPeakAndHalfPower(data[l], r);
     EvaluateLocalFit(local_fits[l], r);
     if (!r.quadrature_note.empty()) result.warnings.push_back("level '" + r.label + "': " + r.quadrature_note);
+    if (r.noise_from_sweep_relative_rms > 0)
+      result.warnings.push_back(fmt::format(
+          "level '{}' states no uncertainty: its noise, {} of the response, is estimated from the sweep's scatter "
+          "about a smooth curve and used for every σ, flag and jump",
+          r.label, Percent(r.noise_from_sweep_relative_rms)));
     if (result.fit.ok) Regenerate(result.fit, data[l], options.fit_window, result.max_amplitude_m, r);
-    CombineDampingRatios(r);
+    CombineDampingRatios(data[l], r);
     FlagLevel(data[l], result.fit.ok, options, r);
     std::vector<ReceptancePoint> receptances;
     for (int i = 0; i < data[l].size(); ++i) {
@@ -878,6 +994,24 @@ MeasuredBackbone Analyse(const std::vector<signal::FirstHarmonicLevel>& levels, 
   return result;
 }
 
+bool PassedItsChecks(const LevelResonance& level) {
+  return std::all_of(level.flags.begin(), level.flags.end(),
+                     [](const LevelFlag& f) { return f.kind == LevelFlagKind::kCoarseSteps; });
+}
+
+// A trend is a verdict on the damping only where the levels it reads passed
+// their checks; the exclusion leaves in the fit only such levels, unless no
+// level would be left.
+void WithholdTrendWithoutCleanLevels(MeasuredBackbone& result) {
+  const auto clean = std::count_if(result.levels.begin(), result.levels.end(),
+                                   [](const LevelResonance& l) { return l.in_global_fit && PassedItsChecks(l); });
+  if (clean >= kMinCleanLevelsForTrend) return;
+  result.damping_trend.verdict = result.damping_trend.damping_ratio_verdict = Trend::kNotJudged;
+  result.damping_trend.note =
+      fmt::format("not enough clean levels: {} of {} passed their checks, {} needed; no damping trend is judged",
+                  clean, result.levels.size(), kMinCleanLevelsForTrend);
+}
+
 std::string FlagSummary(const LevelResonance& level) {
   std::string text;
   for (const auto& f : level.flags) text += (text.empty() ? "" : "; ") + std::string(LevelFlagName(f.kind)) + ": " + f.message;
@@ -906,9 +1040,13 @@ MeasuredBackbone AnalyseMeasuredBackbone(const std::vector<signal::FirstHarmonic
     int worst = -1;
     for (std::size_t l = 0; l < n; ++l) {
       const LevelResonance& r = result.levels[l];
-      if (!in_fit[l] || r.flags.empty()) continue;
+      if (!in_fit[l] || PassedItsChecks(r)) continue;
       if (std::any_of(r.flags.begin(), r.flags.end(),
-                      [](const LevelFlag& f) { return f.kind != LevelFlagKind::kRegenerationBeyondNoise; }))
+                      [](const LevelFlag& f) {
+                        // Coarse steps spoil one estimator, not the level's points.
+                        return f.kind != LevelFlagKind::kRegenerationBeyondNoise &&
+                               f.kind != LevelFlagKind::kCoarseSteps;
+                      }))
         next[l] = false;
       else if (worst < 0 || r.regeneration_relative_rms > result.levels[worst].regeneration_relative_rms)
         worst = static_cast<int>(l);
@@ -933,12 +1071,21 @@ MeasuredBackbone AnalyseMeasuredBackbone(const std::vector<signal::FirstHarmonic
     for (const auto& f : left_out_for[l])
       flags.push_back({f.kind, f.quantity, f.message + " (when the level was in the cross-level fit)"});
   }
+  if (options.keep_flagged_levels_in_fit) {
+    // Flagged levels kept bend the fit, and so the regeneration flags of the
+    // others: the trend is the one the exclusion would judge.
+    MeasuredBackboneOptions excluding = options;
+    excluding.keep_flagged_levels_in_fit = false;
+    result.damping_trend = AnalyseMeasuredBackbone(levels, excluding).damping_trend;
+  } else {
+    WithholdTrendWithoutCleanLevels(result);
+  }
   for (const auto& level : result.levels) {
     if (level.flags.empty()) continue;
     result.warnings.push_back(
         "level '" + level.label + "' is flagged (" + FlagSummary(level) + "): " +
         (!level.in_global_fit ? "left out of the cross-level fit and the damping trend "
-                                "(MeasuredBackboneOptions.keep_flagged_levels_in_fit keeps it)"
+                                "(--keep-flagged-levels keeps it)"
          : fit_would_be_empty ? "kept in the cross-level fit, which would otherwise hold no level"
                               : "kept in the cross-level fit"));
   }

@@ -114,8 +114,22 @@ enum class LevelControl { kForce, kResponse, kNeither };
 // on another branch; LevelResonance::jumps says where), "phase_convention"
 // (the phase runs through the resonance the other way than beamid's
 // convention gives, or half a turn from a drive point's: another sign
-// convention, a sensor mounted upside down; solver/backbone/phase_convention.h).
-enum class LevelFlagKind { kDampingNotPositive, kPeakOutsideBand, kRegenerationBeyondNoise, kJump, kPhaseConvention };
+// convention, a sensor mounted upside down; solver/backbone/phase_convention.h),
+// "coarse_steps" (fewer than kMinStepsInHalfPowerBand steps between the
+// half-power frequencies: exact for one linear mode, but any departure from
+// it — noise, nonlinearity, a second mode — is read between steps that do
+// not see the peak; the half-power ζ then does not enter the level's ζ).
+enum class LevelFlagKind {
+  kDampingNotPositive,
+  kPeakOutsideBand,
+  kRegenerationBeyondNoise,
+  kJump,
+  kPhaseConvention,
+  kCoarseSteps
+};
+
+// Steps between the half-power frequencies below which the half-power ζ is flagged.
+inline constexpr int kMinStepsInHalfPowerBand = 5;
 
 // Regeneration errors up to this many times what the noise alone explains are not flagged.
 inline constexpr double kRegenerationNoiseFactor = 3.0;
@@ -188,6 +202,10 @@ struct LevelResonance {
   double regeneration_reduced_chi_square = 0.0;
   // The relative RMS error the phasors' noise alone would give (0: no noise given).
   double regeneration_noise_relative_rms = 0.0;
+  // When the table states no uncertainty: the response's relative noise
+  // estimated from the sweep's own scatter about a smooth curve, and used as
+  // its σ for every number, flag and jump of the level (0 when stated).
+  double noise_from_sweep_relative_rms = 0.0;
 
   // Empty for a level whose numbers pass the checks.
   std::vector<LevelFlag> flags;
@@ -239,7 +257,13 @@ struct DampingTrend {
   // kNotJudged when the cross-level fit failed.
   Trend verdict = Trend::kNotJudged;
   Trend damping_ratio_verdict = Trend::kNotJudged;
+  // Why the verdicts are not judged, "" when they are.
+  std::string note;
 };
+
+// A damping trend is judged only where at least this many levels passed
+// their checks (no flag but coarse_steps) and the others left the fit.
+inline constexpr int kMinCleanLevelsForTrend = 2;
 
 struct MeasuredBackbone {
   std::string response_quantity;  // of the input levels

@@ -45,7 +45,8 @@ const schema::Name<LevelFlagKind> kFlagKinds[] = {
     {LevelFlagKind::kPeakOutsideBand, LevelFlagName(LevelFlagKind::kPeakOutsideBand)},
     {LevelFlagKind::kRegenerationBeyondNoise, LevelFlagName(LevelFlagKind::kRegenerationBeyondNoise)},
     {LevelFlagKind::kJump, LevelFlagName(LevelFlagKind::kJump)},
-    {LevelFlagKind::kPhaseConvention, LevelFlagName(LevelFlagKind::kPhaseConvention)}};
+    {LevelFlagKind::kPhaseConvention, LevelFlagName(LevelFlagKind::kPhaseConvention)},
+    {LevelFlagKind::kCoarseSteps, LevelFlagName(LevelFlagKind::kCoarseSteps)}};
 // SweepJump::up_sweep.
 constexpr schema::Name<bool> kDirections[] = {{true, "up"}, {false, "down"}};
 // What drives the levels (MeasuredBackbone::excitation_quantity).
@@ -123,6 +124,7 @@ void Describe(auto& io, schema::Like<LevelResonance> auto& l) {
                   kOptional);
     h_io.Text("note", r.half_power_note);
   });
+  io.Number("noise_from_sweep_relative_rms", l.noise_from_sweep_relative_rms, "1", schema::NonNegative(), kOptional);
   EstimateField(io, "damping_ratio", l.damping_ratio, "1", schema::Any(), kOptional);
   io.Text("damping_ratio_note", l.damping_ratio_note, TextRule::kAny, kOptional);
   io.Object("local_fit", l, Presence::kRequired, [](auto& f_io, auto& r) {
@@ -197,6 +199,7 @@ void Describe(auto& io, schema::Like<DampingTrend> auto& t) {
   io.Number("damping_rate_z", t.damping_rate_z, "1", schema::Any().OrNull(), kOptional);
   io.Choice("verdict", t.verdict, kVerdictNamesOfAnyVersion);
   io.Choice("damping_ratio_verdict", t.damping_ratio_verdict, kDampingRatioTrendNames, kOptional);
+  io.Text("note", t.note, TextRule::kAny, kOptional);
 }
 
 void Describe(auto& io, schema::Like<MeasuredBackboneModelPoint> auto& p) {

@@ -55,10 +55,13 @@ PhaseConventionCheck CheckPhaseConvention(const std::vector<ReceptancePoint>& po
         name, measured, expected);
     return check;
   }
-  // At the peak the receptance's phase is arg A − π/2: within a quarter turn
-  // of −π/2 for A > 0 (a complex mode turns A by much less).
-  const double at_peak = std::arg(points[peak].receptance_m_N);
-  if (std::cos(at_peak + kPi / 2) < 0) {
+  // Halfway along its course the receptance's phase is arg A − π/2: within
+  // a quarter turn of −π/2 for A > 0 (a complex mode turns A by much less).
+  // Not the phase at the largest |X/F|: on a folded sweep that is the fold's
+  // edge, below the backbone after a down-sweep's jump, where the phase has
+  // barely begun to fall.
+  const double halfway = std::arg(points[first].receptance_m_N) + turned / 2;
+  if (std::cos(halfway + kPi / 2) < 0) {
     check.course = PhaseCourse::kOffByHalfATurn;
     check.message = fmt::format(
         "the {}'s phase runs {} through the resonance, half a turn from a drive point's {}: a sensor or force "

@@ -7,6 +7,9 @@
 // falls by π through the resonance, from arg A to arg A − π, and is
 // arg A − π/2 at the peak; a drive-point receptance (A > 0) runs 0 → −π, so
 // a velocity (×iω) runs +π/2 → −π/2 and an acceleration (×(−ω²)) π → 0.
+// Both are read on the phase's course over the steps near the mode (from
+// the first to the last whose |X/F| reaches `window` of the largest), its
+// midpoint standing for the peak's arg A − π/2.
 //  - The phase rising through the resonance instead is the other sign
 //    convention, e^{−iωt} (or the force's phase relative to the response, or
 //    negative damping): "runs backwards".

@@ -25,6 +25,10 @@ double OmegaSquared(const SweepPoint& p) { return std::pow(2 * std::numbers::pi 
 struct Miss {
   double relative = 0.0;  // |miss| / |predicted change|
   double absolute = 0.0;  // |miss| [N/m]
+  // The miss over the branch's slope dG/dω² (= −1/A for one mode): a change
+  // of branch moves ω_n² (real) far more than ζω_n (imaginary), so a fold's
+  // miss lies along the slope; noise's points anywhere.
+  bool along_the_branch = false;
 };
 
 std::optional<Miss> OneSidedMiss(const std::vector<SweepPoint>& points, int i, int j, int k0, int k1) {
@@ -38,7 +42,10 @@ std::optional<Miss> OneSidedMiss(const std::vector<SweepPoint>& points, int i, i
   const std::complex<double> predicted = slope * dx_pair;
   const std::complex<double> actual = points[j].inverse_receptance_N_m - points[i].inverse_receptance_N_m;
   const double miss = std::abs(actual - predicted);
-  return Miss{.relative = miss / std::abs(predicted), .absolute = miss};
+  const std::complex<double> along = (actual - predicted) / slope;
+  return Miss{.relative = miss / std::abs(predicted),
+              .absolute = miss,
+              .along_the_branch = std::abs(along.imag()) <= std::abs(along.real())};
 }
 
 }  // namespace
@@ -56,8 +63,13 @@ std::vector<SweepJump> DetectSweepJumps(const std::vector<SweepPoint>& points, c
     const auto after = OneSidedMiss(points, i, j, j, j + 1);
     if (!before && !after) continue;
     double relative = INFINITY, absolute = INFINITY;
+    bool like_a_fold = true;
     for (const auto& side : {before, after})
-      if (side) relative = std::min(relative, side->relative), absolute = std::min(absolute, side->absolute);
+      if (side) {
+        relative = std::min(relative, side->relative), absolute = std::min(absolute, side->absolute);
+        like_a_fold = like_a_fold && side->along_the_branch;
+      }
+    if (!like_a_fold) continue;
     // The noise of the change and of the extrapolations (the four steps, independent).
     double noise_sq = 0.0;
     for (int k = std::max(0, i - 1); k <= std::min(n - 1, j + 1); ++k)

@@ -13,8 +13,12 @@
 // extrapolations (from the two steps before it and from the two after it,
 // along the same sweep direction) by more than `slope_factor` times the
 // change that extrapolation predicts and by more than `noise_sigmas` times
-// the noise of the four steps; of adjacent candidates only the largest
-// miss counts (the last step before a fold bends too).
+// the noise of the four steps, and misses them as a fold does: along the
+// branch's slope dG/dω² = −1/A (a change of branch changes ω_n²(a), which
+// is real, far more than ζω_n(a): |Im(miss/slope)| ≤ |Re(miss/slope)|),
+// not in the random direction of noise; of adjacent candidates only the
+// largest miss counts (the last step before a fold bends too). A table that
+// states no noise gets one from its own scatter (measured_backbone.h).
 // Why 2: a jump misses the extrapolation along the branch it lands on by
 // about (its change of ω_n²)/(the step's Δω²), the backbone's shift between
 // the branches in steps. On single-mode Duffing sweeps with steps of 0.05 to

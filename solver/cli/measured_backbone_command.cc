@@ -76,11 +76,14 @@ void RunMeasuredBackbone(const workflow::MeasureBackboneRequest& request, const 
                                                    : "flagged: left out of the cross-level fit and the damping trend");
   }
   if (fit.ok) fmt::print("  single-mode fit (AICc): {}, reduced χ² {:.3g}\n", fit.FormName(), fit.ReducedChiSquare());
-  fmt::print("  damping against amplitude: {} (ζω_n: slope {:.3g} ± {:.2g} /(s·m), {:+.1f} σ; ζ alone {}: slope "
-             "{:.3g} ± {:.2g} per m, {:+.1f} σ, which a constant damper also gives where the frequency changes)\n",
-             schema::NameOf(trend.verdict, solver::kDampingRateTrendNames), trend.damping_rate_slope_per_s_m,
-             trend.damping_rate_slope_std_per_s_m, trend.damping_rate_z,
-             schema::NameOf(trend.damping_ratio_verdict, solver::kDampingRatioTrendNames), trend.slope_per_m, trend.slope_std_per_m, trend.z);
+  if (!trend.note.empty())
+    fmt::print("  damping against amplitude: not judged ({})\n", trend.note);
+  else
+    fmt::print("  damping against amplitude: {} (ζω_n: slope {:.3g} ± {:.2g} /(s·m), {:+.1f} σ; ζ alone {}: slope "
+               "{:.3g} ± {:.2g} per m, {:+.1f} σ, which a constant damper also gives where the frequency changes)\n",
+               schema::NameOf(trend.verdict, solver::kDampingRateTrendNames), trend.damping_rate_slope_per_s_m,
+               trend.damping_rate_slope_std_per_s_m, trend.damping_rate_z,
+               schema::NameOf(trend.damping_ratio_verdict, solver::kDampingRatioTrendNames), trend.slope_per_m, trend.slope_std_per_m, trend.z);
   fmt::print("wrote {0}.json, {0}.csv and {0}_curves.csv\n", request.output);
 }
 

@@ -139,15 +139,19 @@ std::string MeasuredBackboneHtmlReport(const MeasuredBackboneFile& file, const s
   html += "<section id=\"fit\"><h2>Cross-level single-mode fit and damping trend</h2>\n";
   html += fmt::format("<p>Form: {}; reduced χ² {:.3g}.</p>\n", HtmlEscape(outcome.fit_form),
                       outcome.fit_reduced_chi_square);
-  html += fmt::format("<p class=\"damping-trend\">Damping against amplitude: <strong>{}</strong> (ζω_n: slope "
-                      "{:.3g} ± {:.2g} /(s·m), {:+.1f} σ); ζ alone {} (slope {:.3g} ± {:.2g} per m, {:+.1f} σ), which a constant damper "
-                      "also gives where the frequency changes.</p>\n",
-                      outcome.damping_rate_trend == Trend::kNotJudged
-                          ? "not available"
-                          : schema::NameOf(outcome.damping_rate_trend, kDampingRateTrendNames),
-                      t.damping_rate_slope_per_s_m, t.damping_rate_slope_std_per_s_m, outcome.damping_rate_z,
-                      schema::NameOf(outcome.damping_ratio_trend, kDampingRatioTrendNames), t.slope_per_m,
-                      t.slope_std_per_m, outcome.damping_ratio_z);
+  if (!t.note.empty())
+    html += fmt::format("<p class=\"damping-trend\">Damping against amplitude: <strong>not judged</strong>: {}.</p>\n",
+                        HtmlEscape(t.note));
+  else
+    html += fmt::format("<p class=\"damping-trend\">Damping against amplitude: <strong>{}</strong> (ζω_n: slope "
+                        "{:.3g} ± {:.2g} /(s·m), {:+.1f} σ); ζ alone {} (slope {:.3g} ± {:.2g} per m, {:+.1f} σ), which a constant damper "
+                        "also gives where the frequency changes.</p>\n",
+                        outcome.damping_rate_trend == Trend::kNotJudged
+                            ? "not available"
+                            : schema::NameOf(outcome.damping_rate_trend, kDampingRateTrendNames),
+                        t.damping_rate_slope_per_s_m, t.damping_rate_slope_std_per_s_m, outcome.damping_rate_z,
+                        schema::NameOf(outcome.damping_ratio_trend, kDampingRatioTrendNames), t.slope_per_m,
+                        t.slope_std_per_m, outcome.damping_ratio_z);
   for (bool frequency : {true, false}) {
     const std::string svg = PlotAgainstAmplitude(file, frequency);
     if (svg.empty()) continue;

@@ -174,6 +174,29 @@ TEST(MeasuredBackboneFlags, ANoisyLevelIsFlaggedAndLeftOutOfTheCrossLevelFitUnle
   EXPECT_EQ(kept.fit.num_residuals, 2 * all_points);
 }
 
+// A flagged level kept in the fit changes the fit, not the damping trend's
+// verdict, which is the one judged with the flagged levels left out; with
+// fewer than two clean levels there is no verdict, and the note says why.
+TEST(MeasuredBackboneFlags, TheDampingTrendIsJudgedOnlyOnLevelsThatPassed) {
+  const std::vector<signal::FirstHarmonicLevel> levels = {
+      Clean("low", 1.0, 5), Level("noisy", {}, 1.5, 47.0, 53.0, 0.3, 6), Clean("high", 2.0, 7)};
+  const MeasuredBackbone left_out = AnalyseMeasuredBackbone(levels);
+  const MeasuredBackbone kept = AnalyseMeasuredBackbone(levels, {.keep_flagged_levels_in_fit = true});
+  ASSERT_TRUE(kept.levels[1].in_global_fit);
+  ASSERT_NE(left_out.damping_trend.verdict, Trend::kNotJudged);
+  EXPECT_EQ(kept.damping_trend.verdict, left_out.damping_trend.verdict);
+  EXPECT_EQ(kept.damping_trend.damping_ratio_verdict, left_out.damping_trend.damping_ratio_verdict);
+  EXPECT_EQ(kept.damping_trend.damping_rate_z, left_out.damping_trend.damping_rate_z);
+  EXPECT_EQ(kept.damping_trend.note, "");
+  // The fit itself does hold the flagged level.
+  EXPECT_NE(kept.fit.num_residuals, left_out.fit.num_residuals);
+
+  const MeasuredBackbone one_clean = AnalyseMeasuredBackbone({levels[0], levels[1]});
+  EXPECT_EQ(one_clean.damping_trend.verdict, Trend::kNotJudged);
+  EXPECT_EQ(one_clean.damping_trend.damping_ratio_verdict, Trend::kNotJudged);
+  EXPECT_THAT(one_clean.damping_trend.note, HasSubstr("not enough clean levels: 1 of 2 passed their checks"));
+}
+
 TEST(MeasuredBackboneFlags, TwoModesInTheWindowAreBeyondOneModesRegeneration) {
   const MeasuredBackbone result =
       AnalyseMeasuredBackbone({Level("two modes", {.second_mode_hz = 51.0}, 1.0, 47.0, 54.0, kStatedRelativeStd, 8)});

@@ -167,6 +167,62 @@ TEST(MeasuredBackboneJumps, ADownSweepJumpIsFlaggedAndNotTakenForAPhaseResonance
   EXPECT_TRUE(result.levels[0].flags.empty()) << Flags(result.levels[0]);
 }
 
+// The phase's convention is judged on its course through the resonance, not
+// at the largest |X/F|, which on a folded sweep is the fold's edge (below
+// the backbone after a down-sweep's jump: a phase of a few degrees, not −90°).
+// A complex mode (arg A ±30°) in beamid's convention is not flagged; the
+// same sweeps negated (a sensor mounted upside down) are.
+TEST(MeasuredBackboneJumps, AFoldedSweepsPhaseIsJudgedOnItsCourseNotAtTheFold) {
+  for (double force_N : {0.7, 2.5})
+    for (bool up : {true, false})
+      for (double arg_a_deg : {-30.0, 30.0}) {
+        SCOPED_TRACE(::testing::Message() << force_N << " N, " << (up ? "up" : "down") << "-sweep, arg A "
+                                          << arg_a_deg << "°");
+        Sweep sweep = up ? Duffing("folded", force_N, 45.0, 62.0, 0.1, 31)
+                         : Duffing("folded", force_N, 62.0, 45.0, 0.1, 32);
+        ASSERT_EQ(sweep.branch_changes.size(), 1u);
+        const std::complex<double> rotation = std::polar(1.0, arg_a_deg * std::numbers::pi / 180);
+        for (auto& p : sweep.level.points) p.response.value *= rotation;
+        const LevelResonance as_measured = AnalyseMeasuredBackbone({sweep.level}).levels[0];
+        EXPECT_FALSE(as_measured.HasFlag(LevelFlagKind::kPhaseConvention)) << Flags(as_measured);
+        for (auto& p : sweep.level.points) p.response.value = -p.response.value;
+        const LevelResonance upside_down = AnalyseMeasuredBackbone({sweep.level}).levels[0];
+        EXPECT_TRUE(upside_down.HasFlag(LevelFlagKind::kPhaseConvention)) << Flags(upside_down);
+        EXPECT_THAT(Flags(upside_down), HasSubstr("half a turn"));
+      }
+}
+
+// A table that states no uncertainty: its noise is estimated from the
+// sweep's own scatter, so 1 % noise on 1024 fine steps of a linear level is
+// no jump (each step's change is far below the noise, and once read 25
+// jumps), while a fold under the same noise is still found, once.
+TEST(MeasuredBackboneJumps, WithoutAStatedNoiseTheSweepsOwnScatterSetsTheJumpThreshold) {
+  const auto unstated = [](Sweep sweep) {
+    for (auto& p : sweep.level.points) p.response.std_real = p.response.std_imag = 0.0;
+    return sweep;
+  };
+  const Sweep linear = unstated(Duffing("linear", 0.02, 45.0, 56.0, 11.0 / 1023, 41, 0.01));
+  ASSERT_EQ(linear.level.points.size(), 1024u);
+  ASSERT_TRUE(linear.branch_changes.empty());
+  const MeasuredBackbone result = AnalyseMeasuredBackbone({linear.level});
+  const LevelResonance& l = result.levels[0];
+  EXPECT_TRUE(l.jumps.empty()) << Flags(l);
+  EXPECT_NEAR(l.noise_from_sweep_relative_rms, 0.01, 0.0015);
+  EXPECT_TRUE(std::any_of(result.warnings.begin(), result.warnings.end(), [](const std::string& w) {
+    return w.find("states no uncertainty") != std::string::npos;
+  }));
+  for (bool up : {true, false}) {
+    SCOPED_TRACE(up ? "up-sweep" : "down-sweep");
+    const Sweep folded = unstated(up ? Duffing("folded", 1.0, 45.0, 56.0, 0.1, 42, 0.01)
+                                     : Duffing("folded", 1.0, 56.0, 45.0, 0.1, 43, 0.01));
+    ASSERT_EQ(folded.branch_changes.size(), 1u);
+    const LevelResonance f = AnalyseMeasuredBackbone({folded.level}).levels[0];
+    ASSERT_EQ(f.jumps.size(), 1u) << Flags(f);
+    EXPECT_EQ(f.jumps[0].from_step, folded.branch_changes[0]);
+    EXPECT_GT(f.noise_from_sweep_relative_rms, 0.0);
+  }
+}
+
 TEST(MeasuredBackboneJumps, ASmallJumpJustAboveTheCriticalForceIsFound) {
   // Fold onset near F ≈ 0.53 N here (a nonlinear shift of √3 half-bandwidths);
   // at 0.55 N the up-sweep drops by much less than 2×.
