@@ -43,9 +43,13 @@ DrivenSpan FindDrivenSpan(const Eigen::Ref<const Eigen::VectorXd>& excitation, d
     const auto segment = excitation.segment(b * block, block);
     rms[static_cast<std::size_t>(b)] = std::sqrt((segment.array() - segment.mean()).square().mean());
   }
+  // The driven level from the 90th percentile of the blocks, not their
+  // median: a record that rings down for longer than it was driven (to hold
+  // the whole free decay) has a median block of noise.
   std::vector<double> sorted = rms;
-  std::nth_element(sorted.begin(), sorted.begin() + num_blocks / 2, sorted.end());
-  const double limit = options.off_fraction * sorted[static_cast<std::size_t>(num_blocks / 2)];
+  const auto driven_level = sorted.begin() + (9 * (num_blocks - 1)) / 10;
+  std::nth_element(sorted.begin(), driven_level, sorted.end());
+  const double limit = options.off_fraction * *driven_level;
   const auto driven = [&](Eigen::Index b) { return rms[static_cast<std::size_t>(b)] >= limit; };
   Eigen::Index first = 0, last = num_blocks - 1;
   while (first < num_blocks && !driven(first)) ++first;

@@ -3,7 +3,8 @@
 // ring-down (or rest) that is no steady state of the step: fitted with the
 // driven part it drags every phasor towards zero and the SNR down, without
 // an error. Method: the excitation channel's RMS about its mean in blocks of
-// one period; blocks below off_fraction of the median block RMS are
+// one period; blocks below off_fraction of the 90th percentile of the block
+// RMS (the driven level while at least a tenth of the record is driven) are
 // undriven. Undriven blocks at the end (or start), at least min_off_blocks of
 // them, are cut, and with them the block in which the excitation stops (or
 // starts), which holds the switching transient.

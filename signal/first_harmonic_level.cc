@@ -1,5 +1,7 @@
 #include "signal/first_harmonic_level.h"
 
+#include <utility>
+
 #include "signal/input_error.h"
 
 namespace beamid::signal {
@@ -43,10 +45,14 @@ std::vector<FirstHarmonicLevel> FirstHarmonicLevels(const PhasorSet& set, std::s
       x.SetCovariance(x.Covariance() + f.Covariance());
       f.value = -f.value;
     }
+    std::vector<DecayPoint> free_decay;
+    for (const FreeDecay& decay : step.free_decays)
+      if (decay.channel == response->channel) free_decay = decay.points;
     level->points.push_back({.frequency_hz = step.frequency_hz,
                              .frequency_std_hz = step.frequency_std_hz,
                              .force = f,
-                             .response = x});
+                             .response = x,
+                             .free_decay = std::move(free_decay)});
   }
   return levels;
 }

@@ -29,6 +29,9 @@ struct FirstHarmonicPoint {
   double frequency_std_hz = 0.0;
   HarmonicPhasor force;     // F [N], or the drive voltage [V], or −A_b [m/s²] (base excitation)
   HarmonicPhasor response;  // X in the level's response quantity [SI]
+  // The response's ring-down after the step's excitation stopped
+  // (signal/free_decay.h); empty when it ran to the record's end.
+  std::vector<DecayPoint> free_decay;
 };
 
 struct FirstHarmonicLevel {

@@ -80,6 +80,7 @@ void PhasorEstimatorOptions::Validate() const {
   RequireNonNegative("PhasorEstimatorOptions.note_drift_relative", note_drift_relative);
   RequireNonNegative("PhasorEstimatorOptions.min_converter_steps", min_converter_steps);
   driven_span.Validate();
+  free_decay.Validate();
   transient.Validate();
 }
 
@@ -184,6 +185,16 @@ StepPhasors EstimateStepPhasors(const Recording& recording, const Campaign& camp
   result.frequency_std_hz = frequency.std_hz;
   result.force = std::move(channels.front());
   result.responses.assign(std::make_move_iterator(channels.begin() + 1), std::make_move_iterator(channels.end()));
+
+  if (span.stops_early && span.end_sample < recording.NumSamples())
+    for (std::size_t c = 1; c < specs.size(); ++c)
+      if (used[c]) {
+        FreeDecay decay = AnalyseFreeDecay(recording.samples.col(static_cast<Eigen::Index>(c)).tail(
+                                               recording.NumSamples() - span.end_sample),
+                                           fs, static_cast<double>(span.end_sample) / fs, frequency.frequency_hz,
+                                           specs[c]->channel, options.free_decay);
+        if (!decay.points.empty()) result.free_decays.push_back(std::move(decay));
+      }
 
   StepQuality& quality = result.quality;
   for (auto& [channel, text] : coarse)

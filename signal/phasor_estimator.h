@@ -14,6 +14,9 @@
 //          v = (Im Z_k, −Re Z_k),  var(φ) = wᵀ C_F1 w / |F_1|², w = (−sin φ, cos φ)
 //      (channels' noises independent; F_1 itself keeps only its amplitude
 //      variance). The time origin of step 4 drops out.
+// After an excitation that stops before the record ends, each analysed
+// response's ring-down is fitted as a fourth damping estimate
+// (signal/free_decay.h).
 // Quality: SNR per channel, THD, settling, warnings (low SNR, frequency far
 // from nominal, harmonics cut at Nyquist, long transient, excitation stopping
 // inside the record, drift beyond note_drift_relative, a channel resolved by
@@ -23,6 +26,7 @@
 
 #include "signal/campaign.h"
 #include "signal/driven_span.h"
+#include "signal/free_decay.h"
 #include "signal/frequency_estimator.h"
 #include "signal/harmonic_fit.h"
 #include "signal/phasor_set.h"
@@ -36,6 +40,7 @@ struct PhasorEstimatorOptions {
   int num_harmonics = 5;                   // H (the model uses 1–3, the diagnosis looks further)
   FrequencyEstimatorOptions frequency;     // its num_harmonics is set to H
   DrivenSpanOptions driven_span;
+  FreeDecayOptions free_decay;
   SteadyStateOptions steady_state;
   double warn_snr_db = 20.0;               // warn when a channel's SNR is lower
   double warn_frequency_offset_rel = 0.01; // warn when |f/f_nominal − 1| is larger

@@ -20,6 +20,7 @@
 
 #include <Eigen/Core>
 
+#include "signal/free_decay.h"
 #include "signal/quantity.h"
 
 namespace beamid::signal {
@@ -86,6 +87,9 @@ struct StepPhasors {
   ChannelPhasors force;             // F_1 real positive
   std::vector<ChannelPhasors> responses;  // campaign sensor order
   StepQuality quality;
+  // After an excitation that stops before the record ends: each analysed
+  // response's ring-down (signal/free_decay.h), empty otherwise.
+  std::vector<FreeDecay> free_decays;
 
   double Omega_rad_s() const;
   // The force or a response by channel name; nullptr if absent.

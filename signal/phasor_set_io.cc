@@ -8,6 +8,7 @@
 #include "hb/input_limits.h"
 #include "hb/text_file.h"
 #include "hb/version.h"
+#include "signal/free_decay_schema.h"
 
 namespace beamid::signal {
 namespace {
@@ -108,6 +109,7 @@ void Describe(auto& io, schema::Like<StepPhasors> auto& step) {
     channels.insert(channels.end(), step.responses.begin(), step.responses.end());
   }
   io.List("channels", channels, static_cast<std::size_t>(hb::kMaxPointsOnBeam) + 1);
+  io.List("free_decay", step.free_decays, static_cast<std::size_t>(hb::kMaxPointsOnBeam), schema::kOmittedWhenEmpty);
   bool ordered = !channels.empty() && RoleOf(channels.front().quantity) == Role::kExcitation;
   for (std::size_t c = 1; c < channels.size(); ++c) ordered = ordered && RoleOf(channels[c].quantity) == Role::kResponse;
   io.Check(ordered, "the excitation channel comes first, the responses after it", "channels");

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "hb/option_checks.h"
+#include "signal/driven_span.h"
 #include "signal/input_error.h"
 #include "signal/internal/text.h"
 
@@ -175,6 +176,10 @@ std::vector<QualityFinding> CheckChannels(const Eigen::MatrixXd& samples, std::s
     findings.push_back({Severity::kError, channel, std::move(problem), std::move(fix)});
   };
 
+  // Spikes are judged where the excitation runs (the first column): the
+  // shock of a shaker switched off, and the ring-down after it, are no
+  // corrupted samples (signal/driven_span.h).
+  const DrivenSpan driven = FindDrivenSpan(samples.col(0), sample_rate_hz, nominal_frequency_hz);
   for (Eigen::Index c = 0; c < samples.cols(); ++c) {
     const double* x = samples.col(c).data();
     const double max_value = samples.col(c).maxCoeff();
@@ -185,15 +190,17 @@ std::vector<QualityFinding> CheckChannels(const Eigen::MatrixXd& samples, std::s
             "check that the sensor is connected and its column is the right one");
       continue;
     }
-    std::vector<double> deviation(x, x + n);
-    std::nth_element(deviation.begin(), deviation.begin() + n / 2, deviation.end());
-    const double median = deviation[static_cast<std::size_t>(n / 2)];
-    for (Eigen::Index i = 0; i < n; ++i) deviation[static_cast<std::size_t>(i)] = std::abs(x[i] - median);
-    const auto p99 = deviation.begin() + static_cast<std::ptrdiff_t>(0.99 * static_cast<double>(n - 1));
+    std::vector<double> deviation(x + driven.first_sample, x + driven.end_sample);
+    const auto m = static_cast<Eigen::Index>(deviation.size());
+    std::nth_element(deviation.begin(), deviation.begin() + m / 2, deviation.end());
+    const double median = deviation[static_cast<std::size_t>(m / 2)];
+    for (Eigen::Index i = 0; i < m; ++i)
+      deviation[static_cast<std::size_t>(i)] = std::abs(x[driven.first_sample + i] - median);
+    const auto p99 = deviation.begin() + static_cast<std::ptrdiff_t>(0.99 * static_cast<double>(m - 1));
     std::nth_element(deviation.begin(), p99, deviation.end());
     Eigen::Index spikes = 0, first_spike = 0;
     if (*p99 > 0.0)
-      for (Eigen::Index i = 0; i < n; ++i)
+      for (Eigen::Index i = driven.first_sample; i < driven.end_sample; ++i)
         if (std::abs(x[i] - median) > checks.max_spike_ratio * *p99 && spikes++ == 0) first_spike = i;
     if (spikes > 0)
       found(channel,

@@ -22,7 +22,8 @@
 //    steady vibration never exceeds its own 99th percentile by more than its
 //    noise, while one corrupted sample of 1000× the level shifts every
 //    harmonic of the step by its size / N (an unnoticed 1.8 N error on a
-//    0.5 N force).
+//    0.5 N force). Judged only while the excitation runs (the first column;
+//    signal/driven_span.h): a shaker switched off shocks the structure.
 // NaN/Inf values are rejected while parsing (signal/recording.h).
 #pragma once
 

@@ -536,6 +536,25 @@ SingleModeFit LocalFit(const std::vector<SingleModePoint>& points, double tolera
                                 .reference_amplitude_m = a_max});
 }
 
+// LevelResonance::free_decay: the ring-down of the step nearest the phase
+// resonance, else the peak, else the largest response.
+void TakeFreeDecay(const signal::FirstHarmonicLevel& level, LevelResonance& out) {
+  const double centre_hz = out.quadrature_frequency_hz.valid ? out.quadrature_frequency_hz.value
+                           : out.peak_frequency_hz.valid    ? out.peak_frequency_hz.value
+                                                            : NAN;
+  const signal::FirstHarmonicPoint* chosen = nullptr;
+  const auto distance = [&](const signal::FirstHarmonicPoint& p) {
+    return std::isfinite(centre_hz) ? std::abs(p.frequency_hz - centre_hz) : -std::abs(p.response.value / p.force.value);
+  };
+  for (const signal::FirstHarmonicPoint& p : level.points)
+    if (!p.free_decay.empty() && (!chosen || distance(p) < distance(*chosen))) chosen = &p;
+  if (!chosen) return;
+  out.free_decay = chosen->free_decay;
+  out.free_decay_step_frequency_hz = chosen->frequency_hz;
+  const signal::DecayPoint& first = chosen->free_decay.front();
+  out.free_decay_damping_ratio = {.value = first.damping_ratio, .std = first.damping_ratio_std, .valid = true};
+}
+
 void EvaluateLocalFit(const SingleModeFit& fit, LevelResonance& out) {
   if (!fit.ok) return;
   const double a = out.quadrature_amplitude_m.valid ? out.quadrature_amplitude_m.value : fit.reference_amplitude_m;
@@ -679,7 +698,8 @@ void FlagLevel(const LevelData& data, bool regenerated, const MeasuredBackboneOp
   for (const auto& [estimate, quantity, name] :
        {std::tuple{&r.quadrature_damping_ratio, "quadrature_damping_ratio", "phase-resonance"},
         std::tuple{&r.local_damping_ratio, "local_damping_ratio", "local-fit"},
-        std::tuple{&r.half_power_damping_ratio, "half_power_damping_ratio", "half-power"}})
+        std::tuple{&r.half_power_damping_ratio, "half_power_damping_ratio", "half-power"},
+        std::tuple{&r.free_decay_damping_ratio, "free_decay_damping_ratio", "free-decay"}})
     if (estimate->valid && !(estimate->value > 0.0))
       add(LevelFlagKind::kDampingNotPositive, quantity,
           fmt::format("the {} damping ratio is {:.3g} % (± {:.2g} %): not positive, no physical damping", name,
@@ -943,6 +963,7 @@ MeasuredBackbone Analyse(const std::vector<signal::FirstHarmonicLevel>& levels, 
     r.quadrature_after_jump = !r.jumps.empty();
     FindQuadrature(data[l], modal_fit, local_fits[l], r);
     FindPeakAndHalfPower(data[l], r);
+    TakeFreeDecay(levels[l], r);
     EvaluateLocalFit(local_fits[l], r);
     if (!r.quadrature_note.empty()) result.warnings.push_back("level '" + r.label + "': " + r.quadrature_note);
     if (r.noise_from_sweep_relative_rms > 0)

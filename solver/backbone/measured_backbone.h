@@ -184,6 +184,16 @@ struct LevelResonance {
   Estimate local_damping_ratio;
   double local_reduced_chi_square = 0.0;
 
+  // After steps whose excitation stops before the record ends: the ring-down
+  // of the step nearest the phase resonance (else the peak), window by
+  // window in falling amplitude (signal/free_decay.h), and its first window's
+  // ζ, at the amplitude nearest the steady one. Independent of the
+  // steady-state estimators and not combined with them: a ring-down passes
+  // through every amplitude below the level's.
+  std::vector<signal::DecayPoint> free_decay;
+  double free_decay_step_frequency_hz = 0.0;
+  Estimate free_decay_damping_ratio;
+
   // The level's damping ratio as reported: the phase-resonance estimate (else
   // the local fit's, else the half-power one), its σ widened to cover the
   // other estimators (|ζ_k − ζ| ≤ σ for each valid ζ_k): where the mode's

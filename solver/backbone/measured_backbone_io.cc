@@ -5,6 +5,7 @@
 #include <type_traits>
 
 #include "hb/text_file.h"
+#include "signal/free_decay_schema.h"
 
 namespace beamid::solver {
 namespace {
@@ -123,6 +124,11 @@ void Describe(auto& io, schema::Like<LevelResonance> auto& l) {
     EstimateField(h_io, "natural_frequency_Hz", r.half_power_natural_frequency_hz, "Hz", schema::Positive(),
                   kOptional);
     h_io.Text("note", r.half_power_note);
+  });
+  io.OptionalObject("free_decay", l.free_decay_damping_ratio.valid, l, [](auto& d_io, auto& r) {
+    EstimateField(d_io, "damping_ratio", r.free_decay_damping_ratio, "1", schema::Any());
+    d_io.Number("step_frequency_Hz", r.free_decay_step_frequency_hz, "Hz", schema::NonNegative());
+    d_io.List("points", r.free_decay, signal::kMaxDecayPoints);
   });
   io.Number("noise_from_sweep_relative_rms", l.noise_from_sweep_relative_rms, "1", schema::NonNegative(), kOptional);
   EstimateField(io, "damping_ratio", l.damping_ratio, "1", schema::Any(), kOptional);
