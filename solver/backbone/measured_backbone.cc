@@ -613,6 +613,51 @@ void Regenerate(const SingleModeFit& fit, const LevelData& data, double window, 
   out.regeneration_noise_relative_rms = count ? std::sqrt(noise_sq / count) : 0.0;
 }
 
+// The steps as the page draws them, in the campaign's (run) order.
+std::vector<LevelFrfPoint> MeasuredFrf(const LevelData& data) {
+  std::vector<LevelFrfPoint> points;
+  for (int s : data.sorted_index_of_run) {
+    const PointView p = At(data.raw, s);
+    points.push_back(
+        {.frequency_hz = p.omega / kTwoPi, .receptance_m_N = p.H(), .phase_rad = std::arg(p.disp / p.force)});
+  }
+  return points;
+}
+
+// Points of the fit's curve between two frequency-sorted steps; at most
+// about this many in all, however many steps the level has.
+constexpr int kFitFrfPoints = 400;
+
+// The fit's X_d/F at and between the frequency-sorted steps, the force (or,
+// response-controlled, the modal amplitude) interpolated between them, each
+// point on the branch nearest the measured amplitude (as Regenerate does),
+// so that the curve of a folded level follows the branch the sweep was on.
+std::vector<LevelFrfPoint> FitFrf(const SingleModeFit& fit, const LevelData& data, LevelControl control,
+                                  double a_max) {
+  const int n = data.size();
+  const int subdivisions = std::max(1, kFitFrfPoints / std::max(1, n - 1));
+  const double residual = fit.residual_receptance_m_N;
+  std::vector<LevelFrfPoint> curve;
+  for (int i = 0; i < n; ++i) {
+    const PointView a = At(data.raw, i), b = At(data.raw, std::min(i + 1, n - 1));
+    for (int k = 0; k < (i + 1 < n ? subdivisions : 1); ++k) {
+      const double t = static_cast<double>(k) / subdivisions;
+      const double omega = a.omega + t * (b.omega - a.omega);
+      const std::complex<double> force = a.force + t * (b.force - a.force);
+      const double measured =
+          (1 - t) * std::abs(a.disp - residual * a.force) + t * std::abs(b.disp - residual * b.force);
+      const double amplitude = control == LevelControl::kResponse
+                                   ? measured
+                                   : SolveAmplitude(fit, omega, std::abs(force), 2 * a_max, measured);
+      const std::complex<double> receptance =
+          fit.ModalConstantAt(amplitude) / fit.DynamicTerm(amplitude, omega) + residual;
+      curve.push_back(
+          {.frequency_hz = omega / kTwoPi, .receptance_m_N = std::abs(receptance), .phase_rad = std::arg(receptance)});
+    }
+  }
+  return curve;
+}
+
 // The steps between the half-power frequencies (−1 without both).
 int StepsInHalfPowerBand(const LevelData& data, const LevelResonance& r) {
   if (!r.half_power_lower_frequency_hz.valid || !r.half_power_upper_frequency_hz.valid) return -1;
@@ -793,6 +838,11 @@ ExcitationLabels LabelsOf(std::string_view excitation_quantity) {
                    "' is none of force, voltage, base_acceleration");
 }
 
+std::string LevelControlText(std::string_view excitation_quantity, LevelControl control) {
+  return control == LevelControl::kForce ? LabelsOf(excitation_quantity).control
+                                         : std::string(LevelControlName(control));
+}
+
 std::string_view LevelControlName(LevelControl control) {
   switch (control) {
     case LevelControl::kForce: return "force";
@@ -829,7 +879,8 @@ bool LevelResonance::HasFlag(LevelFlagKind kind) const {
 }
 
 std::string LevelResonance::FlagNote(std::string_view quantity) const {
-  std::string note;
+  // Each kind once, with its count when repeated (a noisy sweep jumps hundreds of times).
+  std::vector<std::pair<std::string_view, int>> kinds;
   for (const auto& f : flags) {
     if (f.quantity != quantity) continue;
     const std::string_view what = f.kind == LevelFlagKind::kDampingNotPositive ? "not positive"
@@ -838,8 +889,15 @@ std::string LevelResonance::FlagNote(std::string_view quantity) const {
                                   : f.kind == LevelFlagKind::kPhaseConvention  ? "phase convention"
                                   : f.kind == LevelFlagKind::kCoarseSteps      ? "steps coarser than the resonance"
                                                                                : "beyond the noise";
-    note += (note.empty() ? "[FLAG: " : "; ") + std::string(what);
+    const auto seen = std::find_if(kinds.begin(), kinds.end(), [&](const auto& k) { return k.first == what; });
+    if (seen == kinds.end())
+      kinds.push_back({what, 1});
+    else
+      ++seen->second;
   }
+  std::string note;
+  for (const auto& [what, count] : kinds)
+    note += (note.empty() ? "[FLAG: " : "; ") + std::string(what) + (count > 1 ? fmt::format(" ×{}", count) : "");
   return note.empty() ? note : note + "]";
 }
 
@@ -951,6 +1009,8 @@ MeasuredBackbone Analyse(const std::vector<signal::FirstHarmonicLevel>& levels, 
           "about a smooth curve and used for every σ, flag and jump",
           r.label, Percent(r.noise_from_sweep_relative_rms)));
     if (result.fit.ok) Regenerate(result.fit, data[l], options.fit_window, result.max_amplitude_m, r);
+    r.measured_frf = MeasuredFrf(data[l]);
+    if (result.fit.ok) r.fit_frf = FitFrf(result.fit, data[l], r.control, result.max_amplitude_m);
     CombineDampingRatios(data[l], r);
     FlagLevel(data[l], result.fit.ok, options, r);
     std::vector<ReceptancePoint> receptances;

@@ -9,6 +9,7 @@
 #include "solver/report/gnuplot_svg.h"
 #include "solver/report/html_escape.h"
 #include "solver/report/html_page.h"
+#include "solver/report/level_frf_plot.h"
 #include "solver/report/report_outcome.h"
 #include "solver/report/stacked_plot.h"
 #include "solver/report/uncertain_number.h"
@@ -84,8 +85,7 @@ std::string LevelTable(const MeasuredBackboneFile& file, const MeasuredBackboneO
         "<tr><td>{}</td><td>{}</td><td>{}{}</td><td>{}</td><td>{}</td><td>{}{}</td><td>{}{}</td><td>{}{}</td>"
         "<td>{}{}</td><td>{:.3g} %{}</td><td>{}</td><td class=\"flag\">{}</td></tr>\n",
         HtmlEscape(l.label),
-        l.control == LevelControl::kForce ? LabelsOf(file.excitation_quantity).control
-                                          : std::string(LevelControlName(l.control)),
+        LevelControlText(file.excitation_quantity, l.control),
         Cell(l.quadrature_frequency_hz, 1), FlagCell(l, "quadrature_frequency"), Cell(l.quadrature_amplitude_m, 1e3),
         Cell(l.damping_ratio, 100), Cell(l.quadrature_damping_ratio, 100), FlagCell(l, "quadrature_damping_ratio"),
         Cell(l.local_damping_ratio, 100), FlagCell(l, "local_damping_ratio"), Cell(l.half_power_damping_ratio, 100),
@@ -115,6 +115,33 @@ std::string LevelNotes(const MeasuredBackboneFile& file) {
   return html;
 }
 
+// Per level its measured |X/F| and phase with the fit over them, and below
+// each the numbers its markers stand for, their flags beside them.
+std::string LevelFrfFigures(const MeasuredBackboneFile& file) {
+  const ExcitationLabels excitation = LabelsOf(file.excitation_quantity);
+  std::string html;
+  for (const auto& l : file.levels) {
+    const std::string svg = LevelFrfPlotSvg(l, excitation);
+    if (svg.empty()) continue;
+    std::string caption = fmt::format("Level {}: measured steps (dots){}; peak {} Hz{}", HtmlEscape(l.label),
+                                      l.fit_frf.empty() ? "" : " and the single-mode fit across levels (line)",
+                                      Cell(l.peak_frequency_hz, 1), FlagCell(l, "peak_frequency"));
+    if (l.half_power_damping_ratio.valid)
+      caption += fmt::format(", half-power points {} and {} Hz, ζ {} %{}", Cell(l.half_power_lower_frequency_hz, 1),
+                             Cell(l.half_power_upper_frequency_hz, 1), Cell(l.half_power_damping_ratio, 100),
+                             FlagCell(l, "half_power_damping_ratio"));
+    else if (!l.half_power_note.empty())
+      caption += ", half-power ζ not estimated (" + HtmlEscape(l.half_power_note) + ")";
+    if (!l.jumps.empty())
+      caption += fmt::format("; {} jump{} of the sweep (dashed){}", l.jumps.size(), l.jumps.size() == 1 ? "" : "s",
+                             FlagCell(l, "sweep"));
+    html += "<figure class=\"plot level-frf\">\n" + svg + "\n<figcaption>" + caption + ".</figcaption>\n</figure>\n";
+  }
+  return html.empty() ? html
+                      : "<section id=\"frequency-responses\"><h2>Frequency response of each level</h2>\n" + html +
+                            "</section>\n";
+}
+
 }  // namespace
 
 std::string MeasuredBackboneHtmlReport(const MeasuredBackboneFile& file, const std::string& source) {
@@ -134,7 +161,7 @@ std::string MeasuredBackboneHtmlReport(const MeasuredBackboneFile& file, const s
   html += fmt::format("<section id=\"levels\"><h2>Levels</h2>\n<p>{} levels, {} flagged, {} left out of the "
                       "cross-level fit.</p>\n",
                       outcome.levels.size(), outcome.flagged_levels, outcome.left_out_levels);
-  html += LevelTable(file, outcome) + LevelNotes(file) + "</section>\n";
+  html += LevelTable(file, outcome) + LevelNotes(file) + "</section>\n" + LevelFrfFigures(file);
   const auto& t = file.damping_trend;  // the slopes; the verdicts and their z from the record
   html += "<section id=\"fit\"><h2>Cross-level single-mode fit and damping trend</h2>\n";
   html += fmt::format("<p>Form: {}; reduced χ² {:.3g}.</p>\n", HtmlEscape(outcome.fit_form),
