@@ -674,6 +674,16 @@ bool HalfPowerTooCoarse(const LevelData& data, const LevelResonance& r) {
   return steps >= 0 && steps < kMinStepsInHalfPowerBand;
 }
 
+// A number of a message in `format`, or words where it is not finite: a
+// step of no response or no force makes a ratio or a relative error
+// infinite, and a person reads no "nan".
+std::string FiniteOr(double x, std::string_view format) {
+  return std::isfinite(x) ? fmt::format(fmt::runtime(format), x)
+                          : "not estimated (a step of no response or no force)";
+}
+
+std::string Percent(double fraction) { return FiniteOr(100 * fraction, "{:.3g} %"); }
+
 // LevelResonance::damping_ratio from the three estimators; a half-power ζ
 // read between steps too coarse for it stays out (flagged where it is shown)
 // rather than widening the level's σ to cover it.
@@ -699,7 +709,8 @@ void CombineDampingRatios(const LevelData& data, LevelResonance& r) {
     spread = std::max(spread, difference);
     const double noise = std::hypot(e->std, primary->std);
     if (e != primary && !(difference <= 2 * noise)) beyond_noise = true;
-    values += fmt::format("{}{} {:.3g} % ± {:.2g} %", values.empty() ? "" : ", ", name, 100 * e->value, 100 * e->std);
+    values += fmt::format("{}{} {:.3g} % ± {}", values.empty() ? "" : ", ", name, 100 * e->value,
+                          FiniteOr(100 * e->std, "{:.2g} %"));
   }
   const double std = std::isfinite(primary->std) ? std::hypot(primary->std, spread) : spread;
   // hypot rounds: make sure the stated σ covers the spread exactly.
@@ -714,7 +725,6 @@ void CombineDampingRatios(const LevelData& data, LevelResonance& r) {
             : ": the phase resonance was not available");
 }
 
-std::string Percent(double fraction) { return fmt::format("{:.3g} %", 100 * fraction); }
 
 // The checks of LevelResonance::flags on one level's numbers.
 void FlagLevel(const LevelData& data, bool regenerated, const MeasuredBackboneOptions& options, LevelResonance& r) {
@@ -727,8 +737,8 @@ void FlagLevel(const LevelData& data, bool regenerated, const MeasuredBackboneOp
         std::tuple{&r.half_power_damping_ratio, "half_power_damping_ratio", "half-power"}})
     if (estimate->valid && !(estimate->value > 0.0))
       add(LevelFlagKind::kDampingNotPositive, quantity,
-          fmt::format("the {} damping ratio is {:.3g} % (± {:.2g} %): not positive, no physical damping", name,
-                      100 * estimate->value, 100 * estimate->std));
+          fmt::format("the {} damping ratio is {:.3g} % (± {}): not positive, no physical damping", name,
+                      100 * estimate->value, FiniteOr(100 * estimate->std, "{:.2g} %")));
   const int n = data.size();
   const double f_min = At(data.raw, 0).omega / kTwoPi, f_max = At(data.raw, n - 1).omega / kTwoPi;
   const int m = PeakIndex(data.raw, n);
@@ -754,11 +764,12 @@ void FlagLevel(const LevelData& data, bool regenerated, const MeasuredBackboneOp
                     r.half_power_upper_frequency_hz.value, kMinStepsInHalfPowerBand));
   for (const auto& jump : r.jumps)
     add(LevelFlagKind::kJump, "sweep",
-        fmt::format("the response jumps between the steps at {:.6g} and {:.6g} Hz ({}-sweep): |X/F| × {:.3g}, phase "
-                    "{:+.0f}°; one smooth single-mode curve does not join them (a fold): the peak is the fold's edge, "
+        fmt::format("the response jumps between the steps at {:.6g} and {:.6g} Hz ({}-sweep): |X/F| × {}, phase "
+                    "{}; one smooth single-mode curve does not join them (a fold): the peak is the fold's edge, "
                     "the half-power points lie on two branches",
-                    jump.from_frequency_hz, jump.to_frequency_hz, jump.up_sweep ? "up" : "down", jump.receptance_ratio,
-                    jump.phase_change_rad * 180 / std::numbers::pi));
+                    jump.from_frequency_hz, jump.to_frequency_hz, jump.up_sweep ? "up" : "down",
+                    FiniteOr(jump.receptance_ratio, "{:.3g}"),
+                    FiniteOr(jump.phase_change_rad * 180 / std::numbers::pi, "{:+.0f}°")));
   if (regenerated) {
     const double allowed =
         std::max(options.max_regeneration_relative_rms, kRegenerationNoiseFactor * r.regeneration_noise_relative_rms);
@@ -1072,9 +1083,18 @@ void WithholdTrendWithoutCleanLevels(MeasuredBackbone& result) {
                   clean, result.levels.size(), kMinCleanLevelsForTrend);
 }
 
+// Each kind's first message, and how many more there are: a noisy sweep
+// jumps hundreds of times, and every message is in the level's flags.
 std::string FlagSummary(const LevelResonance& level) {
   std::string text;
-  for (const auto& f : level.flags) text += (text.empty() ? "" : "; ") + std::string(LevelFlagName(f.kind)) + ": " + f.message;
+  for (std::size_t i = 0; i < level.flags.size(); ++i) {
+    const LevelFlag& f = level.flags[i];
+    const auto same_kind = [&](const LevelFlag& g) { return g.kind == f.kind; };
+    if (std::any_of(level.flags.begin(), level.flags.begin() + static_cast<long>(i), same_kind)) continue;
+    const auto count = std::count_if(level.flags.begin(), level.flags.end(), same_kind);
+    text += (text.empty() ? "" : "; ") + std::string(LevelFlagName(f.kind)) + ": " + f.message +
+            (count > 1 ? fmt::format(" (and {} more, in the level's flags)", count - 1) : "");
+  }
   return text;
 }
 

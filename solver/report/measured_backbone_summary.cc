@@ -13,17 +13,6 @@ namespace {
 
 bool Defined(const Estimate& e) { return e.valid && std::isfinite(e.value); }
 
-// A number with its σ, or the words saying why it is not there.
-std::string NumberOrWhy(double value, double sigma, std::string_view unit, const std::string& why) {
-  if (!std::isfinite(value)) return "not estimated (" + why + ")";
-  return WithUncertainty(value, std::isfinite(sigma) ? sigma : 0.0, unit);
-}
-
-// `x` in `format` ("{:.3g}"), or the words saying why it is not there.
-std::string FiniteOr(double x, std::string_view format, const std::string& why) {
-  return std::isfinite(x) ? fmt::format(fmt::runtime(format), x) : "not estimated (" + why + ")";
-}
-
 // Why a level has no ζ: every estimator failed; the half-power one says
 // why it did, the local fit lacks steps near the mode.
 std::string WhyNoDampingRatio(const LevelResonance& l) {
@@ -77,7 +66,7 @@ std::vector<std::string> CrossLevelSummaryLines(const MeasuredBackbone& measured
   std::vector<std::string> lines;
   const SingleModeFit& fit = measured.fit;
   lines.push_back(fit.ok ? fmt::format("  single-mode fit (AICc): {}, reduced χ² {}", fit.FormName(),
-                                       FiniteOr(fit.ReducedChiSquare(), "{:.3g}", "no degrees of freedom left"))
+                                       NumberOrWhyNot(fit.ReducedChiSquare(), "{:.3g}", "no degrees of freedom left"))
                          : "  single-mode fit across levels: not made (too few points near the mode)");
   const DampingTrend& t = measured.damping_trend;
   const std::string why_not = "the fit gives no σ for it";
@@ -90,10 +79,10 @@ std::vector<std::string> CrossLevelSummaryLines(const MeasuredBackbone& measured
         "  damping against amplitude: {} (ζω_n: slope {} /(s·m), {}; ζ alone {}: slope {} per m, {}, which a "
         "constant damper also gives where the frequency changes)",
         schema::NameOf(t.verdict, kDampingRateTrendNames),
-        NumberOrWhy(t.damping_rate_slope_per_s_m, t.damping_rate_slope_std_per_s_m, "", why_not),
-        FiniteOr(t.damping_rate_z, "{:+.1f} σ", why_not),
+        UncertainOrWhyNot(t.damping_rate_slope_per_s_m, t.damping_rate_slope_std_per_s_m, why_not),
+        NumberOrWhyNot(t.damping_rate_z, "{:+.1f} σ", why_not),
         schema::NameOf(t.damping_ratio_verdict, kDampingRatioTrendNames),
-        NumberOrWhy(t.slope_per_m, t.slope_std_per_m, "", why_not), FiniteOr(t.z, "{:+.1f} σ", why_not)));
+        UncertainOrWhyNot(t.slope_per_m, t.slope_std_per_m, why_not), NumberOrWhyNot(t.z, "{:+.1f} σ", why_not)));
   return lines;
 }
 
