@@ -1,8 +1,11 @@
 #include "solver/report/level_frf_plot.h"
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <vector>
+
+#include <fmt/core.h>
 
 #include "solver/report/gnuplot_script.h"
 #include "solver/report/report_curves.h"
@@ -51,8 +54,14 @@ StackedPlot LevelFrfPlot(const LevelResonance& level, const ExcitationLabels& ex
   };
 
   Rows measured;
-  for (const auto& p : level.measured_frf)
+  double low = INFINITY, high = -INFINITY;
+  for (const auto& p : level.measured_frf) {
     measured.push_back({p.frequency_hz, p.receptance_m_N, PhaseDeg(p.phase_rad)});
+    low = std::min(low, p.frequency_hz), high = std::max(high, p.frequency_hz);
+  }
+  // The measured band, not gnuplot's rounding of it to whole tics.
+  const double margin = 0.01 * (high - low);
+  if (high > low) plot.x_settings = fmt::format("set xrange [{:.9g}:{:.9g}]\n", low - margin, high + margin);
   plot.datablocks += Datablock("measured", measured);
   add("measured", 3, true, std::string("with points pt 7 ps 0.7 lc rgb '") + SeriesColour(0) + "'", "measured steps");
 

@@ -344,9 +344,12 @@ TEST(MeasuredBackboneJumps, TheCommandShowsAJumpInTheCsvAndTheSummaryAndKeepsItO
   // The summary: one line per level, the jump a short word on the level's
   // line; its message (with the sweep's direction) among the warnings and in the .json.
   std::vector<std::string> level_lines;
-  for (std::string line; std::getline(printed, line);)
+  int printed_lines = 0;
+  for (std::string line; std::getline(printed, line); ++printed_lines)
     if (line.find("-controlled)") != std::string::npos) level_lines.push_back(line);
   ASSERT_EQ(level_lines.size(), 2u) << printed.str();
+  // Beside them only the cross-level fit, the damping trend and the files written.
+  EXPECT_EQ(printed_lines, 2 + 3) << printed.str();
   EXPECT_THAT(level_lines[0], HasSubstr("low"));
   EXPECT_THAT(level_lines[0], Not(HasSubstr("[jump")));
   EXPECT_THAT(level_lines[1], HasSubstr("down"));
