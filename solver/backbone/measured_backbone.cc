@@ -1020,8 +1020,6 @@ MeasuredBackbone Analyse(const std::vector<signal::FirstHarmonicLevel>& levels, 
           "about a smooth curve and used for every σ, flag and jump",
           r.label, Percent(r.noise_from_sweep_relative_rms)));
     if (result.fit.ok) Regenerate(result.fit, data[l], options.fit_window, result.max_amplitude_m, r);
-    r.measured_frf = MeasuredFrf(data[l]);
-    if (result.fit.ok) r.fit_frf = FitFrf(result.fit, data[l], r.control, result.max_amplitude_m);
     CombineDampingRatios(data[l], r);
     FlagLevel(data[l], result.fit.ok, options, r);
     std::vector<ReceptancePoint> receptances;
@@ -1068,6 +1066,18 @@ MeasuredBackbone Analyse(const std::vector<signal::FirstHarmonicLevel>& levels, 
 bool PassedItsChecks(const LevelResonance& level) {
   return std::all_of(level.flags.begin(), level.flags.end(),
                      [](const LevelFlag& f) { return f.kind == LevelFlagKind::kCoarseSteps; });
+}
+
+// What the page draws of each level (LevelResonance::measured_frf,
+// fit_frf), from the fit the levels' exclusion ended with: once, not in
+// each of its passes.
+void AddFrequencyResponses(const std::vector<signal::FirstHarmonicLevel>& levels, MeasuredBackbone& result) {
+  for (std::size_t l = 0; l < levels.size(); ++l) {
+    const LevelData data = MakeLevelData(levels[l]);
+    LevelResonance& r = result.levels[l];
+    r.measured_frf = MeasuredFrf(data);
+    if (result.fit.ok) r.fit_frf = FitFrf(result.fit, data, r.control, result.max_amplitude_m);
+  }
 }
 
 // A trend is a verdict on the damping only where the levels it reads passed
@@ -1151,6 +1161,7 @@ MeasuredBackbone AnalyseMeasuredBackbone(const std::vector<signal::FirstHarmonic
     for (const auto& f : left_out_for[l])
       flags.push_back({f.kind, f.quantity, f.message + " (when the level was in the cross-level fit)"});
   }
+  AddFrequencyResponses(levels, result);
   if (options.keep_flagged_levels_in_fit) {
     // Flagged levels kept bend the fit, and so the regeneration flags of the
     // others: the trend is the one the exclusion would judge.
