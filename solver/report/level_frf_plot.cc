@@ -88,6 +88,19 @@ StackedPlot LevelFrfPlot(const LevelResonance& level, const ExcitationLabels& ex
     }
   }
 
+  // The phase resonance at ±90°, on the side the measured phase passes (+90°
+  // where the mode's shape has the other sign at the sensor).
+  const Estimate& quadrature = level.quadrature_frequency_hz;
+  if (quadrature.valid && std::isfinite(quadrature.value) && !measured.empty()) {
+    const auto nearest = std::min_element(measured.begin(), measured.end(), [&](const auto& a, const auto& b) {
+      return std::abs(a[0] - quadrature.value) < std::abs(b[0] - quadrature.value);
+    });
+    plot.datablocks += Datablock("quadrature", {{quadrature.value, (*nearest)[2] > 0 ? 90.0 : -90.0}});
+    const std::string style = "with points pt 5 ps 1.4 lc rgb 'black'";
+    phase.items.push_back({"$quadrature using 1:2", style});
+    plot.keys.push_back({style, "phase resonance"});
+  }
+
   // Each jump from the step before it to the step after, in run order (the
   // order `jumps` counts the steps in).
   Rows jumps;

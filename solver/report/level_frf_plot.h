@@ -4,8 +4,9 @@
 // |X/F| and phase against frequency (dots), the cross-level single-mode fit
 // regenerating the level drawn over them (a line, broken where the fit has
 // no value or the phase wraps), and marked: the peak, the half-power points
-// (at 1/√2 of the peak) and each jump (a dashed segment from the step before
-// it to the step after). A marker is drawn only where its number exists.
+// (at 1/√2 of the peak), the phase resonance (at ±90°) and each jump (a
+// dashed segment from the step before it to the step after). A marker is
+// drawn only where its number exists.
 #pragma once
 
 #include <string>
@@ -16,7 +17,7 @@
 namespace beamid::solver {
 
 // The figure's description (datablocks "measured", "fit", "fit_phase",
-// "peak", "half_power", "jumps"); `excitation` labels X/F's unit.
+// "peak", "half_power", "quadrature", "jumps"); `excitation` labels X/F's unit.
 StackedPlot LevelFrfPlot(const LevelResonance& level, const ExcitationLabels& excitation);
 
 // "" when the level holds no measured point (a file written before them).

@@ -135,6 +135,9 @@ std::string LevelFrfFigures(const MeasuredBackboneFile& file) {
                                   : "not estimated (" + HtmlEscape(l.half_power_note.empty() ? "no peak in the sweep"
                                                                                             : l.half_power_note) + ")",
         FlagCell(l, "peak_frequency"));
+    if (l.quadrature_frequency_hz.valid)
+      caption += fmt::format(", phase resonance {} Hz{}", Cell(l.quadrature_frequency_hz, 1),
+                             FlagCell(l, "quadrature_frequency"));
     if (l.half_power_damping_ratio.valid)
       caption += fmt::format(", half-power points {} and {} Hz, ζ {} %{}", Cell(l.half_power_lower_frequency_hz, 1),
                              Cell(l.half_power_upper_frequency_hz, 1), Cell(l.half_power_damping_ratio, 100),

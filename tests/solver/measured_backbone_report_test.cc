@@ -4,7 +4,8 @@
 // its jumps, whether it entered the cross-level fit, the damping trend's
 // verdict, the warnings and the two plots (gnuplot SVG); per level one
 // figure of its measured |X/F| and phase with the fit over them and the
-// peak, half-power points and jumps marked (solver/report/level_frf_plot.h);
+// peak, half-power points, phase resonance and jumps marked
+// (solver/report/level_frf_plot.h);
 // the user's texts escaped, nothing loaded from outside the page.
 #include "solver/report/measured_backbone_report.h"
 
@@ -139,6 +140,7 @@ TEST(MeasuredBackboneReport, DrawsEachLevelsResponseWithTheFitAndItsMarkers) {
   // low: a peak with both half-power points; high: two jumps, no peak.
   EXPECT_THAT(figures[0], HasSubstr("half-power points (peak/√2)"));
   EXPECT_THAT(figures[0], HasSubstr("53.6925"));
+  EXPECT_THAT(figures[0], HasSubstr("phase resonance 54.0046"));
   EXPECT_THAT(figures[0], Not(HasSubstr("jump of the sweep")));
   EXPECT_THAT(figures[1], HasSubstr("jump of the sweep"));
   EXPECT_THAT(figures[1], HasSubstr("2 jumps of the sweep (dashed) <span class=\"flag\">[FLAG: jump ×2]</span>"));
@@ -153,6 +155,8 @@ TEST(MeasuredBackboneReport, TheLevelPlotMarksThePeakTheHalfPowerPointsAndEveryJ
   EXPECT_THAT(low_data, HasSubstr("$peak << EOD\n53.9982 7.6e-05\nEOD"));
   EXPECT_THAT(low_data, HasSubstr(fmt::format("$half_power << EOD\n53.6925 {:.9g}\n54.3094 {:.9g}\nEOD",
                                               7.6e-5 / std::sqrt(2.0), 7.6e-5 / std::sqrt(2.0))));
+  // The phase resonance on the phase panel, at −90° where the phase passes below zero.
+  EXPECT_THAT(low_data, HasSubstr("$quadrature << EOD\n54.0046 -90\nEOD"));
   // Each jump a segment between the measured steps it joins (run order).
   const LevelResonance& high = file.levels[1];
   const StackedPlot plot = LevelFrfPlot(high, LabelsOf("force"));
@@ -163,6 +167,7 @@ TEST(MeasuredBackboneReport, TheLevelPlotMarksThePeakTheHalfPowerPointsAndEveryJ
   EXPECT_THAT(block, HasSubstr(fmt::format("{:.9g} ", high.measured_frf[10].frequency_hz)));
   EXPECT_THAT(block, HasSubstr(fmt::format("{:.9g} ", high.measured_frf[11].frequency_hz)));
   EXPECT_THAT(plot.datablocks, Not(HasSubstr("$peak")));
+  EXPECT_THAT(plot.datablocks, Not(HasSubstr("$quadrature")));  // not measured across the jump up
   // The fit drawn as a line on both panels, the measured steps as points.
   ASSERT_EQ(plot.panels.size(), 2u);
   std::string sources;
