@@ -632,6 +632,51 @@ void Regenerate(const SingleModeFit& fit, const LevelData& data, double window, 
   out.regeneration_noise_relative_rms = count ? std::sqrt(noise_sq / count) : 0.0;
 }
 
+// The steps as the page draws them, in the campaign's (run) order.
+std::vector<LevelFrfPoint> MeasuredFrf(const LevelData& data) {
+  std::vector<LevelFrfPoint> points;
+  for (int s : data.sorted_index_of_run) {
+    const PointView p = At(data.raw, s);
+    points.push_back(
+        {.frequency_hz = p.omega / kTwoPi, .receptance_m_N = p.H(), .phase_rad = std::arg(p.disp / p.force)});
+  }
+  return points;
+}
+
+// Points of the fit's curve between two frequency-sorted steps; at most
+// about this many in all, however many steps the level has.
+constexpr int kFitFrfPoints = 400;
+
+// The fit's X_d/F at and between the frequency-sorted steps, the force (or,
+// response-controlled, the modal amplitude) interpolated between them, each
+// point on the branch nearest the measured amplitude (as Regenerate does),
+// so that the curve of a folded level follows the branch the sweep was on.
+std::vector<LevelFrfPoint> FitFrf(const SingleModeFit& fit, const LevelData& data, LevelControl control,
+                                  double a_max) {
+  const int n = data.size();
+  const int subdivisions = std::max(1, kFitFrfPoints / std::max(1, n - 1));
+  const double residual = fit.residual_receptance_m_N;
+  std::vector<LevelFrfPoint> curve;
+  for (int i = 0; i < n; ++i) {
+    const PointView a = At(data.raw, i), b = At(data.raw, std::min(i + 1, n - 1));
+    for (int k = 0; k < (i + 1 < n ? subdivisions : 1); ++k) {
+      const double t = static_cast<double>(k) / subdivisions;
+      const double omega = a.omega + t * (b.omega - a.omega);
+      const std::complex<double> force = a.force + t * (b.force - a.force);
+      const double measured =
+          (1 - t) * std::abs(a.disp - residual * a.force) + t * std::abs(b.disp - residual * b.force);
+      const double amplitude = control == LevelControl::kResponse
+                                   ? measured
+                                   : SolveAmplitude(fit, omega, std::abs(force), 2 * a_max, measured);
+      const std::complex<double> receptance =
+          fit.ModalConstantAt(amplitude) / fit.DynamicTerm(amplitude, omega) + residual;
+      curve.push_back(
+          {.frequency_hz = omega / kTwoPi, .receptance_m_N = std::abs(receptance), .phase_rad = std::arg(receptance)});
+    }
+  }
+  return curve;
+}
+
 // The steps between the half-power frequencies (−1 without both).
 int StepsInHalfPowerBand(const LevelData& data, const LevelResonance& r) {
   if (!r.half_power_lower_frequency_hz.valid || !r.half_power_upper_frequency_hz.valid) return -1;
@@ -647,6 +692,16 @@ bool HalfPowerTooCoarse(const LevelData& data, const LevelResonance& r) {
   const int steps = StepsInHalfPowerBand(data, r);
   return steps >= 0 && steps < kMinStepsInHalfPowerBand;
 }
+
+// A number of a message in `format`, or words where it is not finite: a
+// step of no response or no force makes a ratio or a relative error
+// infinite, and a person reads no "nan".
+std::string FiniteOr(double x, std::string_view format) {
+  return std::isfinite(x) ? fmt::format(fmt::runtime(format), x)
+                          : "not estimated (a step of no response or no force)";
+}
+
+std::string Percent(double fraction) { return FiniteOr(100 * fraction, "{:.3g} %"); }
 
 // LevelResonance::damping_ratio from the three estimators; a half-power ζ
 // read between steps too coarse for it stays out (flagged where it is shown)
@@ -673,7 +728,8 @@ void CombineDampingRatios(const LevelData& data, LevelResonance& r) {
     spread = std::max(spread, difference);
     const double noise = std::hypot(e->std, primary->std);
     if (e != primary && !(difference <= 2 * noise)) beyond_noise = true;
-    values += fmt::format("{}{} {:.3g} % ± {:.2g} %", values.empty() ? "" : ", ", name, 100 * e->value, 100 * e->std);
+    values += fmt::format("{}{} {:.3g} % ± {}", values.empty() ? "" : ", ", name, 100 * e->value,
+                          FiniteOr(100 * e->std, "{:.2g} %"));
   }
   const double std = std::isfinite(primary->std) ? std::hypot(primary->std, spread) : spread;
   // hypot rounds: make sure the stated σ covers the spread exactly.
@@ -688,7 +744,6 @@ void CombineDampingRatios(const LevelData& data, LevelResonance& r) {
             : ": the phase resonance was not available");
 }
 
-std::string Percent(double fraction) { return fmt::format("{:.3g} %", 100 * fraction); }
 
 // The checks of LevelResonance::flags on one level's numbers.
 void FlagLevel(const LevelData& data, bool regenerated, const MeasuredBackboneOptions& options, LevelResonance& r) {
@@ -702,8 +757,8 @@ void FlagLevel(const LevelData& data, bool regenerated, const MeasuredBackboneOp
         std::tuple{&r.free_decay_damping_ratio, "free_decay_damping_ratio", "free-decay"}})
     if (estimate->valid && !(estimate->value > 0.0))
       add(LevelFlagKind::kDampingNotPositive, quantity,
-          fmt::format("the {} damping ratio is {:.3g} % (± {:.2g} %): not positive, no physical damping", name,
-                      100 * estimate->value, 100 * estimate->std));
+          fmt::format("the {} damping ratio is {:.3g} % (± {}): not positive, no physical damping", name,
+                      100 * estimate->value, FiniteOr(100 * estimate->std, "{:.2g} %")));
   const int n = data.size();
   const double f_min = At(data.raw, 0).omega / kTwoPi, f_max = At(data.raw, n - 1).omega / kTwoPi;
   const int m = PeakIndex(data.raw, n);
@@ -729,11 +784,12 @@ void FlagLevel(const LevelData& data, bool regenerated, const MeasuredBackboneOp
                     r.half_power_upper_frequency_hz.value, kMinStepsInHalfPowerBand));
   for (const auto& jump : r.jumps)
     add(LevelFlagKind::kJump, "sweep",
-        fmt::format("the response jumps between the steps at {:.6g} and {:.6g} Hz ({}-sweep): |X/F| × {:.3g}, phase "
-                    "{:+.0f}°; one smooth single-mode curve does not join them (a fold): the peak is the fold's edge, "
+        fmt::format("the response jumps between the steps at {:.6g} and {:.6g} Hz ({}-sweep): |X/F| × {}, phase "
+                    "{}; one smooth single-mode curve does not join them (a fold): the peak is the fold's edge, "
                     "the half-power points lie on two branches",
-                    jump.from_frequency_hz, jump.to_frequency_hz, jump.up_sweep ? "up" : "down", jump.receptance_ratio,
-                    jump.phase_change_rad * 180 / std::numbers::pi));
+                    jump.from_frequency_hz, jump.to_frequency_hz, jump.up_sweep ? "up" : "down",
+                    FiniteOr(jump.receptance_ratio, "{:.3g}"),
+                    FiniteOr(jump.phase_change_rad * 180 / std::numbers::pi, "{:+.0f}°")));
   if (regenerated) {
     const double allowed =
         std::max(options.max_regeneration_relative_rms, kRegenerationNoiseFactor * r.regeneration_noise_relative_rms);
@@ -813,6 +869,11 @@ ExcitationLabels LabelsOf(std::string_view excitation_quantity) {
                    "' is none of force, voltage, base_acceleration");
 }
 
+std::string LevelControlText(std::string_view excitation_quantity, LevelControl control) {
+  return control == LevelControl::kForce ? LabelsOf(excitation_quantity).control
+                                         : std::string(LevelControlName(control));
+}
+
 std::string_view LevelControlName(LevelControl control) {
   switch (control) {
     case LevelControl::kForce: return "force";
@@ -849,7 +910,8 @@ bool LevelResonance::HasFlag(LevelFlagKind kind) const {
 }
 
 std::string LevelResonance::FlagNote(std::string_view quantity) const {
-  std::string note;
+  // Each kind once, with its count when repeated (a noisy sweep jumps hundreds of times).
+  std::vector<std::pair<std::string_view, int>> kinds;
   for (const auto& f : flags) {
     if (f.quantity != quantity) continue;
     const std::string_view what = f.kind == LevelFlagKind::kDampingNotPositive ? "not positive"
@@ -858,8 +920,15 @@ std::string LevelResonance::FlagNote(std::string_view quantity) const {
                                   : f.kind == LevelFlagKind::kPhaseConvention  ? "phase convention"
                                   : f.kind == LevelFlagKind::kCoarseSteps      ? "steps coarser than the resonance"
                                                                                : "beyond the noise";
-    note += (note.empty() ? "[FLAG: " : "; ") + std::string(what);
+    const auto seen = std::find_if(kinds.begin(), kinds.end(), [&](const auto& k) { return k.first == what; });
+    if (seen == kinds.end())
+      kinds.push_back({what, 1});
+    else
+      ++seen->second;
   }
+  std::string note;
+  for (const auto& [what, count] : kinds)
+    note += (note.empty() ? "[FLAG: " : "; ") + std::string(what) + (count > 1 ? fmt::format(" ×{}", count) : "");
   return note.empty() ? note : note + "]";
 }
 
@@ -1020,6 +1089,18 @@ bool PassedItsChecks(const LevelResonance& level) {
                      [](const LevelFlag& f) { return f.kind == LevelFlagKind::kCoarseSteps; });
 }
 
+// What the page draws of each level (LevelResonance::measured_frf,
+// fit_frf), from the fit the levels' exclusion ended with: once, not in
+// each of its passes.
+void AddFrequencyResponses(const std::vector<signal::FirstHarmonicLevel>& levels, MeasuredBackbone& result) {
+  for (std::size_t l = 0; l < levels.size(); ++l) {
+    const LevelData data = MakeLevelData(levels[l]);
+    LevelResonance& r = result.levels[l];
+    r.measured_frf = MeasuredFrf(data);
+    if (result.fit.ok) r.fit_frf = FitFrf(result.fit, data, r.control, result.max_amplitude_m);
+  }
+}
+
 // A trend is a verdict on the damping only where the levels it reads passed
 // their checks; the exclusion leaves in the fit only such levels, unless no
 // level would be left.
@@ -1033,9 +1114,18 @@ void WithholdTrendWithoutCleanLevels(MeasuredBackbone& result) {
                   clean, result.levels.size(), kMinCleanLevelsForTrend);
 }
 
+// Each kind's first message, and how many more there are: a noisy sweep
+// jumps hundreds of times, and every message is in the level's flags.
 std::string FlagSummary(const LevelResonance& level) {
   std::string text;
-  for (const auto& f : level.flags) text += (text.empty() ? "" : "; ") + std::string(LevelFlagName(f.kind)) + ": " + f.message;
+  for (std::size_t i = 0; i < level.flags.size(); ++i) {
+    const LevelFlag& f = level.flags[i];
+    const auto same_kind = [&](const LevelFlag& g) { return g.kind == f.kind; };
+    if (std::any_of(level.flags.begin(), level.flags.begin() + static_cast<long>(i), same_kind)) continue;
+    const auto count = std::count_if(level.flags.begin(), level.flags.end(), same_kind);
+    text += (text.empty() ? "" : "; ") + std::string(LevelFlagName(f.kind)) + ": " + f.message +
+            (count > 1 ? fmt::format(" (and {} more, in the level's flags)", count - 1) : "");
+  }
   return text;
 }
 
@@ -1092,6 +1182,7 @@ MeasuredBackbone AnalyseMeasuredBackbone(const std::vector<signal::FirstHarmonic
     for (const auto& f : left_out_for[l])
       flags.push_back({f.kind, f.quantity, f.message + " (when the level was in the cross-level fit)"});
   }
+  AddFrequencyResponses(levels, result);
   if (options.keep_flagged_levels_in_fit) {
     // Flagged levels kept bend the fit, and so the regeneration flags of the
     // others: the trend is the one the exclusion would judge.

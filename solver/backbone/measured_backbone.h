@@ -144,6 +144,15 @@ struct LevelFlag {
   std::string message;  // with the numbers
 };
 
+// One point of a level's frequency response as the report draws it: |X_d/F|
+// and the phase of X_d against F (beamid's convention: −π/2 at a phase
+// resonance); NaN where not known.
+struct LevelFrfPoint {
+  double frequency_hz = 0.0;
+  double receptance_m_N = 0.0;
+  double phase_rad = 0.0;
+};
+
 struct LevelResonance {
   std::string label;
   LevelControl control = LevelControl::kForce;
@@ -217,13 +226,21 @@ struct LevelResonance {
   // its σ for every number, flag and jump of the level (0 when stated).
   double noise_from_sweep_relative_rms = 0.0;
 
+  // The level's steps in the campaign's (run) order, the ones `jumps`
+  // counts; and the cross-level fit regenerating the level at and between
+  // its steps (as `regeneration_*` does at the fitted ones), in frequency
+  // order, empty without that fit: a person sees where the fit departs.
+  std::vector<LevelFrfPoint> measured_frf;
+  std::vector<LevelFrfPoint> fit_frf;
+
   // Empty for a level whose numbers pass the checks.
   std::vector<LevelFlag> flags;
   // Whether the level's points entered the cross-level fit and damping trend.
   bool in_global_fit = true;
 
   bool HasFlag(LevelFlagKind kind) const;
-  // The flags on one quantity, e.g. "[FLAG: not positive]"; "" when none.
+  // The flags on one quantity, each kind once with its count, e.g. "[FLAG: not
+  // positive]", "[FLAG: jump ×3]"; "" when none.
   std::string FlagNote(std::string_view quantity) const;
 };
 
@@ -294,6 +311,10 @@ MeasuredBackbone AnalyseMeasuredBackbone(const std::vector<signal::FirstHarmonic
                                          const MeasuredBackboneOptions& options = {});
 
 std::string_view LevelControlName(LevelControl control);
+// What controls a level in the words of its excitation: "force", "voltage",
+// "base acceleration" (LabelsOf(excitation_quantity).control), else
+// "response" or "neither".
+std::string LevelControlText(std::string_view excitation_quantity, LevelControl control);
 
 // The words that label a backbone's numbers honestly for its excitation:
 // what controls a level ("force", "voltage", "base acceleration"), the

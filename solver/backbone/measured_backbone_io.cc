@@ -90,6 +90,12 @@ void Describe(auto& io, schema::Like<SweepJump> auto& j) {
   io.Number("miss_over_predicted", j.miss_over_predicted, "1", schema::Any().OrNull());
 }
 
+void Describe(auto& io, schema::Like<LevelFrfPoint> auto& p) {
+  io.Number("frequency_Hz", p.frequency_hz, "Hz", schema::Positive());
+  io.Number("receptance_m_N", p.receptance_m_N, "m/N", schema::NonNegative().OrNull());
+  io.Number("phase_rad", p.phase_rad, "rad", schema::Between(-std::numbers::pi, std::numbers::pi).OrNull());
+}
+
 void Describe(auto& io, schema::Like<LevelFlag> auto& flag) {
   io.Choice("kind", flag.kind, kFlagKinds);
   io.Text("quantity", flag.quantity, TextRule::kNotEmpty);
@@ -146,6 +152,9 @@ void Describe(auto& io, schema::Like<LevelResonance> auto& l) {
                 kOptional);
   });
   io.List("jumps", l.jumps, kMaxStepsPerLevel, kOptional);
+  // What the page draws; files written before them have neither.
+  io.List("measured_frf", l.measured_frf, kMaxStepsPerLevel, kOptional);
+  io.List("fit_frf", l.fit_frf, kMaxCurvePoints, kOptional);
   io.List("flags", l.flags, kMaxFlagsPerLevel, kOptional);
   io.Boolean("in_global_fit", l.in_global_fit, kOptional);
 }

@@ -20,7 +20,10 @@
 // {relative_rms, max_relative, reduced_chi_square, noise_relative_rms}, jumps
 // [{from_step, to_step (run order, from 0), from_frequency_Hz,
 // to_frequency_Hz, direction ("up"/"down"), receptance_ratio (after/before),
-// phase_change_rad, miss_over_predicted}], flags [{kind
+// phase_change_rad, miss_over_predicted}], measured_frf [{frequency_Hz,
+// receptance_m_N (|X_d/F|), phase_rad (of X_d against F)}] (the steps, run
+// order), fit_frf [the same] (the cross-level fit regenerating the level,
+// frequency order), flags [{kind
 // (damping_not_positive, peak_outside_band, regeneration_beyond_noise, jump,
 // phase_convention),
 // quantity, message}], in_global_fit}], single_mode_fit {model
@@ -39,8 +42,9 @@
 // field, its type and range (MeasuredBackboneFileFields) and throws
 // InputError naming the file, the field (e.g. "levels[2].peak.frequency_Hz")
 // and the fix; a key the format does not have is refused; a file without beamid_version reads (version ""), one
-// without jumps, flags, in_global_fit, noise_relative_rms or excitation
-// (older files) reads as no jumps, no flags, in the fit, 0, a force.
+// without jumps, measured_frf, fit_frf, flags, in_global_fit,
+// noise_relative_rms or excitation (older files) reads as no jumps, no
+// curves, no flags, in the fit, 0, a force.
 #pragma once
 
 #include <filesystem>

@@ -1,6 +1,7 @@
 #include "solver/report/measured_backbone_report.h"
 
 #include <cmath>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -9,6 +10,7 @@
 #include "solver/report/gnuplot_svg.h"
 #include "solver/report/html_escape.h"
 #include "solver/report/html_page.h"
+#include "solver/report/level_frf_plot.h"
 #include "solver/report/report_outcome.h"
 #include "solver/report/stacked_plot.h"
 #include "solver/report/uncertain_number.h"
@@ -18,9 +20,10 @@ namespace {
 
 using Rows = std::vector<std::vector<double>>;
 
-// A value with its σ, rounded to it (solver/report/uncertain_number.h).
+// A value with its σ, rounded to it (solver/report/uncertain_number.h); the
+// reason a number is missing is in the level's notes below the table.
 std::string Cell(const Estimate& e, double scale) {
-  if (!e.valid || !std::isfinite(e.value)) return "—";
+  if (!e.valid || !std::isfinite(e.value)) return "not estimated";
   return WithUncertainty(scale * e.value, scale * e.std);
 }
 
@@ -82,15 +85,15 @@ std::string LevelTable(const MeasuredBackboneFile& file, const MeasuredBackboneO
     for (const auto& name : stated.flags) kinds += (kinds.empty() ? "" : ", ") + name;
     html += fmt::format(
         "<tr><td>{}</td><td>{}</td><td>{}{}</td><td>{}</td><td>{}</td><td>{}{}</td><td>{}{}</td><td>{}{}</td>"
-        "<td>{}{}</td><td>{:.3g} %{}</td><td>{}</td><td class=\"flag\">{}</td></tr>\n",
+        "<td>{}{}</td><td>{}{}</td><td>{}</td><td class=\"flag\">{}</td></tr>\n",
         HtmlEscape(l.label),
-        l.control == LevelControl::kForce ? LabelsOf(file.excitation_quantity).control
-                                          : std::string(LevelControlName(l.control)),
+        LevelControlText(file.excitation_quantity, l.control),
         Cell(l.quadrature_frequency_hz, 1), FlagCell(l, "quadrature_frequency"), Cell(l.quadrature_amplitude_m, 1e3),
         Cell(l.damping_ratio, 100), Cell(l.quadrature_damping_ratio, 100), FlagCell(l, "quadrature_damping_ratio"),
         Cell(l.local_damping_ratio, 100), FlagCell(l, "local_damping_ratio"), Cell(l.half_power_damping_ratio, 100),
         FlagCell(l, "half_power_damping_ratio"), Cell(l.peak_frequency_hz, 1), FlagCell(l, "peak_frequency"),
-        100 * l.regeneration_relative_rms, FlagCell(l, "regeneration_relative_rms"),
+        NumberOrWhyNot(100 * l.regeneration_relative_rms, "{:.3g} %", "the fit misses a step of no response"),
+        FlagCell(l, "regeneration_relative_rms"),
         stated.in_global_fit ? "yes" : "<span class=\"flag\">no</span>", HtmlEscape(kinds));
   }
   return html + "</table>\n";
@@ -104,15 +107,51 @@ std::string LevelNotes(const MeasuredBackboneFile& file) {
       items += fmt::format("<li class=\"flag\">[FLAG: {}] {}</li>\n", HtmlEscape(std::string(LevelFlagName(f.kind))),
                            HtmlEscape(f.message));
     for (const auto& j : l.jumps)
-      items += fmt::format("<li>jump ({}-sweep) between steps {} and {}: {:.6g} → {:.6g} Hz, |X/F| × {:.3g}, phase "
-                           "{:+.0f}°</li>\n",
+      items += fmt::format("<li>jump ({}-sweep) between steps {} and {}: {:.6g} → {:.6g} Hz, |X/F| × {}, phase "
+                           "{}</li>\n",
                            j.up_sweep ? "up" : "down", j.from_step, j.to_step, j.from_frequency_hz, j.to_frequency_hz,
-                           j.receptance_ratio, j.phase_change_rad * 180 / 3.141592653589793);
+                           NumberOrWhyNot(j.receptance_ratio, "{:.3g}", "a step of no response"),
+                           NumberOrWhyNot(j.phase_change_rad * 180 / std::numbers::pi, "{:+.0f}°",
+                                          "a step of no response"));
     for (const std::string* note : {&l.quadrature_note, &l.half_power_note, &l.damping_ratio_note})
       if (!note->empty()) items += "<li>" + HtmlEscape(*note) + "</li>\n";
     if (!items.empty()) html += "<h3>" + HtmlEscape(l.label) + "</h3>\n<ul>\n" + items + "</ul>\n";
   }
   return html;
+}
+
+// Per level its measured |X/F| and phase with the fit over them, and below
+// each the numbers its markers stand for, their flags beside them.
+std::string LevelFrfFigures(const MeasuredBackboneFile& file) {
+  const ExcitationLabels excitation = LabelsOf(file.excitation_quantity);
+  std::string html;
+  for (const auto& l : file.levels) {
+    const std::string svg = LevelFrfPlotSvg(l, excitation);
+    if (svg.empty()) continue;
+    std::string caption = fmt::format(
+        "Level {}: measured steps (dots){}; peak {}{}", HtmlEscape(l.label),
+        l.fit_frf.empty() ? "" : " and the single-mode fit across levels (line)",
+        l.peak_frequency_hz.valid ? Cell(l.peak_frequency_hz, 1) + " Hz"
+                                  : "not estimated (" + HtmlEscape(l.half_power_note.empty() ? "no peak in the sweep"
+                                                                                            : l.half_power_note) + ")",
+        FlagCell(l, "peak_frequency"));
+    if (l.quadrature_frequency_hz.valid)
+      caption += fmt::format(", phase resonance {} Hz{}", Cell(l.quadrature_frequency_hz, 1),
+                             FlagCell(l, "quadrature_frequency"));
+    if (l.half_power_damping_ratio.valid)
+      caption += fmt::format(", half-power points {} and {} Hz, ζ {} %{}", Cell(l.half_power_lower_frequency_hz, 1),
+                             Cell(l.half_power_upper_frequency_hz, 1), Cell(l.half_power_damping_ratio, 100),
+                             FlagCell(l, "half_power_damping_ratio"));
+    else if (!l.half_power_note.empty() && l.peak_frequency_hz.valid)
+      caption += ", half-power ζ not estimated (" + HtmlEscape(l.half_power_note) + ")";
+    if (!l.jumps.empty())
+      caption += fmt::format("; {} jump{} of the sweep (dashed){}", l.jumps.size(), l.jumps.size() == 1 ? "" : "s",
+                             FlagCell(l, "sweep"));
+    html += "<figure class=\"plot level-frf\">\n" + svg + "\n<figcaption>" + caption + ".</figcaption>\n</figure>\n";
+  }
+  return html.empty() ? html
+                      : "<section id=\"frequency-responses\"><h2>Frequency response of each level</h2>\n" + html +
+                            "</section>\n";
 }
 
 }  // namespace
@@ -134,24 +173,29 @@ std::string MeasuredBackboneHtmlReport(const MeasuredBackboneFile& file, const s
   html += fmt::format("<section id=\"levels\"><h2>Levels</h2>\n<p>{} levels, {} flagged, {} left out of the "
                       "cross-level fit.</p>\n",
                       outcome.levels.size(), outcome.flagged_levels, outcome.left_out_levels);
-  html += LevelTable(file, outcome) + LevelNotes(file) + "</section>\n";
+  html += LevelTable(file, outcome) + LevelNotes(file) + "</section>\n" + LevelFrfFigures(file);
   const auto& t = file.damping_trend;  // the slopes; the verdicts and their z from the record
   html += "<section id=\"fit\"><h2>Cross-level single-mode fit and damping trend</h2>\n";
-  html += fmt::format("<p>Form: {}; reduced χ² {:.3g}.</p>\n", HtmlEscape(outcome.fit_form),
-                      outcome.fit_reduced_chi_square);
+  html += outcome.fit_form.empty()
+              ? std::string("<p>No single-mode fit across levels: too few points near the mode.</p>\n")
+              : fmt::format("<p>Form: {}; reduced χ² {}.</p>\n", HtmlEscape(outcome.fit_form),
+                            NumberOrWhyNot(outcome.fit_reduced_chi_square, "{:.3g}", "no degrees of freedom left"));
+  const std::string no_sigma = "the fit gives no σ for it";
   if (!t.note.empty())
     html += fmt::format("<p class=\"damping-trend\">Damping against amplitude: <strong>not judged</strong>: {}.</p>\n",
                         HtmlEscape(t.note));
   else
     html += fmt::format("<p class=\"damping-trend\">Damping against amplitude: <strong>{}</strong> (ζω_n: slope "
-                        "{:.3g} ± {:.2g} /(s·m), {:+.1f} σ); ζ alone {} (slope {:.3g} ± {:.2g} per m, {:+.1f} σ), which a constant damper "
-                        "also gives where the frequency changes.</p>\n",
+                        "{} /(s·m), {}); ζ alone {} (slope {} per m, {}), which a constant damper also gives where "
+                        "the frequency changes.</p>\n",
                         outcome.damping_rate_trend == Trend::kNotJudged
                             ? "not available"
                             : schema::NameOf(outcome.damping_rate_trend, kDampingRateTrendNames),
-                        t.damping_rate_slope_per_s_m, t.damping_rate_slope_std_per_s_m, outcome.damping_rate_z,
-                        schema::NameOf(outcome.damping_ratio_trend, kDampingRatioTrendNames), t.slope_per_m,
-                        t.slope_std_per_m, outcome.damping_ratio_z);
+                        UncertainOrWhyNot(t.damping_rate_slope_per_s_m, t.damping_rate_slope_std_per_s_m, no_sigma),
+                        NumberOrWhyNot(outcome.damping_rate_z, "{:+.1f} σ", no_sigma),
+                        schema::NameOf(outcome.damping_ratio_trend, kDampingRatioTrendNames),
+                        UncertainOrWhyNot(t.slope_per_m, t.slope_std_per_m, no_sigma),
+                        NumberOrWhyNot(outcome.damping_ratio_z, "{:+.1f} σ", no_sigma));
   for (bool frequency : {true, false}) {
     const std::string svg = PlotAgainstAmplitude(file, frequency);
     if (svg.empty()) continue;

@@ -101,6 +101,14 @@ std::vector<ResponseRow> ModelResponseRows(const LevelCurves& level, std::size_t
   return rows;
 }
 
+Panel PerForcePanel(const std::string& ylabel) {
+  return {.settings = "set ylabel " + GnuplotText(ylabel) + "\nset logscale y\nset format y '%g'\n", .height_px = 210};
+}
+
+Panel PhasePanel() {
+  return {.settings = "set ylabel 'phase [°]'\nset yrange [-180:180]\nset ytics -180,90,180\n", .height_px = 150};
+}
+
 std::string ResponsePlotSvg(const ReportCurves& curves, std::size_t channel, const SelectedResponse* selected,
                             const ResponsePlotOptions& options) {
   const ReportChannel& ch = curves.channels[channel];
@@ -112,13 +120,8 @@ std::string ResponsePlotSvg(const ReportCurves& curves, std::size_t channel, con
   Panel amplitude{.settings = "set ylabel " + GnuplotText(fmt::format("|X₁| [{}]", unit)) + "\n" +
                               (options.log_amplitude ? "set logscale y\nset format y '%g'\n" : ""),
                   .height_px = 210};
-  Panel per_force{.settings = "set ylabel " + GnuplotText(fmt::format("|X₁|/|F₁| [{}/N]", unit)) +
-                              "\nset logscale y\nset format y '%g'\n",
-                  .height_px = 210};
-  Panel phase{.settings =
-                  "set ylabel 'phase [°]'\nset yrange [-180:180]\n"
-                  "set ytics -180,90,180\n",
-              .height_px = 150};
+  Panel per_force = PerForcePanel(fmt::format("|X₁|/|F₁| [{}/N]", unit));
+  Panel phase = PhasePanel();
   Rows flagged;
   bool any_unstable = false, any_phase = false;
   for (std::size_t l = 0; l < curves.levels.size(); ++l) {

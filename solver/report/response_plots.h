@@ -21,6 +21,7 @@
 
 #include "solver/diagnosis/diagnosis.h"
 #include "solver/report/report_curves.h"
+#include "solver/report/stacked_plot.h"
 
 namespace beamid::solver {
 
@@ -42,6 +43,12 @@ struct SelectedResponse {
 using ResponseRow = std::array<double, 4>;
 std::vector<ResponseRow> MeasuredResponseRows(const LevelCurves& level, std::size_t channel);
 std::vector<ResponseRow> ModelResponseRows(const LevelCurves& level, std::size_t channel);
+
+// The panels every response figure shares: |X₁|/|F₁| on a logarithmic axis
+// (`ylabel` names it with its unit) and the displacement's phase against the
+// force, −180° … 180° (DisplacementPhaseDeg).
+Panel PerForcePanel(const std::string& ylabel);
+Panel PhasePanel();
 
 std::string ResponsePlotSvg(const ReportCurves& curves, std::size_t channel, const SelectedResponse* selected,
                             const ResponsePlotOptions& options);

@@ -91,6 +91,14 @@ std::string UncertainFormat::WithSigma(double value, double sigma) const {
   return "(" + plain.Format(value / scale) + " ± " + plain.Format(sigma / scale) + ")" + PowerOfTen(exponent_);
 }
 
+std::string NumberOrWhyNot(double x, std::string_view format, std::string_view why) {
+  return std::isfinite(x) ? fmt::format(fmt::runtime(format), x) : "not estimated (" + std::string(why) + ")";
+}
+
+std::string UncertainOrWhyNot(double value, double sigma, std::string_view why) {
+  return std::isfinite(value) ? WithUncertainty(value, sigma) : "not estimated (" + std::string(why) + ")";
+}
+
 std::string WithUncertainty(double value, double sigma, std::string_view unit) {
   const std::string symbol = UnitSymbol(unit);
   return UncertainFormat(value, sigma).WithSigma(value, sigma) + (symbol.empty() ? "" : " " + symbol);

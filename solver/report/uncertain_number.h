@@ -34,6 +34,12 @@ class UncertainFormat {
 // (none for a dimensionless "1" or an empty unit).
 std::string WithUncertainty(double value, double sigma, std::string_view unit = {});
 
+// `x` in `format` (fmt's, e.g. "{:.3g} %"), or "not estimated (why)" when
+// it is not finite: a person reads a word and its reason, never "nan".
+std::string NumberOrWhyNot(double x, std::string_view format, std::string_view why);
+// WithUncertainty(value, sigma), or "not estimated (why)" when value is not finite.
+std::string UncertainOrWhyNot(double value, double sigma, std::string_view why);
+
 // A unit as the data files write it ("N*m*s/rad", "m/s^2", "1") with its
 // symbols: "N·m·s/rad", "m/s²", "" (dimensionless).
 std::string UnitSymbol(std::string_view unit);

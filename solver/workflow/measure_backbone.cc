@@ -89,8 +89,7 @@ void MeasureBackboneRequest::Validate() const {
 }
 
 std::string LevelControlText(const solver::MeasuredBackbone& measured, const solver::LevelResonance& level) {
-  return level.control == solver::LevelControl::kForce ? solver::LabelsOf(measured.excitation_quantity).control
-                                                       : std::string(solver::LevelControlName(level.control));
+  return solver::LevelControlText(measured.excitation_quantity, level.control);
 }
 
 MeasureBackboneOutcome MeasureBackbone(const MeasureBackboneRequest& options, const RunObserver& observer) {

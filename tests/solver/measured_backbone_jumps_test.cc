@@ -35,6 +35,7 @@ namespace beamid::solver {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 constexpr double kF0_hz = 50.0;
 constexpr double kZeta = 0.01;
@@ -329,15 +330,32 @@ TEST(MeasuredBackboneJumps, TheCommandShowsAJumpInTheCsvAndTheSummaryAndKeepsItO
   WriteTable(folder / "low.csv", Duffing("low", 0.05, 45.0, 56.0, 0.1, 10, 0.0).level);
   WriteTable(folder / "down.csv", Duffing("down", 1.0, 56.0, 45.0, 0.1, 11, 0.0).level);
   const auto log = folder / "run.log";
+  const auto summary = folder / "summary.txt";
   const std::string command = program.string() + " backbone --measured " + (folder / "low.csv").string() + " " +
                               (folder / "down.csv").string() + " -o " + (folder / "out").string() + " > " +
                               log.string() + " 2>&1";
-  const int status = std::system(command.c_str());
-  std::stringstream text, csv, json;
+  const int status = std::system(
+      (command.substr(0, command.find(" > ")) + " > " + summary.string() + " 2> " + log.string()).c_str());
+  std::stringstream text, printed, csv, json;
   text << std::ifstream(log).rdbuf();
+  printed << std::ifstream(summary).rdbuf();
   ASSERT_TRUE(WIFEXITED(status));
-  ASSERT_EQ(WEXITSTATUS(status), 0) << text.str();
-  EXPECT_THAT(text.str(), HasSubstr("[FLAG: jump]"));
+  ASSERT_EQ(WEXITSTATUS(status), 0) << text.str() << printed.str();
+  // The summary: one line per level, the jump a short word on the level's
+  // line; its message (with the sweep's direction) among the warnings and in the .json.
+  std::vector<std::string> level_lines;
+  int printed_lines = 0;
+  for (std::string line; std::getline(printed, line); ++printed_lines)
+    if (line.find("-controlled)") != std::string::npos) level_lines.push_back(line);
+  ASSERT_EQ(level_lines.size(), 2u) << printed.str();
+  // Beside them only the cross-level fit, the damping trend and the files written.
+  EXPECT_EQ(printed_lines, 2 + 3) << printed.str();
+  EXPECT_THAT(level_lines[0], HasSubstr("low"));
+  EXPECT_THAT(level_lines[0], Not(HasSubstr("[jump")));
+  EXPECT_THAT(level_lines[1], HasSubstr("down"));
+  EXPECT_THAT(level_lines[1], HasSubstr("[jump]"));
+  EXPECT_THAT(level_lines[1], HasSubstr("[left out of the fit]"));
+  EXPECT_THAT(printed.str(), Not(HasSubstr("down-sweep")));
   EXPECT_THAT(text.str(), HasSubstr("down-sweep"));
   csv << std::ifstream(folder / "out.csv").rdbuf();
   std::string line;
@@ -374,6 +392,14 @@ TEST(MeasuredBackboneJumps, TheCommandShowsAJumpInTheCsvAndTheSummaryAndKeepsItO
   EXPECT_THAT(html.str(), HasSubstr("[FLAG: jump]"));
   EXPECT_THAT(html.str(), HasSubstr("down-sweep"));
   EXPECT_THAT(html.str(), HasSubstr("<svg"));
+  // One frequency-response figure per level, drawn from the .json's curves.
+  std::size_t figures = 0;
+  for (std::size_t at = html.str().find("\"plot level-frf\""); at != std::string::npos;
+       at = html.str().find("\"plot level-frf\"", at + 1))
+    ++figures;
+  EXPECT_EQ(figures, 2u);
+  EXPECT_THAT(json.str(), HasSubstr("\"measured_frf\""));
+  EXPECT_THAT(json.str(), HasSubstr("\"fit_frf\""));
 
   // The switch is in the command's help.
   const int help = std::system((program.string() + " backbone --help > " + log.string() + " 2>&1").c_str());
