@@ -4,6 +4,14 @@
 
 namespace beamid::signal {
 
+// Per −A_b: the load on the mode is −m·a_b, so X_rel/(−A_b) has a
+// receptance's form and sign.
+void ReferToBase(HarmonicPhasor& response, HarmonicPhasor& base_acceleration) {
+  response.value -= base_acceleration.value;
+  response.SetCovariance(response.Covariance() + base_acceleration.Covariance());
+  base_acceleration.value = -base_acceleration.value;
+}
+
 std::vector<FirstHarmonicLevel> FirstHarmonicLevels(const PhasorSet& set, std::string_view channel,
                                                     const std::string& source) {
   std::vector<FirstHarmonicLevel> levels;
@@ -35,14 +43,7 @@ std::vector<FirstHarmonicLevel> FirstHarmonicLevels(const PhasorSet& set, std::s
     }
     HarmonicPhasor x = response->Harmonic(1);
     HarmonicPhasor f = step.force.Harmonic(1);
-    if (base) {
-      // Relative to the base (the two channels' noises are independent),
-      // per −A_b: the load on the mode is −m·a_b, so X_rel/(−A_b) has a
-      // receptance's form and sign.
-      x.value -= f.value;
-      x.SetCovariance(x.Covariance() + f.Covariance());
-      f.value = -f.value;
-    }
+    if (base) ReferToBase(x, f);
     level->points.push_back({.frequency_hz = step.frequency_hz,
                              .frequency_std_hz = step.frequency_std_hz,
                              .force = f,
