@@ -49,13 +49,23 @@ struct HeaderMap {
 // column without a unit is an error.
 double TimeUnitFactor(const HeaderCell& cell, const std::string& source) {
   const std::string text = LowerCase(cell.text), name = LowerCase(cell.name);
-  std::string unit = cell.unit;
-  if (cell.unit.empty()) {
+  // A units row's unit stands for the whole cell ("time_s" over "s").
+  const bool from_units_row = cell.unit_line > 0;
+  std::string unit = from_units_row ? "" : cell.unit;
+  if (unit.empty()) {
     for (const std::string_view word : {"time", "t"}) {
-      if (text == word)
+      if (text == word && cell.unit.empty())
         throw InputError(source, cell.text, "the time column has no unit",
                          "name it time_s (seconds) or time_ms, or write the unit: time [s], time [ms]");
-      if (const auto suffix = SplitUnitSuffix(text, word)) unit = *suffix;
+      if (text == word) unit = cell.unit;
+      if (const auto suffix = SplitUnitSuffix(text, word)) {
+        if (from_units_row && NormaliseUnit(*suffix) != NormaliseUnit(cell.unit))
+          throw InputError(source, Excerpt(cell.text),
+                           "the time column's header says '" + *suffix + "' but the units row (line " +
+                               std::to_string(cell.unit_line) + ") gives '" + Excerpt(cell.unit) + "'",
+                           "give the time's unit once, in the header or in the units row, or make them agree");
+        unit = *suffix;
+      }
     }
     if (unit.empty()) return 0.0;
   } else if (name != "time" && name != "t") {

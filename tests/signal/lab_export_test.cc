@@ -201,6 +201,11 @@ TEST_F(LabExportTest, AMetadataBlockAndAUnitsRowReadTheSameNumbers) {
   // Bracketed and blank units, and a bracketed header unit the row repeats.
   ExpectSameRecording(
       Read(layout, Table({"Time", "drive", "acc1 [g]", "vel2"}, columns_, metadata, "[s],[V],g,\n")), plain);
+  // A header with its units as suffixes keeps them; the units row agrees.
+  ExpectSameRecording(
+      Read(layout, Table({"time_s", "drive_V", "acc1", "vel2"}, columns_, metadata, "s,V,g,mm/s\n")), plain);
+  ExpectNames(Error(layout, Table({"time_ms", "drive", "acc1", "vel2"}, columns_, metadata, "s,V,g,mm/s\n")),
+              "time_ms", "the time column's header says 'ms' but the units row (line 7) gives 's'");
   Channels units_only;
   units_only.layout = R"({"units_row": true})";
   units_only.drive = Channel("drive", "voltage", "mV");
