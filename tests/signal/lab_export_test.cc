@@ -210,7 +210,7 @@ TEST_F(LabExportTest, AMetadataBlockAndAUnitsRowReadTheSameNumbers) {
   units_only.layout = R"({"units_row": true})";
   units_only.drive = Channel("drive", "voltage", "mV");
   ExpectSameRecording(
-      Read(units_only, Table({"Time", "drive", "acc1", "vel2"}, Scaled(columns_, 1, 1e3), "", "s,mV,g,mm/s\n")),
+      Read(units_only, Table({"Time", "drive", "acc1", "vel2"}, Scaled(columns_, 1, 1e3), "", "s, mV, g, mm/s\n")),
       plain);
 }
 
