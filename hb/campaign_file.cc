@@ -15,6 +15,12 @@ constexpr schema::Format kCampaignFileSchema{
 // A bound on the work a file can cause: a stepped-sine test has hundreds.
 constexpr std::size_t kMaxSteps = 100'000;
 
+// The recording reader's bound (signal/table_reader.h): no column beyond it exists.
+constexpr int kMaxRecordingColumns = 10'000;
+// An export's metadata block is a screenful; thousands of lines are a
+// mistake (the data rows counted as metadata).
+constexpr int kMaxLinesBeforeHeader = 10'000;
+
 // The keys of the excitation and of a sensor differ in their last one.
 enum class ChannelRole { kExcitation, kSensor };
 
@@ -22,6 +28,9 @@ void DescribeChannel(auto& io, auto& c, ChannelRole role) {
   using schema::TextRule;
   io.Text("channel", c.channel, TextRule::kNotEmpty);
   io.NamesChannel(c.channel);
+  io.Text("column", c.column, TextRule::kNotEmpty, schema::kOmittedWhenEmpty);
+  if (schema::Writes(io, c.column_number > 0))
+    io.Integer("column_number", c.column_number, 1, kMaxRecordingColumns, schema::kOptional);
   io.Number("position_m", c.position_m, "m", schema::NonNegative());
   io.Text("quantity", c.quantity, TextRule::kNotEmpty);
   io.Text("unit", c.unit, TextRule::kNotEmpty);
@@ -62,6 +71,10 @@ void Describe(auto& io, schema::Like<CampaignFile> auto& f) {
   io.Number("sample_rate_Hz", f.sample_rate_hz, "Hz", schema::Positive());
   io.Texts("ignore_channels", f.ignore_channels, static_cast<std::size_t>(kMaxPointsOnBeam), TextRule::kNotEmpty,
            schema::kOmittedWhenEmpty);
+  io.Object("recording_layout", f.recording_layout, schema::kOptional, [](auto& layout_io, auto& l) {
+    layout_io.Integer("lines_before_header", l.lines_before_header, 0, kMaxLinesBeforeHeader, schema::kOptional);
+    layout_io.Boolean("units_row", l.units_row, schema::kOptional);
+  });
 }
 
 std::vector<schema::FieldDoc> CampaignFileFields() { return schema::Fields<CampaignFile>(); }

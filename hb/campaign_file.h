@@ -25,18 +25,27 @@ inline constexpr std::string_view kCampaignFileFormat = "stepped-sine-campaign/1
 
 // The excitation or a response sensor, as written.
 struct CampaignChannel {
-  std::string channel;  // the recordings' column name
+  std::string channel;  // the channel's name; the recordings' column name unless one of the two last is given
   double position_m = 0.0;
   std::string quantity;  // "force", "voltage", "base_acceleration"; "acceleration", "velocity", "displacement"
   std::string unit;      // as the recordings hold it ("g", "mm/s")
   std::optional<double> mass_kg;              // a sensor's, when known
   std::optional<double> sensitivity_N_per_V;  // a voltage excitation's nominal force per volt, when known
+  std::string column;     // the header text of the column it reads ("Ch2 acc1 [g]"), "" when not given
+  int column_number = 0;  // the 1-based number of the column it reads, 0 when not given
 };
 
 struct CampaignStep {
   std::string file;  // relative to the campaign folder
   double frequency_hz = 0.0;
   std::string level;
+};
+
+// What precedes the data in every recording of the campaign (an export's
+// metadata block and units row).
+struct CampaignRecordingLayout {
+  int lines_before_header = 0;
+  bool units_row = false;
 };
 
 struct CampaignFile {
@@ -48,6 +57,7 @@ struct CampaignFile {
   std::vector<CampaignStep> steps;  // in run order
   std::optional<double> sample_rate_hz;
   std::vector<std::string> ignore_channels;  // written only when there are some
+  std::optional<CampaignRecordingLayout> recording_layout;  // written only when given
 };
 
 // The fields: path, type, unit, range (docs/formats.md).

@@ -57,7 +57,31 @@ class Meaning {
            "give it only with \"quantity\": \"voltage\"");
     spec.sensitivity_N_per_V = entry.sensitivity_N_per_V;
     spec.mass_kg = entry.mass_kg;
+    if (!entry.column.empty() && entry.column_number > 0)
+      Fail(where, spec.channel,
+           "gives both \"column\": \"" + entry.column + "\" and \"column_number\": " +
+               std::to_string(entry.column_number),
+           "name the recording column one way: by its header text or by its number");
+    spec.column = entry.column;
+    spec.column_number = entry.column_number;
     return spec;
+  }
+
+  // Two channels reading one column would be one signal analysed twice.
+  void RequireOwnColumns(const std::vector<std::pair<std::string, const ChannelSpec*>>& channels) const {
+    for (std::size_t i = 0; i < channels.size(); ++i)
+      for (std::size_t j = 0; j < i; ++j) {
+        const ChannelSpec& a = *channels[j].second;
+        const ChannelSpec& b = *channels[i].second;
+        const bool same_text = !b.column.empty() && b.column == a.column;
+        const bool same_number = b.column_number > 0 && b.column_number == a.column_number;
+        if (same_text || same_number)
+          Fail(channels[i].first, b.channel,
+               "reads the same recording column as " + channels[j].first + " (" + a.channel + "): " +
+                   (same_text ? "\"column\": \"" + b.column + "\"" : "\"column_number\": " +
+                                                                        std::to_string(b.column_number)),
+               "give every channel its own column");
+      }
   }
 
  private:
@@ -124,6 +148,15 @@ Campaign ParseCampaign(std::string_view json_text, const std::filesystem::path& 
       meaning.Fail(where, campaign.sensors.back().channel, "the channel name is used twice",
                    "give every channel its own column name");
   }
+
+  std::vector<std::pair<std::string, const ChannelSpec*>> columns{{"excitation", &campaign.excitation}};
+  for (std::size_t i = 0; i < campaign.sensors.size(); ++i)
+    columns.emplace_back("sensors[" + std::to_string(i) + "]", &campaign.sensors[i]);
+  meaning.RequireOwnColumns(columns);
+  if (file.recording_layout)
+    campaign.recording_layout = {.lines_before_header = file.recording_layout->lines_before_header,
+                                 .units_row = file.recording_layout->units_row};
+  campaign.recording_layout.declared_in = "\"recording_layout\" of " + source;
 
   for (const hb::CampaignStep& step : file.steps)
     campaign.steps.push_back({.file = step.file, .frequency_hz = step.frequency_hz, .level = step.level});

@@ -20,6 +20,7 @@
 #include "hb/beam_properties.h"
 #include "hb/campaign_file.h"
 #include "signal/quantity.h"
+#include "signal/table_reader.h"
 
 namespace beamid::signal {
 
@@ -27,7 +28,7 @@ inline constexpr std::string_view kCampaignFormat = hb::kCampaignFileFormat;
 
 // One channel of the recordings: the excitation or a response sensor.
 struct ChannelSpec {
-  std::string channel;        // column name in the recording files
+  std::string channel;        // the channel's name; the recordings' column name unless `column(_number)` says
   double position_m = 0.0;    // x from the clamp
   Quantity quantity = Quantity::kForce;
   std::string unit;           // unit in the files, as written in campaign.json
@@ -36,6 +37,8 @@ struct ChannelSpec {
   // A voltage excitation's nominal force per volt (the amplifier and
   // shaker's), when the engineer knows it; labels only, never a force.
   std::optional<double> sensitivity_N_per_V;
+  std::string column;     // header text of the recording column it reads ("Ch2 acc1 [g]"), "" when not given
+  int column_number = 0;  // 1-based number of the recording column it reads, 0 when not given
 };
 
 // How an analysis treats a channel's problems (signal/quality_finding.h): a
@@ -58,6 +61,9 @@ struct Campaign {
   std::vector<Step> steps;  // in the order they were run
   std::optional<double> sample_rate_hz;  // "sample_rate_Hz", when given
   std::vector<std::string> ignored_channels;  // "ignore_channels": sensors not to judge or use
+  // "recording_layout": a metadata block before the CSV recordings' header
+  // and a units row under it (universal files have neither).
+  TableLayout recording_layout;
   // The sensors the running analysis uses (set by the command: fitted,
   // validated, named with --channel); empty: every sensor not ignored.
   std::vector<std::string> analysed_sensors;

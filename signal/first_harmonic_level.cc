@@ -6,6 +6,14 @@
 
 namespace beamid::signal {
 
+// Per −A_b: the load on the mode is −m·a_b, so X_rel/(−A_b) has a
+// receptance's form and sign.
+void ReferToBase(HarmonicPhasor& response, HarmonicPhasor& base_acceleration) {
+  response.value -= base_acceleration.value;
+  response.SetCovariance(response.Covariance() + base_acceleration.Covariance());
+  base_acceleration.value = -base_acceleration.value;
+}
+
 std::vector<FirstHarmonicLevel> FirstHarmonicLevels(const PhasorSet& set, std::string_view channel,
                                                     const std::string& source) {
   std::vector<FirstHarmonicLevel> levels;
@@ -37,14 +45,7 @@ std::vector<FirstHarmonicLevel> FirstHarmonicLevels(const PhasorSet& set, std::s
     }
     HarmonicPhasor x = response->Harmonic(1);
     HarmonicPhasor f = step.force.Harmonic(1);
-    if (base) {
-      // Relative to the base (the two channels' noises are independent),
-      // per −A_b: the load on the mode is −m·a_b, so X_rel/(−A_b) has a
-      // receptance's form and sign.
-      x.value -= f.value;
-      x.SetCovariance(x.Covariance() + f.Covariance());
-      f.value = -f.value;
-    }
+    if (base) ReferToBase(x, f);
     std::vector<DecayPoint> free_decay;
     for (const FreeDecay& decay : step.free_decays)
       if (decay.channel == response->channel) free_decay = decay.points;

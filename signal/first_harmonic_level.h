@@ -44,6 +44,11 @@ struct FirstHarmonicLevel {
   std::vector<FirstHarmonicPoint> points;  // in run order
 };
 
+// A base-excited step as measured, the absolute response X and the base's
+// acceleration A_b, made what a level holds: X − A_b and −A_b (see above).
+// The two channels' noises are independent: their covariances add.
+void ReferToBase(HarmonicPhasor& response, HarmonicPhasor& base_acceleration);
+
 // The levels of a campaign's phasors (levels in order of first appearance,
 // steps in run order) for one response channel. Throws InputError naming the
 // phasor file `source` when the channel does not exist, or when a base

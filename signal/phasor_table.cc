@@ -12,6 +12,7 @@
 #include <Eigen/Geometry>
 
 #include "hb/text_file.h"
+#include "signal/first_harmonic_level.h"
 #include "signal/input_error.h"
 #include "signal/internal/text.h"
 #include "signal/table_reader.h"
@@ -26,7 +27,7 @@ struct Column {
   ColumnRole role = ColumnRole::kFrequency;
   bool is_std = false;
   std::string unit;                       // normalised, "" when not given
-  std::optional<Quantity> quantity;       // a response column that names it
+  std::optional<Quantity> quantity;       // a response or excitation column that names it
   int index = 0;
 };
 
@@ -96,6 +97,21 @@ std::optional<Column> Classify(const std::string& header, int index) {
     if ((amplitude = StripAffix(name, "", amp))) break;
   // "F_amp", "F [N]": the force, not the frequency.
   if (name == "f" && (amplitude || NormaliseUnit(unit) == std::optional<std::string>("N"))) name = "force";
+  // An excitation that says what it is: the default is a force.
+  static const std::array<std::pair<std::string_view, Quantity>, 6> kExcitations = {{
+      {"force", Quantity::kForce},
+      {"voltage", Quantity::kVoltage},
+      {"drive_voltage", Quantity::kVoltage},
+      {"base_acceleration", Quantity::kBaseAcceleration},
+      {"base_accel", Quantity::kBaseAcceleration},
+      {"base_acc", Quantity::kBaseAcceleration},
+  }};
+  for (const auto& [word, quantity] : kExcitations)
+    if (name == word) {
+      column.role = ColumnRole::kForce;
+      column.quantity = quantity;
+      return column;
+    }
   static const std::array<std::pair<std::string_view, ColumnRole>, 10> kGeneric = {{
       {"frequency", ColumnRole::kFrequency}, {"freq", ColumnRole::kFrequency},   {"f", ColumnRole::kFrequency},
       {"force", ColumnRole::kForce},         {"excitation", ColumnRole::kForce}, {"input", ColumnRole::kForce},
@@ -174,7 +190,8 @@ class TableParser {
         found += (found.empty() ? "'" : ", '") + internal::Excerpt(cells[i].text) + "'";
       if (cells.size() > 12) found += " and " + std::to_string(cells.size() - 12) + " more";
       Fail(std::string(RoleName(role)), "missing (the header has " + found + ")",
-           "name the columns frequency_Hz, force_N, one of acceleration_m_s2 / velocity_m_s / "
+           "name the columns frequency_Hz, force_N (or voltage_V, base_acceleration_m_s2), one of "
+           "acceleration_m_s2 / velocity_m_s / "
            "displacement_m (or response [unit]), and phase_rad or phase_deg (docs/phasor-table.md)");
     }
     ResolveUnits();
@@ -185,13 +202,18 @@ class TableParser {
     auto unknown = [&](const std::string& accepted) {
       Fail(column.header, "unknown unit '" + column.unit + "'", "use one of: " + accepted);
     };
+    // An amplitude without unit is in its quantity's SI unit.
+    auto quantity_factor = [&](Quantity q) {
+      if (unit && unit->empty()) return 1.0;
+      const auto factor = unit ? UnitToSiFactor(q, *unit) : std::nullopt;
+      if (!factor) unknown(AcceptedUnits(q) + " (for a " + std::string(QuantityName(q)) + ")");
+      return *factor;
+    };
     switch (column.role) {
       case ColumnRole::kFrequency:
         if (!unit || (*unit != "" && *unit != "Hz" && *unit != "rad/s")) unknown("Hz, rad/s");
         return *unit == "rad/s" ? 1.0 / (2 * std::numbers::pi) : 1.0;
-      case ColumnRole::kForce:
-        if (!unit || (*unit != "" && *unit != "N")) unknown("N");
-        return 1.0;
+      case ColumnRole::kForce: return quantity_factor(*excitation_quantity_);
       case ColumnRole::kPhase:
         if (!unit || (*unit != "rad" && *unit != "deg")) {
           if (column.unit.empty())
@@ -199,13 +221,7 @@ class TableParser {
           unknown("rad, deg");
         }
         return *unit == "deg" ? std::numbers::pi / 180 : 1.0;
-      case ColumnRole::kResponse: {
-        const Quantity q = *response_quantity_;
-        if (unit && unit->empty()) return 1.0;  // the quantity's SI unit
-        const auto factor = unit ? UnitToSiFactor(q, *unit) : std::nullopt;
-        if (!factor) unknown(AcceptedUnits(q) + " (for a " + std::string(QuantityName(q)) + ")");
-        return *factor;
-      }
+      case ColumnRole::kResponse: return quantity_factor(*response_quantity_);
     }
     return 1.0;
   }
@@ -223,6 +239,21 @@ class TableParser {
                                    : "unknown unit '" + response.unit + "'",
              "name it acceleration, velocity or displacement, or give its unit: m/s^2, g, m/s, mm/s, m or mm");
     }
+    // The excitation: named (force, voltage, base_acceleration), else said by
+    // the unit of an "excitation" or "input" column, else a force.
+    const Column& excitation = *Main(ColumnRole::kForce);
+    excitation_quantity_ = excitation.quantity;
+    if (!excitation_quantity_) {
+      excitation_quantity_ = Quantity::kForce;
+      const auto unit = NormaliseUnit(excitation.unit);
+      for (Quantity q : {Quantity::kVoltage, Quantity::kBaseAcceleration})
+        if (unit && UnitToSiFactor(q, *unit)) excitation_quantity_ = q;
+    }
+    if (excitation_quantity_ == Quantity::kBaseAcceleration && response_quantity_ != Quantity::kAcceleration)
+      Fail(response.header,
+           "with a base acceleration as excitation the response must be an acceleration (its motion relative to the "
+           "base is the mode's), not a " + std::string(QuantityName(*response_quantity_)),
+           "give the accelerometer's amplitude and phase relative to the base acceleration");
     for (const auto& c : columns_) {
       // An uncertainty column in another unit than its value is a typo waiting to happen: same rules.
       factor_[static_cast<int>(c.role) + (c.is_std ? 4 : 0)] = UnitFactor(c);
@@ -261,7 +292,8 @@ class TableParser {
   FirstHarmonicLevel MakeLevel(const std::vector<std::array<double, 8>>& rows) const {
     FirstHarmonicLevel level{.label = label_, .source = source_,
                              .channel = Main(ColumnRole::kResponse)->header,
-                             .response_quantity = *response_quantity_};
+                             .response_quantity = *response_quantity_,
+                             .excitation_quantity = *excitation_quantity_};
     for (const auto& r : rows) {
       FirstHarmonicPoint p;
       p.frequency_hz = r[0];
@@ -273,6 +305,7 @@ class TableParser {
       const Eigen::Matrix2d rotation = Eigen::Rotation2Dd(phase).toRotationMatrix();
       const Eigen::Vector2d polar_std(r[6], amplitude * r[7]);
       p.response.SetCovariance(rotation * polar_std.cwiseAbs2().asDiagonal() * rotation.transpose());
+      if (level.excitation_quantity == Quantity::kBaseAcceleration) ReferToBase(p.response, p.force);
       level.points.push_back(p);
     }
     return level;
@@ -289,6 +322,7 @@ class TableParser {
   std::vector<Column> columns_;
   std::array<double, 8> factor_{1, 1, 1, 1, 1, 1, 1, 1};
   std::optional<Quantity> response_quantity_;
+  std::optional<Quantity> excitation_quantity_;
 };
 
 }  // namespace

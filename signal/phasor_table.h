@@ -1,7 +1,12 @@
 // Reads one level of a stepped-sine test from a first-harmonic table, the CSV
 // that acquisition systems export (docs/phasor-table.md): one row per step,
-// columns frequency, force amplitude, response amplitude and the response's
-// phase relative to the force, optionally their standard uncertainties.
+// columns frequency, excitation amplitude, response amplitude and the
+// response's phase relative to the excitation, optionally their standard
+// uncertainties. The excitation is a force unless its column says otherwise,
+// by name ("voltage [V]", "base_acceleration [g]") or, for a column named
+// "excitation" or "input", by unit (V, mV: a drive voltage; m/s^2, g: the
+// base's acceleration); a base-excited level's response is an accelerometer's,
+// taken relative to the base as signal/first_harmonic_level.h says.
 //
 // The response phasor is X = |X|·e^{iφ} with the force as the phase
 // reference (F real, positive), as everywhere in beamid

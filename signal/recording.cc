@@ -49,13 +49,23 @@ struct HeaderMap {
 // column without a unit is an error.
 double TimeUnitFactor(const HeaderCell& cell, const std::string& source) {
   const std::string text = LowerCase(cell.text), name = LowerCase(cell.name);
-  std::string unit = cell.unit;
-  if (cell.unit.empty()) {
+  // A units row's unit stands for the whole cell ("time_s" over "s").
+  const bool from_units_row = cell.unit_line > 0;
+  std::string unit = from_units_row ? "" : cell.unit;
+  if (unit.empty()) {
     for (const std::string_view word : {"time", "t"}) {
-      if (text == word)
+      if (text == word && cell.unit.empty())
         throw InputError(source, cell.text, "the time column has no unit",
                          "name it time_s (seconds) or time_ms, or write the unit: time [s], time [ms]");
-      if (const auto suffix = SplitUnitSuffix(text, word)) unit = *suffix;
+      if (text == word) unit = cell.unit;
+      if (const auto suffix = SplitUnitSuffix(text, word)) {
+        if (from_units_row && NormaliseUnit(*suffix) != NormaliseUnit(cell.unit))
+          throw InputError(source, Excerpt(cell.text),
+                           "the time column's header says '" + *suffix + "' but the units row (line " +
+                               std::to_string(cell.unit_line) + ") gives '" + Excerpt(cell.unit) + "'",
+                           "give the time's unit once, in the header or in the units row, or make them agree");
+        unit = *suffix;
+      }
     }
     if (unit.empty()) return 0.0;
   } else if (name != "time" && name != "t") {
@@ -73,34 +83,39 @@ double TimeUnitFactor(const HeaderCell& cell, const std::string& source) {
 // bracketed unit ("acc1 [g]"), else a channel's name and a unit suffix
 // ("acc1_g" for acc1). A name is matched whole, never as a prefix, so sensors
 // acc1 and acc1_g are told apart in any order.
+// A channel that campaign.json maps to a column ("column", "column_number")
+// is not looked for by name.
+bool IsMapped(const ChannelSpec& spec) { return !spec.column.empty() || spec.column_number > 0; }
+
 std::optional<std::pair<std::size_t, std::string>> ChannelOfCell(const HeaderCell& cell,
                                                                  const std::vector<const ChannelSpec*>& channels) {
+  const auto by_name = [&](std::size_t c) { return !IsMapped(*channels[c]); };
   for (std::size_t c = 0; c < channels.size(); ++c)
-    if (cell.text == channels[c]->channel) return std::pair{c, std::string()};
+    if (by_name(c) && cell.text == channels[c]->channel) return std::pair{c, cell.unit_line > 0 ? cell.unit : ""};
   if (!cell.unit.empty())
     for (std::size_t c = 0; c < channels.size(); ++c)
-      if (cell.name == channels[c]->channel) return std::pair{c, cell.unit};
+      if (by_name(c) && cell.name == channels[c]->channel) return std::pair{c, cell.unit};
   std::optional<std::pair<std::size_t, std::string>> suffixed;
   for (std::size_t c = 0; c < channels.size(); ++c)
     if (const auto suffix = SplitUnitSuffix(cell.text, channels[c]->channel);
-        suffix && (!suffixed || channels[c]->channel.size() > channels[suffixed->first]->channel.size()))
+        by_name(c) && suffix &&
+        (!suffixed || channels[c]->channel.size() > channels[suffixed->first]->channel.size()))
       suffixed = std::pair{c, *suffix};
   return suffixed;
 }
 
 // The unit a header writes for a channel, against campaign.json's: "" when
 // they agree, else the problem.
-std::string UnitProblem(const ChannelSpec& spec, const std::string& unit) {
-  if (!IsValidUtf8(unit))
-    return "the header gives the unit '" + Excerpt(unit) + "', which is not UTF-8 text (campaign.json declares '" +
-           spec.unit + "')";
+std::string UnitProblem(const ChannelSpec& spec, const std::string& unit, int units_row_line) {
+  const std::string gives =
+      (units_row_line > 0 ? "the units row (line " + std::to_string(units_row_line) + ")" : std::string("the header")) +
+      " gives the unit '" + Excerpt(unit) + "'";
+  if (!IsValidUtf8(unit)) return gives + ", which is not UTF-8 text (campaign.json declares '" + spec.unit + "')";
   const auto normalised = NormaliseUnit(unit);
   if (!normalised || !UnitToSiFactor(spec.quantity, *normalised))
-    return "the header gives the unit '" + Excerpt(unit) + "', which is not a unit of " +
-           std::string(QuantityName(spec.quantity)) + " (campaign.json declares '" + spec.unit + "')";
-  if (*normalised != spec.unit)
-    return "the header gives the unit '" + Excerpt(unit) + "' but campaign.json declares '" + spec.unit +
-           "' for this channel";
+    return gives + ", which is not a unit of " + std::string(QuantityName(spec.quantity)) +
+           " (campaign.json declares '" + spec.unit + "')";
+  if (*normalised != spec.unit) return gives + " but campaign.json declares '" + spec.unit + "' for this channel";
   return "";
 }
 
@@ -112,20 +127,81 @@ std::string ListColumns(const std::vector<std::string>& columns) {
   return list;
 }
 
+// The header cells of the channels campaign.json maps to a column, by
+// header text or number; the cells of no such channel hold npos. A mapping
+// that finds no column (or two) is the channel's defect.
+std::vector<std::size_t> MappedChannelOfCells(const TableReader& table, const std::vector<const ChannelSpec*>& channels,
+                                              ChannelDefects& defects) {
+  const std::vector<HeaderCell>& header = table.Header();
+  std::vector<std::size_t> channel_of(header.size(), std::string::npos);
+  const std::string header_line = "the header (line " + std::to_string(table.HeaderLine()) + ")";
+  for (std::size_t c = 0; c < channels.size(); ++c) {
+    const ChannelSpec& spec = *channels[c];
+    if (spec.column_number > 0) {
+      const auto cell = static_cast<std::size_t>(spec.column_number - 1);
+      if (cell >= header.size()) {
+        defects.Report(c,
+                       "campaign.json's \"column_number\": " + std::to_string(spec.column_number) +
+                           " lies beyond the recording's columns: " + header_line + " has " +
+                           std::to_string(header.size()) + " (" + table.Format().Describe() + ")",
+                       "count the columns from 1 at the left, the time column included, or name the column by its "
+                       "header text with \"column\"");
+        continue;
+      }
+      channel_of[cell] = c;
+      continue;
+    }
+    if (spec.column.empty()) continue;
+    std::vector<std::size_t> found;
+    for (std::size_t cell = 0; cell < header.size(); ++cell)
+      if (header[cell].text == spec.column) found.push_back(cell);
+    // Without its unit ("Laser (M - Filtered)" for "Laser (M - Filtered) [m/s]") when the whole text matches none.
+    if (found.empty())
+      for (std::size_t cell = 0; cell < header.size(); ++cell)
+        if (!header[cell].unit.empty() && header[cell].name == spec.column) found.push_back(cell);
+    if (found.size() == 1) {
+      channel_of[found.front()] = c;
+    } else if (found.empty()) {
+      std::vector<std::string> texts;
+      for (const HeaderCell& cell : header) texts.push_back(Excerpt(cell.text));
+      defects.Report(c,
+                     "campaign.json's \"column\": \"" + Excerpt(spec.column, 60) + "\" names no column of " +
+                         header_line + " (columns: " + ListColumns(texts) + ")",
+                     "copy the column's header text from the recording into \"column\" (letter case and blanks "
+                     "count), or give its number with \"column_number\"");
+    } else {
+      defects.Report(c,
+                     "campaign.json's \"column\": \"" + Excerpt(spec.column, 60) + "\" names " +
+                         std::to_string(found.size()) + " columns of " + header_line + " (columns " +
+                         std::to_string(found[0] + 1) + " and " + std::to_string(found[1] + 1) + ")",
+                     "give the column's number with \"column_number\" instead");
+    }
+  }
+  return channel_of;
+}
+
 HeaderMap MapHeader(const TableReader& table, const std::vector<const ChannelSpec*>& channels,
                     const std::string& source, ChannelDefects& defects) {
   HeaderMap map;
   std::vector<bool> seen(channels.size(), false);
+  const std::vector<std::size_t> mapped = MappedChannelOfCells(table, channels, defects);
+  for (std::size_t c = 0; c < channels.size(); ++c)
+    seen[c] = IsMapped(*channels[c]) && std::find(mapped.begin(), mapped.end(), c) == mapped.end();
   for (const HeaderCell& cell : table.Header()) {
     int column = kIgnoredColumn;
     std::string name = Excerpt(cell.text);
-    if (const auto match = ChannelOfCell(cell, channels)) {
+    const std::size_t mapped_channel = mapped[map.columns.size()];
+    const auto match = mapped_channel != std::string::npos
+                           ? std::optional<std::pair<std::size_t, std::string>>({mapped_channel, cell.unit})
+                           : ChannelOfCell(cell, channels);
+    if (match) {
       const auto& [c, unit] = *match;
       const ChannelSpec& spec = *channels[c];
       name = spec.channel;
       if (seen[c]) {
         defects.Report(c, "the header names the channel twice", "keep one column per channel");
-      } else if (const std::string problem = unit.empty() ? "" : UnitProblem(spec, unit); !problem.empty()) {
+      } else if (const std::string problem = unit.empty() ? "" : UnitProblem(spec, unit, cell.unit_line);
+                 !problem.empty()) {
         defects.Report(c, problem,
                        "make them agree: correct the channel's \"unit\" in campaign.json, or export the channel in " +
                            spec.unit + " (its header may say " + spec.channel + " [" + spec.unit + "] or nothing)");
@@ -164,8 +240,12 @@ HeaderMap MapHeader(const TableReader& table, const std::vector<const ChannelSpe
                    "the channel of campaign.json is missing from the header" +
                        (map.ignored.empty() ? std::string()
                                             : " (columns no channel uses: " + ListColumns(map.ignored) + single + ")"),
-                   "export this channel into the recording or correct its name in campaign.json (a header may "
-                   "add a unit: " + channels[c]->channel + " [" + channels[c]->unit + "])");
+                   "export this channel into the recording, correct its name in campaign.json (a header may "
+                   "add a unit: " + channels[c]->channel + " [" + channels[c]->unit + "]) or name its column there "
+                   "with \"column\" or \"column_number\"" +
+                       (table.HeaderLine() > 1 ? " (the header read is line " + std::to_string(table.HeaderLine()) +
+                                                     "; a metadata block above it: \"recording_layout\")"
+                                               : std::string()));
   }
   return map;
 }
@@ -202,7 +282,7 @@ Recording ParseRecording(std::string_view csv_text, const Campaign& campaign, co
                          const std::string& source, const RecordingChecks& checks) {
   checks.Validate();
   const auto channels = campaign.Channels();
-  TableReader table(csv_text, source, {.blank_lines_inside = false});
+  TableReader table(csv_text, source, {.blank_lines_inside = false, .layout = campaign.recording_layout});
   if (!table.HasHeader()) throw InputError(source, "", "the file is empty", "export the recording again");
   ChannelDefects defects(campaign, channels, source);
   const HeaderMap map = MapHeader(table, channels, source, defects);

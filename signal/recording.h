@@ -3,8 +3,11 @@
 // through signal/table_reader.h, so the CSV may be an acquisition system's
 // export: ',' ';' or tab separators, a decimal comma (with ';' or tab), a
 // BOM, LF, CRLF or CR line ends, comment lines, quoted headers and units in
-// the header ("acc2 [g]", "acc2 (m/s²)", "acc2_g"), which must agree with the
-// unit campaign.json declares. The channels of campaign.json may come in any column order; other
+// the header ("acc2 [g]", "acc2 (m/s²)", "acc2_g") or in a units row under
+// it, which must agree with the unit campaign.json declares, and a metadata
+// block before the header (campaign.json's recording_layout). The channels of
+// campaign.json may come in any column order, each found by its name or by
+// the column campaign.json maps it to (header text or number); other
 // columns are ignored (and listed in Recording::ignored_columns). The time
 // column is in s or ms ("time_s", "t_ms", "time [ms]"), or absent when
 // campaign.json gives sample_rate_Hz. Columns are reordered to

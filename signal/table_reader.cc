@@ -74,7 +74,7 @@ std::string TableFormat::Describe() const {
 }
 
 std::optional<std::string> NormaliseUnit(std::string_view spelling) {
-  static const std::array<std::pair<std::string_view, std::string_view>, 38> kSpellings = {{
+  static const std::array<std::pair<std::string_view, std::string_view>, 44> kSpellings = {{
       {"hz", "Hz"},       {"1/s", "Hz"},       {"rad/s", "rad/s"},  {"rad_s", "rad/s"},  {"n", "N"},
       {"m/s^2", "m/s^2"}, {"m/s2", "m/s^2"},   {"m/s²", "m/s^2"},   {"m_s2", "m/s^2"},   {"m_s^2", "m/s^2"},
       {"ms-2", "m/s^2"},  {"m/s/s", "m/s^2"},  {"ms^-2", "m/s^2"},  {"m s^-2", "m/s^2"}, {"g", "g"},
@@ -83,6 +83,8 @@ std::optional<std::string> NormaliseUnit(std::string_view spelling) {
       {"degrees", "deg"}, {"°", "deg"},        {"radian", "rad"},   {"s", "s"},          {"sec", "s"},
       {"second", "s"},    {"seconds", "s"},    {"ms", "ms"},        {"msec", "ms"},      {"millisecond", "ms"},
       {"milliseconds", "ms"}, {"m/s^-2", "m/s^2"}, {"newton", "N"},
+      {"v", "V"},         {"volt", "V"},       {"volts", "V"},      {"mv", "mV"},        {"millivolt", "mV"},
+      {"millivolts", "mV"},
   }};
   const std::string key = internal::Lowercase(Unquote(spelling));
   for (const auto& [s, unit] : kSpellings)
@@ -113,6 +115,7 @@ TableReader::TableReader(std::string_view text, std::string source, Options opti
                      "copy or a damaged disk)");
   }
   if (text_.size() >= 3 && std::memcmp(text_.data(), "\xEF\xBB\xBF", 3) == 0) text_.remove_prefix(3);
+  SkipLinesBeforeHeader();
   std::string_view header;
   while (!text_.empty()) {
     const std::string_view line = NextLine(text_);
@@ -123,7 +126,15 @@ TableReader::TableReader(std::string_view text, std::string source, Options opti
     has_header_ = true;
     break;
   }
-  if (!has_header_) return;
+  if (!has_header_) {
+    if (options_.layout.lines_before_header > 0)
+      throw InputError(source_, "",
+                       "no header follows the " + std::to_string(options_.layout.lines_before_header) +
+                           " lines skipped before it (the file has " + std::to_string(line_) + " lines)",
+                       "give the recording with its header, or correct lines_before_header in " +
+                           options_.layout.declared_in);
+    return;
+  }
   header_line_ = line_;
   if (header.size() > kMaxHeaderBytes)
     throw InputError(source_, "",
@@ -155,7 +166,77 @@ TableReader::TableReader(std::string_view text, std::string source, Options opti
     }
     header_.push_back(std::move(h));
   }
+  if (options_.layout.units_row) ReadUnitsRow();
   DetectDecimalMark(text_);
+}
+
+void TableReader::SkipLinesBeforeHeader() {
+  const int skip = options_.layout.lines_before_header;
+  for (int skipped = 0; skipped < skip; ++skipped) {
+    if (text_.empty())
+      throw InputError(source_, "",
+                       "the file has " + std::to_string(skipped) + " lines, fewer than the " + std::to_string(skip) +
+                           " lines before the header that the layout skips",
+                       "give the whole export, or correct lines_before_header in " + options_.layout.declared_in +
+                           " (the number of lines above the header line)");
+    NextLine(text_);
+    ++line_;
+  }
+}
+
+namespace {
+
+// "[g]" and "(g)" as "g": some exports bracket the units of their units row.
+std::string_view Unbracketed(std::string_view unit) {
+  if (unit.size() >= 2 && ((unit.front() == '[' && unit.back() == ']') || (unit.front() == '(' && unit.back() == ')')))
+    return Trim(unit.substr(1, unit.size() - 2));
+  return unit;
+}
+
+}  // namespace
+
+void TableReader::ReadUnitsRow() {
+  const std::string where = "the units row (line " + std::to_string(line_ + 1) + ", under the header)";
+  const std::string fix = "give each column's unit on the line directly under the header (a blank cell for a column "
+                          "without one), or correct units_row in " + options_.layout.declared_in;
+  if (text_.empty()) throw InputError(source_, "", where + " is missing: the file ends after the header", fix);
+  const std::string_view line = NextLine(text_);
+  ++line_;
+  const std::string_view trimmed = Trim(line);
+  if (trimmed.empty() || IsComment(trimmed))
+    throw InputError(source_, "", where + " is " + (trimmed.empty() ? "blank" : "a comment"), fix);
+  std::vector<std::string_view> cells;
+  SplitCells(line, cells);
+  if (cells.size() != header_.size())
+    throw InputError(source_, "",
+                     where + " has " + std::to_string(cells.size()) + " cells, the header " +
+                         std::to_string(header_.size()) + " (" + format_.Describe() + ")",
+                     fix);
+  bool all_numbers = true;
+  for (const std::string_view cell : cells) {
+    double value = 0.0;
+    const std::string_view unit = Unquote(cell);
+    all_numbers = all_numbers && (unit.empty() || std::from_chars(unit.data(), unit.data() + unit.size(), value).ec ==
+                                                      std::errc());
+  }
+  if (all_numbers)
+    throw InputError(source_, "", where + " holds numbers ('" + Excerpt(trimmed) + "'): it is a row of data", fix);
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    const std::string unit(Unbracketed(Unquote(cells[i])));
+    HeaderCell& cell = header_[i];
+    if (unit.empty()) continue;
+    if (!cell.unit.empty()) {
+      const auto header_unit = NormaliseUnit(cell.unit), row_unit = NormaliseUnit(unit);
+      if (header_unit ? header_unit != row_unit : cell.unit != unit)
+        throw InputError(source_, Excerpt(cell.text),
+                         "the header gives the unit '" + Excerpt(cell.unit) + "' but " + where + " gives '" +
+                             Excerpt(unit) + "'",
+                         "give the unit once, in the header or in the units row, or make them agree");
+      continue;
+    }
+    cell.unit = unit;
+    cell.unit_line = line_;
+  }
 }
 
 std::size_t TableReader::CountRows() const {

@@ -9,7 +9,10 @@
 //    the caller allows them);
 //  - header cells unquoted ("acc2") and split into a name and a bracketed
 //    unit ("acc2 [g]", "acc2 (m/s²)"); a unit suffix ("acc2_g") needs the
-//    caller's names and is split with SplitUnitSuffix.
+//    caller's names and is split with SplitUnitSuffix;
+//  - when the caller says so (TableLayout): a block of lines before the
+//    header skipped whatever they hold (an export's metadata without '#'),
+//    and a units row directly under the header ("s, N, g, g", "[s];[N]").
 // Numbers are read with std::from_chars (an optional leading '+'); a cell
 // that is none is reported with the convention detected, e.g. "the file uses
 // ';' as separator and ',' as decimal mark: line 12, column acc2: 'abc' is not
@@ -39,12 +42,25 @@ struct TableFormat {
 struct HeaderCell {
   std::string text;  // as written, without quotes and surrounding blanks
   std::string name;  // text without its bracketed unit
-  std::string unit;  // the bracketed unit as written, "" when none
+  std::string unit;  // the bracketed unit (or the units row's) as written, "" when none
+  int unit_line = 0;  // the units row's line when the unit is the units row's, else 0
+};
+
+// How an export lays out what precedes its data, which the text alone cannot
+// tell: a metadata block may hold separators and numbers, and a units row
+// looks like a row of words.
+struct TableLayout {
+  int lines_before_header = 0;  // skipped whatever they hold
+  bool units_row = false;       // the line under the header gives each column's unit
+  // Where the layout was declared, for the fix of a file that breaks it
+  // ("recording_layout in campaign.json").
+  std::string declared_in;
 };
 
 // The unit spellings the readers accept, normalised to the campaign format's
-// words (signal/quantity.h: N, m/s^2, g, m/s, mm/s, m, mm) plus Hz, rad/s,
-// rad, deg, s and ms; case is ignored ("m/s²", "M_S2", "ms-2" give "m/s^2").
+// words (signal/quantity.h: N, V, mV, m/s^2, g, m/s, mm/s, m, mm) plus Hz,
+// rad/s, rad, deg, s and ms; case is ignored ("m/s²", "M_S2", "ms-2" give
+// "m/s^2"; "MV" is read as millivolts, no acquisition system drives megavolts).
 // nullopt when unknown.
 std::optional<std::string> NormaliseUnit(std::string_view spelling);
 
@@ -64,11 +80,14 @@ class TableReader {
  public:
   struct Options {
     bool blank_lines_inside = false;  // else a blank line inside the table is an error
+    TableLayout layout;
   };
 
   // Finds the header (the first line that is neither blank nor a comment) and
   // detects the format. `source` names the file in messages. Throws
-  // InputError for what is no text table (see above).
+  // InputError for what is no text table (see above), and for a file that
+  // breaks its layout: fewer lines than the block before the header, a units
+  // row missing, of another column count, or contradicting a unit in the header.
   TableReader(std::string_view text, std::string source, Options options);
 
   bool HasHeader() const { return has_header_; }
@@ -99,6 +118,8 @@ class TableReader {
  private:
   void SplitCells(std::string_view line, std::vector<std::string_view>& cells) const;
   void DetectDecimalMark(std::string_view rest);
+  void SkipLinesBeforeHeader();
+  void ReadUnitsRow();
   bool NextContentLine(std::string_view& line, bool& blank);
 
   std::string_view text_;

@@ -47,7 +47,12 @@ BEAMID_REGISTER_COMMAND("backbone", [](CLI::App& app, const GlobalOptions& globa
   sub->add_option("--measured", measured->inputs,
                   "Measured input: a campaign folder, a phasor file of beamid extract, or first-harmonic CSV tables "
                   "(one per level, docs/phasor-table.md)");
-  sub->add_option("--channel", measured->channel, "With --measured: the response channel of a campaign (default: first)");
+  sub->add_option("--channel", measured->channel,
+                  "With --measured: the response channel of a campaign or phasor file (default: the first sensor not "
+                  "ignored); of a campaign, the other sensors' problems only warn");
+  sub->add_flag("--skip-bad-steps", measured->skip_bad_steps,
+                "With --measured CAMPAIGN: leave out (and list) the steps whose recordings hold errors; without it "
+                "the run stops with the list");
   sub->add_option("--result", measured->result_file, "With --measured: overlay this identified model's backbone")
       ->check(NonEmptyPath());
   sub->add_option("--position-m", measured->position_m, "With --measured tables and --result: the sensor's position [m]")
@@ -83,6 +88,12 @@ BEAMID_REGISTER_COMMAND("backbone", [](CLI::App& app, const GlobalOptions& globa
       throw std::invalid_argument("backbone: give a model file, or --measured INPUT for a test's backbone");
     if (measured->keep_flagged_levels)
       throw std::invalid_argument("backbone: --keep-flagged-levels applies to --measured only (a model has no levels)");
+    if (measured->skip_bad_steps)
+      throw std::invalid_argument("backbone: --skip-bad-steps applies to --measured CAMPAIGN only (a model has no "
+                                  "recordings)");
+    if (!measured->channel.empty())
+      throw std::invalid_argument("backbone: --channel applies to --measured only; a model's backbone is that of "
+                                  "every sensor");
     RunBackbone(*request, global);
   });
 });

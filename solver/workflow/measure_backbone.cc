@@ -29,7 +29,13 @@ std::vector<signal::FirstHarmonicLevel> ReadLevels(const MeasureBackboneRequest&
   namespace fs = std::filesystem;
   const fs::path first = options.inputs.front();
   const bool tables = first.extension() == ".csv" || first.extension() == ".CSV" || first.extension() == ".txt";
+  if (!fs::is_directory(first) && options.skip_bad_steps)
+    throw InputError("--skip-bad-steps applies to a campaign folder (whose recordings are extracted here), not to " +
+                     first.string() + ". Fix: drop --skip-bad-steps, or give the campaign folder");
   if (tables) {
+    if (!options.channel.empty())
+      throw InputError("--channel " + options.channel + ": a first-harmonic table holds one response, named by its "
+                       "columns. Fix: drop --channel, or give a campaign folder or phasor file");
     std::vector<signal::FirstHarmonicLevel> levels;
     for (const auto& input : options.inputs) {
       levels.push_back(signal::ReadPhasorTable(input));
@@ -40,16 +46,26 @@ std::vector<signal::FirstHarmonicLevel> ReadLevels(const MeasureBackboneRequest&
   if (options.inputs.size() > 1)
     throw std::invalid_argument("--measured: give one campaign folder or phasor file, or several CSV tables");
   signal::PhasorSet set;
+  std::string channel = options.channel;
   if (fs::is_directory(first)) {
+    signal::Campaign campaign = ReadCampaignAndWarn("backbone", first, observer);
+    if (channel.empty())
+      for (const auto& sensor : campaign.sensors)
+        if (channel.empty() && campaign.Use(sensor.channel) != signal::ChannelUse::kIgnored) channel = sensor.channel;
+    // Only the backbone's channel (and the excitation) may stop a step: a
+    // broken sensor it does not read is a warning, as with `extract --channel`.
+    if (!channel.empty()) campaign.Analyse({channel});
     signal::ExtractOptions extract;
     extract.estimator.num_harmonics = 3;
-    set = signal::ExtractCampaign(ReadCampaignAndWarn("backbone", first, observer), extract);
+    extract.skip_bad_steps = options.skip_bad_steps;
+    set = signal::ExtractCampaign(campaign, extract);
+    WarnSkippedSteps("backbone", set, observer);
   } else {
     set = signal::ReadPhasorSetJson(first);
   }
   if (set.steps.empty() || set.steps.front().responses.empty())
     throw std::invalid_argument(first.string() + ": no steps with a response channel");
-  const std::string channel = options.channel.empty() ? set.steps.front().responses.front().channel : options.channel;
+  if (channel.empty()) channel = set.steps.front().responses.front().channel;
   if (options.channel.empty()) observer.Note("backbone: response channel " + channel + " (--channel to choose)");
   return signal::FirstHarmonicLevels(set, channel, first.string());
 }

@@ -20,7 +20,11 @@ namespace beamid::workflow {
 struct MeasureBackboneRequest {
   // One campaign folder or phasor file, or CSV tables (one per level).
   std::vector<std::string> inputs;
-  std::string channel;      // response channel of a campaign ("": its first sensor, told as a note)
+  // Response channel of a campaign or phasor file ("": its first sensor not ignored, told as a note); of a
+  // campaign, it is the one analysed sensor: the other sensors' problems only warn (signal::Campaign::Use).
+  std::string channel;
+  // Of a campaign: leave out (and warn of) the steps whose recordings hold errors (--skip-bad-steps).
+  bool skip_bad_steps = false;
   std::string result_file;  // identified model to overlay ("": none)
   double position_m = -1.0;  // the tables' sensor position for the overlay (< 0: not given; else 0..100)
   // MeasuredBackboneOptions::keep_flagged_levels_in_fit (--keep-flagged-levels).

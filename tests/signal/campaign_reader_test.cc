@@ -458,10 +458,12 @@ TEST(CampaignFileTest, TheDeclarationHolds) {
                                        .sensitivity_N_per_V = 12.5},
                         .steps = {{.file = "low/step_000.csv", .frequency_hz = 50.0, .level = "low"}},
                         .sample_rate_hz = 5120.0,
-                        .ignore_channels = {"acc2"}};
+                        .ignore_channels = {"acc2"},
+                        .recording_layout = hb::CampaignRecordingLayout{.lines_before_header = 3, .units_row = true}};
   file.sensors.push_back({.channel = "acc1", .position_m = 0.1, .quantity = "acceleration", .unit = "g",
-                          .mass_kg = 0.004});
-  file.sensors.push_back({.channel = "acc2", .position_m = 0.3, .quantity = "acceleration", .unit = "m/s^2"});
+                          .mass_kg = 0.004, .column = "Ch2 acc1 [g]"});
+  file.sensors.push_back({.channel = "acc2", .position_m = 0.3, .quantity = "acceleration", .unit = "m/s^2",
+                          .column_number = 4});
   beamid::testing::ExpectDeclarationHolds({
       .fields = hb::CampaignFileFields(),
       .sample = hb::CampaignFileToJson(file),

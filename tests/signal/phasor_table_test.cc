@@ -66,6 +66,59 @@ TEST(PhasorTable, TheResponseQuantityFollowsFromTheUnit) {
   EXPECT_NEAR(std::abs(level.points[1].response.value), 2 * 9.80665, kTolerance);
 }
 
+void ExpectError(const std::string& text, const std::vector<std::string>& words);
+
+// The rows of a table after its header: frequency, excitation amplitude,
+// response amplitude, phase [deg].
+constexpr const char* kRows = "50,2,1,0\n51,2,3,40\n52,2,1,80\n";
+
+TEST(PhasorTable, AForceIsTheDefaultExcitation) {
+  for (const char* header : {"frequency_Hz,force_N,acc_g,phase_deg\n", "frequency_Hz,excitation,acc_g,phase_deg\n",
+                             "frequency_Hz,input [N],acc_g,phase_deg\n"}) {
+    SCOPED_TRACE(header);
+    EXPECT_EQ(ParsePhasorTable(std::string(header) + kRows, "f.csv", "f").excitation_quantity, Quantity::kForce);
+  }
+}
+
+TEST(PhasorTable, AVoltageDriveReadsToVoltsByNameOrUnit) {
+  const FirstHarmonicLevel volts =
+      ParsePhasorTable(std::string("frequency_Hz,voltage [V],acc_g,phase_deg\n") + kRows, "v.csv", "v");
+  EXPECT_EQ(volts.excitation_quantity, Quantity::kVoltage);
+  EXPECT_DOUBLE_EQ(volts.points[1].force.value.real(), 2.0);
+  // The same drive in mV, named by its unit.
+  const FirstHarmonicLevel millivolts = ParsePhasorTable(
+      "frequency_Hz,excitation [mV],acc_g,phase_deg,excitation_std [mV]\n50,2000,1,0,10\n51,2000,3,40,10\n"
+      "52,2000,1,80,10\n",
+      "mv.csv", "mv");
+  EXPECT_EQ(millivolts.excitation_quantity, Quantity::kVoltage);
+  for (std::size_t i = 0; i < volts.points.size(); ++i) {
+    EXPECT_NEAR(millivolts.points[i].force.value.real(), volts.points[i].force.value.real(), 1e-12);
+    EXPECT_NEAR(std::abs(millivolts.points[i].response.value - volts.points[i].response.value), 0.0, 1e-12);
+  }
+  EXPECT_NEAR(millivolts.points[0].force.std_real, 0.01, 1e-15);
+  ExpectError("frequency_Hz,voltage [N],acc_g,phase_deg\n" + std::string(kRows),
+              {"column 'voltage [N]'", "unknown unit 'N'", "V, mV (for a voltage)"});
+}
+
+TEST(PhasorTable, ABaseAccelerationDriveGivesTheResponseRelativeToTheBase) {
+  const FirstHarmonicLevel level =
+      ParsePhasorTable(std::string("frequency_Hz,base_acceleration [g],acceleration [g],phase_deg\n") + kRows, "b.csv",
+                       "b");
+  EXPECT_EQ(level.excitation_quantity, Quantity::kBaseAcceleration);
+  constexpr double g = 9.80665;
+  const double deg = std::numbers::pi / 180;
+  // Row 2: A_b = 2 g, X = 3 g at 40° from it; the level holds X − A_b per −A_b.
+  const std::complex<double> absolute = std::polar(3 * g, 40 * deg);
+  EXPECT_NEAR(std::abs(level.points[1].response.value - (absolute - 2 * g)), 0.0, 1e-9);
+  EXPECT_NEAR(std::abs(level.points[1].force.value - (-2 * g)), 0.0, 1e-12);
+  // Said by the unit of an input column too.
+  EXPECT_EQ(ParsePhasorTable(std::string("frequency_Hz,input [m/s^2],acc_g,phase_deg\n") + kRows, "i.csv", "i")
+                .excitation_quantity,
+            Quantity::kBaseAcceleration);
+  ExpectError("frequency_Hz,base_acceleration [g],velocity [mm/s],phase_deg\n" + std::string(kRows),
+              {"column 'velocity [mm/s]'", "must be an acceleration", "not a velocity"});
+}
+
 void ExpectError(const std::string& text, const std::vector<std::string>& words) {
   try {
     ParsePhasorTable(text, "levels/high.csv", "high");

@@ -638,6 +638,38 @@ TEST_F(BadInput, SkipBadStepsFitsTheOtherStepsAndNamesTheSkippedOne) {
   EXPECT_EQ(with_flag.exit_code, 0) << with_flag.output;
 }
 
+// backbone --measured CAMPAIGN reads the recordings as extract does: a bad
+// sample of a sensor other than --channel's stops nothing, one of the
+// channel's stops the run naming --skip-bad-steps, and with it the step is
+// left out and named (here the level is then too short for a backbone: the
+// complaint is the level's, no longer the recording's).
+TEST_F(BadInput, MeasuredBackboneHonoursChannelAndSkipBadSteps) {
+  const fs::path d = root_ / "backbone_skip", m = d / "campaign";
+  fs::create_directories(d);
+  fs::copy(root_ / "clean", m, fs::copy_options::recursive);
+  ReplaceSample(m / "low" / "step_001.csv", 9, 3, "nan");  // acc2
+  const ProgramRun other_channel =
+      Beamid("backbone --measured " + m.string() + " --channel acc1 -o " + (d / "acc1").string());
+  ASSERT_EQ(other_channel.exit_code, 0) << other_channel.output;
+  EXPECT_TRUE(fs::exists(d / "acc1.json"));
+
+  const ProgramRun without_flag =
+      Beamid("backbone --measured " + m.string() + " --channel acc2 -o " + (d / "acc2").string());
+  EXPECT_EQ(without_flag.exit_code, 2) << without_flag.output;
+  EXPECT_THAT(without_flag.output, HasSubstr("step_001.csv"));
+  EXPECT_THAT(without_flag.output, HasSubstr("--skip-bad-steps"));
+  const ProgramRun with_flag =
+      Beamid("backbone --measured " + m.string() + " --channel acc2 --skip-bad-steps -o " + (d / "acc2").string());
+  EXPECT_THAT(with_flag.output, HasSubstr("warning: skipped low/step_001.csv"));
+  EXPECT_THAT(with_flag.output, HasSubstr("2 steps; at least 3 are needed"));
+  EXPECT_THAT(with_flag.output, ::testing::Not(HasSubstr("cannot be analysed")));
+
+  const ProgramRun on_tables = Beamid("backbone --measured examples/phasor_tables/low.csv --skip-bad-steps -o " +
+                                      (d / "tables").string());
+  EXPECT_EQ(on_tables.exit_code, 2) << on_tables.output;
+  EXPECT_THAT(on_tables.output, HasSubstr("--skip-bad-steps applies to a campaign folder"));
+}
+
 // Not bad input: a recording copied over another step's is analysed, but
 // every command that reads the recordings warns, naming both files.
 TEST_F(BadInput, ARecordingThatCopiesAnotherStepIsAWarningNamingBoth) {

@@ -129,6 +129,30 @@ TEST_F(BackboneWorkflows, TheMeasuredBackboneOfTablesIsWhatADirectAnalysisFindsA
   EXPECT_TRUE(fs::exists(request.output + "_curves.csv"));
 }
 
+// The demo's tables with their force columns renamed a drive voltage: the
+// same numbers, now per volt, and the levels read as voltage-controlled.
+TEST_F(BackboneWorkflows, TablesDrivenByAVoltageGiveAVoltageControlledBackbone) {
+  std::vector<std::string> voltage_tables;
+  for (const auto& table : kTables) {
+    std::string text = ReadFile(table);
+    const std::string force = "force [N],force_std [N]";
+    ASSERT_NE(text.find(force), std::string::npos) << table;
+    text.replace(text.find(force), force.size(), "voltage [V],voltage_std [V]");
+    voltage_tables.push_back((out_ / fs::path(table).filename()).string());
+    beamid::testing::WriteFile(voltage_tables.back(), text);
+  }
+  const auto forced = workflow::MeasureBackbone({.inputs = kTables, .output = (out_ / "forced").string()});
+  const auto driven = workflow::MeasureBackbone({.inputs = voltage_tables, .output = (out_ / "driven").string()});
+  EXPECT_EQ(forced.measured.excitation_quantity, "force");
+  EXPECT_EQ(driven.measured.excitation_quantity, "voltage");
+  ASSERT_EQ(driven.measured.levels.size(), forced.measured.levels.size());
+  for (std::size_t i = 0; i < forced.measured.levels.size(); ++i)
+    EXPECT_EQ(driven.measured.levels[i].quadrature_frequency_hz.value,
+              forced.measured.levels[i].quadrature_frequency_hz.value);
+  EXPECT_EQ(solver::ReadMeasuredBackboneFile((out_ / "driven.json").string()).excitation_quantity, "voltage");
+  EXPECT_THAT(ReadFile(out_ / "driven.csv"), HasSubstr(",voltage_V,voltage_std_V,"));
+}
+
 TEST_F(BackboneWorkflows, TheReportOfAMeasuredBackboneIsTheLibrarysPage) {
   const workflow::MeasureBackboneRequest measure{.inputs = kTables, .output = (out_ / "for_report").string()};
   workflow::MeasureBackbone(measure);
