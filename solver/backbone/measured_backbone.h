@@ -137,7 +137,8 @@ inline constexpr double kRegenerationNoiseFactor = 3.0;
 struct LevelFlag {
   LevelFlagKind kind = LevelFlagKind::kDampingNotPositive;
   // The LevelResonance number it concerns: "quadrature_damping_ratio",
-  // "local_damping_ratio", "half_power_damping_ratio", "quadrature_frequency",
+  // "local_damping_ratio", "half_power_damping_ratio",
+  // "free_decay_damping_ratio", "quadrature_frequency",
   // "peak_frequency", "local_natural_frequency", "regeneration_relative_rms"
   // "sweep" (a jump) or "phase" (the phase convention).
   std::string quantity;

@@ -77,7 +77,7 @@ std::string LevelTable(const MeasuredBackboneFile& file, const MeasuredBackboneO
   std::string html =
       "<table>\n<tr><th>level</th><th>control</th><th>phase resonance [Hz]</th><th>amplitude [mm]</th>"
       "<th>ζ [%] (σ covers the estimators)</th><th>ζ phase resonance [%]</th><th>ζ local fit [%]</th>"
-      "<th>ζ half-power [%]</th><th>peak [Hz]</th><th>regeneration RMS</th><th>in the fit</th><th>flags</th></tr>\n";
+      "<th>ζ half-power [%]</th><th>ζ free decay [%]</th><th>peak [Hz]</th><th>regeneration RMS</th><th>in the fit</th><th>flags</th></tr>\n";
   for (std::size_t i = 0; i < file.levels.size(); ++i) {
     const LevelResonance& l = file.levels[i];
     const LevelOutcome& stated = outcome.levels[i];
@@ -85,13 +85,14 @@ std::string LevelTable(const MeasuredBackboneFile& file, const MeasuredBackboneO
     for (const auto& name : stated.flags) kinds += (kinds.empty() ? "" : ", ") + name;
     html += fmt::format(
         "<tr><td>{}</td><td>{}</td><td>{}{}</td><td>{}</td><td>{}</td><td>{}{}</td><td>{}{}</td><td>{}{}</td>"
-        "<td>{}{}</td><td>{}{}</td><td>{}</td><td class=\"flag\">{}</td></tr>\n",
+        "<td>{}{}</td><td>{}{}</td><td>{}{}</td><td>{}</td><td class=\"flag\">{}</td></tr>\n",
         HtmlEscape(l.label),
         LevelControlText(file.excitation_quantity, l.control),
         Cell(l.quadrature_frequency_hz, 1), FlagCell(l, "quadrature_frequency"), Cell(l.quadrature_amplitude_m, 1e3),
         Cell(l.damping_ratio, 100), Cell(l.quadrature_damping_ratio, 100), FlagCell(l, "quadrature_damping_ratio"),
         Cell(l.local_damping_ratio, 100), FlagCell(l, "local_damping_ratio"), Cell(l.half_power_damping_ratio, 100),
-        FlagCell(l, "half_power_damping_ratio"), Cell(l.peak_frequency_hz, 1), FlagCell(l, "peak_frequency"),
+        FlagCell(l, "half_power_damping_ratio"), Cell(l.free_decay_damping_ratio, 100),
+        FlagCell(l, "free_decay_damping_ratio"), Cell(l.peak_frequency_hz, 1), FlagCell(l, "peak_frequency"),
         NumberOrWhyNot(100 * l.regeneration_relative_rms, "{:.3g} %", "the fit misses a step of no response"),
         FlagCell(l, "regeneration_relative_rms"),
         stated.in_global_fit ? "yes" : "<span class=\"flag\">no</span>", HtmlEscape(kinds));

@@ -56,6 +56,9 @@ std::vector<std::string> LevelSummaryLines(const MeasuredBackbone& measured) {
     line += ", ζ = " + (Defined(l.damping_ratio)
                             ? WithUncertainty(100 * l.damping_ratio.value, 100 * l.damping_ratio.std) + " %"
                             : "not estimated (" + WhyNoDampingRatio(l) + ")");
+    if (Defined(l.free_decay_damping_ratio))
+      line += ", free decay ζ = " +
+              WithUncertainty(100 * l.free_decay_damping_ratio.value, 100 * l.free_decay_damping_ratio.std) + " %";
     const std::string flags = FlagWords(l);
     lines.push_back(flags.empty() ? line : line + "  " + flags);
   }
