@@ -1,8 +1,8 @@
 // The command-line summary of `beamid backbone --measured`, as a person
 // reads it: ONE line per level (its label, what controls it, the frequency
-// at phase resonance ± σ, the displacement amplitude there, the level's ζ ± σ
-// and its flags as short words: [jump ×2] [coarse steps] [left out of the
-// fit]), so that a noisy sweep that jumps hundreds of times still reads in
+// at phase resonance ± σ, the displacement amplitude there, the level's ζ ± σ,
+// the free decay's ζ after records that stop, and its flags as short words:
+// [jump ×2] [coarse steps] [left out of the fit]), so that a noisy sweep that jumps hundreds of times still reads in
 // one line; then the cross-level fit and the damping trend. Each jump's and
 // flag's message and every note stay in PREFIX.json and on the page of
 // `beamid report` (solver/report/measured_backbone_report.h). A number that
