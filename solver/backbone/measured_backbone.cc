@@ -525,15 +525,18 @@ std::vector<SingleModePoint> FitPoints(const LevelData& data, double window) {
   return points;
 }
 
-SingleModeFit LocalFit(const std::vector<SingleModePoint>& points, double tolerance, double residual) {
+SingleModeFitOptions LocalFitForm(const std::vector<SingleModePoint>& points, double tolerance) {
   double a_min = INFINITY, a_max = 0;
   for (const auto& p : points) a_min = std::min(a_min, p.amplitude_m), a_max = std::max(a_max, p.amplitude_m);
   // A level held at one amplitude cannot tell how ω_n and ζ change with it.
   const int degree = a_max / a_min - 1 > tolerance ? 1 : 0;
-  return FitSingleMode(points, {.frequency_degree = 2 * degree,
-                                .damping_degree = degree,
-                                .residual_receptance_m_N = residual,
-                                .reference_amplitude_m = a_max});
+  return {.frequency_degree = 2 * degree, .damping_degree = degree, .reference_amplitude_m = a_max};
+}
+
+SingleModeFit LocalFit(const std::vector<SingleModePoint>& points, double tolerance, double residual) {
+  SingleModeFitOptions form = LocalFitForm(points, tolerance);
+  form.residual_receptance_m_N = residual;
+  return FitSingleMode(points, form);
 }
 
 // LevelResonance::free_decay: the ring-down of the step nearest the phase
@@ -745,8 +748,26 @@ void CombineDampingRatios(const LevelData& data, LevelResonance& r) {
 }
 
 
+// Where the level's own curve puts its resonance against the backbone the
+// cross-level fit draws, at the level's amplitude: what a person checks
+// against the test's log (the order the levels ran in, the temperature).
+std::string OffBackboneMessage(const SingleModeFit& cross_level_fit, const LevelResonance& r, double allowed) {
+  std::string where;
+  if (r.local_natural_frequency_hz.valid && r.quadrature_amplitude_m.valid) {
+    const double a = r.quadrature_amplitude_m.value;
+    where = fmt::format(" (its natural frequency {:.6g} Hz, the backbone's {:.6g} Hz at its amplitude)",
+                        r.local_natural_frequency_hz.value, cross_level_fit.NaturalFrequency_rad_s(a) / kTwoPi);
+  }
+  return fmt::format("the cross-level fit misses the level by {} RMS, beyond the {} its noise allows, while its own "
+                     "single-mode curve holds it within {}: the level lies off the backbone the others draw{} — "
+                     "drift over the test (the beam warming, a contact bedding in) or a level in another state; "
+                     "it stays in the cross-level fit, its own numbers stand",
+                     Percent(r.regeneration_relative_rms), Percent(allowed), Percent(r.own_curve_relative_rms), where);
+}
+
 // The checks of LevelResonance::flags on one level's numbers.
-void FlagLevel(const LevelData& data, bool regenerated, const MeasuredBackboneOptions& options, LevelResonance& r) {
+void FlagLevel(const LevelData& data, const SingleModeFit* cross_level_fit, const MeasuredBackboneOptions& options,
+               LevelResonance& r) {
   const auto add = [&](LevelFlagKind kind, std::string quantity, std::string message) {
     r.flags.push_back({.kind = kind, .quantity = std::move(quantity), .message = std::move(message)});
   };
@@ -790,11 +811,15 @@ void FlagLevel(const LevelData& data, bool regenerated, const MeasuredBackboneOp
                     jump.from_frequency_hz, jump.to_frequency_hz, jump.up_sweep ? "up" : "down",
                     FiniteOr(jump.receptance_ratio, "{:.3g}"),
                     FiniteOr(jump.phase_change_rad * 180 / std::numbers::pi, "{:+.0f}°")));
-  if (regenerated) {
+  if (cross_level_fit) {
     const double allowed =
         std::max(options.max_regeneration_relative_rms, kRegenerationNoiseFactor * r.regeneration_noise_relative_rms);
-    if (!(r.regeneration_relative_rms <= allowed))
-      add(LevelFlagKind::kRegenerationBeyondNoise, "regeneration_relative_rms",
+    if (r.regeneration_relative_rms <= allowed) return;
+    if (r.own_curve_relative_rms > 0 && r.own_curve_relative_rms <= allowed) {
+      add(LevelFlagKind::kOffBackbone, "regeneration_relative_rms", OffBackboneMessage(*cross_level_fit, r, allowed));
+      return;
+    }
+    add(LevelFlagKind::kRegenerationBeyondNoise, "regeneration_relative_rms",
           r.regeneration_noise_relative_rms > 0
               ? fmt::format("the single-mode fit misses the level by {} RMS; its noise allows {} (the larger of {} × "
                             "the noise's {} and {})",
@@ -891,6 +916,7 @@ std::string_view LevelFlagName(LevelFlagKind kind) {
     case LevelFlagKind::kJump: return "jump";
     case LevelFlagKind::kPhaseConvention: return "phase_convention";
     case LevelFlagKind::kCoarseSteps: return "coarse_steps";
+    case LevelFlagKind::kOffBackbone: return "off_backbone";
   }
   return "";
 }
@@ -898,11 +924,11 @@ std::string_view LevelFlagName(LevelFlagKind kind) {
 LevelFlagKind LevelFlagKindFromName(std::string_view name) {
   for (LevelFlagKind kind : {LevelFlagKind::kDampingNotPositive, LevelFlagKind::kPeakOutsideBand,
                              LevelFlagKind::kRegenerationBeyondNoise, LevelFlagKind::kJump,
-                             LevelFlagKind::kPhaseConvention, LevelFlagKind::kCoarseSteps})
+                             LevelFlagKind::kPhaseConvention, LevelFlagKind::kCoarseSteps, LevelFlagKind::kOffBackbone})
     if (name == LevelFlagName(kind)) return kind;
   throw InputError("unknown level flag \"" + std::string(name) +
                    "\": give damping_not_positive, peak_outside_band, regeneration_beyond_noise, jump, "
-                   "phase_convention or coarse_steps");
+                   "phase_convention, coarse_steps or off_backbone");
 }
 
 bool LevelResonance::HasFlag(LevelFlagKind kind) const {
@@ -919,6 +945,7 @@ std::string LevelResonance::FlagNote(std::string_view quantity) const {
                                   : f.kind == LevelFlagKind::kJump             ? "jump"
                                   : f.kind == LevelFlagKind::kPhaseConvention  ? "phase convention"
                                   : f.kind == LevelFlagKind::kCoarseSteps      ? "steps coarser than the resonance"
+                                  : f.kind == LevelFlagKind::kOffBackbone      ? "off the backbone"
                                                                                : "beyond the noise";
     const auto seen = std::find_if(kinds.begin(), kinds.end(), [&](const auto& k) { return k.first == what; });
     if (seen == kinds.end())
@@ -948,8 +975,13 @@ namespace {
 
 // The analysis with the levels of `in_fit` in the cross-level fit (all levels
 // are analysed, regenerated and flagged).
+// Where the other modes' share R comes from: the cross-level fit (one
+// backbone for all levels), or the levels' own curves with one R between
+// them, when the levels do not lie on one backbone.
+enum class ResidualFrom { kCrossLevelFit, kLevelsOwnCurves };
+
 MeasuredBackbone Analyse(const std::vector<signal::FirstHarmonicLevel>& levels, const MeasuredBackboneOptions& options,
-                         const std::vector<bool>& in_fit) {
+                         const std::vector<bool>& in_fit, ResidualFrom residual_from = ResidualFrom::kCrossLevelFit) {
   MeasuredBackbone result;
   result.response_quantity = signal::QuantityName(levels.front().response_quantity);
   result.excitation_quantity = signal::QuantityName(levels.front().excitation_quantity);
@@ -987,7 +1019,16 @@ MeasuredBackbone Analyse(const std::vector<signal::FirstHarmonicLevel>& levels, 
   // amplitude): first with the most flexible polynomial form, then again with
   // the form chosen with it (R and the form bias each other's choice).
   double residual = 0.0;
-  if (options.estimate_residual) {
+  if (options.estimate_residual && residual_from == ResidualFrom::kLevelsOwnCurves) {
+    std::vector<std::vector<SingleModePoint>> groups;
+    std::vector<SingleModeFitOptions> forms;
+    for (std::size_t l = 0; l < level_points.size(); ++l) {
+      if (!in_fit[l]) continue;
+      groups.push_back(level_points[l]);
+      forms.push_back(LocalFitForm(level_points[l], options.constant_tolerance));
+    }
+    residual = FitResidualReceptance(groups, forms);
+  } else if (options.estimate_residual) {
     const bool spans = result.max_amplitude_m / result.min_amplitude_m - 1 > options.constant_tolerance;
     residual = FitResidualReceptance(all_points, {.frequency_degree = spans ? options.max_frequency_degree : 0,
                                                   .damping_degree = spans ? options.max_damping_degree : 0,
@@ -1041,8 +1082,13 @@ MeasuredBackbone Analyse(const std::vector<signal::FirstHarmonicLevel>& levels, 
           "about a smooth curve and used for every σ, flag and jump",
           r.label, Percent(r.noise_from_sweep_relative_rms)));
     if (result.fit.ok) Regenerate(result.fit, data[l], options.fit_window, result.max_amplitude_m, r);
+    if (local_fits[l].ok) {
+      LevelResonance own{.control = r.control};
+      Regenerate(local_fits[l], data[l], options.fit_window, result.max_amplitude_m, own);
+      r.own_curve_relative_rms = own.regeneration_relative_rms;
+    }
     CombineDampingRatios(data[l], r);
-    FlagLevel(data[l], result.fit.ok, options, r);
+    FlagLevel(data[l], result.fit.ok ? &result.fit : nullptr, options, r);
     std::vector<ReceptancePoint> receptances;
     for (int i = 0; i < data[l].size(); ++i) {
       const PointView p = At(data[l].raw, i);
@@ -1084,9 +1130,12 @@ MeasuredBackbone Analyse(const std::vector<signal::FirstHarmonicLevel>& levels, 
   return result;
 }
 
+// Coarse steps spoil one estimator, not the level's points; a level off the
+// backbone is sound by its own curve.
 bool PassedItsChecks(const LevelResonance& level) {
-  return std::all_of(level.flags.begin(), level.flags.end(),
-                     [](const LevelFlag& f) { return f.kind == LevelFlagKind::kCoarseSteps; });
+  return std::all_of(level.flags.begin(), level.flags.end(), [](const LevelFlag& f) {
+    return f.kind == LevelFlagKind::kCoarseSteps || f.kind == LevelFlagKind::kOffBackbone;
+  });
 }
 
 // What the page draws of each level (LevelResonance::measured_frf,
@@ -1112,6 +1161,21 @@ void WithholdTrendWithoutCleanLevels(MeasuredBackbone& result) {
   result.damping_trend.note =
       fmt::format("not enough clean levels: {} of {} passed their checks, {} needed; no damping trend is judged",
                   clean, result.levels.size(), kMinCleanLevelsForTrend);
+}
+
+// Once for the set: the levels disagree with each other, not one of them
+// with its own curve.
+void WarnOfLevelsOffTheBackbone(MeasuredBackbone& result) {
+  std::vector<std::string> labels;
+  for (const auto& level : result.levels)
+    if (level.HasFlag(LevelFlagKind::kOffBackbone)) labels.push_back("'" + level.label + "'");
+  if (labels.empty()) return;
+  result.warnings.push_back(fmt::format(
+      "the levels do not lie on one backbone: {} of {} ({}) sit off the one the cross-level fit draws by more than "
+      "their noise, while each one's own single-mode curve holds it — drift over the test (temperature, a contact "
+      "bedding in) or levels run in another state; the backbone and the damping trend average over them, each "
+      "level's own numbers stand; compare the levels' natural frequencies with the order they were run in",
+      labels.size(), result.levels.size(), fmt::join(labels, ", ")));
 }
 
 // Each kind's first message, and how many more there are: a noisy sweep
@@ -1152,12 +1216,10 @@ MeasuredBackbone AnalyseMeasuredBackbone(const std::vector<signal::FirstHarmonic
     for (std::size_t l = 0; l < n; ++l) {
       const LevelResonance& r = result.levels[l];
       if (!in_fit[l] || PassedItsChecks(r)) continue;
-      if (std::any_of(r.flags.begin(), r.flags.end(),
-                      [](const LevelFlag& f) {
-                        // Coarse steps spoil one estimator, not the level's points.
-                        return f.kind != LevelFlagKind::kRegenerationBeyondNoise &&
-                               f.kind != LevelFlagKind::kCoarseSteps;
-                      }))
+      if (std::any_of(r.flags.begin(), r.flags.end(), [](const LevelFlag& f) {
+            return f.kind != LevelFlagKind::kRegenerationBeyondNoise && f.kind != LevelFlagKind::kCoarseSteps &&
+                   f.kind != LevelFlagKind::kOffBackbone;
+          }))
         next[l] = false;
       else if (worst < 0 || r.regeneration_relative_rms > result.levels[worst].regeneration_relative_rms)
         worst = static_cast<int>(l);
@@ -1173,6 +1235,11 @@ MeasuredBackbone AnalyseMeasuredBackbone(const std::vector<signal::FirstHarmonic
     in_fit = next;
     result = Analyse(levels, options, in_fit);
   }
+  // Off one backbone, the cross-level fit's R holds its misfit: R again, from
+  // the levels' own curves, and every number with it.
+  if (std::any_of(result.levels.begin(), result.levels.end(),
+                  [](const LevelResonance& l) { return l.HasFlag(LevelFlagKind::kOffBackbone); }))
+    result = Analyse(levels, options, in_fit, ResidualFrom::kLevelsOwnCurves);
   // A level left out is flagged by the last fit (the flags the fit bends may
   // have changed); only if that fit flags nothing does it keep the flags it
   // was left out for.
@@ -1192,6 +1259,7 @@ MeasuredBackbone AnalyseMeasuredBackbone(const std::vector<signal::FirstHarmonic
   } else {
     WithholdTrendWithoutCleanLevels(result);
   }
+  WarnOfLevelsOffTheBackbone(result);
   for (const auto& level : result.levels) {
     if (level.flags.empty()) continue;
     result.warnings.push_back(

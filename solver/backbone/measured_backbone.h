@@ -118,14 +118,20 @@ enum class LevelControl { kForce, kResponse, kNeither };
 // "coarse_steps" (fewer than kMinStepsInHalfPowerBand steps between the
 // half-power frequencies: exact for one linear mode, but any departure from
 // it — noise, nonlinearity, a second mode — is read between steps that do
-// not see the peak; the half-power ζ then does not enter the level's ζ).
+// not see the peak; the half-power ζ then does not enter the level's ζ),
+// "off_backbone" (the cross-level fit misses the level beyond its noise while
+// the level's own single-mode curve holds it: the levels do not lie on one
+// backbone — drift over the test's history, the beam warming, a contact
+// bedding in — and no level is worse than the others for it, so it stays in
+// the fit; a level its own curve misses too is regeneration_beyond_noise).
 enum class LevelFlagKind {
   kDampingNotPositive,
   kPeakOutsideBand,
   kRegenerationBeyondNoise,
   kJump,
   kPhaseConvention,
-  kCoarseSteps
+  kCoarseSteps,
+  kOffBackbone
 };
 
 // Steps between the half-power frequencies below which the half-power ζ is flagged.
@@ -222,6 +228,11 @@ struct LevelResonance {
   double regeneration_reduced_chi_square = 0.0;
   // The relative RMS error the phasors' noise alone would give (0: no noise given).
   double regeneration_noise_relative_rms = 0.0;
+  // The level's own single-mode curve (its local fit) regenerating the same
+  // points: within the noise while the cross-level fit is not, the level is
+  // sound and the levels disagree with each other (flag off_backbone).
+  // 0 without a local fit.
+  double own_curve_relative_rms = 0.0;
   // When the table states no uncertainty: the response's relative noise
   // estimated from the sweep's own scatter about a smooth curve, and used as
   // its σ for every number, flag and jump of the level (0 when stated).
@@ -290,7 +301,7 @@ struct DampingTrend {
 };
 
 // A damping trend is judged only where at least this many levels passed
-// their checks (no flag but coarse_steps) and the others left the fit.
+// their checks (no flag but coarse_steps or off_backbone) and the others left the fit.
 inline constexpr int kMinCleanLevelsForTrend = 2;
 
 struct MeasuredBackbone {

@@ -47,7 +47,8 @@ const schema::Name<LevelFlagKind> kFlagKinds[] = {
     {LevelFlagKind::kRegenerationBeyondNoise, LevelFlagName(LevelFlagKind::kRegenerationBeyondNoise)},
     {LevelFlagKind::kJump, LevelFlagName(LevelFlagKind::kJump)},
     {LevelFlagKind::kPhaseConvention, LevelFlagName(LevelFlagKind::kPhaseConvention)},
-    {LevelFlagKind::kCoarseSteps, LevelFlagName(LevelFlagKind::kCoarseSteps)}};
+    {LevelFlagKind::kCoarseSteps, LevelFlagName(LevelFlagKind::kCoarseSteps)},
+    {LevelFlagKind::kOffBackbone, LevelFlagName(LevelFlagKind::kOffBackbone)}};
 // SweepJump::up_sweep.
 constexpr schema::Name<bool> kDirections[] = {{true, "up"}, {false, "down"}};
 // What drives the levels (MeasuredBackbone::excitation_quantity).
@@ -150,6 +151,7 @@ void Describe(auto& io, schema::Like<LevelResonance> auto& l) {
     g_io.Number("reduced_chi_square", r.regeneration_reduced_chi_square, "1", schema::NonNegative().OrNull());
     g_io.Number("noise_relative_rms", r.regeneration_noise_relative_rms, "1", schema::NonNegative().OrNull(),
                 kOptional);
+    g_io.Number("own_curve_relative_rms", r.own_curve_relative_rms, "1", schema::NonNegative().OrNull(), kOptional);
   });
   io.List("jumps", l.jumps, kMaxStepsPerLevel, kOptional);
   // What the page draws; files written before them have neither.

@@ -293,23 +293,17 @@ SingleModeFit FitSingleModeChoosingExponents(const std::vector<SingleModePoint>&
 
 namespace beamid::solver {
 
-double FitResidualReceptance(const std::vector<SingleModePoint>& points, const SingleModeFitOptions& options) {
-  options.Validate();
-  double peak = 0.0;
-  for (const auto& p : points) peak = std::max(peak, 1.0 / std::abs(p.inverse_receptance_N_m));
-  auto chi_square = [&](double residual) {
-    SingleModeFitOptions o = options;
-    o.residual_receptance_m_N = residual;
-    const SingleModeFit fit = FitSingleMode(points, o);
-    return fit.ok ? fit.chi_square : std::numeric_limits<double>::infinity();
-  };
-  // A coarse scan (χ² need not be convex in R), then golden section in the best cell.
+namespace {
+
+// The R minimising `chi_square` within ±2 % of the largest |X_d/F| (χ² need
+// not be convex in R: a coarse scan, then golden section in the best cell).
+double MinimiseOverResidual(double peak_receptance_m_N, const std::function<double(double)>& chi_square) {
   constexpr int kScan = 40;
-  constexpr double kRange = 0.02;  // |R| up to 2 % of the peak receptance
+  constexpr double kRange = 0.02;
   double best = 0.0, best_chi = chi_square(0.0);
-  const double step = 2 * kRange * peak / kScan;
+  const double step = 2 * kRange * peak_receptance_m_N / kScan;
   for (int k = 0; k <= kScan; ++k) {
-    const double r = -kRange * peak + k * step;
+    const double r = -kRange * peak_receptance_m_N + k * step;
     const double c = chi_square(r);
     if (c < best_chi) best_chi = c, best = r;
   }
@@ -326,14 +320,65 @@ double FitResidualReceptance(const std::vector<SingleModePoint>& points, const S
       x2 = lo + ratio * (hi - lo), c2 = chi_square(x2);
     }
   }
-  double r = 0.5 * (lo + hi);
-  if (chi_square(r) > best_chi) r = best;
-  // Only when the data ask for it: R must lower the AICc (one parameter more).
-  SingleModeFitOptions with = options, without = options;
-  with.residual_receptance_m_N = r;
-  without.residual_receptance_m_N = 0.0;
-  const SingleModeFit fit_with = FitSingleMode(points, with), fit_without = FitSingleMode(points, without);
-  return fit_with.ok && (!fit_without.ok || fit_with.aicc < fit_without.aicc) ? r : 0.0;
+  const double r = 0.5 * (lo + hi);
+  return chi_square(r) > best_chi ? best : r;
+}
+
+double PeakReceptance(const std::vector<SingleModePoint>& points) {
+  double peak = 0.0;
+  for (const auto& p : points) peak = std::max(peak, 1.0 / std::abs(p.inverse_receptance_N_m));
+  return peak;
+}
+
+// The groups' fits, each with its own form, all with the residual R.
+std::vector<SingleModeFit> FitGroups(const std::vector<std::vector<SingleModePoint>>& groups,
+                                     const std::vector<SingleModeFitOptions>& forms, double residual) {
+  std::vector<SingleModeFit> fits;
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    SingleModeFitOptions o = forms[g];
+    o.residual_receptance_m_N = residual;
+    fits.push_back(FitSingleMode(groups[g], o));
+  }
+  return fits;
+}
+
+}  // namespace
+
+double FitResidualReceptance(const std::vector<SingleModePoint>& points, const SingleModeFitOptions& options) {
+  return FitResidualReceptance(std::vector<std::vector<SingleModePoint>>{points}, {options});
+}
+
+double FitResidualReceptance(const std::vector<std::vector<SingleModePoint>>& groups,
+                             const std::vector<SingleModeFitOptions>& forms) {
+  if (groups.size() != forms.size()) throw std::invalid_argument("FitResidualReceptance: one form per group");
+  for (const auto& form : forms) form.Validate();
+  // A group too small for its form at R = 0 takes no part.
+  std::vector<std::vector<SingleModePoint>> fitted;
+  std::vector<SingleModeFitOptions> fitted_forms;
+  const std::vector<SingleModeFit> at_zero = FitGroups(groups, forms, 0.0);
+  for (std::size_t g = 0; g < groups.size(); ++g)
+    if (at_zero[g].ok) fitted.push_back(groups[g]), fitted_forms.push_back(forms[g]);
+  if (fitted.empty()) return 0.0;
+  double peak = 0.0;
+  for (const auto& group : fitted) peak = std::max(peak, PeakReceptance(group));
+  const auto sum = [&](double residual, auto member) {
+    double total = 0.0;
+    for (const SingleModeFit& fit : FitGroups(fitted, fitted_forms, residual)) {
+      if (!fit.ok) return std::numeric_limits<double>::infinity();
+      total += member(fit);
+    }
+    return total;
+  };
+  const auto chi_square = [&](const SingleModeFit& fit) { return fit.chi_square; };
+  const double r = MinimiseOverResidual(peak, [&](double residual) { return sum(residual, chi_square); });
+  // Only when the data ask for it: R must lower the AICc, as one parameter
+  // more; each group's AICc counts it, so over several groups the total χ²
+  // must fall by the 2 the AIC charges for one parameter.
+  if (fitted.size() == 1) {
+    const auto aicc = [&](const SingleModeFit& fit) { return fit.aicc; };
+    return sum(r, aicc) < sum(0.0, aicc) ? r : 0.0;
+  }
+  return sum(r, chi_square) + 2 < sum(0.0, chi_square) ? r : 0.0;
 }
 
 }  // namespace beamid::solver

@@ -129,6 +129,12 @@ SingleModeFit FitSingleMode(const std::vector<SingleModePoint>& points, const Si
 // within ±2 % of the largest |X_d/F| (a scan, then golden section); 0 when it
 // does not lower the AICc (counted as one parameter more).
 double FitResidualReceptance(const std::vector<SingleModePoint>& points, const SingleModeFitOptions& options);
+// The one R of several groups of points (levels), each fitted with its own
+// form and parameters: the other modes' share does not drift with the test's
+// history, a mode's frequency may, and one backbone across levels that do
+// not lie on one would hand its misfit to R.
+double FitResidualReceptance(const std::vector<std::vector<SingleModePoint>>& groups,
+                             const std::vector<SingleModeFitOptions>& forms);
 
 // The power-law exponents tried for the Iwan-like forms.
 std::vector<double> PowerLawExponentGrid();
