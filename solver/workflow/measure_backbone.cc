@@ -16,6 +16,7 @@
 #include "signal/first_harmonic_level.h"
 #include "signal/phasor_set_io.h"
 #include "signal/phasor_table.h"
+#include "solver/backbone/measured_backbone_csv.h"
 #include "solver/backbone/measured_backbone_io.h"
 #include "solver/estimation/prediction.h"
 #include "solver/workflow/campaign_input.h"
@@ -68,10 +69,6 @@ std::vector<signal::FirstHarmonicLevel> ReadLevels(const MeasureBackboneRequest&
   if (channel.empty()) channel = set.steps.front().responses.front().channel;
   if (options.channel.empty()) observer.Note("backbone: response channel " + channel + " (--channel to choose)");
   return signal::FirstHarmonicLevels(set, channel, first.string());
-}
-
-std::string Cell(const solver::Estimate& e) {
-  return e.valid ? fmt::format("{:.9g},{:.3g}", e.value, e.std) : ",";
 }
 
 }  // namespace
@@ -132,33 +129,6 @@ MeasureBackboneOutcome MeasureBackbone(const MeasureBackboneRequest& options, co
                                           {.min_theta_amplitude_rad = 1e-5, .max_theta_amplitude_rad = 3e-2, .num_points = 120});
   }
 
-  // Per level, labelled for what drives it.
-  const solver::ExcitationLabels excitation = solver::LabelsOf(measured.excitation_quantity);
-  const auto control = [&](const solver::LevelResonance& l) { return LevelControlText(measured, l); };
-  std::ostringstream csv;
-  const std::string excitation_std = excitation.column.substr(0, excitation.column.rfind('_')) + "_std" +
-                                     excitation.column.substr(excitation.column.rfind('_'));
-  csv << "level,control,quadrature_frequency_Hz,quadrature_frequency_std_Hz,amplitude_m,amplitude_std_m,"
-         "response_amplitude,response_amplitude_std," << excitation.column << "," << excitation_std
-      << ",zeta_quadrature,zeta_quadrature_std,"
-         "zeta_local,zeta_local_std,zeta_half_power,zeta_half_power_std,peak_frequency_Hz,peak_frequency_std_Hz,"
-         "local_natural_frequency_Hz,local_natural_frequency_std_Hz,regeneration_relative_rms,in_global_fit,flags,"
-         "zeta,zeta_std\n";
-  for (const auto& l : measured.levels) {
-    // The flags' names, ';'-separated (the messages are in the .json).
-    std::string flags;
-    for (const auto& f : l.flags) {
-      const std::string name(solver::LevelFlagName(f.kind));
-      if (flags.find(name) == std::string::npos) flags += (flags.empty() ? "" : ";") + name;
-    }
-    csv << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{:.4g},{},{},{}\n", l.label, control(l),
-                       Cell(l.quadrature_frequency_hz), Cell(l.quadrature_amplitude_m),
-                       Cell(l.quadrature_response_amplitude), Cell(l.quadrature_force_N),
-                       Cell(l.quadrature_damping_ratio), Cell(l.local_damping_ratio), Cell(l.half_power_damping_ratio),
-                       Cell(l.peak_frequency_hz), Cell(l.local_natural_frequency_hz), l.regeneration_relative_rms,
-                       l.in_global_fit ? 1 : 0, flags, Cell(l.damping_ratio));
-  }
-
   // The single-mode fit against amplitude, and the model beside it.
   std::ostringstream curves;
   curves << "amplitude_m,fit_frequency_Hz,fit_frequency_std_Hz,fit_damping_ratio,fit_damping_ratio_std,model_frequency_Hz\n";
@@ -170,8 +140,9 @@ MeasureBackboneOutcome MeasureBackbone(const MeasureBackboneRequest& options, co
     const double f = fit.NaturalFrequency_rad_s(a) / (2 * std::numbers::pi);
     const double f_std = fit.NaturalFrequencyStd_rad_s(a) / (2 * std::numbers::pi);
     const double model_f = model.empty() ? NAN : solver::BackboneFrequencyAt_hz(model, a);
-    curves << fmt::format("{:.9g},{:.9g},{:.3g},{:.6g},{:.3g},{}\n", a, f, f_std, fit.DampingRatio(a),
-                          fit.DampingRatioStd(a), std::isfinite(model_f) ? fmt::format("{:.9g}", model_f) : "");
+    curves << fmt::format("{},{},{},{},{},{}\n", solver::CsvNumber(a, "{:.9g}"), solver::CsvNumber(f, "{:.9g}"),
+                          solver::CsvNumber(f_std, "{:.3g}"), solver::CsvNumber(fit.DampingRatio(a), "{:.6g}"),
+                          solver::CsvNumber(fit.DampingRatioStd(a), "{:.3g}"), solver::CsvNumber(model_f, "{:.9g}"));
     fit_file.curve.push_back({.amplitude_m = a,
                               .frequency_hz = f,
                               .frequency_std_hz = f_std,
@@ -202,7 +173,7 @@ MeasureBackboneOutcome MeasureBackbone(const MeasureBackboneRequest& options, co
                                     .warnings = measured.warnings};
   for (const auto& p : model)
     file.model_backbone.push_back({.amplitude_m = p.amplitude_m, .frequency_hz = p.frequency_hz});
-  WriteTextFile(options.output + ".csv", csv.str());
+  WriteTextFile(options.output + ".csv", solver::MeasuredLevelsCsv(measured));
   WriteTextFile(options.output + "_curves.csv", curves.str());
   solver::WriteMeasuredBackboneFile(options.output + ".json", file);
   return out;
