@@ -66,6 +66,10 @@ function(beamid_share_precompiled_header target host_property may_host)
   endif()
 endfunction()
 
+# Headers are included from the top of the sources ("hb/scenario.h"), and
+# from include/beamid of an installed copy (cmake/BeamidInstall.cmake).
+set(BEAMID_INCLUDE_DIRECTORIES $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}> $<INSTALL_INTERFACE:include/beamid>)
+
 # beamid_add_folder_library(NAME <target> FOLDER <dir> [DEPS ...])
 # Compiles every .cc of the folder (and its internal/) into one library, so a
 # new concept is one new file and no list needs editing.
@@ -75,7 +79,7 @@ function(beamid_add_folder_library)
   if(NOT sources)
     # A folder whose concepts are all header-only still gets its target.
     add_library(${ARG_NAME} INTERFACE)
-    target_include_directories(${ARG_NAME} INTERFACE ${PROJECT_SOURCE_DIR})
+    target_include_directories(${ARG_NAME} INTERFACE ${BEAMID_INCLUDE_DIRECTORIES})
     target_link_libraries(${ARG_NAME} INTERFACE ${ARG_DEPS})
     return()
   endif()
@@ -90,7 +94,7 @@ function(beamid_add_folder_library)
       endif()
     endforeach()
   endif()
-  target_include_directories(${ARG_NAME} PUBLIC ${PROJECT_SOURCE_DIR})
+  target_include_directories(${ARG_NAME} PUBLIC ${BEAMID_INCLUDE_DIRECTORIES})
   target_compile_options(${ARG_NAME} PRIVATE ${BEAMID_WARNINGS})
   target_link_libraries(${ARG_NAME} PUBLIC ${ARG_DEPS})
   beamid_unity_build(${ARG_NAME})
