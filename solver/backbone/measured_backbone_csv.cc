@@ -5,8 +5,12 @@
 
 #include <fmt/core.h>
 
+#include "hb/csv_cell.h"
+
 namespace beamid::solver {
 namespace {
+
+using hb::CsvNumber;
 
 // Value and σ, two cells; both empty when not estimated.
 std::string Cell(const Estimate& e) {
@@ -15,10 +19,6 @@ std::string Cell(const Estimate& e) {
 }
 
 }  // namespace
-
-std::string CsvNumber(double value, std::string_view format) {
-  return std::isfinite(value) ? fmt::format(fmt::runtime(format), value) : "";
-}
 
 std::string MeasuredLevelsCsv(const MeasuredBackbone& measured) {
   const ExcitationLabels excitation = LabelsOf(measured.excitation_quantity);
@@ -39,7 +39,7 @@ std::string MeasuredLevelsCsv(const MeasuredBackbone& measured) {
       const std::string name(LevelFlagName(f.kind));
       if (flags.find(name) == std::string::npos) flags += (flags.empty() ? "" : ";") + name;
     }
-    csv << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", l.label,
+    csv << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", hb::CsvText(l.label),
                        LevelControlText(measured.excitation_quantity, l.control), Cell(l.quadrature_frequency_hz),
                        Cell(l.quadrature_amplitude_m), Cell(l.quadrature_response_amplitude),
                        Cell(l.quadrature_force_N), Cell(l.quadrature_damping_ratio), Cell(l.local_damping_ratio),

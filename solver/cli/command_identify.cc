@@ -96,7 +96,7 @@ void RunIdentify(const workflow::IdentifyRequest& request, const GlobalOptions& 
       fmt::print("  held-out {}: {}\n", v.channel, solver::HeldOutSummary(v));
     for (const auto& w : result.warnings) fmt::print("  warning: {}\n", w);
     fmt::print("  verdict: {}\n", result.verdict.text);
-    fmt::print("wrote {}\n", request.output);
+    fmt::print("wrote {}{}\n", request.output, request.csv_output.empty() ? "" : " and " + request.csv_output);
   }
   // Exit 5: fitted and written, but the model misses the data beyond their noise.
   if (!outcome.WithinNoise())
@@ -149,6 +149,8 @@ BEAMID_REGISTER_COMMAND("identify", [](CLI::App& app, const GlobalOptions& globa
       ->check(FiniteRange(0.0, 1.0))
       ->capture_default_str();
   sub->add_option("-o,--output", request->output, "Result file (JSON)")->capture_default_str();
+  sub->add_option("--csv", request->csv_output,
+                  "Also write the parameters with their 95 % and total intervals as a CSV table");
   sub->callback([request, fit_channels, &global] {
     // No --fit: every sensor neither ignored nor held out.
     request->fit_channels = fit_channels->empty() ? std::nullopt : std::optional(*fit_channels);

@@ -8,6 +8,8 @@
 #include "hb/option_checks.h"
 #include "signal/campaign.h"
 #include "solver/estimation/result_io.h"
+#include "solver/estimation/result_parameters_csv.h"
+#include "solver/workflow/output_file.h"
 #include "solver/workflow/output_paths.h"
 
 namespace beamid::workflow {
@@ -20,7 +22,10 @@ const solver::ModelFamily& IdentifyRequest::Validate() const {
   RequireInRange("--workers", workers, 0, 256);
   RequireInRange("--beam-loss-factor", beam_loss_factor, 0.0, 1.0);
   RequireSomeFitChannel(fit_channels);
-  OutputPaths().InputFolder(campaign_folder).Input(phasor_input.phasors_file).Output("-o", output).Check();
+  OutputPaths paths;
+  paths.InputFolder(campaign_folder).Input(phasor_input.phasors_file).Output("-o", output);
+  if (!csv_output.empty()) paths.Output("--csv", csv_output);
+  paths.Check();
   const solver::ModelFamily& family = solver::FindModelFamily(model);
   RequireFitWithinModelHarmonics(fit_harmonics, harmonics);
   return family;
@@ -111,6 +116,7 @@ IdentifyOutcome IdentifyCampaign(const IdentifyRequest& request, const RunObserv
                                              .frequency_hz = s.FrequencyHz(),
                                              .change_relative = s.unsettled_change_relative});
   solver::WriteResultFile(request.output, result_file);
+  if (!request.csv_output.empty()) WriteTextFile(request.csv_output, solver::ResultParametersCsv(result_file));
   return out;
 }
 

@@ -41,6 +41,7 @@ struct IdentifyRequest {
   bool robust = true;            // test the steps for outliers and refit without them
   double beam_loss_factor = 0.0;  // the loss factor's start, or its value when fixed (0..1)
   std::string output = "result.json";  // the result file written
+  std::string csv_output;              // also the parameters as CSV ("": none)
 
   // Throws InputError naming the field (by its command-line option) and the
   // fix: a value out of range, an empty list of fitted channels, an

@@ -9,6 +9,7 @@
 
 #include <fmt/core.h>
 
+#include "hb/csv_cell.h"
 #include "hb/errors.h"
 #include "hb/version.h"
 #include "signal/campaign.h"
@@ -140,9 +141,9 @@ MeasureBackboneOutcome MeasureBackbone(const MeasureBackboneRequest& options, co
     const double f = fit.NaturalFrequency_rad_s(a) / (2 * std::numbers::pi);
     const double f_std = fit.NaturalFrequencyStd_rad_s(a) / (2 * std::numbers::pi);
     const double model_f = model.empty() ? NAN : solver::BackboneFrequencyAt_hz(model, a);
-    curves << fmt::format("{},{},{},{},{},{}\n", solver::CsvNumber(a, "{:.9g}"), solver::CsvNumber(f, "{:.9g}"),
-                          solver::CsvNumber(f_std, "{:.3g}"), solver::CsvNumber(fit.DampingRatio(a), "{:.6g}"),
-                          solver::CsvNumber(fit.DampingRatioStd(a), "{:.3g}"), solver::CsvNumber(model_f, "{:.9g}"));
+    curves << fmt::format("{},{},{},{},{},{}\n", hb::CsvNumber(a, "{:.9g}"), hb::CsvNumber(f, "{:.9g}"),
+                          hb::CsvNumber(f_std, "{:.3g}"), hb::CsvNumber(fit.DampingRatio(a), "{:.6g}"),
+                          hb::CsvNumber(fit.DampingRatioStd(a), "{:.3g}"), hb::CsvNumber(model_f, "{:.9g}"));
     fit_file.curve.push_back({.amplitude_m = a,
                               .frequency_hz = f,
                               .frequency_std_hz = f_std,

@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "solver/diagnosis/candidate_physics.h"
+#include "tests/support/csv_text.h"
 #include "tests/support/paper_scenario.h"
 #include "tests/support/temp_path.h"
 
@@ -224,7 +225,8 @@ TEST_F(CommandLine, IdentifyRefitsTheDampingLawsAndWritesTheirModelFormIntervals
   const std::string campaign = (folder_ / "campaign").string();
   ASSERT_EQ(Beamid("-q simulate " + (folder_ / "scenario.json").string() + " -o " + campaign).exit_code, 0);
   const std::string result = (folder_ / "result.json").string();
-  ProgramRun run = Beamid("identify " + campaign + " --fit acc1,acc2 -o " + result);
+  const std::string parameters_csv = (folder_ / "parameters.csv").string();
+  ProgramRun run = Beamid("identify " + campaign + " --fit acc1,acc2 -o " + result + " --csv " + parameters_csv);
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_THAT(run.output, HasSubstr("beam damping laws (the fit assumes loss_factor):"));
   EXPECT_THAT(run.output, HasSubstr("total 95 % intervals: the statistical part (with the residual model error where the weighting "
@@ -247,6 +249,31 @@ TEST_F(CommandLine, IdentifyRefitsTheDampingLawsAndWritesTheirModelFormIntervals
     }
   }
   EXPECT_EQ(shared, (std::vector<std::string>{"k1", "k2", "k3", "c"}));
+  // The CSV holds the file's parameters, each with its interval, and the
+  // total interval for those the damping laws share (empty for the others).
+  const std::vector<std::string> rows = beamid::testing::Lines(ReadFile(parameters_csv));
+  ASSERT_EQ(rows.size(), 1 + written["parameters"].size());
+  EXPECT_EQ(rows[0], "parameter,unit,value,std,lower_95,upper_95,std_model_error,total_lower_95,total_upper_95,"
+                     "total_holds");
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    const std::vector<std::string> cells = beamid::testing::Cells(rows[i]);
+    ASSERT_GE(cells.size(), 9u) << rows[i];
+    const auto& p = written["parameters"][cells[0]];
+    ASSERT_TRUE(p.is_object()) << rows[i];
+    EXPECT_EQ(cells[2], beamid::testing::G9(p["value"].get<double>())) << rows[i];
+    EXPECT_EQ(cells[4], beamid::testing::G9(p["ci95"][0].get<double>())) << rows[i];
+    EXPECT_EQ(cells[5], beamid::testing::G9(p["ci95"][1].get<double>())) << rows[i];
+    const auto total = std::find_if(written["damping_laws"]["model_form_intervals"].begin(),
+                                    written["damping_laws"]["model_form_intervals"].end(),
+                                    [&](const auto& m) { return m["name"] == cells[0]; });
+    if (total == written["damping_laws"]["model_form_intervals"].end()) {
+      EXPECT_EQ(cells[7], "") << rows[i];
+      continue;
+    }
+    EXPECT_EQ(cells[7], beamid::testing::G9((*total)["ci95"][0].get<double>())) << rows[i];
+    EXPECT_EQ(cells[8], beamid::testing::G9((*total)["ci95"][1].get<double>())) << rows[i];
+    EXPECT_THAT(rows[i], HasSubstr("the accepted damping laws")) << rows[i];
+  }
   // The harmonic truncation's refit (5 → 9 harmonics) is in the file, and
   // each total interval is the damping-law envelope widened by its shift.
   const auto& truncation = written["damping_laws"]["truncation"];

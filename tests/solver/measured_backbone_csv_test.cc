@@ -2,41 +2,28 @@
 // every row has the header's number of cells; a number not estimated or not
 // finite (an infinite σ, a NaN, an infinite regeneration error) is an empty
 // cell, never "inf" or "nan"; finite numbers are printed to the digits the
-// header promises; the excitation's column is named for what drives the
+// header promises; a label with a comma is quoted; the excitation's column is named for what drives the
 // levels.
 #include "solver/backbone/measured_backbone_csv.h"
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "tests/support/csv_text.h"
+
 namespace beamid::solver {
 namespace {
 
+using beamid::testing::Cells;
+using beamid::testing::Lines;
+
 using ::testing::HasSubstr;
 using ::testing::Not;
-
-std::vector<std::string> Split(const std::string& line) {
-  std::vector<std::string> cells;
-  std::stringstream in(line);
-  std::string cell;
-  while (std::getline(in, cell, ',')) cells.push_back(cell);
-  if (!line.empty() && line.back() == ',') cells.emplace_back();
-  return cells;
-}
-
-std::vector<std::string> Lines(const std::string& text) {
-  std::vector<std::string> lines;
-  std::stringstream in(text);
-  std::string line;
-  while (std::getline(in, line)) lines.push_back(line);
-  return lines;
-}
 
 std::string CellOf(const std::vector<std::string>& header, const std::vector<std::string>& row,
                    const std::string& column) {
@@ -73,9 +60,9 @@ TEST(MeasuredBackboneCsv, NumbersNotEstimatedOrNotFiniteAreEmptyCells) {
   EXPECT_THAT(text, Not(HasSubstr("nan")));
   const std::vector<std::string> lines = Lines(text);
   ASSERT_EQ(lines.size(), 3u);
-  const std::vector<std::string> header = Split(lines[0]);
-  for (std::size_t i = 1; i < lines.size(); ++i) EXPECT_EQ(Split(lines[i]).size(), header.size()) << lines[i];
-  const std::vector<std::string> good = Split(lines[1]), bad = Split(lines[2]);
+  const std::vector<std::string> header = Cells(lines[0]);
+  for (std::size_t i = 1; i < lines.size(); ++i) EXPECT_EQ(Cells(lines[i]).size(), header.size()) << lines[i];
+  const std::vector<std::string> good = Cells(lines[1]), bad = Cells(lines[2]);
   EXPECT_EQ(CellOf(header, good, "quadrature_frequency_Hz"), "50.1234568");
   EXPECT_EQ(CellOf(header, good, "quadrature_frequency_std_Hz"), "0.00123");
   EXPECT_EQ(CellOf(header, good, "regeneration_relative_rms"), "0.01235");
@@ -100,11 +87,11 @@ TEST(MeasuredBackboneCsv, TheExcitationColumnIsNamedForWhatDrivesTheLevels) {
   EXPECT_THAT(Lines(MeasuredLevelsCsv(measured))[0], HasSubstr(",voltage_V,voltage_std_V,"));
 }
 
-TEST(MeasuredBackboneCsv, ANumberIsPrintedOnlyWhenFinite) {
-  EXPECT_EQ(CsvNumber(1.5, "{:.3g}"), "1.5");
-  EXPECT_EQ(CsvNumber(INFINITY, "{:.3g}"), "");
-  EXPECT_EQ(CsvNumber(-INFINITY, "{:.3g}"), "");
-  EXPECT_EQ(CsvNumber(NAN, "{:.3g}"), "");
+TEST(MeasuredBackboneCsv, ALabelWithACommaStaysOneCell) {
+  MeasuredBackbone measured = TwoLevels();
+  measured.levels[0].label = "1,5 N \"up\"";
+  const std::vector<std::string> lines = Lines(MeasuredLevelsCsv(measured));
+  EXPECT_EQ(lines[1].rfind("\"1,5 N \"\"up\"\"\",force,50.1234568,", 0), 0u) << lines[1];
 }
 
 }  // namespace
