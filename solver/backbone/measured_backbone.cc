@@ -820,13 +820,13 @@ void FlagLevel(const LevelData& data, const SingleModeFit* cross_level_fit, cons
       return;
     }
     add(LevelFlagKind::kRegenerationBeyondNoise, "regeneration_relative_rms",
-          r.regeneration_noise_relative_rms > 0
-              ? fmt::format("the single-mode fit misses the level by {} RMS; its noise allows {} (the larger of {} × "
-                            "the noise's {} and {})",
-                            Percent(r.regeneration_relative_rms), Percent(allowed), kRegenerationNoiseFactor,
-                            Percent(r.regeneration_noise_relative_rms), Percent(options.max_regeneration_relative_rms))
-              : fmt::format("the single-mode fit misses the level by {} RMS, more than {} (the level gives no noise)",
-                            Percent(r.regeneration_relative_rms), Percent(allowed)));
+        r.regeneration_noise_relative_rms > 0
+            ? fmt::format("the single-mode fit misses the level by {} RMS; its noise allows {} (the larger of {} × "
+                          "the noise's {} and {})",
+                          Percent(r.regeneration_relative_rms), Percent(allowed), kRegenerationNoiseFactor,
+                          Percent(r.regeneration_noise_relative_rms), Percent(options.max_regeneration_relative_rms))
+            : fmt::format("the single-mode fit misses the level by {} RMS, more than {} (the level gives no noise)",
+                          Percent(r.regeneration_relative_rms), Percent(allowed)));
   }
 }
 
@@ -973,12 +973,13 @@ void MeasuredBackboneOptions::Validate() const {
 
 namespace {
 
-// The analysis with the levels of `in_fit` in the cross-level fit (all levels
-// are analysed, regenerated and flagged).
 // Where the other modes' share R comes from: the cross-level fit (one
 // backbone for all levels), or the levels' own curves with one R between
 // them, when the levels do not lie on one backbone.
 enum class ResidualFrom { kCrossLevelFit, kLevelsOwnCurves };
+
+// The analysis with the levels of `in_fit` in the cross-level fit (all levels
+// are analysed, regenerated and flagged).
 
 MeasuredBackbone Analyse(const std::vector<signal::FirstHarmonicLevel>& levels, const MeasuredBackboneOptions& options,
                          const std::vector<bool>& in_fit, ResidualFrom residual_from = ResidualFrom::kCrossLevelFit) {
