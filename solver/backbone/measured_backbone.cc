@@ -485,12 +485,16 @@ void FindPeakAndHalfPower(const LevelData& data, LevelResonance& out) {
     out.half_power_natural_frequency_hz = {};
   }
   if (out.quadrature_after_jump) {
-    // One side of the peak lies on the other branch of a fold.
+    // One side of the peak lies on the other branch of a fold, and its
+    // largest step is the fold's edge (where an up-sweep dropped off, or a
+    // down-sweep landed), not the top of a curve: a vertex fitted there is
+    // no peak frequency.
+    out.peak_frequency_hz.valid = false;
     out.half_power_damping_ratio.valid = false;
     out.half_power_lower_frequency_hz.valid = out.half_power_upper_frequency_hz.valid = false;
     out.half_power_natural_frequency_hz.valid = false;
-    out.half_power_note = "the sweep jumped (a folded curve): one side of the peak lies on another branch, no "
-                          "half-power estimate";
+    out.half_power_note = "the sweep jumped (a folded curve): its largest step is the fold's edge and one side of "
+                          "it lies on another branch, no peak frequency or half-power estimate";
   }
 }
 
@@ -594,6 +598,23 @@ double SolveAmplitude(const SingleModeFit& fit, double omega, double force_ampli
   return best;
 }
 
+// The fit's step in place of the measured one, X_d = F·(A/D + R): the
+// response from the measured force (force-controlled or neither; on the
+// branch nearest the measured amplitude) or the force from the measured
+// response (response-controlled, at the modal amplitude it shows).
+PointView ModelPoint(const SingleModeFit& fit, const PointView& p, LevelControl control, double a_max) {
+  const double residual = fit.residual_receptance_m_N;
+  PointView model = p;
+  if (control == LevelControl::kResponse) {
+    const double a = std::abs(p.disp - residual * p.force);
+    model.force = p.disp / (fit.ModalConstantAt(a) / fit.DynamicTerm(a, p.omega) + residual);
+  } else {
+    const double a = SolveAmplitude(fit, p.omega, std::abs(p.force), 2 * a_max, std::abs(p.disp - residual * p.force));
+    model.disp = (fit.ModalConstantAt(a) / fit.DynamicTerm(a, p.omega) + residual) * p.force;
+  }
+  return model;
+}
+
 void Regenerate(const SingleModeFit& fit, const LevelData& data, double window, double a_max, LevelResonance& out) {
   // The fitted points (FitPoints' window).
   const double peak = At(data.raw, PeakIndex(data.raw, data.size())).H();
@@ -602,21 +623,11 @@ void Regenerate(const SingleModeFit& fit, const LevelData& data, double window, 
   for (int i = 0; i < data.size(); ++i) {
     const PointView p = At(data.raw, i);
     if (p.H() < window * peak) continue;
-    std::complex<double> predicted, measured;
-    Eigen::Matrix2d covariance;
-    const double residual = fit.residual_receptance_m_N;
-    if (out.control == LevelControl::kResponse) {
-      // X_d = F·(A/D + R) at the modal amplitude the measurement shows.
-      const double a = std::abs(p.disp - residual * p.force);
-      predicted = p.disp / (fit.ModalConstantAt(a) / fit.DynamicTerm(a, p.omega) + residual);
-      measured = p.force;
-      covariance = data.ForceCovariance(i);
-    } else {
-      const double a = SolveAmplitude(fit, p.omega, std::abs(p.force), 2 * a_max, std::abs(p.disp - residual * p.force));
-      predicted = (fit.ModalConstantAt(a) / fit.DynamicTerm(a, p.omega) + residual) * p.force;
-      measured = p.disp;
-      covariance = data.DispCovariance(i);
-    }
+    const bool response = out.control == LevelControl::kResponse;
+    const PointView model = ModelPoint(fit, p, out.control, a_max);
+    const std::complex<double> predicted = response ? model.force : model.disp;
+    const std::complex<double> measured = response ? p.force : p.disp;
+    const Eigen::Matrix2d covariance = response ? data.ForceCovariance(i) : data.DispCovariance(i);
     const std::complex<double> error = predicted - measured;
     const double relative = std::abs(error) / std::abs(measured);
     sum_sq += relative * relative;
@@ -678,6 +689,51 @@ std::vector<LevelFrfPoint> FitFrf(const SingleModeFit& fit, const LevelData& dat
     }
   }
   return curve;
+}
+
+// The peak and half-power estimators read |X_d/F| as one linear mode's
+// (1/|X_d/F|² a quadratic in ω²). Along a force-controlled nonlinear curve
+// the amplitude, and with it ω_n(a), changes from step to step, and another
+// mode's share R skews the peak: no noise, so the propagated σ does not see
+// it (on a hardening level below its fold the peak came out 77 σ low at
+// 0.3 % noise). The same estimators, at the same steps, read on the fit's
+// noise-free curve, whose peak and whose ζ and ω_n at the peak's amplitude
+// are known: their departure there is the method's bias on this level, and
+// the σ of each of the three numbers covers it.
+void CoverPeakAndHalfPowerBias(const SingleModeFit& fit, const LevelData& data, double a_max, LevelResonance& out) {
+  if (!fit.ok || !out.peak_frequency_hz.valid) return;
+  const int n = data.size();
+  Eigen::VectorXd raw = data.raw;
+  for (int i = 0; i < n; ++i) {
+    const PointView model = ModelPoint(fit, At(data.raw, i), out.control, a_max);
+    raw.segment(kInputsPerPoint * i + 1, 4) << model.force.real(), model.force.imag(), model.disp.real(),
+        model.disp.imag();
+  }
+  const int m = PeakIndex(raw, n);
+  if (m == 0 || m == n - 1) return;
+  const Eigen::VectorXd read = PeakAndHalfPower(raw, n, m, PeakTop(raw, n, m));
+  const double a = read[2];
+  if (!std::isfinite(read[0]) || !(a > 0)) return;
+  // The model's own peak at that amplitude (golden section about ω_n(a)).
+  const double omega_n = fit.NaturalFrequency_rad_s(a), zeta = fit.DampingRatio(a);
+  const auto receptance = [&](double w) {
+    return std::abs(fit.ModalConstantAt(a) / fit.DynamicTerm(a, w) + fit.residual_receptance_m_N);
+  };
+  const double golden = (std::sqrt(5.0) - 1) / 2, width = 4 * std::clamp(std::abs(zeta), 1e-6, 0.2);
+  double lo = omega_n * (1 - width), hi = omega_n * (1 + width);
+  for (int iteration = 0; iteration < 100; ++iteration) {
+    const double w1 = hi - golden * (hi - lo), w2 = lo + golden * (hi - lo);
+    if (receptance(w1) < receptance(w2))
+      lo = w1;
+    else
+      hi = w2;
+  }
+  const auto cover = [](Estimate& e, double bias) {
+    if (e.valid && std::isfinite(bias)) e.std = std::hypot(e.std, bias);
+  };
+  cover(out.peak_frequency_hz, read[0] - 0.5 * (lo + hi) / kTwoPi);
+  cover(out.half_power_damping_ratio, read[3] - zeta);
+  cover(out.half_power_natural_frequency_hz, read[6] - omega_n / kTwoPi);
 }
 
 // The steps between the half-power frequencies (−1 without both).
@@ -1081,7 +1137,10 @@ MeasuredBackbone Analyse(const std::vector<signal::FirstHarmonicLevel>& levels, 
           "level '{}' states no uncertainty: its noise, {} of the response, is estimated from the sweep's scatter "
           "about a smooth curve and used for every σ, flag and jump",
           r.label, Percent(r.noise_from_sweep_relative_rms)));
-    if (result.fit.ok) Regenerate(result.fit, data[l], options.fit_window, result.max_amplitude_m, r);
+    if (result.fit.ok) {
+      Regenerate(result.fit, data[l], options.fit_window, result.max_amplitude_m, r);
+      CoverPeakAndHalfPowerBias(result.fit, data[l], result.max_amplitude_m, r);
+    }
     if (local_fits[l].ok) {
       LevelResonance own{.control = r.control};
       Regenerate(local_fits[l], data[l], options.fit_window, result.max_amplitude_m, own);

@@ -181,6 +181,8 @@ struct LevelResonance {
   std::vector<SweepJump> jumps;
 
   // Peak of |X_d/F|: vertex of 1/|X_d/F|², a quadratic in ω² for one mode, through the three highest steps.
+  // Not taken on a sweep that jumped (its largest step is the fold's edge). Its σ, and the half-power ζ's and
+  // f_n's, cover the method's bias on the level (a nonlinear or skewed curve) as the cross-level fit predicts it.
   Estimate peak_frequency_hz;
   Estimate peak_receptance_m_N;
   Estimate peak_amplitude_m;
