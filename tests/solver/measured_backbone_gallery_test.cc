@@ -11,20 +11,28 @@
 // up- and down-swept, most stating their σ and some none (the noise then
 // comes from the sweep): 64 tables.
 // Checked: each table carries exactly the flags its kind states (coarse
-// grids coarse_steps on the half-power ζ, folds one jump, nothing else) and
-// every fold is found between the generator's steps, in each direction.
-// And, disabled until the product's σ's are fixed: every estimator within
-// 4σ of its truth at the amplitude it is reported at (quadrature: ω_q at the
+// grids coarse_steps on the half-power ζ, folds one jump), nonlinear_curve
+// never on a linear mode nor on an estimator whose bias on the kind's
+// noise-free table is below half its σ; every fold is found between the
+// generator's steps, in each direction; every estimator lies within 4σ of
+// its truth at the amplitude it is reported at (quadrature: ω_q at the
 // quadrature amplitude; peak: the maximum of |X/F| at the peak's amplitude;
-// half-power and local fit: ζ and ω_n there), or flagged, and the pooled
-// rms z over the noisy tables within [0.7, 1.4]. Measured: rms z 2.35 over
-// 318 estimates; largest |z| quadrature f 3.4 and ζ 8.9, peak 8.0,
-// half-power ζ 2.3 and f_n 8.4 (coarse hardening up-sweeps), local-fit f_n
-// 24.6 and ζ 7.1 (folded levels; f_n up to 6.3 on linear ones), level's ζ 2.5.
+// half-power and local fit: ζ and ω_n there), or is flagged, and the pooled
+// rms z over the noisy tables lies within [0.7, 1.4].
+// Measured (Release, 35 s for the three): pooled rms z 1.12 over 275 noisy
+// estimates; largest |z| quadrature f 3.4 and ζ 3.3, peak 2.1, half-power ζ
+// 2.3 and f_n 2.9, local-fit f_n 2.3 and ζ 2.3, level's ζ 1.9. Flagged
+// nonlinear_curve: the peak and half-power f_n on 15 of the 16
+// Duffing-unfolded tables, their half-power ζ on 13; the half-power f_n on
+// 11 of the 16 skewed ones (R moves it by 10 mHz), where that exceeds σ;
+// never a linear one. Still disabled, with their numbers below: the
+// regeneration of two noisy folded tables, and the phase-resonance ζ at a
+// fold's edge.
 #include <algorithm>
 #include <cmath>
 #include <complex>
 #include <cstdio>
+#include <functional>
 #include <map>
 #include <numbers>
 #include <random>
@@ -284,51 +292,121 @@ TEST(MeasuredBackboneGallery, EveryFoldIsFoundBetweenItsStepsAndNoJumpElsewhere)
   }
 }
 
-// The product still adds regeneration_beyond_noise to three noisy folded
-// tables (the fit regenerated on the wrong branch near the fold: 12 to 39 %
-// RMS): enable once that is fixed.
-TEST(MeasuredBackboneGallery, DISABLED_EachTableCarriesExactlyItsKindsFlags) {
+bool IsRegeneration(LevelFlagKind kind) {
+  return kind == LevelFlagKind::kRegenerationBeyondNoise || kind == LevelFlagKind::kOffBackbone;
+}
+
+bool Flagged(const LevelResonance& l, LevelFlagKind kind, const std::string& quantity) {
+  return std::any_of(l.flags.begin(), l.flags.end(),
+                     [&](const LevelFlag& f) { return f.kind == kind && f.quantity == quantity; });
+}
+
+// The flags of the kind exactly (the regeneration's are checked below); and
+// nonlinear_curve, which the product raises where it predicts a linear-mode
+// estimator's bias beyond its σ, never on a linear mode (the estimators are
+// exact there) nor on an estimator whose bias on the kind's noise-free table,
+// against the truth, is below half its σ (the prediction has its own
+// uncertainty: between half and four σ either is right, beyond four the
+// estimator test requires the flag).
+TEST(MeasuredBackboneGallery, EachTableCarriesExactlyItsKindsFlags) {
+  const std::vector<Kind> kinds = Kinds();
+  std::map<std::pair<const Kind*, bool>, std::vector<Check>> noise_free;
+  for (const Table& t : Gallery(kinds)) {
+    if (t.noise > 0) continue;
+    const Sweep sweep = Generate(t);
+    noise_free[{t.kind, t.up}] = Checks(t.kind->physics, AnalyseMeasuredBackbone({sweep.level}).levels[0], sweep.level);
+  }
+  for (const Table& t : Gallery(kinds)) {
+    SCOPED_TRACE(t.Describe());
+    const Sweep sweep = Generate(t);
+    const LevelResonance l = AnalyseMeasuredBackbone({sweep.level}).levels[0];
+    std::vector<LevelFlagKind> found;
+    for (const auto& f : l.flags)
+      if (f.kind != LevelFlagKind::kNonlinearCurve && !IsRegeneration(f.kind)) found.push_back(f.kind);
+    EXPECT_EQ(Sorted(found), Sorted(t.kind->flags)) << Flags(l);
+    const std::vector<Check> bias = noise_free.at({t.kind, t.up});
+    const std::vector<Check> checks = Checks(t.kind->physics, l, sweep.level);
+    for (std::size_t c = 0; c < checks.size(); ++c) {
+      if (!Flagged(l, LevelFlagKind::kNonlinearCurve, checks[c].quantity)) continue;
+      EXPECT_NE(t.kind->physics.gamma == 0 && t.kind->physics.residual_m_N == 0, true)
+          << checks[c].estimator << " flagged on a linear mode\n" << Flags(l);
+      ASSERT_TRUE(bias[c].estimate.valid) << checks[c].estimator;
+      const double method_bias = bias[c].estimate.value - bias[c].truth;
+      EXPECT_GE(std::abs(method_bias), 0.5 * checks[c].estimate.std)
+          << checks[c].estimator << " flagged with a bias of " << method_bias << " against its σ "
+          << checks[c].estimate.std << "\n" << Flags(l);
+    }
+  }
+}
+
+// Near a fold the cross-level fit's own fold lies a little off the measured
+// one, and a step between the two is regenerated on the other branch: one
+// step's 100 % miss makes the level's RMS. Measured: the folded fine
+// down-sweep at 3 % is flagged regeneration_beyond_noise (36 % RMS, its own
+// curve 36 % too), the folded coarse up-sweep at 1 % off_backbone (the
+// cross-level fit 11.8 %, its own curve 1.2 %).
+TEST(MeasuredBackboneGallery, DISABLED_NoTableIsRegeneratedBeyondItsNoise) {
   const std::vector<Kind> kinds = Kinds();
   for (const Table& t : Gallery(kinds)) {
     SCOPED_TRACE(t.Describe());
     const LevelResonance l = AnalyseMeasuredBackbone({Generate(t).level}).levels[0];
-    std::vector<LevelFlagKind> found;
-    for (const auto& f : l.flags) found.push_back(f.kind);
-    EXPECT_EQ(Sorted(found), Sorted(t.kind->flags)) << Flags(l);
+    for (const auto& f : l.flags) EXPECT_FALSE(IsRegeneration(f.kind)) << Flags(l);
   }
 }
 
-// The product still misses here (measured z in the file's opening comment):
-// enable once the local fit's and the phase resonance's σ on nonlinear levels are fixed.
-TEST(MeasuredBackboneGallery, DISABLED_EveryEstimatorHoldsItsTruthOrIsFlagged) {
-  const std::vector<Kind> kinds = Kinds();
-  std::map<std::string, double> largest_z;
-  double sum_z_sq = 0;
+// The phase resonance of a folded up-sweep is the last step before the drop,
+// moved to quadrature with A(a) extrapolated to the fold's top; its ζ reads A
+// there. Checked on its own (below), the rest here.
+bool AtAFoldsEdge(const LevelResonance& l, const Check& c) {
+  return l.quadrature_after_jump && std::string(c.quantity) == "quadrature_damping_ratio";
+}
+
+struct ZScores {
+  std::map<std::string, double> largest;
+  double sum_sq = 0;
   int pooled = 0;
+};
+
+// Every estimator within kSigmas of its truth or flagged, for the checks `which` selects.
+ZScores HoldTruthOrFlag(const std::function<bool(const LevelResonance&, const Check&)>& which) {
+  const std::vector<Kind> kinds = Kinds();
+  ZScores scores;
   for (const Table& t : Gallery(kinds)) {
     SCOPED_TRACE(t.Describe());
     const Sweep sweep = Generate(t);
     const LevelResonance l = AnalyseMeasuredBackbone({sweep.level}).levels[0];
     for (const Check& c : Checks(t.kind->physics, l, sweep.level)) {
-      if (!c.estimate.valid) continue;
+      if (!c.estimate.valid || !which(l, c)) continue;
       const bool flagged = std::any_of(l.flags.begin(), l.flags.end(),
                                        [&](const LevelFlag& f) { return f.quantity == c.quantity; });
       if (flagged) continue;
       const double z = (c.estimate.value - c.truth) / c.estimate.std;
       EXPECT_LE(std::abs(z), kSigmas) << c.estimator << ": " << c.estimate.value << " ± " << c.estimate.std
                                       << ", truth " << c.truth << "\n" << Flags(l);
-      largest_z[c.estimator] = std::max(largest_z[c.estimator], std::abs(z));
-      if (t.noise > 0) sum_z_sq += z * z, ++pooled;
+      scores.largest[c.estimator] = std::max(scores.largest[c.estimator], std::abs(z));
+      if (t.noise > 0) scores.sum_sq += z * z, ++scores.pooled;
     }
   }
+  for (const auto& [name, z] : scores.largest) std::printf("largest |z| %s: %.2f\n", name.c_str(), z);
+  return scores;
+}
+
+TEST(MeasuredBackboneGallery, EveryEstimatorHoldsItsTruthOrIsFlagged) {
+  const ZScores scores = HoldTruthOrFlag([](const LevelResonance& l, const Check& c) { return !AtAFoldsEdge(l, c); });
   // Over the noisy tables the σ's are neither too small nor too wide.
-  const double rms_z = std::sqrt(sum_z_sq / pooled);
+  const double rms_z = std::sqrt(scores.sum_sq / scores.pooled);
   EXPECT_GE(rms_z, 0.7);
   EXPECT_LE(rms_z, 1.4);
   ::testing::Test::RecordProperty("pooled_rms_z", std::to_string(rms_z));
-  for (const auto& [name, z] : largest_z) ::testing::Test::RecordProperty("largest_z " + name, std::to_string(z));
-  std::printf("pooled rms z %.3f over %d estimates\n", rms_z, pooled);
-  for (const auto& [name, z] : largest_z) std::printf("largest |z| %s: %.2f\n", name.c_str(), z);
+  std::printf("pooled rms z %.3f over %d estimates\n", rms_z, scores.pooled);
+}
+
+// Measured: |z| 4.75 on the folded coarse up-sweep at 3 % stating no σ
+// (ζ 4.5 ± 0.75 % against 0.91 %: a single upper branch, where a and ω rise
+// together, barely tells A from ω_n²(a), and at 3 % noise A's error is far
+// from the linearised σ); 2.2 or less on the other seven.
+TEST(MeasuredBackboneGallery, DISABLED_ThePhaseResonanceZetaAtAFoldsEdgeHoldsItsTruthOrIsFlagged) {
+  HoldTruthOrFlag(AtAFoldsEdge);
 }
 
 }  // namespace
