@@ -5,6 +5,7 @@
 #include <functional>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 #include <tuple>
 
@@ -277,8 +278,8 @@ void FindQuadrature(const LevelData& data, const SingleModeFit& modal_fit, const
   // The modal constant at the step's amplitude as two more inputs, with their
   // covariance: where the step lies far from the amplitudes that pin A(a)
   // down (the top of a folding curve), that is the extrapolation's
-  // uncertainty. Then R (its uncertainty is left out: it moves the phase
-  // resonance by R·E², a fraction of a mHz).
+  // uncertainty. Then R, with its σ and its covariance with A (the fit moved
+  // A with R: R takes part of the peak's height, A the rest, and ζ reads A).
   const double residual = modal_fit.residual_receptance_m_N;
   const double step_amplitude = std::abs(At(data.raw, k).disp - residual * At(data.raw, k).force);
   const std::complex<double> modal_constant = modal_fit.ModalConstantAt(step_amplitude);
@@ -288,6 +289,10 @@ void FindQuadrature(const LevelData& data, const SingleModeFit& modal_fit, const
   with_constant.raw.tail(3) << modal_constant.real(), modal_constant.imag(), residual;
   with_constant.extra_covariance = Eigen::MatrixXd::Zero(3, 3);
   with_constant.extra_covariance.block(0, 0, 2, 2) = modal_fit.ModalConstantCovariance(step_amplitude);
+  const Eigen::Vector2d with_residual = modal_fit.ModalConstantResidualCovariance(step_amplitude);
+  with_constant.extra_covariance.block(0, 2, 2, 1) = with_residual;
+  with_constant.extra_covariance.block(2, 0, 1, 2) = with_residual.transpose();
+  with_constant.extra_covariance(2, 2) = std::pow(modal_fit.residual_receptance_std_m_N, 2);
   const auto e = Propagate([&](const Eigen::VectorXd& raw) { return QuadratureFrom(raw, k); }, with_constant, k, k);
   out.quadrature_frequency_hz = e[0];
   // Beyond the noise: how far this level strays from one nonlinear mode
@@ -485,12 +490,16 @@ void FindPeakAndHalfPower(const LevelData& data, LevelResonance& out) {
     out.half_power_natural_frequency_hz = {};
   }
   if (out.quadrature_after_jump) {
-    // One side of the peak lies on the other branch of a fold.
+    // One side of the peak lies on the other branch of a fold, and its
+    // largest step is the fold's edge (where an up-sweep dropped off, or a
+    // down-sweep landed), not the top of a curve: a vertex fitted there is
+    // no peak frequency.
+    out.peak_frequency_hz.valid = false;
     out.half_power_damping_ratio.valid = false;
     out.half_power_lower_frequency_hz.valid = out.half_power_upper_frequency_hz.valid = false;
     out.half_power_natural_frequency_hz.valid = false;
-    out.half_power_note = "the sweep jumped (a folded curve): one side of the peak lies on another branch, no "
-                          "half-power estimate";
+    out.half_power_note = "the sweep jumped (a folded curve): its largest step is the fold's edge and one side of "
+                          "it lies on another branch, no peak frequency or half-power estimate";
   }
 }
 
@@ -516,11 +525,19 @@ std::vector<SingleModePoint> FitPoints(const LevelData& data, double window) {
   for (int i = 0; i < n; ++i) {
     const PointView p = At(data.raw, i);
     if (p.H() < window * peak) continue;
+    // a = |X_d| and G = F/X_d share X_d's noise.
+    const Eigen::Vector2d amplitude_gradient = Eigen::Vector2d(p.disp.real(), p.disp.imag()) / std::abs(p.disp);
+    const std::complex<double> d_disp = -p.force / (p.disp * p.disp);
+    Eigen::Matrix2d g_of_disp;
+    g_of_disp << d_disp.real(), -d_disp.imag(), d_disp.imag(), d_disp.real();
+    const Eigen::Vector2d disp_amplitude = data.DispCovariance(i) * amplitude_gradient;
     points.push_back({.omega_rad_s = p.omega,
                       .omega_std_rad_s = std::sqrt(data.OmegaVariance(i)),
                       .inverse_receptance_N_m = p.G(),
                       .inverse_receptance_covariance = InverseReceptanceCovariance(data, i),
-                      .amplitude_m = std::abs(p.disp)});
+                      .amplitude_m = std::abs(p.disp),
+                      .amplitude_variance_m2 = amplitude_gradient.dot(disp_amplitude),
+                      .amplitude_inverse_receptance_covariance = g_of_disp * disp_amplitude});
   }
   return points;
 }
@@ -594,6 +611,23 @@ double SolveAmplitude(const SingleModeFit& fit, double omega, double force_ampli
   return best;
 }
 
+// The fit's step in place of the measured one, X_d = F·(A/D + R): the
+// response from the measured force (force-controlled or neither; on the
+// branch nearest the measured amplitude) or the force from the measured
+// response (response-controlled, at the modal amplitude it shows).
+PointView ModelPoint(const SingleModeFit& fit, const PointView& p, LevelControl control, double a_max) {
+  const double residual = fit.residual_receptance_m_N;
+  PointView model = p;
+  if (control == LevelControl::kResponse) {
+    const double a = std::abs(p.disp - residual * p.force);
+    model.force = p.disp / (fit.ModalConstantAt(a) / fit.DynamicTerm(a, p.omega) + residual);
+  } else {
+    const double a = SolveAmplitude(fit, p.omega, std::abs(p.force), 2 * a_max, std::abs(p.disp - residual * p.force));
+    model.disp = (fit.ModalConstantAt(a) / fit.DynamicTerm(a, p.omega) + residual) * p.force;
+  }
+  return model;
+}
+
 void Regenerate(const SingleModeFit& fit, const LevelData& data, double window, double a_max, LevelResonance& out) {
   // The fitted points (FitPoints' window).
   const double peak = At(data.raw, PeakIndex(data.raw, data.size())).H();
@@ -602,21 +636,11 @@ void Regenerate(const SingleModeFit& fit, const LevelData& data, double window, 
   for (int i = 0; i < data.size(); ++i) {
     const PointView p = At(data.raw, i);
     if (p.H() < window * peak) continue;
-    std::complex<double> predicted, measured;
-    Eigen::Matrix2d covariance;
-    const double residual = fit.residual_receptance_m_N;
-    if (out.control == LevelControl::kResponse) {
-      // X_d = F·(A/D + R) at the modal amplitude the measurement shows.
-      const double a = std::abs(p.disp - residual * p.force);
-      predicted = p.disp / (fit.ModalConstantAt(a) / fit.DynamicTerm(a, p.omega) + residual);
-      measured = p.force;
-      covariance = data.ForceCovariance(i);
-    } else {
-      const double a = SolveAmplitude(fit, p.omega, std::abs(p.force), 2 * a_max, std::abs(p.disp - residual * p.force));
-      predicted = (fit.ModalConstantAt(a) / fit.DynamicTerm(a, p.omega) + residual) * p.force;
-      measured = p.disp;
-      covariance = data.DispCovariance(i);
-    }
+    const bool response = out.control == LevelControl::kResponse;
+    const PointView model = ModelPoint(fit, p, out.control, a_max);
+    const std::complex<double> predicted = response ? model.force : model.disp;
+    const std::complex<double> measured = response ? p.force : p.disp;
+    const Eigen::Matrix2d covariance = response ? data.ForceCovariance(i) : data.DispCovariance(i);
     const std::complex<double> error = predicted - measured;
     const double relative = std::abs(error) / std::abs(measured);
     sum_sq += relative * relative;
@@ -680,6 +704,139 @@ std::vector<LevelFrfPoint> FitFrf(const SingleModeFit& fit, const LevelData& dat
   return curve;
 }
 
+// The peak and half-power estimators read |X_d/F| as one linear mode's
+// (1/|X_d/F|² a quadratic in ω²). Along a force-controlled nonlinear curve
+// the amplitude, and with it ω_n(a), changes from step to step, and another
+// mode's share R skews the peak: no noise, so the propagated σ does not see
+// it (on a hardening level below its fold, stepped coarsely, the peak came
+// out 145 mHz, 8 σ, low at 0.3 % noise). The same estimators, at the same
+// steps, read on a fit's noise-free curve, whose peak and whose ζ and ω_n
+// at the peak's amplitude are known: their departure there is the method's
+// bias on this level (NaN where it cannot be read).
+struct LinearModeBias {
+  double peak_frequency_hz = NAN, half_power_damping_ratio = NAN, half_power_natural_frequency_hz = NAN;
+};
+
+LinearModeBias PredictLinearModeBias(const SingleModeFit& fit, const LevelData& data, double a_max,
+                                     LevelControl control) {
+  const int n = data.size();
+  Eigen::VectorXd raw = data.raw;
+  for (int i = 0; i < n; ++i) {
+    const PointView model = ModelPoint(fit, At(data.raw, i), control, a_max);
+    raw.segment(kInputsPerPoint * i + 1, 4) << model.force.real(), model.force.imag(), model.disp.real(),
+        model.disp.imag();
+  }
+  // The steps the estimator read on the measured curve: two steps of nearly
+  // equal height at the top swap places between the two curves, and a
+  // vertex fitted to other steps has another bias.
+  const int m = PeakIndex(data.raw, n);
+  if (m == 0 || m == n - 1) return {};
+  const Eigen::VectorXd read = PeakAndHalfPower(raw, n, m, PeakTop(data.raw, n, m));
+  const double a = read[2];
+  if (!std::isfinite(read[0]) || !(a > 0)) return {};
+  // The model's own peak at that amplitude (golden section about ω_n(a)).
+  const double omega_n = fit.NaturalFrequency_rad_s(a), zeta = fit.DampingRatio(a);
+  const auto receptance = [&](double w) {
+    return std::abs(fit.ModalConstantAt(a) / fit.DynamicTerm(a, w) + fit.residual_receptance_m_N);
+  };
+  const double golden = (std::sqrt(5.0) - 1) / 2, width = 4 * std::clamp(std::abs(zeta), 1e-6, 0.2);
+  double lo = omega_n * (1 - width), hi = omega_n * (1 + width);
+  for (int iteration = 0; iteration < 100; ++iteration) {
+    const double w1 = hi - golden * (hi - lo), w2 = lo + golden * (hi - lo);
+    if (receptance(w1) < receptance(w2))
+      lo = w1;
+    else
+      hi = w2;
+  }
+  return {.peak_frequency_hz = read[0] - 0.5 * (lo + hi) / kTwoPi,
+          .half_power_damping_ratio = read[3] - zeta,
+          .half_power_natural_frequency_hz = read[6] - omega_n / kTwoPi};
+}
+
+// The predicted biases' standard uncertainties: the fit's parameters and R,
+// with their covariance, propagated to first order (R fitted to noise on a
+// linear mode predicts a skew that is not there).
+LinearModeBias LinearModeBiasStd(const SingleModeFit& fit, const LevelData& data, double a_max,
+                                 LevelControl control) {
+  const int k = static_cast<int>(fit.parameters.size());
+  Eigen::MatrixXd covariance = Eigen::MatrixXd::Zero(k + 1, k + 1);
+  covariance.topLeftCorner(k, k) = fit.covariance;
+  if (fit.residual_covariance.size() == k) {
+    covariance.block(0, k, k, 1) = fit.residual_covariance;
+    covariance.block(k, 0, 1, k) = fit.residual_covariance.transpose();
+  }
+  covariance(k, k) = std::pow(fit.residual_receptance_std_m_N, 2);
+  const auto read = [&](const SingleModeFit& f) {
+    const LinearModeBias b = PredictLinearModeBias(f, data, a_max, control);
+    return Eigen::Vector3d(b.peak_frequency_hz, b.half_power_damping_ratio, b.half_power_natural_frequency_hz);
+  };
+  Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(3, k + 1);
+  for (int j = 0; j <= k; ++j) {
+    const double h = 1e-3 * std::sqrt(covariance(j, j));
+    if (!(h > 0)) continue;
+    SingleModeFit plus = fit, minus = fit;
+    if (j < k) {
+      plus.parameters[j] += h;
+      minus.parameters[j] -= h;
+    } else {
+      plus.residual_receptance_m_N += h;
+      minus.residual_receptance_m_N -= h;
+    }
+    jacobian.col(j) = (read(plus) - read(minus)) / (2 * h);
+  }
+  const Eigen::Matrix3d bias_covariance = jacobian * covariance * jacobian.transpose();
+  return {.peak_frequency_hz = std::sqrt(bias_covariance(0, 0)),
+          .half_power_damping_ratio = std::sqrt(bias_covariance(1, 1)),
+          .half_power_natural_frequency_hz = std::sqrt(bias_covariance(2, 2))};
+}
+
+// Below this fraction of the number a predicted bias is the arithmetic's
+// rounding (the half-power ζ differences terms 1/ζ² larger than itself: 10⁸
+// at ζ = 10⁻⁴), not the curve's; it matters on an exact table, whose σ is 0.
+constexpr double kBiasRounding = 1e-7;
+
+// Where a linear-mode estimator's predicted bias is established (beyond
+// twice its own uncertainty, as estimators part beyond their noise in the
+// level's ζ) and exceeds the estimate's σ, the number is flagged where it is
+// shown (and a flagged ζ stays out of the level's ζ), never hidden inside a
+// σ widened to cover it.
+// (The prediction's uncertainty, `bias_std`, costs a regeneration per
+// parameter: it is asked for only where a bias beyond σ is predicted.)
+void FlagNonlinearCurve(const LinearModeBias& bias, const std::function<LinearModeBias()>& bias_std,
+                        std::string_view source, LevelResonance& r) {
+  std::optional<LinearModeBias> uncertainty;
+  for (const auto& [estimate, predicted, member, quantity, what, unit, scale] :
+       {std::tuple{&r.peak_frequency_hz, bias.peak_frequency_hz, &LinearModeBias::peak_frequency_hz,
+                   "peak_frequency", "peak frequency", "Hz", 1.0},
+        std::tuple{&r.half_power_damping_ratio, bias.half_power_damping_ratio,
+                   &LinearModeBias::half_power_damping_ratio, "half_power_damping_ratio", "half-power ζ", "%", 100.0},
+        std::tuple{&r.half_power_natural_frequency_hz, bias.half_power_natural_frequency_hz,
+                   &LinearModeBias::half_power_natural_frequency_hz, "half_power_natural_frequency",
+                   "half-power natural frequency", "Hz", 1.0}}) {
+    if (!(estimate->valid && std::abs(predicted) > estimate->std &&
+          std::abs(predicted) > kBiasRounding * std::abs(estimate->value)))
+      continue;
+    if (!uncertainty) uncertainty = bias_std();
+    const double predicted_std = (*uncertainty).*member;
+    if (std::abs(predicted) > 2 * (std::isfinite(predicted_std) ? predicted_std : 0.0))
+      r.flags.push_back(
+          {.kind = LevelFlagKind::kNonlinearCurve,
+           .quantity = quantity,
+           .message = fmt::format("the curve is not one linear mode's (the amplitude changes along it, or another "
+                                  "mode's share skews it): the {} is biased by {:+.3g} {} (predicted from {}, ± "
+                                  "{:.2g}), beyond its σ of {:.2g} {}{}",
+                                  what, scale * predicted, unit, source, scale * predicted_std,
+                                  scale * estimate->std, unit,
+                                  estimate == &r.half_power_damping_ratio ? "; not in the level's ζ" : "")});
+  }
+}
+
+bool FlaggedNonlinear(const LevelResonance& r, std::string_view quantity) {
+  return std::any_of(r.flags.begin(), r.flags.end(), [&](const LevelFlag& f) {
+    return f.kind == LevelFlagKind::kNonlinearCurve && f.quantity == quantity;
+  });
+}
+
 // The steps between the half-power frequencies (−1 without both).
 int StepsInHalfPowerBand(const LevelData& data, const LevelResonance& r) {
   if (!r.half_power_lower_frequency_hz.valid || !r.half_power_upper_frequency_hz.valid) return -1;
@@ -707,15 +864,16 @@ std::string FiniteOr(double x, std::string_view format) {
 std::string Percent(double fraction) { return FiniteOr(100 * fraction, "{:.3g} %"); }
 
 // LevelResonance::damping_ratio from the three estimators; a half-power ζ
-// read between steps too coarse for it stays out (flagged where it is shown)
-// rather than widening the level's σ to cover it.
+// read between steps too coarse for it, or on a curve that is not one linear
+// mode's, stays out (flagged where it is shown) rather than widening the
+// level's σ to cover it.
 void CombineDampingRatios(const LevelData& data, LevelResonance& r) {
   const std::tuple<const Estimate*, const char*> estimators[] = {{&r.quadrature_damping_ratio, "phase resonance"},
                                                                  {&r.local_damping_ratio, "local fit"},
                                                                  {&r.half_power_damping_ratio, "half-power"}};
-  const bool half_power_too_coarse = HalfPowerTooCoarse(data, r);
+  const bool half_power_flagged = HalfPowerTooCoarse(data, r) || FlaggedNonlinear(r, "half_power_damping_ratio");
   const auto usable = [&](const Estimate* e) {
-    return e->valid && std::isfinite(e->value) && !(e == &r.half_power_damping_ratio && half_power_too_coarse);
+    return e->valid && std::isfinite(e->value) && !(e == &r.half_power_damping_ratio && half_power_flagged);
   };
   const Estimate* primary = nullptr;
   const char* primary_name = "";
@@ -765,6 +923,11 @@ std::string OffBackboneMessage(const SingleModeFit& cross_level_fit, const Level
                      Percent(r.regeneration_relative_rms), Percent(allowed), Percent(r.own_curve_relative_rms), where);
 }
 
+// The relative RMS regeneration error a level's noise allows (LevelFlagKind::kRegenerationBeyondNoise).
+double RegenerationAllowed(const MeasuredBackboneOptions& options, const LevelResonance& r) {
+  return std::max(options.max_regeneration_relative_rms, kRegenerationNoiseFactor * r.regeneration_noise_relative_rms);
+}
+
 // The checks of LevelResonance::flags on one level's numbers.
 void FlagLevel(const LevelData& data, const SingleModeFit* cross_level_fit, const MeasuredBackboneOptions& options,
                LevelResonance& r) {
@@ -812,8 +975,7 @@ void FlagLevel(const LevelData& data, const SingleModeFit* cross_level_fit, cons
                     FiniteOr(jump.receptance_ratio, "{:.3g}"),
                     FiniteOr(jump.phase_change_rad * 180 / std::numbers::pi, "{:+.0f}°")));
   if (cross_level_fit) {
-    const double allowed =
-        std::max(options.max_regeneration_relative_rms, kRegenerationNoiseFactor * r.regeneration_noise_relative_rms);
+    const double allowed = RegenerationAllowed(options, r);
     if (r.regeneration_relative_rms <= allowed) return;
     if (r.own_curve_relative_rms > 0 && r.own_curve_relative_rms <= allowed) {
       add(LevelFlagKind::kOffBackbone, "regeneration_relative_rms", OffBackboneMessage(*cross_level_fit, r, allowed));
@@ -917,18 +1079,20 @@ std::string_view LevelFlagName(LevelFlagKind kind) {
     case LevelFlagKind::kPhaseConvention: return "phase_convention";
     case LevelFlagKind::kCoarseSteps: return "coarse_steps";
     case LevelFlagKind::kOffBackbone: return "off_backbone";
+    case LevelFlagKind::kNonlinearCurve: return "nonlinear_curve";
   }
   return "";
 }
 
 LevelFlagKind LevelFlagKindFromName(std::string_view name) {
-  for (LevelFlagKind kind : {LevelFlagKind::kDampingNotPositive, LevelFlagKind::kPeakOutsideBand,
-                             LevelFlagKind::kRegenerationBeyondNoise, LevelFlagKind::kJump,
-                             LevelFlagKind::kPhaseConvention, LevelFlagKind::kCoarseSteps, LevelFlagKind::kOffBackbone})
+  for (LevelFlagKind kind :
+       {LevelFlagKind::kDampingNotPositive, LevelFlagKind::kPeakOutsideBand, LevelFlagKind::kRegenerationBeyondNoise,
+        LevelFlagKind::kJump, LevelFlagKind::kPhaseConvention, LevelFlagKind::kCoarseSteps, LevelFlagKind::kOffBackbone,
+        LevelFlagKind::kNonlinearCurve})
     if (name == LevelFlagName(kind)) return kind;
   throw InputError("unknown level flag \"" + std::string(name) +
                    "\": give damping_not_positive, peak_outside_band, regeneration_beyond_noise, jump, "
-                   "phase_convention, coarse_steps or off_backbone");
+                   "phase_convention, coarse_steps, off_backbone or nonlinear_curve");
 }
 
 bool LevelResonance::HasFlag(LevelFlagKind kind) const {
@@ -946,6 +1110,7 @@ std::string LevelResonance::FlagNote(std::string_view quantity) const {
                                   : f.kind == LevelFlagKind::kPhaseConvention  ? "phase convention"
                                   : f.kind == LevelFlagKind::kCoarseSteps      ? "steps coarser than the resonance"
                                   : f.kind == LevelFlagKind::kOffBackbone      ? "off the backbone"
+                                  : f.kind == LevelFlagKind::kNonlinearCurve   ? "not one linear mode's curve"
                                                                                : "beyond the noise";
     const auto seen = std::find_if(kinds.begin(), kinds.end(), [&](const auto& k) { return k.first == what; });
     if (seen == kinds.end())
@@ -1019,7 +1184,10 @@ MeasuredBackbone Analyse(const std::vector<signal::FirstHarmonicLevel>& levels, 
   // The other modes' share R, once for all levels (it does not depend on
   // amplitude): first with the most flexible polynomial form, then again with
   // the form chosen with it (R and the form bias each other's choice).
-  double residual = 0.0;
+  // R's σ, from the same points that gave it, goes into every fit's
+  // covariance that uses it: taken as exact, a spurious R of 1 % of the peak
+  // (noise) moved a linear level's natural frequency by 6 of its σ.
+  double residual = 0.0, residual_std = 0.0;
   if (options.estimate_residual && residual_from == ResidualFrom::kLevelsOwnCurves) {
     std::vector<std::vector<SingleModePoint>> groups;
     std::vector<SingleModeFitOptions> forms;
@@ -1029,6 +1197,7 @@ MeasuredBackbone Analyse(const std::vector<signal::FirstHarmonicLevel>& levels, 
       forms.push_back(LocalFitForm(level_points[l], options.constant_tolerance));
     }
     residual = FitResidualReceptance(groups, forms);
+    residual_std = ResidualReceptanceStd(groups, forms, residual);
   } else if (options.estimate_residual) {
     const bool spans = result.max_amplitude_m / result.min_amplitude_m - 1 > options.constant_tolerance;
     residual = FitResidualReceptance(all_points, {.frequency_degree = spans ? options.max_frequency_degree : 0,
@@ -1038,19 +1207,19 @@ MeasuredBackbone Analyse(const std::vector<signal::FirstHarmonicLevel>& levels, 
                                                   .reference_amplitude_m = result.max_amplitude_m});
     ChooseGlobalFit(all_points, result.max_amplitude_m, residual, options, result);
     if (result.fit.ok) {
-      const SingleModeFit& f = result.fit;
-      residual = FitResidualReceptance(all_points, {.frequency_degree = f.frequency_degree,
-                                                    .damping_degree = f.damping_degree,
-                                                    .frequency_exponent = f.frequency_exponent,
-                                                    .damping_exponent = f.damping_exponent,
-                                                    .amplitude_dependent_modal_constant = f.amplitude_dependent_modal_constant,
-                                                    .reference_amplitude_m = f.reference_amplitude_m});
+      const SingleModeFitOptions form = result.fit.Form();
+      residual = FitResidualReceptance(all_points, form);
+      residual_std = ResidualReceptanceStd({all_points}, {form}, residual);
     }
     result.fit = SingleModeFit();
     result.candidates.clear();
   }
-  for (const auto& points : level_points) local_fits.push_back(LocalFit(points, options.constant_tolerance, residual));
+  for (const auto& points : level_points) {
+    local_fits.push_back(LocalFit(points, options.constant_tolerance, residual));
+    IncludeResidualUncertainty(local_fits.back(), points, residual_std);
+  }
   ChooseGlobalFit(all_points, result.max_amplitude_m, residual, options, result);
+  IncludeResidualUncertainty(result.fit, all_points, residual_std);
   if (!result.fit.ok) result.warnings.push_back("too few points near the mode for a single-mode fit across levels");
 
   // A(a) for the phase resonances: from the global fit, which sees every
@@ -1088,6 +1257,22 @@ MeasuredBackbone Analyse(const std::vector<signal::FirstHarmonicLevel>& levels, 
       Regenerate(local_fits[l], data[l], options.fit_window, result.max_amplitude_m, own);
       r.own_curve_relative_rms = own.regeneration_relative_rms;
     }
+    // The linear-mode estimators' bias read on the fit that regenerates the
+    // level more closely, within what its noise allows: the cross-level
+    // fit's curve, or the level's own (off a drifting backbone the
+    // cross-level fit reads the drift as a nonlinearity the level lacks; a
+    // fit that misses the level predicts nothing about its curve).
+    const double allowed = RegenerationAllowed(options, r);
+    const bool cross_level_holds = result.fit.ok && r.regeneration_relative_rms <= allowed;
+    const bool own_holds = local_fits[l].ok && r.own_curve_relative_rms <= allowed;
+    const SingleModeFit* holds =
+        cross_level_holds && !(own_holds && r.own_curve_relative_rms < r.regeneration_relative_rms) ? &result.fit
+        : own_holds                                                                                   ? &local_fits[l]
+                                                                                                      : nullptr;
+    if (holds && r.peak_frequency_hz.valid)
+      FlagNonlinearCurve(PredictLinearModeBias(*holds, data[l], result.max_amplitude_m, r.control),
+                         [&] { return LinearModeBiasStd(*holds, data[l], result.max_amplitude_m, r.control); },
+                         holds == &result.fit ? "the cross-level fit" : "the level's own curve", r);
     CombineDampingRatios(data[l], r);
     FlagLevel(data[l], result.fit.ok ? &result.fit : nullptr, options, r);
     std::vector<ReceptancePoint> receptances;
@@ -1104,13 +1289,14 @@ MeasuredBackbone Analyse(const std::vector<signal::FirstHarmonicLevel>& levels, 
   if (!result.fit.ok) return result;
 
   // Damping trend: ζω_n linear in a, the frequency and A(a) as chosen.
-  const SingleModeFit linear = FitSingleModeChoosingExponents(
+  SingleModeFit linear = FitSingleModeChoosingExponents(
       all_points, {.frequency_degree = result.fit.frequency_degree,
                    .damping_degree = 1,
                    .frequency_exponent = result.fit.frequency_exponent,
                    .amplitude_dependent_modal_constant = result.fit.amplitude_dependent_modal_constant,
                    .residual_receptance_m_N = result.fit.residual_receptance_m_N,
                    .reference_amplitude_m = result.max_amplitude_m});
+  IncludeResidualUncertainty(linear, all_points, residual_std);
   if (linear.ok) {
     DampingTrend& trend = result.damping_trend;
     trend.amplitude_m = 0.5 * (result.min_amplitude_m + result.max_amplitude_m);
@@ -1131,11 +1317,12 @@ MeasuredBackbone Analyse(const std::vector<signal::FirstHarmonicLevel>& levels, 
   return result;
 }
 
-// Coarse steps spoil one estimator, not the level's points; a level off the
-// backbone is sound by its own curve.
+// Coarse steps, or a curve not one linear mode's, spoil one estimator, not
+// the level's points; a level off the backbone is sound by its own curve.
 bool PassedItsChecks(const LevelResonance& level) {
   return std::all_of(level.flags.begin(), level.flags.end(), [](const LevelFlag& f) {
-    return f.kind == LevelFlagKind::kCoarseSteps || f.kind == LevelFlagKind::kOffBackbone;
+    return f.kind == LevelFlagKind::kCoarseSteps || f.kind == LevelFlagKind::kNonlinearCurve ||
+           f.kind == LevelFlagKind::kOffBackbone;
   });
 }
 
@@ -1219,7 +1406,7 @@ MeasuredBackbone AnalyseMeasuredBackbone(const std::vector<signal::FirstHarmonic
       if (!in_fit[l] || PassedItsChecks(r)) continue;
       if (std::any_of(r.flags.begin(), r.flags.end(), [](const LevelFlag& f) {
             return f.kind != LevelFlagKind::kRegenerationBeyondNoise && f.kind != LevelFlagKind::kCoarseSteps &&
-                   f.kind != LevelFlagKind::kOffBackbone;
+                   f.kind != LevelFlagKind::kNonlinearCurve && f.kind != LevelFlagKind::kOffBackbone;
           }))
         next[l] = false;
       else if (worst < 0 || r.regeneration_relative_rms > result.levels[worst].regeneration_relative_rms)

@@ -48,7 +48,8 @@ const schema::Name<LevelFlagKind> kFlagKinds[] = {
     {LevelFlagKind::kJump, LevelFlagName(LevelFlagKind::kJump)},
     {LevelFlagKind::kPhaseConvention, LevelFlagName(LevelFlagKind::kPhaseConvention)},
     {LevelFlagKind::kCoarseSteps, LevelFlagName(LevelFlagKind::kCoarseSteps)},
-    {LevelFlagKind::kOffBackbone, LevelFlagName(LevelFlagKind::kOffBackbone)}};
+    {LevelFlagKind::kOffBackbone, LevelFlagName(LevelFlagKind::kOffBackbone)},
+    {LevelFlagKind::kNonlinearCurve, LevelFlagName(LevelFlagKind::kNonlinearCurve)}};
 // SweepJump::up_sweep.
 constexpr schema::Name<bool> kDirections[] = {{true, "up"}, {false, "down"}};
 // What drives the levels (MeasuredBackbone::excitation_quantity).

@@ -1,8 +1,10 @@
 #include "solver/backbone/single_mode_fit.h"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <stdexcept>
 
 #include <Eigen/Cholesky>
 #include <Eigen/QR>
@@ -88,6 +90,14 @@ Eigen::Matrix2d SingleModeFit::ModalConstantCovariance(double a) const {
   return gradients * covariance * gradients.transpose();
 }
 
+Eigen::Vector2d SingleModeFit::ModalConstantResidualCovariance(double a) const {
+  if (residual_covariance.size() != parameters.size()) return Eigen::Vector2d::Zero();
+  return {Gradient([&](const Eigen::VectorXd& x) { return Evaluate(*this, x, a).modal_constant.real(); }, parameters)
+              .dot(residual_covariance),
+          Gradient([&](const Eigen::VectorXd& x) { return Evaluate(*this, x, a).modal_constant.imag(); }, parameters)
+              .dot(residual_covariance)};
+}
+
 double SingleModeFit::NaturalFrequency_rad_s(double a) const { return Evaluate(*this, parameters, a).omega_n; }
 
 double SingleModeFit::DampingRatio(double a) const { return Evaluate(*this, parameters, a).zeta; }
@@ -129,6 +139,15 @@ std::string SingleModeFit::FormName() const {
          (amplitude_dependent_modal_constant ? ", A(a) = A0 + A2*s^2" : ", A constant");
 }
 
+SingleModeFitOptions SingleModeFit::Form() const {
+  return {.frequency_degree = frequency_degree,
+          .damping_degree = damping_degree,
+          .frequency_exponent = frequency_exponent,
+          .damping_exponent = damping_exponent,
+          .amplitude_dependent_modal_constant = amplitude_dependent_modal_constant,
+          .reference_amplitude_m = reference_amplitude_m};
+}
+
 std::complex<double> SingleModeFit::DynamicTerm(double a, double omega) const {
   const int na = NumModalConstantTerms();
   const auto bp = FrequencyBasis(a), bq = DampingBasis(a);
@@ -137,6 +156,18 @@ std::complex<double> SingleModeFit::DynamicTerm(double a, double omega) const {
   return {omega_n_sq - omega * omega, 2 * omega * zeta_omega};
 }
 
+namespace {
+// Of (Re G, Im G, a).
+Eigen::Matrix3d InputCovariance(const SingleModePoint& p) {
+  Eigen::Matrix3d c;
+  c.topLeftCorner<2, 2>() = p.inverse_receptance_covariance;
+  c.block<2, 1>(0, 2) = p.amplitude_inverse_receptance_covariance;
+  c.block<1, 2>(2, 0) = p.amplitude_inverse_receptance_covariance.transpose();
+  c(2, 2) = p.amplitude_variance_m2;
+  return c;
+}
+}  // namespace
+
 std::vector<SingleModePoint> WithoutResidual(const std::vector<SingleModePoint>& points, double residual) {
   std::vector<SingleModePoint> out = points;
   if (residual == 0.0) return out;
@@ -144,12 +175,18 @@ std::vector<SingleModePoint> WithoutResidual(const std::vector<SingleModePoint>&
     // X_d/F − R: the mode's own part; G' = 1/(1/G − R), dG'/dG = (G'/G)².
     const std::complex<double> g = p.inverse_receptance_N_m;
     const std::complex<double> modal = 1.0 / (1.0 / g - residual);
-    const std::complex<double> d = (modal / g) * (modal / g);
-    Eigen::Matrix2d jacobian;
-    jacobian << d.real(), -d.imag(), d.imag(), d.real();
+    // The mode's amplitude a' = a·|w|, w = G/G' = 1 − R·G, moves with G too.
+    const std::complex<double> d = (modal / g) * (modal / g), w = 1.0 - residual * g;
+    Eigen::Matrix3d jacobian = Eigen::Matrix3d::Zero();
+    jacobian.topLeftCorner<2, 2>() << d.real(), -d.imag(), d.imag(), d.real();
+    jacobian.bottomRows<1>() << -p.amplitude_m * residual * w.real() / std::abs(w),
+        -p.amplitude_m * residual * w.imag() / std::abs(w), std::abs(w);
+    const Eigen::Matrix3d covariance = jacobian * InputCovariance(p) * jacobian.transpose();
     p.inverse_receptance_N_m = modal;
-    p.inverse_receptance_covariance = jacobian * p.inverse_receptance_covariance * jacobian.transpose();
-    p.amplitude_m *= std::abs(g / modal);
+    p.inverse_receptance_covariance = covariance.topLeftCorner<2, 2>();
+    p.amplitude_inverse_receptance_covariance = covariance.block<2, 1>(0, 2);
+    p.amplitude_variance_m2 = covariance(2, 2);
+    p.amplitude_m *= std::abs(w);
   }
   return out;
 }
@@ -214,6 +251,7 @@ SingleModeFit FitSingleMode(const std::vector<SingleModePoint>& measured_points,
   Eigen::VectorXd x = solve(design, rhs);
   Eigen::MatrixXd whitened_design = design;
   Eigen::VectorXd whitened_rhs = rhs;
+  std::vector<Eigen::Matrix2d> whitening(points.size());
   for (int iteration = 0; iteration <= options.reweighting_iterations; ++iteration) {
     fit.parameters = x;
     for (std::size_t i = 0; i < points.size(); ++i) {
@@ -228,6 +266,7 @@ SingleModeFit FitSingleMode(const std::vector<SingleModePoint>& measured_points,
       const double l22 = std::sqrt(std::max(cov(1, 1) - l21 * l21, 1e-30 * cov(1, 1)));
       Eigen::Matrix2d l_inverse;
       l_inverse << 1 / l11, 0, -l21 / (l11 * l22), 1 / l22;
+      whitening[i] = l_inverse;
       whitened_design.middleRows(2 * i, 2) = l_inverse * design.middleRows(2 * i, 2);
       const double r0 = rhs[2 * i], r1 = rhs[2 * i + 1];
       whitened_rhs[2 * i] = l_inverse(0, 0) * r0;
@@ -239,10 +278,44 @@ SingleModeFit FitSingleMode(const std::vector<SingleModePoint>& measured_points,
   fit.chi_square = (whitened_design * x - whitened_rhs).squaredNorm();
   const Eigen::MatrixXd scaled = whitened_design * scale.asDiagonal();
   const Eigen::MatrixXd normal_inverse = (scaled.transpose() * scaled).ldlt().solve(Eigen::MatrixXd::Identity(k, k));
-  fit.covariance = scale.asDiagonal() * normal_inverse * scale.asDiagonal();
-  fit.covariance *= std::max(1.0, fit.ReducedChiSquare());
-  fit.aicc = Aicc(fit.chi_square, n, fit.NumParameters());
   const Eigen::VectorXd unweighted = design * x - rhs;
+  fit.noise_chi_square = fit.chi_square;
+  if (std::any_of(points.begin(), points.end(), [](const SingleModePoint& p) { return p.amplitude_variance_m2 > 0; })) {
+    // The estimator's covariance under every input's noise, G's weights kept:
+    // (Jᵀ J)⁻¹ Jᵀ S J (Jᵀ J)⁻¹ with J the whitened design and S each pair's
+    // whitened covariance, the amplitude's share through the model's slope in a.
+    Eigen::MatrixXd meat = Eigen::MatrixXd::Zero(k, k);
+    fit.noise_chi_square = 0.0;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const SingleModePoint& p = points[i];
+      const std::complex<double> g = p.inverse_receptance_N_m, modal_constant = fit.ModalConstantAt(p.amplitude_m);
+      const auto pair = [&](double a) {
+        const std::complex<double> r = fit.ModalConstantAt(a) * g - fit.DynamicTerm(a, p.omega_rad_s);
+        return Eigen::Vector2d(r.real(), r.imag());
+      };
+      Eigen::Matrix<double, 2, 3> jacobian;
+      jacobian.leftCols<2>() << modal_constant.real(), -modal_constant.imag(), modal_constant.imag(),
+          modal_constant.real();
+      const double h = 1e-4 * p.amplitude_m;
+      jacobian.col(2) = Eigen::Vector2d::Zero();
+      if (p.amplitude_variance_m2 > 0) jacobian.col(2) = (pair(p.amplitude_m + h) - pair(p.amplitude_m - h)) / (2 * h);
+      Eigen::Matrix3d input = InputCovariance(p);
+      input.topLeftCorner<2, 2>() = g_cov[i];
+      Eigen::Matrix2d full = jacobian * input * jacobian.transpose();
+      full(0, 0) += std::pow(2 * p.omega_rad_s * p.omega_std_rad_s, 2);
+      const Eigen::Matrix2d whitened = whitening[i] * full * whitening[i].transpose();
+      const Eigen::MatrixXd rows = scaled.middleRows(2 * i, 2);
+      meat += rows.transpose() * whitened * rows;
+      const Eigen::Vector2d r = unweighted.segment<2>(2 * i);
+      fit.noise_chi_square += r.dot(full.ldlt().solve(r));
+    }
+    fit.covariance = scale.asDiagonal() * (normal_inverse * meat * normal_inverse) * scale.asDiagonal();
+  } else {
+    fit.covariance = scale.asDiagonal() * normal_inverse * scale.asDiagonal();
+  }
+  const int dof = n - fit.NumParameters();
+  fit.covariance *= std::max(1.0, dof > 0 ? fit.noise_chi_square / dof : 1.0);
+  fit.aicc = Aicc(fit.chi_square, n, fit.NumParameters());
   double sum_sq = 0.0;
   for (int i = 0; i < n; i += 2) sum_sq += unweighted[i] * unweighted[i];
   fit.backbone_residual_rms_rad2_s2 = std::sqrt(sum_sq / (n / 2));
@@ -278,11 +351,12 @@ SingleModeFit FitSingleModeChoosingExponents(const std::vector<SingleModePoint>&
   if (!best.ok) return best;
   // Count the chosen exponents as parameters: redo the scaling and the AICc.
   best.num_searched_parameters += (options.frequency_exponent > 0) + (options.damping_exponent > 0);
-  const double reduced = best.ReducedChiSquare();
+  const int dof = best.num_residuals - best.NumParameters();
+  const double reduced = dof > 0 ? best.noise_chi_square / dof : std::numeric_limits<double>::quiet_NaN();
   if (reduced > 1) {
     const int searched_before = best.residual_receptance_m_N != 0.0 ? 1 : 0;
     const int dof_before = best.num_residuals - static_cast<int>(best.parameters.size()) - searched_before;
-    best.covariance *= reduced / std::max(1.0, best.chi_square / dof_before);
+    best.covariance *= reduced / std::max(1.0, best.noise_chi_square / dof_before);
   }
   best.aicc = Aicc(best.chi_square, best.num_residuals, best.NumParameters());
   best.ok = best.num_residuals > best.NumParameters() + 1;
@@ -295,15 +369,17 @@ namespace beamid::solver {
 
 namespace {
 
+// R is searched within this fraction of the largest |X_d/F| either way.
+constexpr double kResidualRange = 0.02;
+
 // The R minimising `chi_square` within ±2 % of the largest |X_d/F| (χ² need
 // not be convex in R: a coarse scan, then golden section in the best cell).
 double MinimiseOverResidual(double peak_receptance_m_N, const std::function<double(double)>& chi_square) {
   constexpr int kScan = 40;
-  constexpr double kRange = 0.02;
   double best = 0.0, best_chi = chi_square(0.0);
-  const double step = 2 * kRange * peak_receptance_m_N / kScan;
+  const double step = 2 * kResidualRange * peak_receptance_m_N / kScan;
   for (int k = 0; k <= kScan; ++k) {
-    const double r = -kRange * peak_receptance_m_N + k * step;
+    const double r = -kResidualRange * peak_receptance_m_N + k * step;
     const double c = chi_square(r);
     if (c < best_chi) best_chi = c, best = r;
   }
@@ -343,6 +419,54 @@ std::vector<SingleModeFit> FitGroups(const std::vector<std::vector<SingleModePoi
 }
 
 }  // namespace
+
+double ResidualReceptanceStd(const std::vector<std::vector<SingleModePoint>>& groups,
+                             const std::vector<SingleModeFitOptions>& forms, double residual) {
+  if (residual == 0.0) return 0.0;
+  if (groups.size() != forms.size()) throw std::invalid_argument("ResidualReceptanceStd: one form per group");
+  double peak = 0.0;
+  for (const auto& group : groups) peak = std::max(peak, PeakReceptance(group));
+  // The groups' summed χ² and degrees of freedom at R (a group too small for its form takes no part).
+  const auto profile = [&](double r) {
+    double chi_square = 0.0;
+    int dof = 0;
+    for (const SingleModeFit& fit : FitGroups(groups, forms, r)) {
+      if (!fit.ok) continue;
+      chi_square += fit.chi_square;
+      dof += fit.num_residuals - fit.NumParameters();
+    }
+    return std::pair{chi_square, dof};
+  };
+  const auto [chi_square, dof] = profile(residual);
+  // Not convex at R: R is known only to lie in the range searched (±2 % of the peak), uniformly.
+  const double unknown = kResidualRange * peak / std::sqrt(3.0);
+  // A step first on the scale of the search, then on R's own σ.
+  double std = unknown;
+  for (double h : {1e-3 * peak, 0.0}) {
+    if (h == 0.0) h = std::clamp(0.5 * std, 1e-6 * peak, 1e-2 * peak);
+    const double curvature = (profile(residual + h).first - 2 * chi_square + profile(residual - h).first) / (h * h);
+    if (!(curvature > 0)) return unknown;
+    std = std::sqrt(2.0 / curvature);
+  }
+  return std::min(unknown, std * std::sqrt(std::max(1.0, dof > 0 ? chi_square / dof : 1.0)));
+}
+
+void IncludeResidualUncertainty(SingleModeFit& fit, const std::vector<SingleModePoint>& points, double residual_std) {
+  if (!fit.ok || !(residual_std > 0)) return;
+  const SingleModeFitOptions form = fit.Form();
+  const double h = 0.1 * residual_std;
+  const auto at = [&](double r) {
+    SingleModeFitOptions o = form;
+    o.residual_receptance_m_N = r;
+    return FitSingleMode(points, o);
+  };
+  const SingleModeFit plus = at(fit.residual_receptance_m_N + h), minus = at(fit.residual_receptance_m_N - h);
+  if (!plus.ok || !minus.ok) return;
+  const Eigen::VectorXd sensitivity = (plus.parameters - minus.parameters) / (2 * h);
+  fit.residual_receptance_std_m_N = residual_std;
+  fit.residual_covariance = sensitivity * residual_std * residual_std;
+  fit.covariance += sensitivity * sensitivity.transpose() * (residual_std * residual_std);
+}
 
 double FitResidualReceptance(const std::vector<SingleModePoint>& points, const SingleModeFitOptions& options) {
   return FitResidualReceptance(std::vector<std::vector<SingleModePoint>>{points}, {options});

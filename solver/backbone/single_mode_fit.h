@@ -22,11 +22,16 @@
 // in (A, p, q), so the fit is a weighted linear least-squares problem; each
 // point's real/imaginary residual pair is whitened by the covariance of A·G
 // from that of G (+ the frequency's variance on the real part), iterating A a
-// few times. The parameter covariance is scaled by the reduced χ² when that
-// exceeds 1 (the single mode is an approximation: residual modes, amplitude
-// errors). Model choice between forms uses AICc with the noise scale left
-// free, n·ln(χ²/n) + 2k + 2k(k+1)/(n−k−1), so it does not depend on how
-// well the phasor uncertainties were estimated.
+// few times. The parameter covariance is that estimator's (a sandwich) under
+// every input's noise: where the amplitude carries noise (SingleModePoint) it
+// moves A(a)·G − D(a, ω) through a too, by the backbone's slope, and that
+// is not left out of the σ's (weighting by it instead, effective variance,
+// runs away to steep backbones that excuse their own misfit). It is scaled
+// by the reduced χ² against that noise when that exceeds 1 (the single mode
+// is an approximation: residual modes, a shape changing with amplitude).
+// Model choice between forms uses AICc with the noise scale left free,
+// n·ln(χ²/n) + 2k + 2k(k+1)/(n−k−1), so it does not depend on how well the
+// phasor uncertainties were estimated.
 #pragma once
 
 #include <complex>
@@ -43,6 +48,12 @@ struct SingleModePoint {
   std::complex<double> inverse_receptance_N_m;  // G = F/X_d
   Eigen::Matrix2d inverse_receptance_covariance = Eigen::Matrix2d::Zero();  // of (Re G, Im G); 0 = unknown
   double amplitude_m = 0.0;                     // a = |X_d|
+  // The amplitude is measured with the same noise as G (both from X_d): its
+  // variance and its covariance with (Re G, Im G). Where ω_n² changes
+  // steeply with a (a folding curve) that noise moves a point off the model
+  // more than G's own does. 0: exact.
+  double amplitude_variance_m2 = 0.0;
+  Eigen::Vector2d amplitude_inverse_receptance_covariance = Eigen::Vector2d::Zero();
 };
 
 struct SingleModeFitOptions {
@@ -75,14 +86,21 @@ class SingleModeFit {
   double damping_exponent = 0.0;    // β (> 0: power law)
   bool amplitude_dependent_modal_constant = false;
   double residual_receptance_m_N = 0.0;  // R: X_d/F = A/D + R
+  // R's standard uncertainty when it was estimated (IncludeResidualUncertainty):
+  // `covariance` then holds the parameters' change with R over it, and
+  // `residual_covariance` their covariance with R (0: R taken as exact).
+  double residual_receptance_std_m_N = 0.0;
+  Eigen::VectorXd residual_covariance;
   // Searched outside the linear fit (exponents on a grid, R): each counts as
   // one more parameter in the AICc.
   int num_searched_parameters = 0;
   double reference_amplitude_m = 1.0;
   // Re A_0, Im A_0, [A_2,] then the terms of ω_n² (p), then those of ζω_n (q).
   Eigen::VectorXd parameters;
-  Eigen::MatrixXd covariance;  // scaled by max(1, reduced χ²)
+  Eigen::MatrixXd covariance;  // under every input's noise, scaled by max(1, noise_chi_square per dof)
   double chi_square = 0.0;
+  // χ² against every input's noise (G's and the amplitude's): what scales the covariance.
+  double noise_chi_square = 0.0;
   int num_residuals = 0;  // 2 per point
   double aicc = 0.0;
   // RMS over the points of A·Re G + ω² − ω_n²(a) [rad²/s²]: how far the
@@ -95,10 +113,13 @@ class SingleModeFit {
   // Re A at zero amplitude.
   double ModalConstant() const { return parameters[0]; }
   std::complex<double> ModalConstantAt(double amplitude_m) const;
-  // Covariance of (Re A(a), Im A(a)).
+  // Covariance of (Re A(a), Im A(a)), and of those with R.
   Eigen::Matrix2d ModalConstantCovariance(double amplitude_m) const;
+  Eigen::Vector2d ModalConstantResidualCovariance(double amplitude_m) const;
   // "polynomial 3" or "power 2.5" for ω_n² and ζω_n, and "A(a)" when A changes.
   std::string FormName() const;
+  // The options that fit this form again (exponents fixed, R left at 0).
+  SingleModeFitOptions Form() const;
   double NaturalFrequency_rad_s(double amplitude_m) const;
   double NaturalFrequencyStd_rad_s(double amplitude_m) const;
   double DampingRatio(double amplitude_m) const;
@@ -135,6 +156,21 @@ double FitResidualReceptance(const std::vector<SingleModePoint>& points, const S
 // not lie on one would hand its misfit to R.
 double FitResidualReceptance(const std::vector<std::vector<SingleModePoint>>& groups,
                              const std::vector<SingleModeFitOptions>& forms);
+
+// R's standard uncertainty from the curvature of the groups' summed χ² as
+// R moves, each group's parameters refitted (the profile: Δχ² = 1 at 1σ),
+// scaled by that χ²'s reduced value when it exceeds 1 (the χ² the search
+// minimised, of G's noise alone: the amplitude's noise, and any misfit,
+// show there). 0 for R = 0: the AICc left R out of the model.
+double ResidualReceptanceStd(const std::vector<std::vector<SingleModePoint>>& groups,
+                             const std::vector<SingleModeFitOptions>& forms, double residual);
+
+// R estimated from the same points moves every parameter with it: the
+// fit's covariance adds s·σ_R²·sᵀ, s = dx/dR (refitted at R ± h), and
+// residual_covariance = s·σ_R². For R estimated jointly with the parameters
+// that is the exact block inverse of the joint problem, to first order; the
+// phase resonance reads A's covariance with R from it.
+void IncludeResidualUncertainty(SingleModeFit& fit, const std::vector<SingleModePoint>& points, double residual_std);
 
 // The power-law exponents tried for the Iwan-like forms.
 std::vector<double> PowerLawExponentGrid();
