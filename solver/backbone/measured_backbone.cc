@@ -628,7 +628,19 @@ PointView ModelPoint(const SingleModeFit& fit, const PointView& p, LevelControl 
   return model;
 }
 
-void Regenerate(const SingleModeFit& fit, const LevelData& data, double window, double a_max, LevelResonance& out) {
+// The fit regenerates the level, step by step, as the test ran it
+// (ModelPoint). At the two steps that border a jump the force-controlled
+// reading is singular: a fold's frequency moves with the parameters far
+// faster than any amplitude on the curve, and a fit whose fold lies one
+// step beyond the measured one puts that step on the other branch (a 100 %
+// miss, the level's whole RMS, on a 3 % noise table whose parameters hold
+// their truth). There the fit is read as it was fitted, at the measured
+// amplitude: the force it needs to hold the step, as for a
+// response-controlled level.
+void Regenerate(const SingleModeFit& fit, const LevelData& data, const std::vector<SweepJump>& jumps, double window,
+                double a_max, LevelResonance& out) {
+  std::vector<bool> borders_jump(data.size(), false);
+  for (const auto& jump : jumps) borders_jump[data.sorted_index_of_run[jump.from_step]] = true;
   // The fitted points (FitPoints' window).
   const double peak = At(data.raw, PeakIndex(data.raw, data.size())).H();
   double sum_sq = 0, worst = 0, chi_square = 0, noise_sq = 0;
@@ -636,8 +648,8 @@ void Regenerate(const SingleModeFit& fit, const LevelData& data, double window, 
   for (int i = 0; i < data.size(); ++i) {
     const PointView p = At(data.raw, i);
     if (p.H() < window * peak) continue;
-    const bool response = out.control == LevelControl::kResponse;
-    const PointView model = ModelPoint(fit, p, out.control, a_max);
+    const bool response = out.control == LevelControl::kResponse || borders_jump[i];
+    const PointView model = ModelPoint(fit, p, borders_jump[i] ? LevelControl::kResponse : out.control, a_max);
     const std::complex<double> predicted = response ? model.force : model.disp;
     const std::complex<double> measured = response ? p.force : p.disp;
     const Eigen::Matrix2d covariance = response ? data.ForceCovariance(i) : data.DispCovariance(i);
@@ -863,6 +875,20 @@ std::string FiniteOr(double x, std::string_view format) {
 
 std::string Percent(double fraction) { return FiniteOr(100 * fraction, "{:.3g} %"); }
 
+// The drop off the upper branch when the phase resonance, moved to
+// quadrature from the last step before it, lands past the step after it:
+// where the sweep found that branch gone (a fold at 3 % noise put it 0.4 Hz
+// past its truth, its ζ five times the truth's). Null otherwise.
+const SweepJump* QuadraturePastTheDrop(const LevelResonance& r) {
+  if (!r.quadrature_after_jump || !r.quadrature_frequency_hz.valid) return nullptr;
+  for (const auto& jump : r.jumps) {
+    if (!(jump.receptance_ratio < 1.0)) continue;
+    const double onward = jump.to_frequency_hz - jump.from_frequency_hz;
+    if ((r.quadrature_frequency_hz.value - jump.to_frequency_hz) * onward > 0) return &jump;
+  }
+  return nullptr;
+}
+
 // LevelResonance::damping_ratio from the three estimators; a half-power ζ
 // read between steps too coarse for it, or on a curve that is not one linear
 // mode's, stays out (flagged where it is shown) rather than widening the
@@ -872,8 +898,10 @@ void CombineDampingRatios(const LevelData& data, LevelResonance& r) {
                                                                  {&r.local_damping_ratio, "local fit"},
                                                                  {&r.half_power_damping_ratio, "half-power"}};
   const bool half_power_flagged = HalfPowerTooCoarse(data, r) || FlaggedNonlinear(r, "half_power_damping_ratio");
+  const bool quadrature_flagged = QuadraturePastTheDrop(r) != nullptr;
   const auto usable = [&](const Estimate* e) {
-    return e->valid && std::isfinite(e->value) && !(e == &r.half_power_damping_ratio && half_power_flagged);
+    return e->valid && std::isfinite(e->value) && !(e == &r.half_power_damping_ratio && half_power_flagged) &&
+           !(e == &r.quadrature_damping_ratio && quadrature_flagged);
   };
   const Estimate* primary = nullptr;
   const char* primary_name = "";
@@ -959,6 +987,14 @@ void FlagLevel(const LevelData& data, const SingleModeFit* cross_level_fit, cons
       add(LevelFlagKind::kPeakOutsideBand, quantity,
           fmt::format("the {} frequency {:.6g} Hz lies outside the measured band {:.6g} … {:.6g} Hz", name,
                       estimate->value, f_min, f_max));
+  if (const SweepJump* drop = QuadraturePastTheDrop(r))
+    for (const char* quantity : {"quadrature_frequency", "quadrature_damping_ratio"})
+      add(LevelFlagKind::kPeakOutsideBand, quantity,
+          fmt::format("the phase resonance, moved to quadrature from the last step before the drop ({:.6g} Hz), "
+                      "lands at {:.6g} Hz, past the step after it ({:.6g} Hz) where the sweep found the upper branch "
+                      "gone: an extrapolation the data do not hold (its ζ left out of the level's ζ); step more "
+                      "finely before the drop, or control the response",
+                      drop->from_frequency_hz, r.quadrature_frequency_hz.value, drop->to_frequency_hz));
   if (HalfPowerTooCoarse(data, r))
     add(LevelFlagKind::kCoarseSteps, "half_power_damping_ratio",
         fmt::format("steps coarser than the resonance: {} step(s) between the half-power frequencies {:.6g} and "
@@ -1251,10 +1287,10 @@ MeasuredBackbone Analyse(const std::vector<signal::FirstHarmonicLevel>& levels, 
           "level '{}' states no uncertainty: its noise, {} of the response, is estimated from the sweep's scatter "
           "about a smooth curve and used for every σ, flag and jump",
           r.label, Percent(r.noise_from_sweep_relative_rms)));
-    if (result.fit.ok) Regenerate(result.fit, data[l], options.fit_window, result.max_amplitude_m, r);
+    if (result.fit.ok) Regenerate(result.fit, data[l], r.jumps, options.fit_window, result.max_amplitude_m, r);
     if (local_fits[l].ok) {
       LevelResonance own{.control = r.control};
-      Regenerate(local_fits[l], data[l], options.fit_window, result.max_amplitude_m, own);
+      Regenerate(local_fits[l], data[l], r.jumps, options.fit_window, result.max_amplitude_m, own);
       r.own_curve_relative_rms = own.regeneration_relative_rms;
     }
     // The linear-mode estimators' bias read on the fit that regenerates the
