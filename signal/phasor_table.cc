@@ -87,8 +87,11 @@ bool StripAffix(std::string& name, std::string_view prefix, std::string_view suf
   return false;
 }
 
-std::optional<Column> Classify(const std::string& header, int index) {
+// A column by its name; `cell.unit` when the units row gave it.
+std::optional<Column> Classify(const HeaderCell& cell, int index) {
+  const std::string& header = cell.text;
   auto [name, unit] = SplitNameAndUnit(header);
+  if (cell.unit_line > 0) unit = cell.unit;
   Column column{.header = header, .unit = unit, .index = index};
   column.is_std = StripAffix(name, "std_", "_std") || StripAffix(name, "sigma_", "_sigma") ||
                   StripAffix(name, "u_", "_u");
@@ -149,12 +152,28 @@ std::string_view RoleName(ColumnRole role) {
   return "";
 }
 
+// The cell a mapping names: a 1-based column number, else the header text
+// (with or without its unit, case ignored); −1 when none.
+int FindMappedCell(const std::vector<HeaderCell>& cells, const std::string& wanted) {
+  const std::string key = internal::Lowercase(TrimBlanksAndQuotes(wanted));
+  if (!key.empty() && std::all_of(key.begin(), key.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+    const int number = key.size() > 6 ? 0 : std::stoi(key);
+    return number >= 1 && number <= static_cast<int>(cells.size()) ? number - 1 : -1;
+  }
+  for (std::size_t i = 0; i < cells.size(); ++i)
+    if (internal::Lowercase(TrimBlanksAndQuotes(cells[i].text)) == key ||
+        internal::Lowercase(TrimBlanksAndQuotes(cells[i].name)) == key)
+      return static_cast<int>(i);
+  return -1;
+}
+
 class TableParser {
  public:
-  TableParser(const std::string& source, const std::string& label) : source_(source), label_(label) {}
+  TableParser(const std::string& source, const std::string& label, const PhasorTableOptions& options)
+      : source_(source), label_(label), options_(options) {}
 
   FirstHarmonicLevel Parse(std::string_view text) {
-    TableReader table(text, source_, {.blank_lines_inside = true});
+    TableReader table(text, source_, {.blank_lines_inside = true, .layout = options_.layout});
     if (!table.HasHeader()) Fail("", "the table is empty", "write a header line and one row per frequency step");
     ReadHeader(table.Header());
     std::vector<std::array<double, 8>> rows;
@@ -169,11 +188,60 @@ class TableParser {
     throw InputError(source_, "", column.empty() ? problem : "column '" + column + "': " + problem, fix);
   }
 
+  // The columns the options map, by number or header text, whatever their
+  // names say: an export's "X-Data [Hz]" or "Laser (M - Filtered) [m/s]".
+  // The quantity of a mapped response or excitation is its name's when the
+  // name says one, else its unit's.
+  std::vector<int> MapColumns(const std::vector<HeaderCell>& cells) {
+    std::vector<int> mapped;
+    const std::pair<const std::string*, ColumnRole> mappings[] = {
+        {&options_.columns.frequency, ColumnRole::kFrequency},
+        {&options_.columns.excitation, ColumnRole::kForce},
+        {&options_.columns.response, ColumnRole::kResponse},
+        {&options_.columns.phase, ColumnRole::kPhase}};
+    for (const auto& [wanted, role] : mappings) {
+      if (wanted->empty()) continue;
+      const int i = FindMappedCell(cells, *wanted);
+      if (i < 0) {
+        std::string found;
+        for (std::size_t k = 0; k < cells.size() && k < 12; ++k)
+          found += (found.empty() ? "'" : ", '") + internal::Excerpt(cells[k].text) + "'";
+        Fail("", "the " + std::string(RoleName(role)) + " is mapped to column '" + internal::Excerpt(*wanted) +
+                     "', which the header does not hold (" + std::to_string(cells.size()) + " columns: " + found + ")",
+             "map it to a header text as written or to a column number from 1");
+      }
+      if (std::find(mapped.begin(), mapped.end(), i) != mapped.end())
+        Fail(cells[static_cast<std::size_t>(i)].text, "mapped to two roles", "map each column to one role");
+      const auto& cell = cells[static_cast<std::size_t>(i)];
+      const auto named = Classify(cell, i);
+      auto [name, unit] = SplitNameAndUnit(cell.text);
+      Column column{.header = cell.text, .role = role, .unit = cell.unit_line > 0 ? cell.unit : unit, .index = i};
+      if (named && !named->is_std && named->role == role) column.quantity = named->quantity;
+      columns_.push_back(column);
+      mapped.push_back(i);
+    }
+    return mapped;
+  }
+
+  bool Mapped(ColumnRole role) const {
+    switch (role) {
+      case ColumnRole::kFrequency: return !options_.columns.frequency.empty();
+      case ColumnRole::kForce: return !options_.columns.excitation.empty();
+      case ColumnRole::kResponse: return !options_.columns.response.empty();
+      case ColumnRole::kPhase: return !options_.columns.phase.empty();
+    }
+    return false;
+  }
+
   void ReadHeader(const std::vector<HeaderCell>& cells) {
     num_cells_ = static_cast<int>(cells.size());
+    const std::vector<int> mapped = MapColumns(cells);
     for (int i = 0; i < num_cells_; ++i) {
-      const auto column = Classify(cells[static_cast<std::size_t>(i)].text, i);
+      if (std::find(mapped.begin(), mapped.end(), i) != mapped.end()) continue;
+      const auto column = Classify(cells[static_cast<std::size_t>(i)], i);
       if (!column) continue;
+      // A role mapped by the options takes no other column by name (its uncertainty still does).
+      if (Mapped(column->role) && !column->is_std) continue;
       for (const auto& other : columns_)
         if (other.role == column->role && other.is_std == column->is_std)
           Fail(column->header,
@@ -192,7 +260,9 @@ class TableParser {
       Fail(std::string(RoleName(role)), "missing (the header has " + found + ")",
            "name the columns frequency_Hz, force_N (or voltage_V, base_acceleration_m_s2), one of "
            "acceleration_m_s2 / velocity_m_s / "
-           "displacement_m (or response [unit]), and phase_rad or phase_deg (docs/phasor-table.md)");
+           "displacement_m (or response [unit]), and phase_rad or phase_deg (docs/phasor-table.md); or, for an "
+           "export's own names, map them (--column ROLE=COLUMN), and skip a metadata block above the header "
+           "(--lines-before-header N)");
     }
     ResolveUnits();
   }
@@ -312,6 +382,7 @@ class TableParser {
   }
 
   std::string source_, label_;
+  PhasorTableOptions options_;
   int num_cells_ = 0;
   const Column* Main(ColumnRole role) const {
     for (const auto& c : columns_)
@@ -327,12 +398,37 @@ class TableParser {
 
 }  // namespace
 
-FirstHarmonicLevel ParsePhasorTable(std::string_view text, const std::string& source, const std::string& label) {
-  return TableParser(source, label).Parse(text);
+bool PhasorColumnMapping::Empty() const {
+  return frequency.empty() && excitation.empty() && response.empty() && phase.empty();
 }
 
-FirstHarmonicLevel ReadPhasorTable(const std::filesystem::path& file) {
-  return ParsePhasorTable(ReadTextFile(file, "phasor table", "check the path"), file.string(), file.stem().string());
+void PhasorColumnMapping::Assign(std::string_view assignment) {
+  const auto equals = assignment.find('=');
+  const std::string role = internal::Lowercase(TrimBlanksAndQuotes(assignment.substr(0, equals)));
+  const std::string column = equals == std::string_view::npos ? "" : TrimBlanksAndQuotes(assignment.substr(equals + 1));
+  std::string* target = role == "frequency"    ? &frequency
+                        : role == "excitation" ? &excitation
+                        : role == "response"   ? &response
+                        : role == "phase"      ? &phase
+                                               : nullptr;
+  const std::string given = "--column " + internal::Excerpt(assignment);
+  if (!target || column.empty())
+    throw InputError(given + ": not ROLE=COLUMN. Fix: ROLE is frequency, excitation, response or phase; COLUMN the "
+                     "header text as written or a column number from 1 (--column 'response=Laser (M - Filtered) "
+                     "[m/s]')");
+  if (!target->empty())
+    throw InputError(given + ": the " + role + " is already mapped to '" + *target + "'. Fix: map each role once");
+  *target = column;
+}
+
+FirstHarmonicLevel ParsePhasorTable(std::string_view text, const std::string& source, const std::string& label,
+                                    const PhasorTableOptions& options) {
+  return TableParser(source, label, options).Parse(text);
+}
+
+FirstHarmonicLevel ReadPhasorTable(const std::filesystem::path& file, const PhasorTableOptions& options) {
+  return ParsePhasorTable(ReadTextFile(file, "phasor table", "check the path"), file.string(), file.stem().string(),
+                          options);
 }
 
 }  // namespace beamid::signal

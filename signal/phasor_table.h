@@ -20,7 +20,9 @@
 // "phase (deg)" or as a suffix "frequency_Hz", "acc_m_s2"; phase in rad or
 // deg; the response an acceleration (m/s^2, g), velocity (m/s, mm/s) or
 // displacement (m, mm), its quantity named by the column or implied by the
-// unit. Anything wrong throws InputError
+// unit. An export's metadata block and units row, and columns named by the
+// user (an export's "X-Data [Hz]"), come as PhasorTableOptions.
+// Anything wrong throws InputError
 // naming the file and the column (and row) to fix.
 #pragma once
 
@@ -29,13 +31,34 @@
 #include <string_view>
 
 #include "signal/first_harmonic_level.h"
+#include "signal/table_reader.h"
 
 namespace beamid::signal {
 
+// Columns named by the user instead of recognised by name: each a header
+// text as written (with or without its unit, case ignored) or a 1-based
+// column number; empty: recognised by name. A mapped response or excitation
+// takes its quantity from its name when that says one, else from its unit.
+struct PhasorColumnMapping {
+  std::string frequency, excitation, response, phase;
+  bool Empty() const;
+  // Takes "ROLE=COLUMN" (ROLE frequency, excitation, response or phase), as
+  // the command line's --column gives it; throws InputError naming it.
+  void Assign(std::string_view assignment);
+};
+
+// What the text alone cannot tell: an export's metadata block and units row
+// (signal/table_reader.h), and columns whose names are an export's own.
+struct PhasorTableOptions {
+  TableLayout layout;
+  PhasorColumnMapping columns;
+};
+
 // `source` names the text in messages; the level's label is `label`.
-FirstHarmonicLevel ParsePhasorTable(std::string_view text, const std::string& source, const std::string& label);
+FirstHarmonicLevel ParsePhasorTable(std::string_view text, const std::string& source, const std::string& label,
+                                    const PhasorTableOptions& options = {});
 
 // The level's label is the file name without its extension.
-FirstHarmonicLevel ReadPhasorTable(const std::filesystem::path& file);
+FirstHarmonicLevel ReadPhasorTable(const std::filesystem::path& file, const PhasorTableOptions& options = {});
 
 }  // namespace beamid::signal

@@ -227,6 +227,13 @@ void TableReader::ReadUnitsRow() {
     if (unit.empty()) continue;
     if (!cell.unit.empty()) {
       const auto header_unit = NormaliseUnit(cell.unit), row_unit = NormaliseUnit(unit);
+      if (!header_unit && row_unit) {
+        // Parentheses that hold no unit belong to the name: "Laser (M - Filtered)" over "m/s".
+        cell.name = cell.text;
+        cell.unit = unit;
+        cell.unit_line = line_;
+        continue;
+      }
       if (header_unit ? header_unit != row_unit : cell.unit != unit)
         throw InputError(source_, Excerpt(cell.text),
                          "the header gives the unit '" + Excerpt(cell.unit) + "' but " + where + " gives '" +

@@ -53,6 +53,17 @@ BEAMID_REGISTER_COMMAND("backbone", [](CLI::App& app, const GlobalOptions& globa
   sub->add_flag("--skip-bad-steps", measured->skip_bad_steps,
                 "With --measured CAMPAIGN: leave out (and list) the steps whose recordings hold errors; without it "
                 "the run stops with the list");
+  sub->add_option("--lines-before-header", measured->table.layout.lines_before_header,
+                  "With --measured tables: the lines above the header line, skipped whatever they hold (an export's "
+                  "metadata block without '#')")
+      ->check(CLI::Range(0, 10000));
+  sub->add_flag("--units-row", measured->table.layout.units_row,
+                "With --measured tables: the line under the header gives each column's unit");
+  auto columns = std::make_shared<std::vector<std::string>>();
+  sub->add_option("--column", *columns,
+                  "With --measured tables, repeatable: ROLE=COLUMN, a column named by the export's own header text or "
+                  "by its number from 1, for ROLE frequency, excitation, response or phase "
+                  "(--column 'frequency=X-Data [Hz]')");
   sub->add_option("--result", measured->result_file, "With --measured: overlay this identified model's backbone")
       ->check(NonEmptyPath());
   sub->add_option("--position-m", measured->position_m, "With --measured tables and --result: the sensor's position [m]")
@@ -76,8 +87,10 @@ BEAMID_REGISTER_COMMAND("backbone", [](CLI::App& app, const GlobalOptions& globa
       ->capture_default_str();
   sub->add_option("-o,--output", request->output, "Output prefix: writes PREFIX.csv and PREFIX.json")
       ->capture_default_str();
-  sub->callback([request, measured, &global] {
+  sub->callback([request, measured, columns, &global] {
     if (!measured->inputs.empty()) {
+      measured->table.layout.declared_in = "the command line (--lines-before-header, --units-row)";
+      for (const auto& assignment : *columns) measured->table.columns.Assign(assignment);
       if (!request->model_file.empty())
         throw std::invalid_argument("backbone: give a model file or --measured, not both");
       measured->output = request->output;
@@ -94,6 +107,9 @@ BEAMID_REGISTER_COMMAND("backbone", [](CLI::App& app, const GlobalOptions& globa
     if (!measured->channel.empty())
       throw std::invalid_argument("backbone: --channel applies to --measured only; a model's backbone is that of "
                                   "every sensor");
+    if (measured->table.layout.lines_before_header > 0 || measured->table.layout.units_row || !columns->empty())
+      throw std::invalid_argument("backbone: --lines-before-header, --units-row and --column apply to --measured "
+                                  "tables only (a model has no tables)");
     RunBackbone(*request, global);
   });
 });

@@ -34,13 +34,18 @@ std::vector<signal::FirstHarmonicLevel> ReadLevels(const MeasureBackboneRequest&
   if (!fs::is_directory(first) && options.skip_bad_steps)
     throw InputError("--skip-bad-steps applies to a campaign folder (whose recordings are extracted here), not to " +
                      first.string() + ". Fix: drop --skip-bad-steps, or give the campaign folder");
+  const signal::PhasorTableOptions& table = options.table;
+  if (!tables && (table.layout.lines_before_header > 0 || table.layout.units_row || !table.columns.Empty()))
+    throw InputError("--lines-before-header, --units-row and --column apply to first-harmonic CSV tables, not to " +
+                     first.string() + ". Fix: drop them; a campaign declares its recordings' layout and columns in "
+                     "campaign.json (recording_layout, each channel's column)");
   if (tables) {
     if (!options.channel.empty())
       throw InputError("--channel " + options.channel + ": a first-harmonic table holds one response, named by its "
                        "columns. Fix: drop --channel, or give a campaign folder or phasor file");
     std::vector<signal::FirstHarmonicLevel> levels;
     for (const auto& input : options.inputs) {
-      levels.push_back(signal::ReadPhasorTable(input));
+      levels.push_back(signal::ReadPhasorTable(input, table));
       levels.back().response_position_m = options.position_m;
     }
     return levels;

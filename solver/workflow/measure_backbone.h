@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "signal/phasor_table.h"
 #include "solver/backbone/measured_backbone.h"
 #include "solver/estimation/sensor_backbone.h"
 #include "solver/workflow/run_observer.h"
@@ -27,6 +28,9 @@ struct MeasureBackboneRequest {
   bool skip_bad_steps = false;
   std::string result_file;  // identified model to overlay ("": none)
   double position_m = -1.0;  // the tables' sensor position for the overlay (< 0: not given; else 0..100)
+  // Of CSV tables: an export's metadata block and units row (--lines-before-header, --units-row) and columns named
+  // by the user (--column ROLE=COLUMN); a campaign declares its layout in campaign.json.
+  signal::PhasorTableOptions table;
   // MeasuredBackboneOptions::keep_flagged_levels_in_fit (--keep-flagged-levels).
   bool keep_flagged_levels = false;
   std::string output = "backbone";  // the prefix of the three files

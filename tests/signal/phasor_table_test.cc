@@ -7,6 +7,7 @@
 #include <complex>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -140,6 +141,91 @@ TEST(PhasorTable, ErrorsNameTheFileAndTheColumn) {
   ExpectError("frequency_Hz,force_N,response,phase_deg\n1,1,1,0\n2,1,1,0\n3,1,1,0\n", {"column 'response'", "quantity"});
   ExpectError("frequency_Hz,force_N,acc_m_s2,phase_deg\n1,1,1,0\n2,-1,1,0\n3,1,1,0\n", {"force_N", "not positive"});
   ExpectError("frequency_Hz,force_N,acc_m_s2,phase_deg\n1,1,1,0\n", {"3 frequency steps"});
+}
+
+// A laser vibrometer's export as its software writes it: a metadata block
+// without '#', its own column names, parentheses that are part of a name,
+// and the units on the row under the header.
+constexpr const char* kVibrometerExport =
+    "Source File Name:\tscan_0001.svd\n"
+    "Signal:\tFRF Vib / Ref1, 3 averages\n"
+    "Date:\t03.12.2026 21:00\n"
+    "\n"
+    "X-Data\tShaker Force\tLaser (M - Filtered)\tPhase Laser\tCoherence\n"
+    "[Hz]\t[N]\t[mm/s]\t[°]\t\n"
+    "50\t2\t1000\t0\t0.99\n51\t2\t3000\t40\t0.99\n52\t2\t1000\t80\t0.98\n";
+
+PhasorTableOptions VibrometerLayout() {
+  PhasorTableOptions options{.layout = {.lines_before_header = 4, .units_row = true, .declared_in = "the test"}};
+  options.columns.Assign("frequency=X-Data");
+  options.columns.Assign("excitation=2");
+  options.columns.Assign("response = Laser (M - Filtered)");
+  options.columns.Assign("phase=phase laser");
+  return options;
+}
+
+TEST(PhasorTable, AnExportsMetadataUnitsRowAndOwnNamesReadAsTheSiTable) {
+  const FirstHarmonicLevel si =
+      ParsePhasorTable(std::string("frequency_Hz,force_N,velocity_m_s,phase_deg\n") + "50,2,1,0\n51,2,3,40\n52,2,1,80\n",
+                       "si.csv", "a");
+  const FirstHarmonicLevel exported = ParsePhasorTable(kVibrometerExport, "vib.txt", "a", VibrometerLayout());
+  EXPECT_EQ(exported.response_quantity, Quantity::kVelocity);
+  EXPECT_EQ(exported.excitation_quantity, Quantity::kForce);
+  EXPECT_EQ(exported.channel, "Laser (M - Filtered)");
+  ASSERT_EQ(exported.points.size(), si.points.size());
+  for (std::size_t i = 0; i < si.points.size(); ++i) {
+    EXPECT_DOUBLE_EQ(exported.points[i].frequency_hz, si.points[i].frequency_hz);
+    EXPECT_NEAR(std::abs(exported.points[i].force.value - si.points[i].force.value), 0.0, kTolerance);
+    EXPECT_NEAR(std::abs(exported.points[i].response.value - si.points[i].response.value), 0.0, kTolerance);
+  }
+}
+
+TEST(PhasorTable, WithoutItsLayoutTheExportIsRefusedWithTheOptionsThatReadIt) {
+  ExpectError(kVibrometerExport, {"'frequency': missing", "'Source File Name:'", "--column ROLE=COLUMN",
+                                  "--lines-before-header"});
+}
+
+TEST(PhasorTable, AMappedColumnTakesItsRoleOverAColumnNamedForIt) {
+  // The export's own "acceleration" column is another sensor's; the response is the mapped one.
+  PhasorTableOptions options;
+  options.columns.Assign("response=laser [m/s]");
+  const FirstHarmonicLevel level = ParsePhasorTable(
+      "frequency_Hz,force_N,acceleration_m_s2,laser [m/s],phase_deg\n50,2,9,1,0\n51,2,9,3,40\n52,2,9,1,80\n",
+      "f.csv", "f", options);
+  EXPECT_EQ(level.response_quantity, Quantity::kVelocity);
+  EXPECT_NEAR(std::abs(level.points[1].response.value - std::polar(3.0, 40 * std::numbers::pi / 180)), 0.0,
+              kTolerance);
+}
+
+TEST(PhasorTable, AMappingThatMissesOrCannotSayTheQuantityNamesTheFix) {
+  const auto expect_error = [](const std::string& text, const std::vector<const char*>& assignments,
+                               const std::vector<std::string>& words) {
+    PhasorTableOptions options;
+    for (const char* assignment : assignments) options.columns.Assign(assignment);
+    try {
+      ParsePhasorTable(text, "levels/high.csv", "high", options);
+      ADD_FAILURE() << "no error for " << assignments.front();
+    } catch (const InputError& e) {
+      for (const auto& word : words) EXPECT_NE(std::string(e.what()).find(word), std::string::npos) << e.what();
+    }
+  };
+  const std::string table = std::string("freq_Hz,F_N,laser,phase_deg\n") + kRows;
+  expect_error(table, {"response=Laser Vib"}, {"levels/high.csv", "mapped to column 'Laser Vib'", "'laser'"});
+  expect_error(table, {"response=9"}, {"mapped to column '9'", "4 columns"});
+  expect_error(table, {"response=laser"}, {"column 'laser'", "quantity", "m/s"});
+  expect_error(table, {"frequency=freq_Hz", "phase=1"}, {"column 'freq_Hz'", "mapped to two roles"});
+  // A column mapped away from the role its name says leaves that role to be found.
+  expect_error(table, {"phase=freq_Hz"}, {"column 'frequency': missing"});
+  PhasorColumnMapping mapping;
+  EXPECT_THROW(mapping.Assign("speed=laser"), InputError);
+  EXPECT_THROW(mapping.Assign("response"), InputError);
+  mapping.Assign("response=laser");
+  try {
+    mapping.Assign("response=3");
+    ADD_FAILURE() << "a role mapped twice";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("already mapped to 'laser'"), std::string::npos) << e.what();
+  }
 }
 
 TEST(PhasorTable, AMissingFileIsAnInputError) {

@@ -8,6 +8,8 @@
 #include <sys/stat.h>
 #include <sys/wait.h>
 
+#include <cmath>
+#include <complex>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -668,6 +670,51 @@ TEST_F(BadInput, MeasuredBackboneHonoursChannelAndSkipBadSteps) {
                                       (d / "tables").string());
   EXPECT_EQ(on_tables.exit_code, 2) << on_tables.output;
   EXPECT_THAT(on_tables.output, HasSubstr("--skip-bad-steps applies to a campaign folder"));
+}
+
+// A laser vibrometer's FRF export (a metadata block without '#', its own
+// column names, units on the row under the header) is read as it comes when
+// the command line says its layout; without it the refusal names the
+// options; on a campaign they are refused (campaign.json says its layout).
+TEST_F(BadInput, MeasuredTablesTakeAnExportsLayoutAndColumnsFromTheCommandLine) {
+  const fs::path d = root_ / "backbone_export";
+  fs::create_directories(d);
+  // One linear mode, 80.2 Hz, ζ 0.2 %, as a velocity per newton at 0.5 N; 41 steps of 50 mHz.
+  std::ostringstream text;
+  text << "Source File Name:\tscan_0001.svd\nSignal:\tFRF Vib / Ref1\nDate:\t03.12.2026 21:00\n\n"
+       << "X-Data\tShaker Force\tLaser (M - Filtered)\tPhase Laser\n[Hz]\t[N]\t[m/s]\t[deg]\n";
+  text.precision(12);
+  for (int i = 0; i <= 40; ++i) {
+    const double f = 79.2 + 0.05 * i, r = f / 80.2, omega_n = 2 * M_PI * 80.2;
+    const std::complex<double> velocity =
+        0.5 * std::complex<double>(0, 2 * M_PI * f) / std::complex<double>(1 - r * r, 2 * 0.002 * r) / (omega_n * omega_n);
+    text << f << "\t0.5\t" << std::abs(velocity) << "\t" << std::arg(velocity) * 180 / M_PI << "\n";
+  }
+  WriteFile(d / "level 0.5 N.txt", text.str());
+  const std::string table = "'" + (d / "level 0.5 N.txt").string() + "'";
+  const std::string layout = " --lines-before-header 4 --units-row --column frequency=X-Data --column excitation=2 "
+                             "--column 'response=Laser (M - Filtered)' --column 'phase=Phase Laser'";
+  const ProgramRun read = Beamid("backbone --measured " + table + layout + " -o " + (d / "vib").string());
+  ASSERT_EQ(read.exit_code, 0) << read.output;
+  const beamid::solver::MeasuredBackboneFile measured = beamid::solver::ReadMeasuredBackboneFile(d / "vib.json");
+  ASSERT_EQ(measured.levels.size(), 1u);
+  EXPECT_NEAR(measured.levels[0].quadrature_frequency_hz.value, 80.2, 1e-6);
+  EXPECT_NEAR(measured.levels[0].damping_ratio.value, 0.002, 1e-6);
+
+  const ProgramRun unread = Beamid("backbone --measured " + table + " -o " + (d / "vib2").string());
+  EXPECT_EQ(unread.exit_code, 2) << unread.output;
+  EXPECT_THAT(unread.output, HasSubstr("level 0.5 N.txt: column 'frequency': missing"));
+  EXPECT_THAT(unread.output, HasSubstr("--column ROLE=COLUMN"));
+  EXPECT_FALSE(fs::exists(d / "vib2.json"));
+
+  const ProgramRun bad_role = Beamid("backbone --measured " + table + " --column speed=3 -o " + (d / "vib3").string());
+  EXPECT_EQ(bad_role.exit_code, 2) << bad_role.output;
+  EXPECT_THAT(bad_role.output, HasSubstr("--column speed=3: not ROLE=COLUMN"));
+
+  const ProgramRun on_campaign = Beamid("backbone --measured " + (root_ / "clean").string() +
+                                        " --units-row -o " + (d / "campaign").string());
+  EXPECT_EQ(on_campaign.exit_code, 2) << on_campaign.output;
+  EXPECT_THAT(on_campaign.output, HasSubstr("apply to first-harmonic CSV tables"));
 }
 
 // Not bad input: a recording copied over another step's is analysed, but
