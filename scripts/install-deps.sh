@@ -5,7 +5,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libfftw3-dev coinor-libipopt-dev libgtest-dev libbenchmark-dev
-  nlohmann-json3-dev libcli11-dev libfmt-dev gnuplot-nox zlib1g-dev libssl-dev
+  nlohmann-json3-dev libcli11-dev libfmt-dev gnuplot-nox librsvg2-bin zlib1g-dev libssl-dev
   chromium
   clang libclang-rt-14-dev
 )

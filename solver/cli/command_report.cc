@@ -26,6 +26,8 @@ void RunReport(const workflow::ReportRequest& request, const GlobalOptions& glob
       fmt::print("wrote {} ({:.0f} kB, {} plots) in {:.1f} s\n", request.output, outcome.html_bytes / 1e3,
                  outcome.plots, outcome.seconds);
   }
+  if (const std::size_t figures = workflow::WriteReportFigures(request, observer))
+    fmt::print("figures: {} plots in {}, each as .svg and .png\n", figures, request.figures_folder);
   if (request.screenshot.empty()) return;
   workflow::ScreenshotReport(request, observer);
   // The path is printed even with --quiet: it was asked for.
@@ -38,7 +40,7 @@ BEAMID_REGISTER_COMMAND("report", [](CLI::App& app, const GlobalOptions& global)
       "report",
       "Write one self-contained HTML page of a result or diagnosis: parameters with intervals, frequency\n"
       "response curves, backbone, prediction at the held-out sensor, residual map (plots by gnuplot).\n"
-      "Example: beamid report result.json -o report.html --screenshot report.png\n"
+      "Example: beamid report result.json -o report.html --screenshot report.png --figures figures\n"
       "Example: beamid report out/measured.json -o measured.html   (a measured backbone on its own)");
   sub->add_option("input", request->input_file,
                   "result.json of 'beamid identify', diagnosis.json of 'beamid diagnose', or the .json of "
@@ -53,6 +55,10 @@ BEAMID_REGISTER_COMMAND("report", [](CLI::App& app, const GlobalOptions& global)
                 "always are)");
   sub->add_option("--screenshot", request->screenshot,
                   "Also render the page in headless Chromium to this PNG and print its path")
+      ->check(NonEmptyPath());
+  sub->add_option("--figures", request->figures_folder,
+                  "Also write each plot of the page into this folder as <id>.svg and <id>.png (rsvg-convert), "
+                  "for slides and papers")
       ->check(NonEmptyPath());
   sub->callback([request, &global] { RunReport(*request, global); });
 });

@@ -1,5 +1,7 @@
 #include "solver/report/html_page.h"
 
+#include <fmt/core.h>
+
 #include "solver/report/html_escape.h"
 
 namespace beamid::solver {
@@ -38,6 +40,12 @@ std::string ScrollableTables(std::string html) {
 std::string HtmlPageHead(const std::string& title) {
   return "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" + HtmlEscape(title) +
          "</title>\n<style>" + kStyle + "</style>\n</head>\n<body>\n<h1>" + HtmlEscape(title) + "</h1>\n";
+}
+
+std::string PlotFigure(const std::string& id, const std::string& svg, const std::string& caption,
+                       const std::string& more_classes) {
+  return fmt::format("<figure class=\"plot{}\" id=\"{}\">\n{}\n<figcaption>{}</figcaption>\n</figure>\n",
+                     more_classes.empty() ? "" : " " + more_classes, HtmlEscape(id), svg, caption);
 }
 
 }  // namespace beamid::solver

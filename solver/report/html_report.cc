@@ -23,11 +23,6 @@ namespace {
 
 using Rows = std::vector<std::vector<double>>;
 
-std::string Figure(const std::string& id, const std::string& svg, const std::string& caption) {
-  return fmt::format("<figure class=\"plot\" id=\"{}\">\n{}\n<figcaption>{}</figcaption>\n</figure>\n", HtmlEscape(id),
-                     svg, caption);
-}
-
 // A statistic (χ², p, a score): no uncertainty, six significant digits.
 std::string Number(double value) { return fmt::format("{:.6g}", value); }
 
@@ -499,19 +494,19 @@ std::string ResidualMaps(const ReportCurves& curves, const ReportInput& input, c
         return map.whitened_norm.unaryExpr([](double v) { return std::isfinite(v) ? v : 0.0; }).maxCoeff();
       };
       const double largest = std::max(finite(before), finite(after));
-      return Figure("residual-map", GnuplotSvg(ResidualPlot(before, largest), kResidualMapSize),
+      return PlotFigure("residual-map", GnuplotSvg(ResidualPlot(before, largest), kResidualMapSize),
                     fmt::format("Before: the base model the diagnosis refitted (χ² {} on the map; {} in its fit). Per "
                                 "fitted channel, harmonic and step the misfit in units of its standard uncertainty σ, {}.",
                                 Number(SumOfSquares(before)), Number(input.diagnosis->diagnosis.base.chi_square),
                                 kResidualMapScale)) +
-             Figure("residual-map-selected", GnuplotSvg(ResidualPlot(after, largest), kResidualMapSize),
+             PlotFigure("residual-map-selected", GnuplotSvg(ResidualPlot(after, largest), kResidualMapSize),
                     fmt::format("After: the selected model ({}), against the data it was fitted to (χ² {} on the "
                                 "map; {} in its fit), on the same colour scale: what stays red, the cause does not explain.",
                                 HtmlEscape(selected->name), Number(SumOfSquares(after)),
                                 Number(input.diagnosis->diagnosis.final_fit.chi_square)));
     }
   }
-  return Figure("residual-map", GnuplotSvg(ResidualPlot(curves.residuals), kResidualMapSize),
+  return PlotFigure("residual-map", GnuplotSvg(ResidualPlot(curves.residuals), kResidualMapSize),
                 std::string("Per fitted channel, harmonic and step: the misfit in units of its standard uncertainty "
                             "σ, ") + kResidualMapScale + ".");
 }
@@ -561,7 +556,7 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves, con
   html += "<section id=\"frc\"><h2>Frequency response curves</h2>\n";
   for (std::size_t c = 0; c < curves.channels.size(); ++c) {
     html +=
-        Figure("frc-" + curves.channels[c].channel,
+        PlotFigure("frc-" + curves.channels[c].channel,
                ResponsePlotSvg(curves, c, selected ? &*selected : nullptr, {.log_amplitude = options.log_amplitude}),
                "First harmonic of " + HtmlEscape(curves.channels[c].channel) + ": its amplitude |X₁| (" +
                    (options.log_amplitude ? "logarithmic" : "linear") +
@@ -573,7 +568,7 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves, con
                                    "), at each measured step, beside the base model it replaces."
                              : std::string(".")));
     if (HasHigherHarmonics(curves, c))
-      html += Figure("harmonics-" + curves.channels[c].channel, HarmonicsPlotSvg(curves, c),
+      html += PlotFigure("harmonics-" + curves.channels[c].channel, HarmonicsPlotSvg(curves, c),
                      "Harmonics 2 and 3 of " + HtmlEscape(curves.channels[c].channel) +
                          " (logarithmic axes): measured at every step (dots) and the identified model's (lines). "
                          "A symmetric support makes mostly odd harmonics; an even one points at asymmetry.");
@@ -585,7 +580,7 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves, con
   html += "</section>\n";
 
   html += "<section id=\"backbone\"><h2>Backbone</h2>\n" +
-          Figure("backbone-plot", BackbonePlotSvg(curves, selected ? &*selected : nullptr),
+          PlotFigure("backbone-plot", BackbonePlotSvg(curves, selected ? &*selected : nullptr),
                  "The model's backbone as this sensor sees it (its first harmonic in quadrature with the force) "
                  "and each level's measured phase resonance with ±2σ bars, from the model-free analysis of "
                  "<code>beamid backbone --measured</code> (the step nearest quadrature moved there along one "
@@ -604,7 +599,7 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves, con
                           outcome.damping_trend == Trend::kRises
                               ? ": dissipation that grows faster than a viscous damper's, as friction's does."
                               : ".");
-    html += Figure("damping-plot", DampingPlotSvg(curves),
+    html += PlotFigure("damping-plot", DampingPlotSvg(curves),
                    "The measured damping ratio of each level by three estimators (±2σ), and the single nonlinear "
                    "mode fitted across levels (" +
                        HtmlEscape(mode.fit_form) + "). " + trend);
@@ -620,7 +615,7 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves, con
       if (std::find(levels.begin(), levels.end(), p.level) == levels.end()) levels.push_back(p.level);
     }
     for (const auto& channel : held_out)
-      html += Figure("held-out-selected-" + channel, HeldOutSelectedPlotSvg(*selected, curves, channel, levels),
+      html += PlotFigure("held-out-selected-" + channel, HeldOutSelectedPlotSvg(*selected, curves, channel, levels),
                      "First-harmonic amplitude at the held-out " + HtmlEscape(channel) +
                          " at every step: measured, predicted by the base model and by the selected model (" +
                          HtmlEscape(selected->name) + "); neither fitted this channel.");
@@ -628,7 +623,7 @@ std::string HtmlReport(const ReportInput& input, const ReportCurves& curves, con
   if (curves.time_histories.empty())
     html += "<p>This result has no held-out channel (identify with <code>--validate CHANNEL</code>).</p>\n";
   for (const auto& history : curves.time_histories)
-    html += Figure("time-" + history.level, TimePlotSvg(history, curves.held_out_channel),
+    html += PlotFigure("time-" + history.level, TimePlotSvg(history, curves.held_out_channel),
                    "Steady-state acceleration at " + HtmlEscape(curves.held_out_channel) + ", level " +
                        HtmlEscape(history.level) +
                        ": predicted by the identified model (band: ±2 standard "

@@ -33,10 +33,6 @@ std::string FlagCell(const LevelResonance& l, const std::string& quantity) {
   return note.empty() ? "" : " <span class=\"flag\">" + HtmlEscape(note) + "</span>";
 }
 
-std::string Figure(const std::string& svg, const std::string& caption) {
-  return "<figure class=\"plot\">\n" + svg + "\n<figcaption>" + caption + "</figcaption>\n</figure>\n";
-}
-
 // One quantity against amplitude [mm]: the fit's curve ±1σ and each level's
 // point, the levels in the cross-level fit apart from those left out.
 std::string PlotAgainstAmplitude(const MeasuredBackboneFile& file, bool frequency) {
@@ -148,7 +144,7 @@ std::string LevelFrfFigures(const MeasuredBackboneFile& file) {
     if (!l.jumps.empty())
       caption += fmt::format("; {} jump{} of the sweep (dashed){}", l.jumps.size(), l.jumps.size() == 1 ? "" : "s",
                              FlagCell(l, "sweep"));
-    html += "<figure class=\"plot level-frf\">\n" + svg + "\n<figcaption>" + caption + ".</figcaption>\n</figure>\n";
+    html += PlotFigure("frf-" + l.label, svg, caption + ".", "level-frf");
   }
   return html.empty() ? html
                       : "<section id=\"frequency-responses\"><h2>Frequency response of each level</h2>\n" + html +
@@ -200,7 +196,7 @@ std::string MeasuredBackboneHtmlReport(const MeasuredBackboneFile& file, const s
   for (bool frequency : {true, false}) {
     const std::string svg = PlotAgainstAmplitude(file, frequency);
     if (svg.empty()) continue;
-    html += Figure(svg, frequency ? "Backbone: each level's phase resonance (±1σ) and the "
+    html += PlotFigure(frequency ? "backbone-frequency" : "backbone-damping", svg, frequency ? "Backbone: each level's phase resonance (±1σ) and the "
                                     "single-mode fit across levels; open circles: flagged levels, "
                                     "left out of the fit."
                                   : "Damping ratio against amplitude: each level's ζ (its σ covers "

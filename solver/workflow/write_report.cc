@@ -15,6 +15,7 @@
 #include "signal/campaign_extractor.h"
 #include "signal/campaign_identity.h"
 #include "solver/backbone/measured_backbone_io.h"
+#include "solver/report/figure_files.h"
 #include "solver/report/html_report.h"
 #include "solver/report/html_screenshot.h"
 #include "solver/report/measured_backbone_report.h"
@@ -46,6 +47,7 @@ OutputPaths Paths(const ReportRequest& request) {
   OutputPaths paths;
   paths.Input(request.input_file).InputFolder(request.campaign_folder).Output("-o", request.output);
   if (!request.screenshot.empty()) paths.Output("--screenshot", request.screenshot);
+  if (!request.figures_folder.empty()) paths.OutputFolder("--figures", request.figures_folder);
   return paths;
 }
 
@@ -117,6 +119,15 @@ ReportOutcome WriteReport(const ReportRequest& request, const RunObserver& obser
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   out.html_bytes = html.size();
   return out;
+}
+
+std::size_t WriteReportFigures(const ReportRequest& request, const RunObserver& observer) {
+  if (request.figures_folder.empty()) return 0;
+  ObservedTask progress(observer, "report: figure files");
+  const std::vector<solver::FigureFile> figures =
+      solver::FiguresOfPage(ReadTextFile(request.output, "report page", "write the page first"));
+  solver::WriteFigureFiles(figures, request.figures_folder);
+  return figures.size();
 }
 
 void ScreenshotReport(const ReportRequest& request, const RunObserver& observer) {

@@ -19,6 +19,7 @@ struct ReportRequest {
   std::string campaign_folder;  // "": the one the result names (none for a measured backbone)
   std::string output = "report.html";
   std::string screenshot;  // PNG of the page ("": none)
+  std::string figures_folder;  // each plot as <id>.svg and <id>.png there ("": none)
   bool log_amplitude = false;  // |X1| on a logarithmic axis too (HtmlReportOptions)
 
   // Throws InputError naming the field (by its command-line option) and the
@@ -41,6 +42,11 @@ struct ReportOutcome {
 // "report: model curves", "report: plots" (only the last for a measured
 // backbone). The screenshot is ScreenshotReport's.
 ReportOutcome WriteReport(const ReportRequest& request, const RunObserver& observer = {});
+
+// Writes each plot of the page request.output as request.figures_folder/
+// <id>.svg and <id>.png (solver/report/figure_files.h; the task "report:
+// figure files") and returns how many; 0 when no folder is asked for.
+std::size_t WriteReportFigures(const ReportRequest& request, const RunObserver& observer = {});
 
 // Renders request.output in headless Chromium to request.screenshot (the
 // task "report: screenshot"); nothing when no screenshot is asked for.

@@ -122,8 +122,8 @@ TEST(MeasuredBackboneReport, ShowsEveryLevelItsFlagsAndTheTrend) {
 // The figures of the page, each cut at its own </figure>.
 std::vector<std::string> LevelFigures(const std::string& page) {
   std::vector<std::string> figures;
-  for (std::size_t at = page.find("<figure class=\"plot level-frf\">"); at != std::string::npos;
-       at = page.find("<figure class=\"plot level-frf\">", at + 1))
+  for (std::size_t at = page.find("<figure class=\"plot level-frf\""); at != std::string::npos;
+       at = page.find("<figure class=\"plot level-frf\"", at + 1))
     figures.push_back(page.substr(at, page.find("</figure>", at) - at));
   return figures;
 }
