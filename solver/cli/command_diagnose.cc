@@ -50,7 +50,8 @@ void RunDiagnose(const workflow::DiagnoseRequest& request, const GlobalOptions& 
     fmt::print("the selected model ({}):\n", fmt::join(result.selected, " + "));
     PrintDampingLaws(result.final_damping_laws);
   }
-  fmt::print("{}\nwrote {}\n", result.summary, request.output);
+  fmt::print("{}\nwrote {}{}\n", result.summary, request.output,
+             request.csv_output.empty() ? "" : " and " + request.csv_output);
 }
 
 BEAMID_REGISTER_COMMAND("diagnose", [](CLI::App& app, const GlobalOptions& global) {
@@ -88,6 +89,10 @@ BEAMID_REGISTER_COMMAND("diagnose", [](CLI::App& app, const GlobalOptions& globa
                   "level, and PREFIX.png (gnuplot)")
       ->check(NonEmptyPath());
   sub->add_option("-o,--output", request->output, "Diagnosis file (JSON)")->capture_default_str();
+  sub->add_option("--csv", request->csv_output,
+                  "Also write the candidate table as CSV for a spreadsheet: base, each candidate in rank order, the "
+                  "pairs; χ², AIC, BIC, Λ, p, held-out error, own parameters (docs/diagnose.md)")
+      ->check(NonEmptyPath());
   sub->add_option("--result", request->result_file,
                   "result.json of 'beamid identify' on this campaign, named in the diagnosis so that "
                   "'beamid report' shows both")

@@ -25,7 +25,7 @@ void RunPredict(const workflow::PredictRequest& request, const GlobalOptions& gl
                outcome.family->Description());
     if (!compared.empty())
       fmt::print("  against {}: worst first-harmonic error {:.2f} %\n", compared, 100 * outcome.worst_h1_relative_error);
-    fmt::print("wrote {}\n", request.output);
+    fmt::print("wrote {}{}\n", request.output, request.csv_output.empty() ? "" : " and " + request.csv_output);
   }
   // Exit 3, the prediction written all the same.
   const std::string unconverged = outcome.Unconverged();
@@ -47,6 +47,10 @@ BEAMID_REGISTER_COMMAND("predict", [](CLI::App& app, const GlobalOptions& global
   sub->add_option("--campaign", request->campaign_folder, "Campaign to compare with (a sensor at x)")
       ->check(NonEmptyPath());
   sub->add_option("-o,--output", request->output, "Output file (JSON)")->capture_default_str();
+  sub->add_option("--csv", request->csv_output,
+                  "Also write the prediction as CSV for a spreadsheet: per step and harmonic, amplitude and phase; "
+                  "the compared sensor's in the unit of its recordings (docs/result-format.md)")
+      ->check(NonEmptyPath());
   sub->callback([request, &global] { RunPredict(*request, global); });
 });
 

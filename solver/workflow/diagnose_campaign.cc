@@ -8,10 +8,12 @@
 #include "signal/campaign.h"
 #include "signal/campaign_identity.h"
 #include "solver/diagnosis/candidate_physics.h"
+#include "solver/diagnosis/diagnosis_candidates_csv.h"
 #include "solver/diagnosis/diagnosis_io.h"
 #include "solver/estimation/fit_data.h"
 #include "solver/estimation/result_io.h"
 #include "solver/workflow/diagnosis_curves.h"
+#include "solver/workflow/output_file.h"
 #include "solver/workflow/output_paths.h"
 
 namespace beamid::workflow {
@@ -27,6 +29,7 @@ void DiagnoseRequest::Validate() const {
   OutputPaths paths;
   paths.InputFolder(campaign_folder).Input(phasor_input.phasors_file).Input(result_file).Output("-o", output);
   if (!curves.empty()) paths.OutputPrefix("--curves", curves, {".csv", ".gp", ".png"});
+  if (!csv_output.empty()) paths.Output("--csv", csv_output);
   paths.Check();
   RequireFitWithinModelHarmonics(fit_harmonics, harmonics);
   // Before the campaign is read; the library's names ([0] is "none").
@@ -92,6 +95,7 @@ DiagnoseOutcome DiagnoseCampaign(const DiagnoseRequest& request, const RunObserv
   if (!request.result_file.empty())
     file.result_file = std::filesystem::absolute(request.result_file).lexically_normal().string();
   solver::WriteDiagnosisFile(request.output, file);
+  if (!request.csv_output.empty()) WriteTextFile(request.csv_output, solver::DiagnosisCandidatesCsv(out.diagnosis));
   if (!request.curves.empty()) out.curves_problem = WriteDiagnosisCurves(out.diagnosis, request.curves);
   return out;
 }

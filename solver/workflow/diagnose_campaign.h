@@ -32,6 +32,7 @@ struct DiagnoseRequest {
   bool recording_check = true;  // try the measurement artefacts before the physics
   std::string output = "diagnosis.json";
   std::string curves;       // prefix of PREFIX.csv, .gp and .png ("": none)
+  std::string csv_output;   // also the candidate table as CSV ("": none)
   std::string result_file;  // identify's result.json, named in the diagnosis ("": none)
 
   // Throws InputError naming the field (by its command-line option) and the

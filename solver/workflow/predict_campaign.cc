@@ -15,8 +15,10 @@
 #include "signal/campaign_identity.h"
 #include "solver/estimation/fit_data.h"
 #include "solver/estimation/prediction.h"
+#include "solver/estimation/prediction_csv.h"
 #include "solver/estimation/result_io.h"
 #include "solver/workflow/campaign_input.h"
+#include "solver/workflow/output_file.h"
 #include "solver/workflow/output_paths.h"
 
 namespace beamid::workflow {
@@ -24,11 +26,10 @@ namespace beamid::workflow {
 void PredictRequest::Validate() const {
   // The check the command line makes as it parses, for a caller without it.
   option_checks::RequireInRange("--x", position_m, 0.0, 100.0);
-  OutputPaths()
-      .Input(result_file)
-      .InputFolder(campaign_folder)
-      .Output("-o", output)
-      .Check();
+  OutputPaths paths;
+  paths.Input(result_file).InputFolder(campaign_folder).Output("-o", output);
+  if (!csv_output.empty()) paths.Output("--csv", csv_output);
+  paths.Check();
 }
 
 std::string PredictOutcome::Unconverged() const {
@@ -127,6 +128,13 @@ PredictOutcome PredictCampaign(const PredictRequest& options, const RunObserver&
                                      p.acceleration_std_m_s2.data() + p.acceleration_std_m_s2.size());
   }
   solver::WritePredictionFile(options.output, file);
+  if (!options.csv_output.empty()) {
+    solver::CsvChannelUnit unit;
+    if (campaign)
+      for (const auto& s : campaign->sensors)
+        if (s.channel == compared) unit = {.unit = s.unit, .to_si_factor = s.to_si_factor};
+    WriteTextFile(options.csv_output, solver::PredictionCsv(file, unit));
+  }
   return outcome;
 }
 

@@ -21,6 +21,7 @@ struct PredictRequest {
   std::string campaign_folder;  // the campaign to compare with ("": none); the one the result is of
   double position_m = 0.0;      // on the beam (0 .. 100)
   std::string output = "prediction.json";
+  std::string csv_output;  // also the prediction as CSV, compared in the sensor's own unit ("": none)
 
   // Throws InputError naming the field (by its command-line option) and the
   // fix: a position out of range, an output that would replace an input

@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "solver/diagnosis/candidate_physics.h"
+#include "solver/estimation/prediction_io.h"
 #include "tests/support/csv_text.h"
 #include "tests/support/paper_scenario.h"
 #include "tests/support/temp_path.h"
@@ -189,12 +190,25 @@ TEST_F(CommandLine, IdentifyWithTheMultipleScalesModelAndPredictWithIt) {
   EXPECT_THAT(run.output, HasSubstr("identified (multiple scales)"));
   EXPECT_THAT(ReadFile(result), HasSubstr("\"kind\": \"ms\""));
   EXPECT_THAT(ReadFile(result), HasSubstr("\"modal_phasor_m\""));
-  run = Beamid("predict " + result + " --x 0.57 --campaign " + campaign + " -o " + (folder_ / "pred.json").string());
+  run = Beamid("predict " + result + " --x 0.57 --campaign " + campaign + " -o " + (folder_ / "pred.json").string() +
+               " --csv " + (folder_ / "pred.csv").string());
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_THAT(run.output, HasSubstr("with the multiple scales model"));
   EXPECT_THAT(ReadFile(folder_ / "pred.json"), HasSubstr("\"model\": \"ms\""));
   // Compared in the channel's own quantity (acc3 measures acceleration).
   EXPECT_THAT(ReadFile(folder_ / "pred.json"), HasSubstr("\"predicted_acceleration_m_s2\""));
+  // The CSV holds the file's numbers, a row per step and harmonic.
+  const beamid::solver::PredictionFile prediction = beamid::solver::ReadPredictionFile(folder_ / "pred.json");
+  const std::vector<std::string> rows = beamid::testing::Lines(ReadFile(folder_ / "pred.csv"));
+  ASSERT_EQ(rows.size(), 1 + prediction.steps.size() * prediction.steps.front().harmonics.size());
+  const std::vector<std::string> header = beamid::testing::Cells(rows[0]);
+  ASSERT_EQ(header[12], "measured_amplitude_m_s2");
+  const std::vector<std::string> first = beamid::testing::Cells(rows[1]);
+  ASSERT_EQ(first.size(), header.size());
+  const beamid::solver::PredictionHarmonic& h1 = prediction.steps.front().harmonics.front();
+  EXPECT_EQ(first[11], "acc3");
+  EXPECT_EQ(first[12], beamid::testing::G9(std::abs(h1.measured)));
+  EXPECT_EQ(first[14], beamid::testing::G9(std::abs(h1.predicted)));
 
   // The model gives harmonics 1..3 only: bad input, not a failed fit.
   run = Beamid("identify " + campaign + " --fit acc1,acc2 --model ms --fit-harmonics 5");

@@ -11,6 +11,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "solver/diagnosis/diagnosis_candidates_csv.h"
 #include "solver/diagnosis/diagnosis_io.h"
 #include "solver/estimation/identify.h"
 #include "solver/estimation/model_structure.h"
@@ -21,6 +22,7 @@
 #include "solver/workflow/identify_campaign.h"
 #include "solver/workflow/predict_campaign.h"
 #include "tests/support/expect_refused.h"
+#include "tests/support/file_bytes.h"
 #include "tests/support/paper_scenario.h"
 #include "tests/support/simulated_campaign.h"
 
@@ -28,6 +30,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using beamid::testing::InputErrorOf;
+using beamid::testing::ReadFile;
 using ::testing::HasSubstr;
 namespace solver = beamid::solver;
 namespace workflow = beamid::workflow;
@@ -183,8 +186,10 @@ TEST_F(Workflows, DiagnoseCampaignReturnsTheDiagnosisItWrites) {
                                           .candidates = {"support_friction"},
                                           .phasor_uncertainty = solver::PhasorUncertainty::kPropagated,
                                           .recording_check = false,
-                                          .output = (out_ / "diagnosis.json").string()};
+                                          .output = (out_ / "diagnosis.json").string(),
+                                          .csv_output = (out_ / "candidates.csv").string()};
   const workflow::DiagnoseOutcome outcome = workflow::DiagnoseCampaign(request);
+  EXPECT_EQ(ReadFile(out_ / "candidates.csv"), solver::DiagnosisCandidatesCsv(outcome.diagnosis));
   EXPECT_EQ(outcome.num_steps, campaign_->campaign.steps.size());
   EXPECT_TRUE(outcome.curves_problem.empty());  // no curves asked for
   EXPECT_FALSE(fs::exists(out_ / "diagnosis.png"));
