@@ -23,6 +23,8 @@ using internal::FormatNumber;
 
 constexpr int kRealSingle = 2;
 constexpr int kRealDouble = 4;
+constexpr int kComplexSingle = 5;
+constexpr int kComplexDouble = 6;
 constexpr int kNumHeaderRecords = 11;  // ID lines 1..5 and records 6..11
 // The header records are 80 columns wide; a line far longer is no record
 // (a file without line ends, a binary file) and is not copied.
@@ -112,6 +114,7 @@ std::string FunctionTypeName(int type) {
     case 5: return "transmissibility";
     case 6: return "coherence";
     case 9: return "power spectral density";
+    case 12: return "spectrum";
     default: return "type " + std::to_string(type);
   }
 }
@@ -169,7 +172,8 @@ bool IsDelimiter(std::string_view line) { return TrimView(line) == "-1"; }
 
 class DatasetReader {
  public:
-  DatasetReader(Cursor& cursor, Uff58Dataset& dataset) : cursor_(cursor), dataset_(dataset) {}
+  DatasetReader(Cursor& cursor, Uff58Dataset& dataset, Uff58Functions functions)
+      : cursor_(cursor), dataset_(dataset), functions_(functions) {}
 
   [[noreturn]] void Fail(const std::string& problem, const std::string& fix) const {
     cursor_.Fail(dataset_.Describe() + ": " + problem + " (line " + std::to_string(cursor_.line_number()) + ")", fix);
@@ -212,6 +216,14 @@ class DatasetReader {
     dataset_.response_node = node.empty() ? 0 : Integer(node, "the response node (record 6, columns 42-51)");
     dataset_.response_direction =
         direction.empty() ? 0 : Integer(direction, "the response direction (record 6, columns 52-55)");
+    dataset_.reference_entity = std::string(TrimView(Columns(record6, 57, 10)));
+    const std::string_view reference_node = TrimView(Columns(record6, 67, 10));
+    const std::string_view reference_direction = TrimView(Columns(record6, 77, 4));
+    dataset_.reference_node =
+        reference_node.empty() ? 0 : Integer(reference_node, "the reference node (record 6, columns 67-76)");
+    dataset_.reference_direction = reference_direction.empty()
+                                       ? 0
+                                       : Integer(reference_direction, "the reference direction (record 6, columns 77-80)");
     // Record 7: Format(3I10,3E13.5); read by fields so that wider numbers
     // (some writers give Δx with 12 digits) keep their precision.
     const std::string_view record7 = HeaderLine("record 7");
@@ -231,8 +243,14 @@ class DatasetReader {
     dataset_.abscissa_step = *step;
     dataset_.abscissa = Axis(HeaderLine("record 8"));
     dataset_.ordinate = Axis(HeaderLine("record 9"));
-    HeaderLine("record 10");
+    dataset_.denominator = Axis(HeaderLine("record 10"));
     HeaderLine("record 11");
+    dataset_.num_points = num_values_;
+    dataset_.uneven = spacing == 0;
+    if (functions_ == Uff58Functions::kFrequencyFunctions) {
+      CheckFrequencyFunctionHeader(spacing);
+      return;
+    }
 
     if (dataset_.function_type != 0 && dataset_.function_type != 1)
       Fail("function type " + std::to_string(dataset_.function_type) + " (" +
@@ -253,27 +271,52 @@ class DatasetReader {
            "write the sample interval in seconds in record 7 field 5");
   }
 
+  // A spectrum or frequency response: real or complex ordinates, at even or
+  // uneven frequencies (a stepped sine's steps need not be evenly spaced).
+  void CheckFrequencyFunctionHeader(int spacing) {
+    const int type = dataset_.ordinate_type;
+    if (type != kRealSingle && type != kRealDouble && type != kComplexSingle && type != kComplexDouble)
+      Fail("ordinate data type " + std::to_string(type) + " is not accepted",
+           "export real (2, 4) or complex (5, 6) values in single or double precision");
+    if (spacing != 0 && spacing != 1)
+      Fail("the abscissa spacing (record 7 field 3) is " + std::to_string(spacing) + ", neither 1 (even) nor 0 (uneven)",
+           "write record 7 in the dataset 58 format (docs/uff58.md)");
+    if (num_values_ < 1) Fail("the dataset holds no value", "export the frequency steps");
+    if (spacing == 1 && (!(dataset_.abscissa_step > 0.0) || !std::isfinite(dataset_.abscissa_step) ||
+                         !std::isfinite(dataset_.abscissa_start)))
+      Fail("the abscissa increment dx = " + FormatNumber(dataset_.abscissa_step) + " is not a positive frequency step",
+           "write the frequency increment in record 7 field 5, or export the steps unevenly spaced (0)");
+  }
+
+  // The numbers record 12 holds: per point its abscissa when uneven, and one
+  // real or two (real, imaginary) ordinate numbers.
+  std::size_t NumbersToRead() const {
+    const bool complex = dataset_.ordinate_type == kComplexSingle || dataset_.ordinate_type == kComplexDouble;
+    return static_cast<std::size_t>(num_values_) * ((complex ? 2 : 1) + (dataset_.uneven ? 1 : 0));
+  }
+
   // ASCII values: any number per line, separated by blanks, up to the "-1"
   // that closes the dataset.
   void ReadAsciiValues() {
+    const std::size_t numbers = NumbersToRead();
     // A damaged record 7 must not reserve gigabytes: the vector grows anyway,
     // and a value takes at least two bytes of the file (a digit and a blank).
-    dataset_.values.reserve(std::min({static_cast<std::size_t>(num_values_), cursor_.Remaining() / 2,
+    dataset_.values.reserve(std::min({numbers, cursor_.Remaining() / 2,
                                       std::size_t{1} << 22}));
     while (true) {
       auto line = cursor_.Line();
       if (!line || IsDelimiter(*line)) {
-        if (dataset_.values.size() == static_cast<std::size_t>(num_values_) && line) return;
-        Fail("truncated: " + std::to_string(dataset_.values.size()) + " of the " + std::to_string(num_values_) +
-                 " values of record 7 before " + (line ? "the closing -1" : "the end of the file"),
+        if (dataset_.values.size() == numbers && line) return;
+        Fail("truncated: " + std::to_string(dataset_.values.size()) + " of the " + std::to_string(numbers) +
+                 " numbers record 7 announces before " + (line ? "the closing -1" : "the end of the file"),
              "export the dataset again, whole");
       }
       std::string_view rest = *line;
       for (std::string_view token = NextToken(rest); !token.empty(); token = NextToken(rest)) {
         auto value = ParseReal(token);
         if (!value) Fail(RealProblem(token), "write the values as real numbers (E13.5)");
-        if (dataset_.values.size() == static_cast<std::size_t>(num_values_))
-          Fail("more values than the " + std::to_string(num_values_) + " of record 7",
+        if (dataset_.values.size() == numbers)
+          Fail("more values than the " + std::to_string(numbers) + " record 7 announces",
                "correct the number of values in record 7 field 2");
         dataset_.values.push_back(*value);
       }
@@ -282,11 +325,13 @@ class DatasetReader {
 
   // 58b: the byte count of the header line, values in the stated byte order.
   void ReadBinaryValues(std::size_t num_bytes, bool little_endian) {
-    const std::size_t width = dataset_.ordinate_type == kRealSingle ? 4 : 8;
-    const std::size_t needed = width * static_cast<std::size_t>(num_values_);
+    const std::size_t width =
+        dataset_.ordinate_type == kRealSingle || dataset_.ordinate_type == kComplexSingle ? 4 : 8;
+    const std::size_t numbers = NumbersToRead();
+    const std::size_t needed = width * numbers;
     if (num_bytes < needed)
       Fail("the 58b header announces " + std::to_string(num_bytes) + " bytes but record 7 needs " +
-               std::to_string(needed) + " (" + std::to_string(num_values_) + " values of " + std::to_string(width) +
+               std::to_string(needed) + " (" + std::to_string(numbers) + " values of " + std::to_string(width) +
                " bytes)",
            "export the dataset again: header and record 7 disagree");
     auto block = cursor_.Bytes(num_bytes);
@@ -294,7 +339,7 @@ class DatasetReader {
       Fail("truncated: the file ends inside the " + std::to_string(num_bytes) + " bytes of binary values",
            "export the dataset again, whole");
     const bool swap = little_endian != (std::endian::native == std::endian::little);
-    dataset_.values.resize(static_cast<std::size_t>(num_values_));
+    dataset_.values.resize(numbers);
     for (std::size_t i = 0; i < dataset_.values.size(); ++i) {
       unsigned char raw[8];
       std::memcpy(raw, block->data() + i * width, width);
@@ -327,6 +372,7 @@ class DatasetReader {
 
   Cursor& cursor_;
   Uff58Dataset& dataset_;
+  Uff58Functions functions_;
   int num_values_ = 0;
 };
 
@@ -350,7 +396,20 @@ std::string Uff58Dataset::NodeDirection() const {
   return std::to_string(response_node) + ":" + direction;
 }
 
-std::vector<Uff58Dataset> ParseUff58(std::string_view bytes, const std::string& source) {
+bool Uff58Dataset::Complex() const { return ordinate_type == kComplexSingle || ordinate_type == kComplexDouble; }
+
+double Uff58Dataset::Abscissa(int i) const {
+  if (!uneven) return abscissa_start + abscissa_step * i;
+  return values[static_cast<std::size_t>(i) * (Complex() ? 3 : 2)];
+}
+
+std::complex<double> Uff58Dataset::Ordinate(int i) const {
+  const std::size_t per_point = (Complex() ? 2 : 1) + (uneven ? 1 : 0);
+  const std::size_t at = static_cast<std::size_t>(i) * per_point + (uneven ? 1 : 0);
+  return {values[at], Complex() ? values[at + 1] : 0.0};
+}
+
+std::vector<Uff58Dataset> ParseUff58(std::string_view bytes, const std::string& source, Uff58Functions functions) {
   Cursor cursor(bytes, source);
   std::vector<Uff58Dataset> datasets;
   bool any_dataset = false;
@@ -375,7 +434,7 @@ std::vector<Uff58Dataset> ParseUff58(std::string_view bytes, const std::string& 
     Uff58Dataset& dataset = datasets.emplace_back();
     dataset.number = static_cast<int>(datasets.size());
     dataset.binary = kind == "58b";
-    DatasetReader reader(cursor, dataset);
+    DatasetReader reader(cursor, dataset, functions);
     bool little_endian = true;
     std::size_t num_bytes = 0;
     if (dataset.binary) {
@@ -413,9 +472,9 @@ std::vector<Uff58Dataset> ParseUff58(std::string_view bytes, const std::string& 
   return datasets;
 }
 
-std::vector<Uff58Dataset> ReadUff58(const std::filesystem::path& file) {
+std::vector<Uff58Dataset> ReadUff58(const std::filesystem::path& file, Uff58Functions functions) {
   const std::string source = file.string();
-  return ParseUff58(ReadTextFile(file, "universal file", "check that it exists and is readable"), source);
+  return ParseUff58(ReadTextFile(file, "universal file", "check that it exists and is readable"), source, functions);
 }
 
 bool IsUniversalFile(const std::filesystem::path& file) {

@@ -8,9 +8,15 @@
 // x_min + n·Δx with x_min and Δx from record 7. Other datasets of the file
 // (151, 164, 2411, …) are skipped. Every problem is an InputError naming the
 // file, the dataset (by its ID line 1) and what to fix.
+// For first-harmonic results (signal/uff58_level.h) the reader also takes
+// what a frequency-domain system exports: spectra and frequency response
+// functions (any function type), complex ordinates (record 7 type 5 single,
+// 6 double: real and imaginary part per point) and unevenly spaced abscissae
+// (spacing 0: each point's abscissa before its ordinate).
 #pragma once
 
 #include <array>
+#include <complex>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -25,6 +31,10 @@ struct Uff58Axis {
   std::string unit;           // axis units label (A20), trimmed; may be empty
 };
 
+// What a reading accepts: the time histories of a step's recording, or the
+// spectra and frequency responses of a stepped-sine result.
+enum class Uff58Functions { kTimeHistories, kFrequencyFunctions };
+
 struct Uff58Dataset {
   int number = 0;                       // 1-based position among the file's datasets 58, for messages
   bool binary = false;                  // 58b
@@ -33,12 +43,23 @@ struct Uff58Dataset {
   std::string response_entity;          // record 6 field 5 (A10), trimmed
   int response_node = 0;                // record 6 field 6
   int response_direction = 0;           // record 6 field 7: 0 scalar, ±1..3 ±X/Y/Z, ±4..6 ±RX/RY/RZ
-  int ordinate_type = 0;                // record 7 field 1: 2 real single, 4 real double
+  std::string reference_entity;         // record 6 field 8 (A10), trimmed
+  int reference_node = 0;               // record 6 field 9
+  int reference_direction = 0;          // record 6 field 10
+  int ordinate_type = 0;                // record 7 field 1: 2 real single, 4 real double, 5/6 complex
+  int num_points = 0;                   // record 7 field 2
+  bool uneven = false;                  // record 7 field 3 = 0
   double abscissa_start = 0.0;          // record 7 field 4, x_min
   double abscissa_step = 0.0;           // record 7 field 5, Δx
   Uff58Axis abscissa;                   // record 8
   Uff58Axis ordinate;                   // record 9 (numerator)
-  std::vector<double> values;           // record 12, as written (file units)
+  Uff58Axis denominator;                // record 10 (a frequency response's reference)
+  std::vector<double> values;           // record 12, as written (file units): for a time history the samples
+
+  bool Complex() const;
+  // Point i's abscissa (even: x_min + i·Δx) and ordinate (imaginary part 0 when real).
+  double Abscissa(int i) const;
+  std::complex<double> Ordinate(int i) const;
 
   // "dataset 3 ('acc1')": how messages name the dataset.
   std::string Describe() const;
@@ -50,9 +71,11 @@ struct Uff58Dataset {
 // in messages). Throws InputError when the file is not a universal file,
 // holds no dataset 58, or a dataset 58 is truncated, malformed or outside the
 // accepted subset.
-std::vector<Uff58Dataset> ParseUff58(std::string_view bytes, const std::string& source);
+std::vector<Uff58Dataset> ParseUff58(std::string_view bytes, const std::string& source,
+                                     Uff58Functions functions = Uff58Functions::kTimeHistories);
 
-std::vector<Uff58Dataset> ReadUff58(const std::filesystem::path& file);
+std::vector<Uff58Dataset> ReadUff58(const std::filesystem::path& file,
+                                    Uff58Functions functions = Uff58Functions::kTimeHistories);
 
 // True for the extensions of universal files: .uff, .unv (any case).
 bool IsUniversalFile(const std::filesystem::path& file);

@@ -17,6 +17,7 @@
 #include "signal/first_harmonic_level.h"
 #include "signal/phasor_set_io.h"
 #include "signal/phasor_table.h"
+#include "signal/uff58_level.h"
 #include "solver/backbone/measured_backbone_csv.h"
 #include "solver/backbone/measured_backbone_io.h"
 #include "solver/estimation/prediction.h"
@@ -30,12 +31,15 @@ namespace {
 std::vector<signal::FirstHarmonicLevel> ReadLevels(const MeasureBackboneRequest& options, const RunObserver& observer) {
   namespace fs = std::filesystem;
   const fs::path first = options.inputs.front();
-  const bool tables = first.extension() == ".csv" || first.extension() == ".CSV" || first.extension() == ".txt";
+  const bool universal = signal::IsUniversalFile(first);
+  const bool tables = first.extension() == ".csv" || first.extension() == ".CSV" || first.extension() == ".txt" ||
+                      universal;
   if (!fs::is_directory(first) && options.skip_bad_steps)
     throw InputError("--skip-bad-steps applies to a campaign folder (whose recordings are extracted here), not to " +
                      first.string() + ". Fix: drop --skip-bad-steps, or give the campaign folder");
   const signal::PhasorTableOptions& table = options.table;
-  if (!tables && (table.layout.lines_before_header > 0 || table.layout.units_row || !table.columns.Empty()))
+  if ((!tables || universal) &&
+      (table.layout.lines_before_header > 0 || table.layout.units_row || !table.columns.Empty()))
     throw InputError("--lines-before-header, --units-row and --column apply to first-harmonic CSV tables, not to " +
                      first.string() + ". Fix: drop them; a campaign declares its recordings' layout and columns in "
                      "campaign.json (recording_layout, each channel's column)");
@@ -45,7 +49,8 @@ std::vector<signal::FirstHarmonicLevel> ReadLevels(const MeasureBackboneRequest&
                        "columns. Fix: drop --channel, or give a campaign folder or phasor file");
     std::vector<signal::FirstHarmonicLevel> levels;
     for (const auto& input : options.inputs) {
-      levels.push_back(signal::ReadPhasorTable(input, table));
+      levels.push_back(signal::IsUniversalFile(input) ? signal::ReadUff58Level(input)
+                                                      : signal::ReadPhasorTable(input, table));
       levels.back().response_position_m = options.position_m;
     }
     return levels;

@@ -28,9 +28,13 @@ struct UffChannel {
   int ordinate_data_type = 0;       // 12 acceleration, 11 velocity, 13 force, 0 unknown
   std::string unit;                 // ordinate axis units label
   std::string abscissa_unit = "s";
+  int abscissa_data_type = 17;      // time; 18 frequency
+  int reference_node = 1, reference_direction = 3;
+  int denominator_data_type = 0;    // record 10 (a frequency response's force: 13)
+  std::string denominator_unit = "NONE";
   double x_min = 0.0;
   double dx = 0.0;
-  int declared_values = -1;         // -1: values.size()
+  int declared_values = -1;         // -1: values.size() (set the number of points for complex or uneven data)
   std::vector<double> values;
 };
 
@@ -64,20 +68,22 @@ inline std::string UffDataset58(const UffChannel& ch, UffEncoding encoding) {
                 "23-Nov-26 12:00:00", "beamid test record", "NONE");
   header += line;
   std::snprintf(line, sizeof line, "%5d%10d%5d%10d %-10s%10d%4d %-10s%10d%4d\n", ch.function_type, 0, 0, 0,
-                ch.entity.c_str(), ch.node, ch.direction, "NONE", 1, 3);
+                ch.entity.c_str(), ch.node, ch.direction, "NONE", ch.reference_node, ch.reference_direction);
   header += line;
   std::snprintf(line, sizeof line, "%10d%10d%10d%13.5E%13.5E%13.5E\n", ordinate_type, n, ch.spacing, ch.x_min, ch.dx,
                 0.0);
   header += line;
-  std::snprintf(line, sizeof line, "%10d%5d%5d%5d %-20s %-20s\n", 17, 0, 0, 0, "Time", ch.abscissa_unit.c_str());
+  std::snprintf(line, sizeof line, "%10d%5d%5d%5d %-20s %-20s\n", ch.abscissa_data_type, 0, 0, 0,
+                ch.abscissa_data_type == 18 ? "Frequency" : "Time", ch.abscissa_unit.c_str());
   header += line;
   std::snprintf(line, sizeof line, "%10d%5d%5d%5d %-20s %-20s\n", ch.ordinate_data_type, 1, 0, 0, "Amplitude",
                 ch.unit.c_str());
   header += line;
-  for (int r = 0; r < 2; ++r) {
-    std::snprintf(line, sizeof line, "%10d%5d%5d%5d %-20s %-20s\n", 0, 0, 0, 0, "NONE", "NONE");
-    header += line;
-  }
+  std::snprintf(line, sizeof line, "%10d%5d%5d%5d %-20s %-20s\n", ch.denominator_data_type, 0, 0, 0, "NONE",
+                ch.denominator_unit.c_str());
+  header += line;
+  std::snprintf(line, sizeof line, "%10d%5d%5d%5d %-20s %-20s\n", 0, 0, 0, 0, "NONE", "NONE");
+  header += line;
   std::string out = "    -1\n";
   if (!IsBinary(encoding)) {
     out += "    58\n" + header;
