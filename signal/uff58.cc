@@ -21,10 +21,10 @@ namespace {
 using internal::Excerpt;
 using internal::FormatNumber;
 
-constexpr int kRealSingle = 2;
-constexpr int kRealDouble = 4;
-constexpr int kComplexSingle = 5;
-constexpr int kComplexDouble = 6;
+using uff58::kComplexDouble;
+using uff58::kComplexSingle;
+using uff58::kRealDouble;
+using uff58::kRealSingle;
 constexpr int kNumHeaderRecords = 11;  // ID lines 1..5 and records 6..11
 // The header records are 80 columns wide; a line far longer is no record
 // (a file without line ends, a binary file) and is not copied.

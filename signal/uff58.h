@@ -31,6 +31,19 @@ struct Uff58Axis {
   std::string unit;           // axis units label (A20), trimmed; may be empty
 };
 
+// The numbers of the format that beamid's readers and writer use.
+namespace uff58 {
+// Record 6, function type.
+inline constexpr int kTimeResponse = 1, kFrequencyResponse = 4, kSpectrum = 12;
+// Record 7, ordinate data type and abscissa spacing.
+inline constexpr int kRealSingle = 2, kRealDouble = 4, kComplexSingle = 5, kComplexDouble = 6;
+inline constexpr int kUnevenSpacing = 0, kEvenSpacing = 1;
+// Records 8-11, specific data type.
+inline constexpr int kUnknownType = 0, kGeneralType = 1, kDisplacementType = 8, kReactionForceType = 9,
+                     kVelocityType = 11, kAccelerationType = 12, kExcitationForceType = 13, kTimeType = 17,
+                     kFrequencyType = 18;
+}  // namespace uff58
+
 // What a reading accepts: the time histories of a step's recording, or the
 // spectra and frequency responses of a stepped-sine result.
 enum class Uff58Functions { kTimeHistories, kFrequencyFunctions };

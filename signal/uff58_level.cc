@@ -13,11 +13,7 @@
 namespace beamid::signal {
 namespace {
 
-constexpr int kFrequencyResponse = 4;
-constexpr int kSpectrum = 12;
-// Record 8/9 specific data types (docs/uff58.md).
-constexpr int kUnknownType = 0, kGeneralType = 1, kDisplacementType = 8, kReactionForceType = 9, kVelocityType = 11,
-              kAccelerationType = 12, kExcitationForceType = 13, kFrequencyType = 18;
+using namespace uff58;
 
 // The steps' frequencies agree between the force and the response to the
 // six digits a single-precision export (E13.5) keeps.

@@ -65,6 +65,10 @@ BEAMID_REGISTER_COMMAND("backbone", [](CLI::App& app, const GlobalOptions& globa
                   "With --measured tables, repeatable: ROLE=COLUMN, a column named by the export's own header text or "
                   "by its number from 1, for ROLE frequency, excitation, response or phase "
                   "(--column 'frequency=X-Data [Hz]')");
+  sub->add_option("--uff", measured->uff_folder,
+                  "With --measured: also write each level into this folder as <level>.uff, its force spectrum and "
+                  "frequency response (UFF 58, for a structural-dynamics tool; docs/uff58.md)")
+      ->check(NonEmptyPath());
   sub->add_option("--result", measured->result_file, "With --measured: overlay this identified model's backbone")
       ->check(NonEmptyPath());
   sub->add_option("--position-m", measured->position_m, "With --measured tables and --result: the sensor's position [m]")
@@ -108,6 +112,8 @@ BEAMID_REGISTER_COMMAND("backbone", [](CLI::App& app, const GlobalOptions& globa
     if (!measured->channel.empty())
       throw std::invalid_argument("backbone: --channel applies to --measured only; a model's backbone is that of "
                                   "every sensor");
+    if (!measured->uff_folder.empty())
+      throw std::invalid_argument("backbone: --uff applies to --measured only (a model has no measured levels)");
     if (measured->table.layout.lines_before_header > 0 || measured->table.layout.units_row || !columns->empty())
       throw std::invalid_argument("backbone: --lines-before-header, --units-row and --column apply to --measured "
                                   "tables only (a model has no tables)");

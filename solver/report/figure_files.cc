@@ -5,6 +5,7 @@
 #include <fmt/core.h>
 
 #include "hb/errors.h"
+#include "hb/file_stem.h"
 #include "hb/text_file.h"
 #include "solver/report/external_program.h"
 #include "solver/report/temp_folder.h"
@@ -23,19 +24,6 @@ std::string Unescaped(std::string text) {
   return text;
 }
 
-// A level's label or a channel's name is the user's: no '/', no "..", no
-// leading '.', nothing a file system or a shell reads as more than a name.
-std::string FileStem(const std::string& id) {
-  std::string stem;
-  for (const char c : id) {
-    const bool plain = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' ||
-                       c == '_' || c == '.';
-    stem += plain ? c : '_';
-  }
-  if (stem.empty() || stem.front() == '.' || stem.front() == '-') stem.insert(0, "plot_");
-  return stem.substr(0, 120);
-}
-
 }  // namespace
 
 std::vector<FigureFile> FiguresOfPage(const std::string& html) {
@@ -49,11 +37,8 @@ std::vector<FigureFile> FiguresOfPage(const std::string& html) {
     const std::size_t figure_end = html.find("</figure>", at);
     const std::size_t svg_start = html.find("<svg", tag_end), svg_end = html.find("</svg>", svg_start);
     if (id_end > tag_end || svg_start > figure_end || svg_end == std::string::npos) continue;
-    const std::string stem = FileStem(Unescaped(html.substr(id_start, id_end - id_start)));
-    std::string name = stem;
-    for (int copy = 2; taken.count(name); ++copy) name = fmt::format("{}-{}", stem, copy);
-    taken.insert(name);
-    figures.push_back({name, html.substr(svg_start, svg_end + 6 - svg_start)});
+    figures.push_back({hb::UniqueFileStem(Unescaped(html.substr(id_start, id_end - id_start)), "plot_", taken),
+                       html.substr(svg_start, svg_end + 6 - svg_start)});
   }
   return figures;
 }

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <numbers>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string_view>
@@ -10,6 +11,7 @@
 #include <fmt/core.h>
 
 #include "hb/csv_cell.h"
+#include "hb/file_stem.h"
 #include "hb/errors.h"
 #include "hb/version.h"
 #include "signal/campaign.h"
@@ -17,6 +19,7 @@
 #include "signal/first_harmonic_level.h"
 #include "signal/phasor_set_io.h"
 #include "signal/phasor_table.h"
+#include "signal/uff58_export.h"
 #include "signal/uff58_level.h"
 #include "solver/backbone/measured_backbone_csv.h"
 #include "solver/backbone/measured_backbone_io.h"
@@ -109,7 +112,9 @@ void MeasureBackboneRequest::Validate() const {
       paths.Input(input);
   }
   paths.Input(result_file);
-  paths.OutputPrefix("-o", output, {".csv", "_curves.csv", ".json"}).Check();
+  paths.OutputPrefix("-o", output, {".csv", "_curves.csv", ".json"});
+  if (!uff_folder.empty()) paths.OutputFolder("--uff", uff_folder);
+  paths.Check();
 }
 
 std::string LevelControlText(const solver::MeasuredBackbone& measured, const solver::LevelResonance& level) {
@@ -119,6 +124,13 @@ std::string LevelControlText(const solver::MeasuredBackbone& measured, const sol
 MeasureBackboneOutcome MeasureBackbone(const MeasureBackboneRequest& options, const RunObserver& observer) {
   options.Validate();
   const auto levels = ReadLevels(options, observer);
+  if (!options.uff_folder.empty()) {
+    std::filesystem::create_directories(options.uff_folder);
+    std::set<std::string> taken;
+    for (const signal::FirstHarmonicLevel& level : levels)
+      WriteTextFile(std::filesystem::path(options.uff_folder) / (hb::UniqueFileStem(level.label, "level_", taken) + ".uff"),
+                    signal::Uff58LevelText(level));
+  }
   MeasureBackboneOutcome out{
       .measured = solver::AnalyseMeasuredBackbone(levels, {.keep_flagged_levels_in_fit = options.keep_flagged_levels}),
       .channel = levels.front().channel,

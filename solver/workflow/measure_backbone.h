@@ -34,6 +34,9 @@ struct MeasureBackboneRequest {
   // MeasuredBackboneOptions::keep_flagged_levels_in_fit (--keep-flagged-levels).
   bool keep_flagged_levels = false;
   std::string output = "backbone";  // the prefix of the three files
+  // Also each level as a universal file <label>.uff in this folder, its force spectrum and frequency response
+  // (signal/uff58_export.h; "": none).
+  std::string uff_folder;
 
   // Throws InputError naming the field (by its command-line option) and the
   // fix: no input, a position out of range, an output that is an input or

@@ -142,12 +142,21 @@ TEST(Uff58Level, TheMeasuredBackboneOfTheFilesIsTheTables) {
     beamid::testing::WriteFile(file, Universal(level, Response::kFrequencyResponse, UffEncoding::kBinaryLittleDouble));
     request.inputs.push_back(file.string());
   }
+  // And `--uff` writes them back as universal files of its own (signal/uff58_export.h).
+  request.uff_folder = (folder / "written").string();
   const workflow::MeasureBackboneOutcome outcome = workflow::MeasureBackbone(request);
   ASSERT_EQ(outcome.measured.levels.size(), 3u);
   for (std::size_t l = 0; l < 3; ++l) {
     EXPECT_EQ(outcome.measured.levels[l].label, tables[l].label);
     EXPECT_EQ(outcome.measured.levels[l].quadrature_frequency_hz.value, from_files.levels[l].quadrature_frequency_hz.value);
+    const FirstHarmonicLevel written = ReadUff58Level(folder / "written" / (tables[l].label + ".uff"));
+    ASSERT_EQ(written.points.size(), tables[l].points.size());
+    EXPECT_NEAR(std::abs(written.points[3].response.value - tables[l].points[3].response.value), 0.0,
+                1e-11 * std::abs(tables[l].points[3].response.value));
   }
+  // The folder is an output: not one that holds an input.
+  request.uff_folder = folder.string();
+  EXPECT_THROW(workflow::MeasureBackbone(request), InputError);
   std::filesystem::remove_all(folder);
 }
 
