@@ -291,8 +291,7 @@ class DatasetReader {
   // The numbers record 12 holds: per point its abscissa when uneven, and one
   // real or two (real, imaginary) ordinate numbers.
   std::size_t NumbersToRead() const {
-    const bool complex = dataset_.ordinate_type == kComplexSingle || dataset_.ordinate_type == kComplexDouble;
-    return static_cast<std::size_t>(num_values_) * ((complex ? 2 : 1) + (dataset_.uneven ? 1 : 0));
+    return static_cast<std::size_t>(num_values_) * ((dataset_.Complex() ? 2 : 1) + (dataset_.uneven ? 1 : 0));
   }
 
   // ASCII values: any number per line, separated by blanks, up to the "-1"
