@@ -152,6 +152,15 @@ std::string_view RoleName(ColumnRole role) {
   return "";
 }
 
+// A few of the header's cells, printable: a table's header may be anything.
+std::string HeaderExcerpt(const std::vector<HeaderCell>& cells) {
+  std::string found;
+  for (std::size_t i = 0; i < cells.size() && i < 12; ++i)
+    found += (found.empty() ? "'" : ", '") + internal::Excerpt(cells[i].text) + "'";
+  if (cells.size() > 12) found += " and " + std::to_string(cells.size() - 12) + " more";
+  return found;
+}
+
 // The cell a mapping names: a 1-based column number, else the header text
 // (with or without its unit, case ignored); −1 when none.
 int FindMappedCell(const std::vector<HeaderCell>& cells, const std::string& wanted) {
@@ -202,35 +211,22 @@ class TableParser {
     for (const auto& [wanted, role] : mappings) {
       if (wanted->empty()) continue;
       const int i = FindMappedCell(cells, *wanted);
-      if (i < 0) {
-        std::string found;
-        for (std::size_t k = 0; k < cells.size() && k < 12; ++k)
-          found += (found.empty() ? "'" : ", '") + internal::Excerpt(cells[k].text) + "'";
+      if (i < 0)
         Fail("", "the " + std::string(RoleName(role)) + " is mapped to column '" + internal::Excerpt(*wanted) +
-                     "', which the header does not hold (" + std::to_string(cells.size()) + " columns: " + found + ")",
+                     "', which the header does not hold (" + std::to_string(cells.size()) + " columns: " +
+                     HeaderExcerpt(cells) + ")",
              "map it to a header text as written or to a column number from 1");
-      }
       if (std::find(mapped.begin(), mapped.end(), i) != mapped.end())
         Fail(cells[static_cast<std::size_t>(i)].text, "mapped to two roles", "map each column to one role");
       const auto& cell = cells[static_cast<std::size_t>(i)];
       const auto named = Classify(cell, i);
-      auto [name, unit] = SplitNameAndUnit(cell.text);
-      Column column{.header = cell.text, .role = role, .unit = cell.unit_line > 0 ? cell.unit : unit, .index = i};
+      const std::string unit = cell.unit_line > 0 ? cell.unit : SplitNameAndUnit(cell.text).second;
+      Column column{.header = cell.text, .role = role, .unit = unit, .index = i};
       if (named && !named->is_std && named->role == role) column.quantity = named->quantity;
       columns_.push_back(column);
       mapped.push_back(i);
     }
     return mapped;
-  }
-
-  bool Mapped(ColumnRole role) const {
-    switch (role) {
-      case ColumnRole::kFrequency: return !options_.columns.frequency.empty();
-      case ColumnRole::kForce: return !options_.columns.excitation.empty();
-      case ColumnRole::kResponse: return !options_.columns.response.empty();
-      case ColumnRole::kPhase: return !options_.columns.phase.empty();
-    }
-    return false;
   }
 
   void ReadHeader(const std::vector<HeaderCell>& cells) {
@@ -241,7 +237,9 @@ class TableParser {
       const auto column = Classify(cells[static_cast<std::size_t>(i)], i);
       if (!column) continue;
       // A role mapped by the options takes no other column by name (its uncertainty still does).
-      if (Mapped(column->role) && !column->is_std) continue;
+      if (!column->is_std && Main(column->role) != nullptr && std::find(mapped.begin(), mapped.end(),
+                                                                         Main(column->role)->index) != mapped.end())
+        continue;
       for (const auto& other : columns_)
         if (other.role == column->role && other.is_std == column->is_std)
           Fail(column->header,
@@ -252,12 +250,7 @@ class TableParser {
     }
     for (ColumnRole role : {ColumnRole::kFrequency, ColumnRole::kForce, ColumnRole::kResponse, ColumnRole::kPhase}) {
       if (Main(role) != nullptr) continue;
-      std::string found;
-      // A few cells, printable: a table's header may be anything.
-      for (std::size_t i = 0; i < cells.size() && i < 12; ++i)
-        found += (found.empty() ? "'" : ", '") + internal::Excerpt(cells[i].text) + "'";
-      if (cells.size() > 12) found += " and " + std::to_string(cells.size() - 12) + " more";
-      Fail(std::string(RoleName(role)), "missing (the header has " + found + ")",
+      Fail(std::string(RoleName(role)), "missing (the header has " + HeaderExcerpt(cells) + ")",
            "name the columns frequency_Hz, force_N (or voltage_V, base_acceleration_m_s2), one of "
            "acceleration_m_s2 / velocity_m_s / "
            "displacement_m (or response [unit]), and phase_rad or phase_deg (docs/phasor-table.md); or, for an "

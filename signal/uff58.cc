@@ -395,6 +395,32 @@ std::string Uff58Dataset::NodeDirection() const {
   return std::to_string(response_node) + ":" + direction;
 }
 
+std::optional<Quantity> Uff58Quantity(int data_type) {
+  switch (data_type) {
+    case uff58::kDisplacementType: return Quantity::kDisplacement;
+    case uff58::kVelocityType: return Quantity::kVelocity;
+    case uff58::kAccelerationType: return Quantity::kAcceleration;
+    case uff58::kReactionForceType:
+    case uff58::kExcitationForceType: return Quantity::kForce;
+    default: return std::nullopt;
+  }
+}
+
+std::string Uff58Unit(const std::string& unit) {
+  std::string compact;
+  for (char c : unit)
+    if (c != ' ') compact += c;
+  // "m/s\xB2": the ² of a writer in Latin-1 (Windows-1252), the encoding of
+  // many universal files.
+  if (compact == "m/s2" || compact == "m/s**2" || compact == "m/s\xC2\xB2" || compact == "m/s\xB2" ||
+      compact == "ms^-2" || compact == "m/s/s" || compact == "m/sec^2" || compact == "m/sec2")
+    return "m/s^2";
+  if (compact == "G") return "g";
+  if (compact == "mm/sec") return "mm/s";
+  if (compact == "m/sec") return "m/s";
+  return compact;
+}
+
 bool Uff58Dataset::Complex() const { return ordinate_type == kComplexSingle || ordinate_type == kComplexDouble; }
 
 double Uff58Dataset::Abscissa(int i) const {

@@ -18,9 +18,12 @@
 #include <array>
 #include <complex>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "signal/quantity.h"
 
 namespace beamid::signal {
 
@@ -89,6 +92,16 @@ std::vector<Uff58Dataset> ParseUff58(std::string_view bytes, const std::string& 
 
 std::vector<Uff58Dataset> ReadUff58(const std::filesystem::path& file,
                                     Uff58Functions functions = Uff58Functions::kTimeHistories);
+
+// The quantity a record 8..11 specific data type names (8 displacement, 11
+// velocity, 12 acceleration, 9/13 force); nullopt for the others.
+std::optional<Quantity> Uff58Quantity(int data_type);
+
+// The spellings of acquisition systems for the units the campaign format
+// accepts ("m/s2", "m/s**2", "m/s²" in UTF-8 or Latin-1, "G", "mm/sec", …)
+// in the campaign's words (signal/quantity.h); blanks removed, any other
+// label as it is.
+std::string Uff58Unit(const std::string& unit);
 
 // True for the extensions of universal files: .uff, .unv (any case).
 bool IsUniversalFile(const std::filesystem::path& file);

@@ -35,25 +35,16 @@ std::string Name(const Uff58Dataset& d) {
 
 // The quantity a record 9 or 10 states by its specific data type, else by its unit.
 std::optional<Quantity> QuantityOf(const Uff58Axis& axis) {
-  switch (axis.data_type) {
-    case kDisplacementType: return Quantity::kDisplacement;
-    case kVelocityType: return Quantity::kVelocity;
-    case kAccelerationType: return Quantity::kAcceleration;
-    case kReactionForceType:
-    case kExcitationForceType: return Quantity::kForce;
-    default: break;
-  }
-  const auto unit = NormaliseUnit(axis.unit);
-  if (!unit) return std::nullopt;
+  if (const auto named = Uff58Quantity(axis.data_type)) return named;
+  const std::string unit = Uff58Unit(axis.unit);
   for (Quantity q : {Quantity::kForce, Quantity::kAcceleration, Quantity::kVelocity, Quantity::kDisplacement})
-    if (UnitToSiFactor(q, *unit)) return q;
+    if (UnitToSiFactor(q, unit)) return q;
   return std::nullopt;
 }
 
 double ToSi(const std::string& source, const Uff58Dataset& d, const Uff58Axis& axis, Quantity q, const char* record) {
   if (axis.unit.empty()) return 1.0;
-  const auto unit = NormaliseUnit(axis.unit);
-  const auto factor = unit ? UnitToSiFactor(q, *unit) : std::nullopt;
+  const auto factor = UnitToSiFactor(q, Uff58Unit(axis.unit));
   if (!factor)
     Fail(source,
          d.Describe() + ": " + record + " gives the unit '" + internal::Excerpt(axis.unit) + "', not one of " +

@@ -18,36 +18,6 @@ using internal::FormatNumber;
 // Datasets named in a message: the first few say what the file holds.
 constexpr std::size_t kMaxDatasetsNamed = 8;
 
-// Specific data types of records 8..11 that name a quantity.
-std::optional<Quantity> QuantityOfDataType(int data_type) {
-  switch (data_type) {
-    case 8: return Quantity::kDisplacement;
-    case 11: return Quantity::kVelocity;
-    case 12: return Quantity::kAcceleration;
-    case 9:
-    case 13: return Quantity::kForce;
-    default: return std::nullopt;
-  }
-}
-
-// The spellings of acquisition systems for the units the campaign format
-// accepts ("m/s2", "m/s**2", "G", "mm/sec", …) in the campaign's words.
-std::string CanonicalUnit(std::string unit) {
-  std::string compact;
-  for (char c : unit)
-    if (c != ' ') compact += c;
-  // "m/s\xB2": the ² of a writer in Latin-1 (Windows-1252), the encoding of
-  // many universal files.
-  if (compact == "m/s2" || compact == "m/s**2" || compact == "m/s\xC2\xB2" || compact == "m/s\xB2" ||
-      compact == "ms^-2" ||
-      compact == "m/s/s" || compact == "m/sec^2" || compact == "m/sec2")
-    return "m/s^2";
-  if (compact == "G") return "g";
-  if (compact == "mm/sec") return "mm/s";
-  if (compact == "m/sec") return "m/s";
-  return compact;
-}
-
 double AbscissaToSeconds(const Uff58Dataset& dataset, const std::string& source) {
   const Uff58Axis& axis = dataset.abscissa;
   if (axis.data_type != 0 && axis.data_type != 1 && axis.data_type != 17)
@@ -136,7 +106,7 @@ Recording RecordingFromUff58(const std::vector<Uff58Dataset>& datasets, const Ca
                      "export all channels of a step together, with one sample rate and the same time span");
       continue;
     }
-    if (auto quantity = QuantityOfDataType(dataset.ordinate.data_type); quantity && *quantity != spec.quantity) {
+    if (auto quantity = Uff58Quantity(dataset.ordinate.data_type); quantity && *quantity != spec.quantity) {
       defects.Report(c,
                      dataset.Describe() + " holds " + std::string(QuantityName(*quantity)) + " (record 9 data type " +
                          std::to_string(dataset.ordinate.data_type) + ") but campaign.json's channel is a " +
@@ -148,7 +118,7 @@ Recording RecordingFromUff58(const std::vector<Uff58Dataset>& datasets, const Ca
     // header's must: one of the two is wrong, and beamid will not guess
     // which (a g read as m/s² is an error of 9.81).
     if (!dataset.ordinate.unit.empty()) {
-      const std::string unit = CanonicalUnit(dataset.ordinate.unit);
+      const std::string unit = Uff58Unit(dataset.ordinate.unit);
       if (!UnitToSiFactor(spec.quantity, unit)) {
         defects.Report(c,
                        dataset.Describe() + ": unit '" + Excerpt(dataset.ordinate.unit) +

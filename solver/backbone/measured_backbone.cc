@@ -629,18 +629,20 @@ PointView ModelPoint(const SingleModeFit& fit, const PointView& p, LevelControl 
 }
 
 // The fit regenerates the level, step by step, as the test ran it
-// (ModelPoint). At the two steps that border a jump the force-controlled
-// reading is singular: a fold's frequency moves with the parameters far
-// faster than any amplitude on the curve, and a fit whose fold lies one
-// step beyond the measured one puts that step on the other branch (a 100 %
-// miss, the level's whole RMS, on a 3 % noise table whose parameters hold
-// their truth). There the fit is read as it was fitted, at the measured
-// amplitude: the force it needs to hold the step, as for a
-// response-controlled level.
+// (ModelPoint). At the last step before a jump, on the branch that ends at
+// the fold, the force-controlled reading is singular: a fold's frequency
+// moves with the parameters far faster than any amplitude on the curve, and
+// a fit whose fold lies one step short of the measured one puts that step on
+// the other branch (a 100 % miss, the level's whole RMS, on a 3 % noise
+// table whose parameters hold their truth). There the fit is read as it was
+// fitted, at the measured amplitude: the force it needs to hold the step, as
+// for a response-controlled level. (Not the step after the jump: it lands on
+// a branch far from its fold, and near the top of the upper branch, where
+// |D| is small, the force reading magnified a sound fit's error to 65-83 %.)
 void Regenerate(const SingleModeFit& fit, const LevelData& data, const std::vector<SweepJump>& jumps, double window,
                 double a_max, LevelResonance& out) {
-  std::vector<bool> borders_jump(data.size(), false);
-  for (const auto& jump : jumps) borders_jump[data.sorted_index_of_run[jump.from_step]] = true;
+  std::vector<bool> before_jump(data.size(), false);
+  for (const auto& jump : jumps) before_jump[data.sorted_index_of_run[jump.from_step]] = true;
   // The fitted points (FitPoints' window).
   const double peak = At(data.raw, PeakIndex(data.raw, data.size())).H();
   double sum_sq = 0, worst = 0, chi_square = 0, noise_sq = 0;
@@ -648,8 +650,8 @@ void Regenerate(const SingleModeFit& fit, const LevelData& data, const std::vect
   for (int i = 0; i < data.size(); ++i) {
     const PointView p = At(data.raw, i);
     if (p.H() < window * peak) continue;
-    const bool response = out.control == LevelControl::kResponse || borders_jump[i];
-    const PointView model = ModelPoint(fit, p, borders_jump[i] ? LevelControl::kResponse : out.control, a_max);
+    const bool response = out.control == LevelControl::kResponse || before_jump[i];
+    const PointView model = ModelPoint(fit, p, response ? LevelControl::kResponse : out.control, a_max);
     const std::complex<double> predicted = response ? model.force : model.disp;
     const std::complex<double> measured = response ? p.force : p.disp;
     const Eigen::Matrix2d covariance = response ? data.ForceCovariance(i) : data.DispCovariance(i);
