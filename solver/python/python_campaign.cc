@@ -217,9 +217,10 @@ Arguments (the command line's defaults):
 
 Returns a dict: campaign, campaign_sha256, num_harmonics (H), skipped (file,
 level, nominal_frequency_hz, reason), run_warnings, output, and levels: per level
-label (in campaign order) a dict with files, nominal_frequency_hz,
-frequency_hz, frequency_std_hz [Hz] and snr_db [dB] (arrays over the level's
-n steps) and channels: per channel (force first) quantity, unit (SI),
+label (in campaign order) a dict with step_index (each step's place among
+all the extracted steps), files, nominal_frequency_hz, frequency_hz,
+frequency_std_hz [Hz] and snr_db [dB] (arrays over the level's n steps) and
+channels: per channel (force first) quantity, unit (SI),
 position_m [m], phasors (complex, n × H, peak, SI, force fundamental real
 positive), std_real, std_imag, correlation, std_amplitude, std_phase_rad
 [rad] (n × H), mean, thd, snr_db, noise_rms (n). beamid.to_pandas(phasors)

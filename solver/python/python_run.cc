@@ -2,11 +2,26 @@
 
 #include <unistd.h>
 
+#include <stdexcept>
+
 #include "solver/report/temp_folder.h"
 
 namespace py = pybind11;
 
 namespace beamid::python {
+namespace {
+// Set while this thread runs a progress callback.
+thread_local bool in_callback = false;
+}  // namespace
+
+std::mutex& PythonRun::WorkMutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
+void PythonRun::RefuseCallFromCallback() {
+  if (in_callback) throw std::runtime_error("a function of beamid cannot be called from a progress callback");
+}
 
 PythonRun::PythonRun(py::object progress) : callback_(std::move(progress)), pid_(::getpid()) {
   if (!callback_.is_none() && !PyCallable_Check(callback_.ptr()))
@@ -44,7 +59,13 @@ void PythonRun::Report(double fraction, const std::string& what) {
     // Ctrl-C only sets a flag; the interpreter's handler raises
     // KeyboardInterrupt here, in the main thread.
     if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-    if (!callback_.is_none()) callback_(task_, fraction, what);
+    if (!callback_.is_none()) {
+      struct CallbackScope {
+        CallbackScope() { in_callback = true; }
+        ~CallbackScope() { in_callback = false; }
+      } scope;
+      callback_(task_, fraction, what);
+    }
   } catch (const py::error_already_set&) {
     python_error_ = std::current_exception();
     abandoned_ = true;

@@ -39,10 +39,16 @@ class PythonRun {
   // Runs work(observer) with the GIL released and returns its value. A Python
   // exception of the callback, or KeyboardInterrupt, is raised once the work
   // has unwound; beamid's exceptions pass through to the module's translator.
+  // Calls from several Python threads run one after the other: Ipopt's
+  // linear solver (MUMPS) keeps global state that forbids two fits at once.
+  // A call from a progress callback, which would wait for itself, raises
+  // RuntimeError.
   template <typename Work>
   auto Run(Work&& work) -> decltype(work(std::declval<const workflow::RunObserver&>())) {
+    RefuseCallFromCallback();
     try {
       pybind11::gil_scoped_release release;
+      std::lock_guard lock(WorkMutex());
       return work(observer_);
     } catch (const Abandoned&) {
       RaisePythonError();
@@ -64,6 +70,8 @@ class PythonRun {
 
   void Report(double fraction, const std::string& what);
   [[noreturn]] void RaisePythonError();
+  static std::mutex& WorkMutex();
+  static void RefuseCallFromCallback();
 
   pybind11::object callback_;
   pid_t pid_;  // a forked worker process (solver/estimation/internal/worker_processes.h) never calls Python

@@ -81,6 +81,33 @@ class Progress(unittest.TestCase):
         self.assertTrue(beamid.model_backbone(MODEL_FILE, points=5)["complete"])
 
 
+    def test_a_call_of_beamid_from_the_callback_is_refused(self):
+        def call_again(task, fraction, what):
+            beamid.model_backbone(MODEL_FILE, points=2)
+
+        with self.assertRaisesRegex(RuntimeError, "cannot be called from a progress callback"):
+            beamid.model_backbone(MODEL_FILE, points=5, progress=call_again)
+
+
+class Threads(unittest.TestCase):
+    def test_calls_from_several_threads_give_each_its_own_result(self):
+        alone = beamid.model_backbone(MODEL_FILE, points=50)["frequency_hz"]
+        results = {}
+
+        def trace(name, points):
+            results[name] = beamid.model_backbone(MODEL_FILE, points=points)["frequency_hz"]
+
+        threads = [threading.Thread(target=trace, args=(i, 50 if i % 2 == 0 else 30)) for i in range(4)]
+        for thread in threads:
+            thread.start()
+        for thread in threads:
+            thread.join()
+        for i in range(4):
+            self.assertEqual(len(results[i]), 50 if i % 2 == 0 else 30)
+        self.assertEqual(list(results[0]), list(alone))
+        self.assertEqual(list(results[2]), list(alone))
+
+
 class Interrupt(unittest.TestCase):
     def test_ctrl_c_abandons_the_work_with_keyboard_interrupt(self):
         # SIGINT from another thread, as a terminal's Ctrl-C, while the work runs without a callback.

@@ -308,6 +308,18 @@ class Warnings(unittest.TestCase):
 
 
 class Progress(unittest.TestCase):
+    def test_a_fit_abandoned_by_the_callback_leaves_no_worker_process(self):
+        def stop_after_the_first_start(task, fraction, what):
+            if what.startswith("start "):
+                raise LookupError("abandoned")
+
+        with self.assertRaisesRegex(LookupError, "abandoned"):
+            beamid.identify(paths["campaign"], fit=["acc1", "acc2"], phasors=paths["phasors.json"], starts=4,
+                            workers=2, damping_laws=False, robust=False, progress=stop_after_the_first_start)
+        # The worker processes of the starts are gone and reaped: none left running or a zombie.
+        with self.assertRaises(ChildProcessError):
+            os.waitpid(-1, os.WNOHANG)
+
     def test_the_callback_sees_each_task_advance_to_its_end(self):
         calls = []
         beamid.identify(paths["campaign"], fit=["acc1", "acc2"], damping_laws=False, robust=False,
