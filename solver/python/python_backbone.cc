@@ -123,7 +123,7 @@ py::dict ModelBackboneToPython(const hb::BackboneFile& file) {
 }
 
 // A prefix the caller gave, or one in the run's temporary folder.
-std::string Prefix(PythonRun& run, const std::optional<std::string>& output) {
+std::string Prefix(PythonRun& run, const OptionalPath& output) {
   return run.OutputPath(output, "backbone");
 }
 
@@ -133,19 +133,19 @@ std::string Prefix(PythonRun& run, const std::optional<std::string>& output) {
 void AddBackboneFunctions(py::module_& module) {
   module.def(
       "measured_backbone",
-      [](std::variant<std::string, std::vector<std::string>> inputs, std::optional<std::string> channel,
-         bool skip_bad_steps, std::optional<std::string> result, std::optional<double> position_m,
+      [](const std::variant<Path, std::vector<Path>>& inputs, std::optional<std::string> channel,
+         bool skip_bad_steps, const OptionalPath& result, std::optional<double> position_m,
          int lines_before_header, bool units_row, std::map<std::string, std::string> columns,
-         bool keep_flagged_levels, std::optional<std::string> output, py::object progress) {
+         bool keep_flagged_levels, const OptionalPath& output, py::object progress) {
         PythonRun run(std::move(progress));
         workflow::MeasureBackboneRequest request;
-        if (const auto* one = std::get_if<std::string>(&inputs))
-          request.inputs = {*one};
+        if (const auto* one = std::get_if<Path>(&inputs))
+          request.inputs = {one->string()};
         else
-          request.inputs = std::get<std::vector<std::string>>(inputs);
+          for (const Path& input : std::get<std::vector<Path>>(inputs)) request.inputs.push_back(input.string());
         request.channel = channel.value_or("");
         request.skip_bad_steps = skip_bad_steps;
-        request.result_file = result.value_or("");
+        request.result_file = TextOf(result);
         request.position_m = position_m.value_or(-1.0);
         request.table.layout.lines_before_header = lines_before_header;
         request.table.layout.units_row = units_row;
@@ -193,10 +193,10 @@ table as PREFIX.csv holds it.)");
 
   module.def(
       "model_backbone",
-      [](const std::string& model, double min_theta_rad, double max_theta_rad, int points, int harmonics,
-         std::optional<std::string> output, py::object progress) {
+      [](const Path& model, double min_theta_rad, double max_theta_rad, int points, int harmonics,
+         const OptionalPath& output, py::object progress) {
         PythonRun run(std::move(progress));
-        workflow::TraceBackboneRequest request{.model_file = model,
+        workflow::TraceBackboneRequest request{.model_file = model.string(),
                                                .min_theta_rad = min_theta_rad,
                                                .max_theta_rad = max_theta_rad,
                                                .points = points,

@@ -158,7 +158,7 @@ py::dict PhasorSetToPython(const signal::PhasorSet& set) {
 void AddCampaignFunctions(py::module_& module) {
   module.def(
       "read_campaign",
-      [](const std::string& folder) {
+      [](const Path& folder) {
         PythonRun run{py::none()};
         const signal::Campaign campaign = run.Run([&](const workflow::RunObserver& observer) {
           return workflow::ReadCampaignAndWarn("read_campaign", folder, observer);
@@ -179,14 +179,14 @@ Raises beamid.InputError naming the file, the entry and the fix.)");
 
   module.def(
       "extract",
-      [](const std::string& campaign_folder, int harmonics, std::optional<std::vector<std::string>> channels,
-         bool skip_bad_steps, bool remove_ringing, int threads, std::optional<std::string> output,
-         std::optional<std::string> csv_output, py::object progress) {
+      [](const Path& campaign_folder, int harmonics, std::optional<std::vector<std::string>> channels,
+         bool skip_bad_steps, bool remove_ringing, int threads, const OptionalPath& output,
+         const OptionalPath& csv_output, py::object progress) {
         PythonRun run(std::move(progress));
-        workflow::ExtractRequest request{.campaign_folder = campaign_folder,
+        workflow::ExtractRequest request{.campaign_folder = campaign_folder.string(),
                                          .harmonics = harmonics,
                                          .output = run.OutputPath(output, "phasors.json"),
-                                         .csv_output = csv_output.value_or(""),
+                                         .csv_output = TextOf(csv_output),
                                          .threads = threads,
                                          .channels = channels.value_or(std::vector<std::string>{}),
                                          .skip_bad_steps = skip_bad_steps,
@@ -196,7 +196,7 @@ Raises beamid.InputError naming the file, the entry and the fix.)");
         run.IssueWarnings(WarningCategory());
         py::dict d = PhasorSetToPython(outcome.phasors);
         d["run_warnings"] = run.Warnings();
-        d["output"] = output ? py::object(py::str(*output)) : py::object(py::none());
+        d["output"] = PythonOf(output);
         return d;
       },
       py::arg("campaign_folder"), py::kw_only(), py::arg("harmonics") = 5, py::arg("channels") = py::none(),

@@ -41,14 +41,14 @@ solver::PhasorUncertainty ParsePhasorUncertainty(const std::string& name) {
 // campaign, its fitted and held-out channels, where the phasors come from,
 // the model's harmonics and the weighting.
 template <typename Request>
-Request CampaignRequest(const std::string& campaign_folder, const std::optional<std::vector<std::string>>& fit,
-                        const std::vector<std::string>& validate, const std::optional<std::string>& phasors,
+Request CampaignRequest(const Path& campaign_folder, const std::optional<std::vector<std::string>>& fit,
+                        const std::vector<std::string>& validate, const OptionalPath& phasors,
                         bool skip_bad_steps, int harmonics, int fit_harmonics, const std::string& phasor_uncertainty) {
   Request request;
-  request.campaign_folder = campaign_folder;
+  request.campaign_folder = campaign_folder.string();
   request.fit_channels = fit;
   request.validate_channels = validate;
-  request.phasor_input.phasors_file = phasors.value_or("");
+  request.phasor_input.phasors_file = TextOf(phasors);
   request.phasor_input.skip_bad_steps = skip_bad_steps;
   request.harmonics = harmonics;
   request.fit_harmonics = fit_harmonics;
@@ -258,17 +258,17 @@ py::dict PredictionToPython(const workflow::PredictOutcome& outcome) {
 void AddFitFunctions(py::module_& module) {
   module.def(
       "identify",
-      [](const std::string& campaign_folder, std::optional<std::vector<std::string>> fit,
-         std::vector<std::string> validate, const std::string& model, std::optional<std::string> phasors,
+      [](const Path& campaign_folder, std::optional<std::vector<std::string>> fit,
+         std::vector<std::string> validate, const std::string& model, const OptionalPath& phasors,
          bool skip_bad_steps, int harmonics, int fit_harmonics, const std::string& phasor_uncertainty, int starts,
          int workers, bool fit_ei_scale, bool fix_loss_factor, bool damping_laws, bool robust, double beam_loss_factor,
-         std::optional<std::string> output, std::optional<std::string> csv_output, py::object progress) {
+         const OptionalPath& output, const OptionalPath& csv_output, py::object progress) {
         PythonRun run(std::move(progress));
         auto request = CampaignRequest<workflow::IdentifyRequest>(campaign_folder, fit, validate, phasors,
                                                                   skip_bad_steps, harmonics, fit_harmonics,
                                                                   phasor_uncertainty);
         request.output = run.OutputPath(output, "result.json");
-        request.csv_output = csv_output.value_or("");
+        request.csv_output = TextOf(csv_output);
         request.model = model;
         request.starts = starts;
         // Starts in worker processes (fork): PythonRun calls no Python from them.
@@ -328,11 +328,11 @@ parameters' table.)");
 
   module.def(
       "predict",
-      [](const std::string& result, double x, std::optional<std::string> campaign, std::optional<std::string> output,
+      [](const Path& result, double x, const OptionalPath& campaign, const OptionalPath& output,
          py::object progress) {
         PythonRun run(std::move(progress));
-        workflow::PredictRequest request{.result_file = result,
-                                         .campaign_folder = campaign.value_or(""),
+        workflow::PredictRequest request{.result_file = result.string(),
+                                         .campaign_folder = TextOf(campaign),
                                          .position_m = x,
                                          .output = run.OutputPath(output, "prediction.json")};
         // As the program: the prediction is written, the run still failed.
@@ -370,11 +370,11 @@ exit code 3; with output the file is written all the same).)");
 
   module.def(
       "diagnose",
-      [](const std::string& campaign_folder, std::optional<std::vector<std::string>> fit,
+      [](const Path& campaign_folder, std::optional<std::vector<std::string>> fit,
          std::vector<std::string> validate, std::vector<std::string> candidates, bool recording_check,
-         std::optional<std::string> phasors, bool skip_bad_steps, int harmonics, int fit_harmonics,
-         const std::string& phasor_uncertainty, int workers, double significance, std::optional<std::string> result,
-         std::optional<std::string> curves, std::optional<std::string> output, py::object progress) {
+         const OptionalPath& phasors, bool skip_bad_steps, int harmonics, int fit_harmonics,
+         const std::string& phasor_uncertainty, int workers, double significance, const OptionalPath& result,
+         const OptionalPath& curves, const OptionalPath& output, py::object progress) {
         PythonRun run(std::move(progress));
         auto request = CampaignRequest<workflow::DiagnoseRequest>(
             campaign_folder, fit, validate, phasors, skip_bad_steps, harmonics, fit_harmonics, phasor_uncertainty);
@@ -384,8 +384,8 @@ exit code 3; with output the file is written all the same).)");
         request.significance = significance;
         request.recording_check = recording_check;
         request.output = run.OutputPath(output, "diagnosis.json");
-        request.curves = curves.value_or("");
-        request.result_file = result.value_or("");
+        request.curves = TextOf(curves);
+        request.result_file = TextOf(result);
         return RunWorkflow(run, request, workflow::DiagnoseCampaign, DiagnosisToPython, request.output, output);
       },
       py::arg("campaign_folder"), py::kw_only(), py::arg("fit") = py::none(),

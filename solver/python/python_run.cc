@@ -44,8 +44,8 @@ PythonRun::PythonRun(py::object progress) : callback_(std::move(progress)), pid_
   };
 }
 
-std::string PythonRun::OutputPath(const std::optional<std::string>& path, const std::string& name) {
-  if (path) return *path;
+std::string PythonRun::OutputPath(const OptionalPath& path, const std::string& name) {
+  if (path) return path->string();
   if (!temp_folder_) temp_folder_ = std::make_unique<solver::TempFolder>("python");
   return (temp_folder_->path() / name).string();
 }
@@ -104,10 +104,10 @@ py::object LoadJsonFile(const std::filesystem::path& path) {
   return py::module_::import("json").attr("loads")(solver::ReadWholeFile(path));
 }
 
-void AddRunFields(py::dict& result, const std::filesystem::path& json_file, const std::optional<std::string>& output,
+void AddRunFields(py::dict& result, const std::filesystem::path& json_file, const OptionalPath& output,
                   const PythonRun& run) {
   result["document"] = LoadJsonFile(json_file);
-  result["output"] = output ? py::object(py::str(*output)) : py::object(py::none());
+  result["output"] = PythonOf(output);
   result["run_warnings"] = run.Warnings();
   result["notes"] = run.Notes();
 }

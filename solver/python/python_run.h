@@ -17,6 +17,7 @@
 #include <vector>
 
 #include <pybind11/pybind11.h>
+#include <pybind11/stl/filesystem.h>
 #include <sys/types.h>
 
 #include "solver/python/python_errors.h"
@@ -24,6 +25,19 @@
 #include "solver/workflow/run_observer.h"
 
 namespace beamid::python {
+
+// A path argument: a str or any os.PathLike (pathlib.Path), as
+// pybind11/stl/filesystem.h converts it; optional ones are None when not given.
+using Path = std::filesystem::path;
+using OptionalPath = std::optional<std::filesystem::path>;
+
+// An optional path as a workflow's request holds it: "" when not given.
+inline std::string TextOf(const OptionalPath& path) { return path ? path->string() : std::string(); }
+
+// An optional path as a result holds it: None when not given.
+inline pybind11::object PythonOf(const OptionalPath& path) {
+  return path ? pybind11::object(pybind11::str(path->string())) : pybind11::object(pybind11::none());
+}
 
 class PythonRun {
  public:
@@ -34,7 +48,7 @@ class PythonRun {
   PythonRun& operator=(const PythonRun&) = delete;
 
   // `path` when the caller gave one, else `name` in the run's temporary folder.
-  std::string OutputPath(const std::optional<std::string>& path, const std::string& name);
+  std::string OutputPath(const OptionalPath& path, const std::string& name);
 
   // Runs work(observer) with the GIL released and returns its value. A Python
   // exception of the callback, or KeyboardInterrupt, is raised once the work
@@ -90,15 +104,15 @@ pybind11::object LoadJsonFile(const std::filesystem::path& path);
 // What every function that writes a file returns beside its own fields:
 // document (json_file as Python objects), output (where the caller kept it,
 // or None), run_warnings and notes.
-void AddRunFields(pybind11::dict& result, const std::filesystem::path& json_file,
-                  const std::optional<std::string>& output, const PythonRun& run);
+void AddRunFields(pybind11::dict& result, const std::filesystem::path& json_file, const OptionalPath& output,
+                  const PythonRun& run);
 
 // A whole call: work(request, observer) under `run`, its warnings issued,
 // its outcome converted by to_python (which may throw, as the program does
 // for an outcome it turns into an exit code) and the run's fields added.
 template <typename Request, typename Work, typename ToPython>
 pybind11::dict RunWorkflow(PythonRun& run, const Request& request, Work&& work, ToPython&& to_python,
-                           const std::filesystem::path& json_file, const std::optional<std::string>& output) {
+                           const std::filesystem::path& json_file, const OptionalPath& output) {
   const auto outcome = run.Run([&](const workflow::RunObserver& observer) { return work(request, observer); });
   run.IssueWarnings(WarningCategory());
   pybind11::dict result = to_python(outcome);

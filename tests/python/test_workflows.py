@@ -2,6 +2,7 @@
 
 import math
 import os
+import pathlib
 import shutil
 import tempfile
 import unittest
@@ -9,8 +10,8 @@ import unittest
 import numpy
 
 import beamid
-from beamid_test_support import (MODEL_FILE, RELATIVE, assert_close, assert_documents_equal, error_message,
-                                 read_json, run_program, write_scenario)
+from beamid_test_support import (MODEL_FILE, SOURCE_DIR, assert_close, assert_documents_equal, error_message, read_json,
+                                 run_program, write_scenario)
 
 # Two levels of five steps about the resonance (54 Hz): enough for a fit with a held-out channel, a diagnosis
 # and a measured backbone, in seconds.
@@ -65,6 +66,7 @@ class ReadCampaign(unittest.TestCase):
         self.assertEqual([s["file"] for s in campaign["steps"]], [s["file"] for s in written["steps"]])
         self.assertEqual([s["frequency_hz"] for s in campaign["steps"]], [s["frequency_Hz"] for s in written["steps"]])
         self.assertEqual(campaign["levels"], ["low", "high"])
+        self.assertEqual(beamid.read_campaign(pathlib.Path(paths["campaign"]))["steps"], campaign["steps"])
         self.assertEqual(campaign["beam"]["length_m"], 0.6)
         # The content hash the program's phasors carry.
         self.assertEqual(campaign["sha256"], read_json(paths["phasors.json"])["campaign_sha256"])
@@ -247,6 +249,17 @@ class MeasuredBackbone(unittest.TestCase):
         # The phase resonance rises with the level (a hardening support).
         frequencies = [level["quadrature_frequency_hz"] for level in backbone["levels"]]
         self.assertLess(frequencies[0], frequencies[1])
+
+
+    def test_tables_given_as_paths_are_the_programs(self):
+        tables = [pathlib.Path(SOURCE_DIR, "examples", "phasor_tables", level + ".csv")
+                  for level in ("low", "mid", "high")]
+        prefix = os.path.join(folder.name, "tables")
+        run_program("-q", "backbone", "--measured", *map(str, tables), "-o", prefix)
+        backbone = beamid.measured_backbone(tables, output=pathlib.Path(prefix))
+        self.assertEqual(backbone["output"], prefix)
+        assert_documents_equal(self, backbone["document"], read_json(prefix + ".json"))
+        self.assertEqual([level["level"] for level in backbone["levels"]], ["low", "mid", "high"])
 
 
 class ModelBackbone(unittest.TestCase):
