@@ -29,8 +29,8 @@ using namespace pybind11::literals;
 namespace beamid::python {
 namespace {
 
-// An estimate's value and σ under `name` and `name`_std (or the given σ
-// key); NaN when it was not estimated, as the CSV leaves both cells empty.
+// An estimate's value and σ under the keys `name` and `std_name`; NaN when
+// it was not estimated, where the CSV leaves both cells empty.
 void PutEstimate(py::dict& d, const std::string& name, const std::string& std_name, const solver::Estimate& e) {
   d[py::str(name)] = e.valid ? e.value : kMissing;
   d[py::str(std_name)] = e.valid && std::isfinite(e.value) ? e.std : kMissing;
