@@ -25,7 +25,7 @@ install(TARGETS ${beamid_libraries} EXPORT beamidTargets
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 foreach(folder hb signal solver)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${folder} DESTINATION ${BEAMID_INSTALL_INCLUDEDIR}
-          FILES_MATCHING PATTERN "*.h" PATTERN "cli" EXCLUDE)
+          FILES_MATCHING PATTERN "*.h" PATTERN "cli" EXCLUDE PATTERN "python" EXCLUDE)
 endforeach()
 install(EXPORT beamidTargets NAMESPACE beamid:: DESTINATION ${BEAMID_INSTALL_CMAKEDIR})
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/beamidConfig.cmake.in

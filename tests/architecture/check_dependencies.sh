@@ -2,7 +2,8 @@
 # The folders are the architecture, and their dependencies point one way:
 #   hb (models, error types) ← signal (recordings → phasors) ← solver/,
 #   and inside solver/: estimation ← diagnosis ← report ← workflow ← cli,
-#   backbone (model-free, on signal only) ← report ← workflow ← cli.
+#   backbone (model-free, on signal only) ← report ← workflow ← cli,
+#   and workflow ← python (the Python module, beside cli).
 # The workflows (the use cases) print nothing and know no command line: no
 # CLI11 and no solver/cli/ in solver/workflow/.
 # An include against that direction fails this check, and so does a JSON or
@@ -30,6 +31,11 @@ forbid solver/diagnosis 'solver/(backbone|report|workflow|cli)/' "diagnosis buil
 forbid solver/report 'solver/(workflow|cli)/' "the report is a library the workflows and the cli use"
 forbid solver/workflow 'solver/cli/|CLI/' "a workflow is called by the cli, never the other way"
 forbid solver/estimation 'nlohmann/|fmt/|CLI/' "an estimation header is plain data" '*.h'
+# The Python module (solver/python) stands beside the program, on the workflows.
+for folder in hb signal solver/estimation solver/backbone solver/diagnosis solver/report solver/workflow solver/cli; do
+  forbid "$folder" 'solver/python/|pybind11/' "the Python module uses the workflows, never the other way"
+done
+forbid solver/python 'solver/cli/|CLI/' "the Python module calls the workflows as the program does, not the program"
 # A workflow prints nothing: what it tells goes to its RunObserver.
 prints=$(grep -rnE 'fmt::print|std::(cout|cerr|clog)|(^|[^a-z_])(f?printf|f?puts|fwrite)\(' solver/workflow || true)
 if [ -n "$prints" ]; then

@@ -23,6 +23,7 @@ for f in share/doc/beamid/README.md share/doc/beamid/LICENSE share/doc/beamid/fo
 done
 [ -x "$prefix/share/beamid/examples/paper_setup/run.sh" ] || { echo "examples/paper_setup/run.sh not executable"; exit 1; }
 [ ! -e "$prefix/include/beamid/solver/cli" ] || { echo "the program's own headers were installed"; exit 1; }
+[ ! -e "$prefix/include/beamid/solver/python" ] || { echo "the Python module's own headers were installed"; exit 1; }
 if grep -rIl -e "$source" -e "$build" "$prefix" >/dev/null; then
   echo "installed files name the source or build tree:"; grep -rIl -e "$source" -e "$build" "$prefix"; exit 1
 fi

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include <poll.h>
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -73,6 +74,22 @@ void RunTextJobsInWorkers(int num_jobs, int num_workers, const std::function<std
   };
   std::vector<Worker> workers(num_workers);
   for (int i = 0; i < num_jobs; ++i) workers[i % num_workers].jobs.push_back(i);
+  // When a fork fails or collect throws (a caller that abandons the run:
+  // Ctrl-C in the Python module), no worker may be left blocked on a pipe
+  // nobody reads, or unreaped: each is killed and waited for.
+  struct StopWorkers {
+    std::vector<Worker>& workers;
+    bool finished = false;
+    ~StopWorkers() {
+      if (finished) return;
+      for (Worker& w : workers) {
+        if (w.fd >= 0) ::close(w.fd);
+        if (w.pid <= 0) continue;
+        ::kill(w.pid, SIGKILL);
+        ::waitpid(w.pid, nullptr, 0);
+      }
+    }
+  } stop{workers};
   // A child inherits the parent's unflushed stdio buffers, and whatever it
   // prints flushes them again: the parent's pending output appeared once per
   // worker.
@@ -112,19 +129,21 @@ void RunTextJobsInWorkers(int num_jobs, int num_workers, const std::function<std
     }
     for (pollfd& p : polls) {
       if (p.fd < 0 || !(p.revents & (POLLIN | POLLHUP | POLLERR))) continue;
+      const auto close_pipe = [&] {
+        ::close(p.fd);
+        workers[static_cast<std::size_t>(&p - polls.data())].fd = -1;
+        p.fd = -1;
+        --open;
+      };
       std::int64_t index = 0, status = 0, length = 0;
       if (!ReadAll(p.fd, &index, sizeof index) || !ReadAll(p.fd, &status, sizeof status) ||
           !ReadAll(p.fd, &length, sizeof length) || index < 0 || index >= num_jobs || length < 0) {
-        ::close(p.fd);
-        p.fd = -1;
-        --open;
+        close_pipe();
         continue;
       }
       std::vector<char> payload(static_cast<std::size_t>(length));
       if (!ReadAll(p.fd, payload.data(), payload.size())) {
-        ::close(p.fd);
-        p.fd = -1;
-        --open;
+        close_pipe();
         continue;
       }
       received[index] = true;
@@ -137,6 +156,7 @@ void RunTextJobsInWorkers(int num_jobs, int num_workers, const std::function<std
     int status = 0;
     ::waitpid(w.pid, &status, 0);
   }
+  stop.finished = true;
   for (int i = 0; i < num_jobs; ++i)
     if (!received[i]) collect(i, {}, "the worker process died", ++done);
 }
