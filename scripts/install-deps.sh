@@ -8,7 +8,7 @@ packages=(
   nlohmann-json3-dev libcli11-dev libfmt-dev gnuplot-nox librsvg2-bin zlib1g-dev libssl-dev
   chromium
   clang libclang-rt-14-dev
-  python3-dev pybind11-dev python3-numpy python3-pandas
+  python3-dev pybind11-dev python3-numpy python3-pandas python3-matplotlib
 )
 missing=()
 for p in "${packages[@]}"; do

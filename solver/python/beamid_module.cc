@@ -14,4 +14,6 @@ PYBIND11_MODULE(_beamid, module) {
   beamid::python::AddCampaignFunctions(module);
   beamid::python::AddFitFunctions(module);
   beamid::python::AddBackboneFunctions(module);
+  beamid::python::AddFrcFunctions(module);
+  beamid::python::AddSimulateFunctions(module);
 }

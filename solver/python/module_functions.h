@@ -13,5 +13,9 @@ void AddCampaignFunctions(pybind11::module_& module);
 void AddFitFunctions(pybind11::module_& module);
 // measured_backbone, model_backbone (python_backbone.cc).
 void AddBackboneFunctions(pybind11::module_& module);
+// simulate (python_simulate.cc).
+void AddSimulateFunctions(pybind11::module_& module);
+// frc (python_frc.cc).
+void AddFrcFunctions(pybind11::module_& module);
 
 }  // namespace beamid::python

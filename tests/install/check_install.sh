@@ -4,14 +4,22 @@
 # a folder of its own; a project that knows nothing but the prefix finds the
 # libraries with find_package(beamid), compiles against the installed
 # headers, links and runs; nothing installed names the source or build tree.
-# Usage: check_install.sh BUILD_FOLDER SOURCE_FOLDER
+# With PYTHON (the interpreter the module was built for; "none": no module)
+# the prefix is a virtual environment that sees the system's packages
+# (numpy), as docs/python.md installs it: its python imports beamid and
+# traces a backbone, and so does PYTHON with only the prefix's
+# site-packages on PYTHONPATH.
+# Usage: check_install.sh BUILD_FOLDER SOURCE_FOLDER [PYTHON]
 set -euo pipefail
 build=$(cd "$1" && pwd)
 source=$(cd "$2" && pwd)
+python=${3:-none}
+python_note=""
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 prefix="$work/prefix"
 
+if [ "$python" != none ]; then "$python" -m venv --without-pip --system-site-packages "$prefix"; fi
 cmake --install "$build" --prefix "$prefix" >/dev/null
 version=$(grep -m1 -o 'project(beamid VERSION [0-9.]*' "$source/CMakeLists.txt" | cut -d' ' -f3)
 [ "$("$prefix/bin/beamid" --version)" = "beamid $version" ] || {
@@ -33,6 +41,20 @@ mkdir "$work/run"
 (cd "$work/run" && "$prefix/bin/beamid" frc "$prefix/share/beamid/examples/paper_setup/model.json" \
    --force-N 0.5 --from-hz 50 --to-hz 58 -o out/frc >/dev/null)
 [ -s "$work/run/out/frc.json" ] || { echo "installed beamid frc wrote no out/frc.json"; ls -R "$work/run"; exit 1; }
+
+# The Python package, from a folder of its own, with nothing of the build on the path.
+if [ "$python" != none ]; then
+  script='import beamid, sys; b = beamid.model_backbone(sys.argv[1], points=5); print(beamid.__version__, len(b["frequency_hz"]))'
+  model="$prefix/share/beamid/examples/paper_setup/model.json"
+  expected="$version 5"
+  answer=$(cd "$work/run" && env -u PYTHONPATH "$prefix/bin/python" -c "$script" "$model")
+  [ "$answer" = "$expected" ] || { echo "the environment's python printed '$answer', expected '$expected'"; exit 1; }
+  site=$(ls -d "$prefix"/lib/python3*/site-packages)
+  [ -f "$site/beamid/__init__.py" ] || { echo "not installed: the package beamid under $site"; exit 1; }
+  answer=$(cd "$work/run" && PYTHONPATH="$site" "$python" -c "$script" "$model")
+  [ "$answer" = "$expected" ] || { echo "$python with PYTHONPATH=$site printed '$answer', expected '$expected'"; exit 1; }
+  python_note=", import beamid in the environment and on PYTHONPATH"
+fi
 
 # A project of its own, on the prefix alone.
 mkdir "$work/consumer"
@@ -59,4 +81,4 @@ cmake --build "$work/consumer/build" >/dev/null
 levels=$(grep -c '"label"' "$source/examples/scenarios/paper_base.json" || true)
 answer=$("$work/consumer/build/consumer" "$prefix/share/beamid/examples/scenarios/paper_base.json")
 [ "$answer" = "$version $levels" ] || { echo "the consumer printed '$answer', expected '$version $levels'"; exit 1; }
-echo "installed into $prefix: beamid $version, an example run, a project built on find_package(beamid)"
+echo "installed into $prefix: beamid $version, an example run, a project built on find_package(beamid)$python_note"

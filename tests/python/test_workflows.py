@@ -26,7 +26,7 @@ def setUpModule():
     global folder
     folder = tempfile.TemporaryDirectory(prefix="beamid_python_test_")
     for name in ("scenario.json", "campaign", "phasors.json", "phasors.csv", "result.json", "parameters.csv",
-                 "prediction.json", "diagnosis.json", "measured", "model_backbone"):
+                 "prediction.json", "diagnosis.json", "measured", "model_backbone", "frc"):
         paths[name] = os.path.join(folder.name, name)
     write_scenario(paths["scenario.json"], LEVELS, seed=11)
     campaign = paths["campaign"]
@@ -41,6 +41,8 @@ def setUpModule():
                 paths["diagnosis.json"])
     run_program("-q", "backbone", "--measured", campaign, "--channel", "acc2", "-o", paths["measured"])
     run_program("-q", "backbone", MODEL_FILE, "--points", "20", "-o", paths["model_backbone"])
+    run_program("-q", "frc", MODEL_FILE, "--force-N", "0.5,2", "--from-hz", "52", "--to-hz", "56", "-H", "3",
+                "-o", paths["frc"])
 
 
 def tearDownModule():
@@ -53,6 +55,32 @@ def find_level_step(phasors, file):
         if file in data["files"]:
             return level, data["files"].index(file)
     raise AssertionError("no step " + file)
+
+
+class Simulate(unittest.TestCase):
+    def test_the_campaign_is_the_programs_byte_for_byte(self):
+        steps = []
+        output = os.path.join(folder.name, "simulated_by_python")
+        simulation = beamid.simulate(paths["scenario.json"], output, progress=lambda *report: steps.append(report))
+        written = read_json(os.path.join(paths["campaign"], "campaign.json"))
+        self.assertEqual(simulation["num_steps"], len(written["steps"]))
+        self.assertEqual(simulation["document"], written)
+        self.assertGreater(len(steps), 0)
+        compared = 0
+        for folder_path, _, files in os.walk(paths["campaign"]):
+            for name in files:
+                relative = os.path.relpath(os.path.join(folder_path, name), paths["campaign"])
+                with open(os.path.join(paths["campaign"], relative), "rb") as a, \
+                        open(os.path.join(output, relative), "rb") as b:
+                    self.assertEqual(a.read(), b.read(), relative)
+                compared += 1
+        self.assertEqual(compared, simulation["num_steps"] + 2)  # the recordings, campaign.json and truth.json
+
+    def test_a_campaign_already_there_is_an_input_error_with_the_programs_message(self):
+        _, stderr = run_program("-q", "simulate", paths["scenario.json"], "-o", paths["campaign"], expect=2)
+        with self.assertRaises(beamid.InputError) as raised:
+            beamid.simulate(paths["scenario.json"], paths["campaign"])
+        self.assertEqual(str(raised.exception), error_message(stderr, "error"))
 
 
 class ReadCampaign(unittest.TestCase):
@@ -280,6 +308,42 @@ class ModelBackbone(unittest.TestCase):
         self.assertEqual(list(table.columns), list(csv.columns))
         for column in csv.columns:
             assert_close(self, table[column].to_numpy(), csv[column].to_numpy(), column, rtol=1e-8)
+
+
+class Frc(unittest.TestCase):
+    def test_curves_are_the_programs(self):
+        import pandas
+        frc = beamid.frc(MODEL_FILE, force_N=[0.5, 2], from_hz=52, to_hz=56, harmonics=3)
+        written = read_json(paths["frc"] + ".json")
+        assert_documents_equal(self, frc["document"], written)
+        self.assertEqual([c["force_N"] for c in frc["curves"]], [0.5, 2])
+        self.assertEqual(len(frc["curves"]), len(written["curves"]))
+        for curve, expected in zip(frc["curves"], written["curves"]):
+            self.assertTrue(curve["complete"])
+            self.assertEqual(curve["turning_points"], expected["turning_points"])
+            points = expected["points"]
+            assert_close(self, curve["frequency_hz"], [p["frequency_Hz"] for p in points], "frequency")
+            self.assertEqual(list(curve["stable"]), [p["stable"] for p in points])
+            assert_close(self, curve["theta_rad"], [[t[0] + 1j * t[1] for t in p["theta_rad"]] for p in points],
+                         "theta")
+            assert_close(self, curve["sensors"]["acc3"]["acceleration_m_s2"],
+                         [[a[0] + 1j * a[1] for a in p["sensors"]["acc3"]["acceleration_m_s2"]] for p in points],
+                         "acc3")
+        # The strong level folds: its curve has turning points and an unstable branch between them.
+        self.assertEqual(frc["curves"][1]["turning_points"], 2)
+        self.assertFalse(all(frc["curves"][1]["stable"]))
+        table = beamid.to_pandas(frc)
+        csv = pandas.read_csv(paths["frc"] + ".csv")
+        self.assertEqual(list(table.columns), list(csv.columns))
+        for column in csv.columns:
+            assert_close(self, table[column].to_numpy(), csv[column].to_numpy(), column, rtol=1e-8)
+
+    def test_a_band_far_from_the_resonance_is_an_input_error_with_the_programs_message(self):
+        _, stderr = run_program("-q", "frc", MODEL_FILE, "--from-hz", "5000", "--to-hz", "6000", "-o",
+                                os.path.join(folder.name, "far"), expect=2)
+        with self.assertRaises(beamid.InputError) as raised:
+            beamid.frc(MODEL_FILE, from_hz=5000, to_hz=6000)
+        self.assertEqual(str(raised.exception), error_message(stderr, "error"))
 
 
 class Errors(unittest.TestCase):

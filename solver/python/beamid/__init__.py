@@ -1,7 +1,7 @@
 """beamid: identify the nonlinear support of a vibrating beam from stepped-sine tests.
 
 The functions run the use cases of the beamid program (read_campaign, extract,
-identify, predict, diagnose, measured_backbone, model_backbone) and return
+identify, predict, diagnose, measured_backbone, model_backbone, frc, simulate) and return
 plain dicts of numbers, strings and numpy arrays in SI units; to_pandas turns
 one into the table the program writes as CSV. docs/python.md describes them.
 """
@@ -14,19 +14,21 @@ from ._beamid import (  # noqa: F401 (re-exported)
     __version__,
     diagnose,
     extract,
+    frc,
     identify,
     measured_backbone,
     model_backbone,
     predict,
     read_campaign,
+    simulate,
 )
 
 for _class in (BeamidWarning, EnvironmentError, InputError, NumericalError):
     _class.__module__ = "beamid"  # as users name them, not the extension's own name
 
 __all__ = [
-    "BeamidWarning", "EnvironmentError", "InputError", "NumericalError", "diagnose", "extract", "identify",
-    "measured_backbone", "model_backbone", "predict", "read_campaign", "to_pandas",
+    "BeamidWarning", "EnvironmentError", "InputError", "NumericalError", "diagnose", "extract", "frc", "identify",
+    "measured_backbone", "model_backbone", "predict", "read_campaign", "simulate", "to_pandas",
 ]
 
 
@@ -126,6 +128,28 @@ def _model_backbone_rows(backbone):
     return rows
 
 
+def _frc_rows(frc):
+    # As PREFIX.csv of `beamid frc`: one row per point of every curve, harmonics 1..H in amplitude and phase.
+    import numpy
+    rows = []
+    for curve in frc["curves"]:
+        for i, frequency in enumerate(curve["frequency_hz"]):
+            row = {"force_N": curve["force_N"], "frequency_Hz": frequency, "stable": int(curve["stable"][i])}
+            for k in range(1, frc["harmonics"] + 1):
+                theta = curve["theta_rad"][i, k]
+                row["theta_h%d_amp_rad" % k] = abs(theta)
+                row["theta_h%d_phase_rad" % k] = numpy.angle(theta)
+            for channel, sensor in curve["sensors"].items():
+                for k in range(1, frc["harmonics"] + 1):
+                    displacement, acceleration = sensor["displacement_m"][i, k], sensor["acceleration_m_s2"][i, k]
+                    row["%s_h%d_disp_amp_m" % (channel, k)] = abs(displacement)
+                    row["%s_h%d_disp_phase_rad" % (channel, k)] = numpy.angle(displacement)
+                    row["%s_h%d_acc_amp_m_s2" % (channel, k)] = abs(acceleration)
+                    row["%s_h%d_acc_phase_rad" % (channel, k)] = numpy.angle(acceleration)
+            rows.append(row)
+    return rows
+
+
 def _prediction_rows(prediction):
     # One row per step and harmonic.
     rows = []
@@ -156,6 +180,7 @@ _TABLES = {
     "identify": _parameter_rows,
     "measured_backbone": _measured_level_rows,
     "model_backbone": _model_backbone_rows,
+    "frc": _frc_rows,
     "prediction": _prediction_rows,
     "diagnosis": _candidate_rows,
 }
@@ -168,12 +193,13 @@ def to_pandas(result):
     identify: one row per parameter (`beamid identify --csv`);
     measured_backbone: one row per level (PREFIX.csv of `beamid backbone --measured`);
     model_backbone: one row per amplitude (PREFIX.csv of `beamid backbone MODEL`);
+    frc: one row per point of every curve (PREFIX.csv of `beamid frc`);
     predict: one row per step and harmonic; diagnose: one row per candidate.
     Raises ImportError with what to install when pandas is missing.
     """
     kind = result.get("kind") if isinstance(result, dict) else None
     if kind not in _TABLES:
-        raise TypeError("to_pandas takes the dict of extract, identify, predict, diagnose, measured_backbone or "
-                        "model_backbone (got %s)" % ("a dict of kind %r" % kind if kind else type(result).__name__))
+        raise TypeError("to_pandas takes the dict of extract, identify, predict, diagnose, measured_backbone, "
+                        "model_backbone or frc (got %s)" % ("a dict of kind %r" % kind if kind else type(result).__name__))
     pandas = _pandas()
     return pandas.DataFrame(_TABLES[kind](result))
