@@ -7,6 +7,7 @@ packages=(
   libeigen3-dev libfftw3-dev coinor-libipopt-dev libgtest-dev libbenchmark-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev gnuplot-nox librsvg2-bin zlib1g-dev libssl-dev
   chromium
+  slurm-wlm munge
   clang libclang-rt-14-dev
   python3-dev pybind11-dev python3-numpy python3-pandas python3-matplotlib
 )

@@ -11,6 +11,7 @@
 #include "hb/frc_file.h"
 #include "signal/phasor_set_io.h"
 #include "solver/diagnosis/diagnosis_io.h"
+#include "solver/workflow/batch_entry.h"
 
 namespace beamid::cli {
 
@@ -32,6 +33,8 @@ const std::vector<DocumentedFormat>& DocumentedFormats() {
       {std::string(signal::kPhasorFormat), "Phasors (`beamid extract -o`)", signal::PhasorSetFields},
       {std::string(solver::kDiagnosisFormat), "Diagnosis (`beamid diagnose`, diagnosis.json)",
        solver::DiagnosisFileFields},
+      {std::string(workflow::kBatchEntryFormat), "A campaign of `beamid batch` (OUTPUT/<campaign>/batch.json; "
+       "docs/batch.md)", workflow::BatchEntryFields},
   };
   return formats;
 }
