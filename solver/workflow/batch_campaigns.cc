@@ -25,7 +25,11 @@ namespace fs = std::filesystem;
 
 constexpr int kMaxJobs = 256;
 
-fs::path Absolute(const std::string& folder) { return fs::weakly_canonical(fs::absolute(folder)); }
+// The folder as one absolute path, without a trailing separator ("spec/" and "spec" are one campaign).
+fs::path Absolute(const std::string& folder) {
+  fs::path path = fs::weakly_canonical(fs::absolute(folder));
+  return path.has_filename() ? path : path.parent_path();
+}
 
 // The last error the program gave on stderr ("beamid: error: TEXT", or
 // failed, environment, misfit: hb/errors.h's classes), else its last line;
@@ -49,6 +53,12 @@ void RefuseCampaignFolder(const fs::path& output) {
   if (fs::exists(output / "campaign.json", error))
     throw InputError("-o " + output.string() +
                      " holds a campaign (campaign.json): give a folder of its own for the results");
+}
+
+std::string Joined(const std::vector<std::string>& channels) {
+  std::string text;
+  for (const std::string& c : channels) text += (text.empty() ? "" : ",") + c;
+  return text;
 }
 
 std::string ExitText(int status) {
@@ -97,25 +107,28 @@ BatchEntry RunCampaign(const BatchRequest& request, const std::string& campaign,
   std::vector<std::string> arguments = {"-q", "identify", entry.campaign, "-o", (folder / "result.json").string(),
                                         "--csv", (folder / "parameters.csv").string(), "--workers", "1",
                                         "--model", request.model, "-H", std::to_string(request.harmonics)};
-  if (!request.fit_channels.empty()) {
-    arguments.push_back("--fit");
-    for (const std::string& c : request.fit_channels) arguments.push_back(c);
-  }
-  if (!request.validate_channels.empty()) {
-    arguments.push_back("--validate");
-    for (const std::string& c : request.validate_channels) arguments.push_back(c);
-  }
+  if (!request.fit_channels.empty()) arguments.insert(arguments.end(), {"--fit", Joined(request.fit_channels)});
+  if (!request.validate_channels.empty())
+    arguments.insert(arguments.end(), {"--validate", Joined(request.validate_channels)});
   entry.exit_code = solver::RunExternalProgram(
       {.program = request.program, .arguments = arguments, .stderr_file = folder / entry.errors_file});
-  const bool written =
+  bool written =
       (entry.exit_code == 0 || entry.exit_code == kExitModelMissesData) && fs::exists(folder / "result.json");
+  std::string error;
+  if (written) {
+    try {
+      entry.campaign_name = solver::ReadResultFile(folder / "result.json").campaign.name;
+    } catch (const InputError& e) {
+      written = false;  // a result the summary could not read is none
+      error = e.what();
+    }
+  }
   if (written) {
     entry.status = entry.exit_code == 0 ? BatchStatus::kFitted : BatchStatus::kMisfit;
     entry.result_file = "result.json";
-    entry.campaign_name = solver::ReadResultFile(folder / entry.result_file).campaign.name;
   } else {
     entry.status = BatchStatus::kFailed;
-    const std::string error = LastError(folder / entry.errors_file);
+    if (error.empty()) error = LastError(folder / entry.errors_file);
     entry.message = error.empty() ? "beamid identify " + ExitText(entry.exit_code) : error;
   }
   if (written && request.report) {
@@ -126,8 +139,8 @@ BatchEntry RunCampaign(const BatchRequest& request, const std::string& campaign,
     if (status == 0) {
       entry.report_file = "report.html";
     } else {
-      const std::string error = LastError(folder / "report_errors.txt");
-      entry.report_problem = error.empty() ? "beamid report " + ExitText(status) : error;
+      const std::string report_error = LastError(folder / "report_errors.txt");
+      entry.report_problem = report_error.empty() ? "beamid report " + ExitText(status) : report_error;
     }
   }
   entry.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
