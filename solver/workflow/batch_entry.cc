@@ -31,10 +31,13 @@ void WriteBatchEntry(const std::filesystem::path& file, const BatchEntry& entry)
   WriteTextFileAtomically(file, schema::ToJson(entry));
 }
 
+BatchEntry BatchEntryFromJson(const std::string& text, const std::string& source) {
+  return schema::FromJson<BatchEntry>(text, source, kBatchEntrySchema);
+}
+
 BatchEntry ReadBatchEntry(const std::filesystem::path& file) {
-  return schema::FromJson<BatchEntry>(
-      ReadTextFile(file, "batch entry", "run 'beamid batch' again on that campaign"), file.string(),
-      kBatchEntrySchema);
+  return BatchEntryFromJson(ReadTextFile(file, "batch entry", "run 'beamid batch' again on that campaign"),
+                            file.string());
 }
 
 }  // namespace beamid::workflow

@@ -41,6 +41,8 @@ inline constexpr std::string_view kBatchEntryFormat = "beamid-batch-entry/1";
 inline constexpr std::string_view kBatchEntryFileName = "batch.json";
 
 std::vector<schema::FieldDoc> BatchEntryFields();
+// `source` names the text in messages (the file it came from).
+BatchEntry BatchEntryFromJson(const std::string& text, const std::string& source);
 void WriteBatchEntry(const std::filesystem::path& file, const BatchEntry& entry);
 BatchEntry ReadBatchEntry(const std::filesystem::path& file);
 

@@ -78,6 +78,11 @@ int main(int argc, char** argv) {
   voltage_campaign.replace(voltage_campaign.find(force), force.size(),
                            R"("quantity": "voltage", "unit": "mV", "sensitivity_N_per_V": 12.5}, "ignore_channels": ["vel2"])");
   Write(dir / "campaign_json_fuzzer" / "voltage_campaign.json", voltage_campaign);
+  Write(dir / "batch_entry_fuzzer" / "batch.json",
+        R"({"format": "beamid-batch-entry/1", "beamid_version": "0.1.0", "campaign": "/data/specimen_01",
+            "campaign_name": "specimen 1", "status": "misfit", "exit_code": 5, "message": "", "seconds": 12.5,
+            "result_file": "result.json", "report_file": "report.html", "report_problem": "",
+            "errors_file": "errors.txt"})");
   Write(dir / "recording_csv_fuzzer" / "step.csv", RecordingCsv());
   Write(dir / "recording_csv_fuzzer" / "acquisition_export.csv", AcquisitionExportCsv());
   Write(dir / "uff58_fuzzer" / "ascii.uff", UffFile(beamid::testing::UffEncoding::kAsciiDouble));

@@ -119,7 +119,8 @@ fs::path BatchCommand::folder_;
 
 TEST_F(BatchCommand, EachCampaignIsIdentifyOnItAloneAndTheSummaryHoldsItsNumbers) {
   const fs::path out = folder_ / "out";
-  const ProgramRun run = Beamid("batch " + Campaigns() + "--fit acc1,acc2 --validate acc3 -j 2 -o " + out.string());
+  // The options before the campaigns, as a shell's glob puts them: a channel list takes one argument.
+  const ProgramRun run = Beamid("batch --fit acc1,acc2 --validate acc3 " + Campaigns() + "-j 2 -o " + out.string());
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_THAT(run.output, HasSubstr("4 campaigns in"));
   const auto rows = SummaryRows(out / "summary.csv");
