@@ -86,10 +86,10 @@ BEAMID_REGISTER_COMMAND("batch", [](CLI::App& app, const GlobalOptions& global) 
   sub->add_option("--fit", request->fit_channels,
                   "Response channels to fit, comma-separated (default: every sensor neither ignored nor held out)")
       ->delimiter(',')
-      ->expected(1);  // one argument: the campaign folders that follow are no channels
+      ->allow_extra_args(false);  // one argument: the campaign folders that follow are no channels
   sub->add_option("--validate", request->validate_channels, "Held-out channels to predict and compare, comma-separated")
       ->delimiter(',')
-      ->expected(1);
+      ->allow_extra_args(false);
   sub->add_option("--model", request->model, "Model family (as beamid identify --model)")->capture_default_str();
   sub->add_option("-H,--harmonics", request->harmonics, "Harmonics of the model")
       ->check(CLI::Range(1, 50))
