@@ -39,8 +39,9 @@ std::string TrimBlanksAndQuotes(std::string_view text) {
 }
 
 // The unit spellings of signal/table_reader.h, without the time units (no
-// column of a phasor table is a time).
-std::optional<std::string> NormaliseUnit(const std::string& raw) {
+// column of a phasor table is a time). Its own name: the unity build puts
+// this file beside others that call signal::NormaliseUnit unqualified.
+std::optional<std::string> PhasorTableUnit(const std::string& raw) {
   auto unit = signal::NormaliseUnit(raw);
   if (unit == "s" || unit == "ms") return std::nullopt;
   return unit;
@@ -65,7 +66,7 @@ std::pair<std::string, std::string> SplitNameAndUnit(const std::string& header) 
   if (unit.empty()) {
     // The longest suffix after an underscore that is a unit.
     for (std::size_t pos = name.find('_'); pos != std::string::npos; pos = name.find('_', pos + 1)) {
-      if (NormaliseUnit(name.substr(pos + 1))) {
+      if (PhasorTableUnit(name.substr(pos + 1))) {
         unit = name.substr(pos + 1);
         name = name.substr(0, pos);
         break;
@@ -99,7 +100,7 @@ std::optional<Column> Classify(const HeaderCell& cell, int index) {
   for (std::string_view amp : {"_amplitude", "_amp", "_magnitude", "_mag"})
     if ((amplitude = StripAffix(name, "", amp))) break;
   // "F_amp", "F [N]": the force, not the frequency.
-  if (name == "f" && (amplitude || NormaliseUnit(unit) == std::optional<std::string>("N"))) name = "force";
+  if (name == "f" && (amplitude || PhasorTableUnit(unit) == std::optional<std::string>("N"))) name = "force";
   // An excitation that says what it is: the default is a force.
   static const std::array<std::pair<std::string_view, Quantity>, 6> kExcitations = {{
       {"force", Quantity::kForce},
@@ -261,7 +262,8 @@ class TableParser {
   }
 
   double UnitFactor(const Column& column) const {
-    const std::optional<std::string> unit = column.unit.empty() ? std::optional<std::string>("") : NormaliseUnit(column.unit);
+    const std::optional<std::string> unit =
+        column.unit.empty() ? std::optional<std::string>("") : PhasorTableUnit(column.unit);
     auto unknown = [&](const std::string& accepted) {
       Fail(column.header, "unknown unit '" + column.unit + "'", "use one of: " + accepted);
     };
@@ -293,7 +295,7 @@ class TableParser {
     const Column& response = *Main(ColumnRole::kResponse);
     response_quantity_ = response.quantity;
     if (!response_quantity_) {
-      const auto unit = NormaliseUnit(response.unit);
+      const auto unit = PhasorTableUnit(response.unit);
       for (Quantity q : {Quantity::kAcceleration, Quantity::kVelocity, Quantity::kDisplacement})
         if (unit && UnitToSiFactor(q, *unit)) response_quantity_ = q;
       if (!response_quantity_)
@@ -308,7 +310,7 @@ class TableParser {
     excitation_quantity_ = excitation.quantity;
     if (!excitation_quantity_) {
       excitation_quantity_ = Quantity::kForce;
-      const auto unit = NormaliseUnit(excitation.unit);
+      const auto unit = PhasorTableUnit(excitation.unit);
       for (Quantity q : {Quantity::kVoltage, Quantity::kBaseAcceleration})
         if (unit && UnitToSiFactor(q, *unit)) excitation_quantity_ = q;
     }
