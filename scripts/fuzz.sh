@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Fuzzes every reader of user files with libFuzzer under AddressSanitizer and
-# UBSan: campaign.json, CSV recordings, universal files (UFF 58), phasor
-# tables, model files, scenarios, and the files beamid writes and reads back:
-# phasors.json, result.json and diagnosis.json (tests/fuzz/*_fuzzer.cc).
+# UBSan: campaign.json, CSV recordings, universal files (UFF 58), .mat and
+# HDF5 recordings, phasor tables, model files, scenarios, and the files beamid
+# writes and reads back: phasors.json, result.json and diagnosis.json
+# (tests/fuzz/*_fuzzer.cc).
 # Usage: bash scripts/fuzz.sh [SECONDS_PER_READER]   (default 600)
 #        FUZZ_RUNS=N bash scripts/fuzz.sh            (N inputs per reader with a fixed seed: what CI runs)
 # A finding stops the script with the reader's name and the input that
