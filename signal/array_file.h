@@ -24,7 +24,9 @@ namespace beamid::signal {
 
 // What an array holds, as far as a recording is concerned: real numbers
 // (double or single precision) are read, anything else is refused by name.
-enum class ArrayKind { kReal, kComplex, kInteger, kLogical, kText, kOther };
+// kElsewhere: an HDF5 dataset whose values lie in other files (external
+// storage, a virtual dataset), which beamid does not follow.
+enum class ArrayKind { kReal, kComplex, kInteger, kLogical, kText, kOther, kElsewhere };
 
 struct ArrayInfo {
   std::string name;   // the variable's name, the dataset's path or the root attribute's name

@@ -61,6 +61,10 @@ std::pair<std::string, std::string> SamplesProblem(const ArrayFile& file, const 
       return {name + " holds " + array.type + " integers (raw converter counts?), not values in a unit",
               "save it in " + (unit.empty() ? std::string("its unit") : "'" + unit + "'") +
                   " as double or single precision numbers (counts times the channel's sensitivity)"};
+    case ArrayKind::kElsewhere:
+      return {name + " keeps its values in other files (HDF5 external storage or a virtual dataset), which beamid "
+                     "does not follow",
+              "store the values in the file itself (h5repack, or write the dataset anew)"};
     default:
       return {name + " is a " + array.type + " " + std::string(file.ArrayWord()) + ", not numbers",
               "save it as a vector of double or single precision numbers (no struct, cell, text or logical)"};

@@ -1,6 +1,7 @@
 // HDF5 files through the HDF5 C library (signal/array_file.h): every dataset
 // reached by hard links from the root group (soft and external links are not
-// followed: an external link would read a file outside the campaign), and
+// followed, nor are a dataset's external storage and a virtual dataset's
+// sources: they would read files outside the campaign), and
 // the numeric attributes of the root group. HDF5's own error printing is off;
 // a failed call is an InputError naming the file and the dataset.
 #include <hdf5.h>
@@ -134,6 +135,10 @@ herr_t ListHdf5Link(hid_t group, const char* name, const H5L_info_t* link, void*
   const Hdf5Handle type(H5Dget_type(dataset.get()), H5Tclose);
   const Hdf5Handle space(H5Dget_space(dataset.get()), H5Sclose);
   DescribeHdf5Type(type.get(), info);
+  // Values kept in other files (named by the file, so anywhere on the disk) are not read.
+  const Hdf5Handle creation(H5Dget_create_plist(dataset.get()), H5Pclose);
+  if (!creation.ok() || H5Pget_external_count(creation.get()) != 0 || H5Pget_layout(creation.get()) == H5D_VIRTUAL)
+    info.kind = ArrayKind::kElsewhere;
   info.dims = Hdf5Dims(space.get());
   info.unit = Hdf5StringAttribute(dataset.get(), "units");
   if (info.unit.empty()) info.unit = Hdf5StringAttribute(dataset.get(), "unit");
@@ -210,7 +215,7 @@ class Hdf5File final : public ArrayFile {
       const Hdf5Handle space(attribute.ok() ? H5Aget_space(attribute.get()) : -1, H5Sclose);
       if (attribute.ok() && Hdf5Dims(space.get()) == array.dims)
         status = H5Aread(attribute.get(), H5T_NATIVE_DOUBLE, values.data());
-    } else {
+    } else if (array.kind != ArrayKind::kElsewhere) {
       const Hdf5Handle dataset(H5Dopen2(file_, array.name.c_str(), H5P_DEFAULT), H5Dclose);
       const Hdf5Handle space(dataset.ok() ? H5Dget_space(dataset.get()) : -1, H5Sclose);
       if (dataset.ok() && Hdf5Dims(space.get()) == array.dims)

@@ -1,4 +1,5 @@
-// MATLAB .mat (v5, v7.3) and HDF5 files as step recordings: the test writes
+// MATLAB .mat (v5, v7.3) and HDF5 files as step recordings and as
+// first-harmonic tables (beamid backbone --measured LEVEL.mat): the test writes
 // each file itself (matio's Mat_CreateVer, the HDF5 C library) from the same
 // numbers as a CSV campaign, and the phasors of the two campaigns agree
 // (columns and rows, double and single precision, a time vector or a sample
@@ -21,6 +22,7 @@
 #include "signal/array_file.h"
 #include "signal/campaign_extractor.h"
 #include "signal/input_error.h"
+#include "signal/phasor_table.h"
 #include "signal/recording.h"
 #include "tests/signal/synthetic_signal.h"
 #include "tests/support/temp_path.h"
@@ -243,6 +245,9 @@ struct Layout {
   Timing timing;
   bool units;  // the file states each channel's unit (and the time's)
 };
+
+// GoogleTest prints a parameter by its name, not its bytes (its padding is uninitialised).
+void PrintTo(const Layout& layout, std::ostream* os) { *os << layout.name; }
 
 class ArrayRecordingTest : public ::testing::TestWithParam<Layout> {
  protected:
@@ -537,6 +542,29 @@ TEST_F(ArrayMalformedTest, SampleRateThatIsNoNumber) {
   ExpectError(Container::kMatV5, "sample_rate_Hz", "variable 'sample_rate_Hz' is a 2×1 double, not one number");
 }
 
+// A dataset whose values lie in another file (HDF5 external storage) could
+// read any file of the disk: it is refused, not followed.
+TEST_F(ArrayMalformedTest, ExternalStorageIsNotFollowed) {
+  const fs::path outside = folder_ / "outside.bin";
+  ExpectError(Container::kHdf5, "acc1", "dataset 'acc1' keeps its values in other files", [&](const fs::path& path) {
+    std::vector<Array> arrays = arrays_;
+    arrays.erase(arrays.begin() + 1);  // acc1, written below
+    WriteHdf5(path, arrays);
+    const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    const hsize_t dims[] = {kSamples};
+    const hid_t space = H5Screate_simple(1, dims, nullptr);
+    const hid_t creation = H5Pcreate(H5P_DATASET_CREATE);
+    H5Pset_external(creation, outside.c_str(), 0, kSamples * sizeof(double));
+    const hid_t dataset = H5Dcreate2(file, "acc1", H5T_IEEE_F64LE, space, H5P_DEFAULT, creation, H5P_DEFAULT);
+    ASSERT_GE(dataset, 0);
+    H5Dwrite(dataset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, Named("acc1").values.data());
+    H5Dclose(dataset);
+    H5Pclose(creation);
+    H5Sclose(space);
+    H5Fclose(file);
+  });
+}
+
 // A unit suffix that is campaign.json's unit reads, and so does a channel
 // whose "column" names an HDF5 dataset in a group.
 TEST_F(ArrayMalformedTest, UnitSuffixAndColumnInAGroupRead) {
@@ -588,6 +616,115 @@ TEST_F(ArrayMalformedTest, ProblemsOfAnIgnoredChannelAreNotes) {
   ASSERT_FALSE(recording.findings.empty());
   EXPECT_EQ(recording.findings.front().severity, Severity::kNote);
   EXPECT_NE(recording.findings.front().problem.find("holds complex double values"), std::string::npos);
+}
+
+// ---- A first-harmonic table as vectors (beamid backbone --measured LEVEL.mat, docs/phasor-table.md) ----
+
+class ArrayPhasorTableTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    folder_ = beamid::testing::UniqueTempPath("beamid_array_table");
+    fs::remove_all(folder_);
+    fs::create_directories(folder_);
+    for (int i = 0; i < 9; ++i) {
+      frequency_hz_.push_back(53.0 + 0.25 * i);
+      force_n_.push_back(1.0 + 0.01 * std::sin(i));
+      acceleration_g_.push_back(0.2 + 0.05 * std::sin(0.7 * i));
+      phase_deg_.push_back(20.0 + 15.0 * i);
+      acceleration_std_g_.push_back(1e-3 * (1.0 + 0.1 * i));
+    }
+  }
+  void TearDown() override { fs::remove_all(folder_); }
+
+  // The columns, named as a CSV header would name them or given their units by the file.
+  std::vector<Array> Columns(Orientation orientation, bool units_in_file) const {
+    std::vector<Array> arrays = {Vector(units_in_file ? "frequency" : "frequency_Hz", frequency_hz_, orientation),
+                                 Vector(units_in_file ? "force" : "force_N", force_n_, orientation),
+                                 Vector(units_in_file ? "acceleration" : "acceleration_g", acceleration_g_,
+                                        orientation),
+                                 Vector(units_in_file ? "phase" : "phase_deg", phase_deg_, orientation),
+                                 Vector("acceleration_std_g", acceleration_std_g_, orientation)};
+    if (units_in_file)
+      for (auto [a, unit] : {std::pair{0, "Hz"}, {1, "N"}, {2, "g"}, {3, "deg"}}) arrays[a].unit = unit;
+    return arrays;
+  }
+
+  std::string Csv() const {
+    std::string csv = "frequency_Hz,force_N,acceleration_g,phase_deg,acceleration_std_g\n";
+    char line[200];
+    for (std::size_t i = 0; i < frequency_hz_.size(); ++i) {
+      std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.17g,%.17g\n", frequency_hz_[i], force_n_[i],
+                    acceleration_g_[i], phase_deg_[i], acceleration_std_g_[i]);
+      csv += line;
+    }
+    return csv;
+  }
+
+  fs::path folder_;
+  std::vector<double> frequency_hz_, force_n_, acceleration_g_, phase_deg_, acceleration_std_g_;
+};
+
+TEST_F(ArrayPhasorTableTest, GivesTheLevelOfTheSameNumbersAsCsv) {
+  const FirstHarmonicLevel from_csv = ParsePhasorTable(Csv(), "high.csv", "high");
+  const struct {
+    Container container;
+    Orientation orientation;
+    bool units_in_file;
+  } layouts[] = {{Container::kMatV5, Orientation::kRow, false},
+                 {Container::kMatV73, Orientation::kColumn, true},
+                 {Container::kHdf5, Orientation::kOneDimensional, true}};
+  for (const auto& layout : layouts) {
+    const fs::path path = folder_ / ("high" + Extension(layout.container));
+    WriteArrays(path, layout.container, Columns(layout.orientation, layout.units_in_file));
+    const FirstHarmonicLevel level = ReadPhasorTable(path);
+    EXPECT_EQ(level.label, "high");
+    EXPECT_EQ(level.response_quantity, Quantity::kAcceleration);
+    ASSERT_EQ(level.points.size(), from_csv.points.size()) << path;
+    double worst = 0.0;
+    for (std::size_t i = 0; i < level.points.size(); ++i) {
+      const FirstHarmonicPoint& a = level.points[i];
+      const FirstHarmonicPoint& b = from_csv.points[i];
+      worst = std::max({worst, std::abs(a.frequency_hz - b.frequency_hz), std::abs(a.force.value - b.force.value),
+                        std::abs(a.response.value - b.response.value),
+                        (a.response.Covariance() - b.response.Covariance()).cwiseAbs().maxCoeff()});
+    }
+    std::cout << path.filename().string() << ": largest difference from the CSV table " << worst << "\n";
+    EXPECT_EQ(worst, 0.0) << path;
+  }
+}
+
+TEST_F(ArrayPhasorTableTest, ComplexResponseIsRefused) {
+  std::vector<Array> arrays = Columns(Orientation::kColumn, false);
+  arrays[2].special = Array::Special::kComplex;
+  const fs::path path = folder_ / "high.mat";
+  WriteArrays(path, Container::kMatV5, arrays);
+  try {
+    ReadPhasorTable(path);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), path.string());
+    EXPECT_NE(std::string(e.what()).find("column 'acceleration_g': holds complex double values, not real numbers"),
+              std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("Fix: "), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(ArrayPhasorTableTest, ColumnsOfDifferentLengthsAreRefused) {
+  std::vector<Array> arrays = Columns(Orientation::kColumn, true);
+  arrays[3].values.pop_back();
+  arrays[3].dims = {arrays[3].values.size(), 1};
+  const fs::path path = folder_ / "high.h5";
+  WriteArrays(path, Container::kHdf5, arrays);
+  try {
+    ReadPhasorTable(path);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    // HDF5 lists datasets by name: 'acceleration' is the first column read.
+    EXPECT_NE(std::string(e.what()).find("column 'phase': holds 8 values but 'acceleration' holds 9"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace
