@@ -26,6 +26,8 @@ for name in phasor_json_fuzzer result_json_fuzzer diagnosis_json_fuzzer; do
   cp tests/fuzz/seeds/$name/* "$corpus/$name/"
 done
 export ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1
+# The HDF5 library's own losses on damaged files (tests/fuzz/lsan_suppressions.txt).
+export LSAN_OPTIONS="suppressions=$PWD/tests/fuzz/lsan_suppressions.txt"
 passed=0
 for fuzzer in "$build"/tests/fuzz/*_fuzzer; do
   name=$(basename "$fuzzer")

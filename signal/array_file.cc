@@ -1,7 +1,17 @@
 #include "signal/array_file.h"
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <csignal>
+#include <cstring>
+#include <mutex>
+
+#include "signal/input_error.h"
+#include "signal/internal/array_library_lock.h"
 
 namespace beamid::signal {
 namespace {
@@ -10,6 +20,42 @@ std::string LowerExtension(const std::filesystem::path& file) {
   std::string extension = file.extension().string();
   for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return extension;
+}
+
+// matio and HDF5 are C libraries that a damaged file can crash (the fuzzer
+// finds buffer overflows inside libhdf5 1.10 reading a hostile file's
+// attributes): a file is first read in a child process, everything the
+// reader may ask of it (the list, the units, every real array), and only
+// when the child ends well does this process read it. A child that dies is
+// an InputError, never a crash of beamid. Without a process to spare (fork
+// fails) the file is read directly.
+void ReadInChildFirst(const std::filesystem::path& path, const std::string& source, bool mat) {
+  std::unique_lock lock(internal::ArrayLibraryLock());  // no thread of ours inside matio or HDF5 at the fork
+  const pid_t pid = fork();
+  if (pid < 0) return;
+  if (pid == 0) {
+    lock.unlock();  // the child's copy of the lock, held by its one thread
+    try {
+      const auto file = mat ? OpenMatFile(path, source) : OpenHdf5File(path, source);
+      for (const ArrayInfo& array : file->Arrays())
+        if (array.kind == ArrayKind::kReal && array.NumElements() <= kMaxArrayElements) file->ReadReal(array);
+    } catch (...) {
+    }
+    _exit(0);
+  }
+  lock.unlock();
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) return;
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return;
+  const std::string how = WIFSIGNALED(status) ? "signal " + std::to_string(WTERMSIG(status)) + ", " +
+                                                    std::string(strsignal(WTERMSIG(status)))
+                                              : "exit code " + std::to_string(WEXITSTATUS(status));
+  throw InputError(source, "",
+                   std::string("the file is damaged: reading it crashed ") +
+                       (mat ? "matio (the MATLAB file library)" : "the HDF5 library") + " in a separate process (" +
+                       how + "), so beamid reads nothing of it",
+                   "save or copy the file again from the acquisition system");
 }
 
 }  // namespace
@@ -48,7 +94,9 @@ bool IsHdf5File(const std::filesystem::path& file) {
 }
 
 std::unique_ptr<ArrayFile> OpenArrayFile(const std::filesystem::path& path, const std::string& source) {
-  return IsMatFile(path) ? OpenMatFile(path, source) : OpenHdf5File(path, source);
+  const bool mat = IsMatFile(path);
+  ReadInChildFirst(path, source, mat);
+  return mat ? OpenMatFile(path, source) : OpenHdf5File(path, source);
 }
 
 }  // namespace beamid::signal

@@ -89,7 +89,10 @@ inline bool IsArrayFile(const std::filesystem::path& file) { return IsMatFile(fi
 // one (a CSV saved as .mat, a damaged file) or cannot be read.
 std::unique_ptr<ArrayFile> OpenMatFile(const std::filesystem::path& path, const std::string& source);
 std::unique_ptr<ArrayFile> OpenHdf5File(const std::filesystem::path& path, const std::string& source);
-// By extension.
+// By extension, after the whole file has been read once in a child process
+// (fork): a file that crashes matio or HDF5 there (a hostile or damaged file
+// can) is an InputError, and this process never reads it. What beamid's
+// readers use.
 std::unique_ptr<ArrayFile> OpenArrayFile(const std::filesystem::path& path, const std::string& source);
 
 }  // namespace beamid::signal
