@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Fuzzes every reader of user files with libFuzzer under AddressSanitizer and
-# UBSan: campaign.json, CSV recordings, universal files (UFF 58), phasor
-# tables, model files, scenarios, and the files beamid writes and reads back:
-# phasors.json, result.json, diagnosis.json and batch.json (tests/fuzz/*_fuzzer.cc).
+# UBSan: campaign.json, CSV recordings, universal files (UFF 58), .mat and
+# HDF5 recordings, phasor tables, model files, scenarios, and the files beamid
+# writes and reads back: phasors.json, result.json, diagnosis.json and
+# batch.json (tests/fuzz/*_fuzzer.cc).
 # Usage: bash scripts/fuzz.sh [SECONDS_PER_READER]   (default 600)
 #        FUZZ_RUNS=N bash scripts/fuzz.sh            (N inputs per reader with a fixed seed: what CI runs)
 # A finding stops the script with the reader's name and the input that
@@ -25,6 +26,8 @@ for name in phasor_json_fuzzer result_json_fuzzer diagnosis_json_fuzzer; do
   cp tests/fuzz/seeds/$name/* "$corpus/$name/"
 done
 export ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1
+# The HDF5 library's own losses on damaged files (tests/fuzz/lsan_suppressions.txt).
+export LSAN_OPTIONS="suppressions=$PWD/tests/fuzz/lsan_suppressions.txt"
 passed=0
 for fuzzer in "$build"/tests/fuzz/*_fuzzer; do
   name=$(basename "$fuzzer")

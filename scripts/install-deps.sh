@@ -6,6 +6,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libfftw3-dev coinor-libipopt-dev libgtest-dev libbenchmark-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev gnuplot-nox librsvg2-bin zlib1g-dev libssl-dev
+  libmatio-dev libhdf5-dev
   chromium
   slurm-wlm munge
   clang libclang-rt-14-dev

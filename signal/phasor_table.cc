@@ -12,6 +12,7 @@
 #include <Eigen/Geometry>
 
 #include "hb/text_file.h"
+#include "signal/array_file.h"
 #include "signal/first_harmonic_level.h"
 #include "signal/input_error.h"
 #include "signal/internal/text.h"
@@ -39,8 +40,9 @@ std::string TrimBlanksAndQuotes(std::string_view text) {
 }
 
 // The unit spellings of signal/table_reader.h, without the time units (no
-// column of a phasor table is a time).
-std::optional<std::string> NormaliseUnit(const std::string& raw) {
+// column of a phasor table is a time). Its own name: the unity build puts
+// this file beside others that call signal::NormaliseUnit unqualified.
+std::optional<std::string> PhasorTableUnit(const std::string& raw) {
   auto unit = signal::NormaliseUnit(raw);
   if (unit == "s" || unit == "ms") return std::nullopt;
   return unit;
@@ -65,7 +67,7 @@ std::pair<std::string, std::string> SplitNameAndUnit(const std::string& header) 
   if (unit.empty()) {
     // The longest suffix after an underscore that is a unit.
     for (std::size_t pos = name.find('_'); pos != std::string::npos; pos = name.find('_', pos + 1)) {
-      if (NormaliseUnit(name.substr(pos + 1))) {
+      if (PhasorTableUnit(name.substr(pos + 1))) {
         unit = name.substr(pos + 1);
         name = name.substr(0, pos);
         break;
@@ -99,7 +101,7 @@ std::optional<Column> Classify(const HeaderCell& cell, int index) {
   for (std::string_view amp : {"_amplitude", "_amp", "_magnitude", "_mag"})
     if ((amplitude = StripAffix(name, "", amp))) break;
   // "F_amp", "F [N]": the force, not the frequency.
-  if (name == "f" && (amplitude || NormaliseUnit(unit) == std::optional<std::string>("N"))) name = "force";
+  if (name == "f" && (amplitude || PhasorTableUnit(unit) == std::optional<std::string>("N"))) name = "force";
   // An excitation that says what it is: the default is a force.
   static const std::array<std::pair<std::string_view, Quantity>, 6> kExcitations = {{
       {"force", Quantity::kForce},
@@ -192,6 +194,49 @@ class TableParser {
     return MakeLevel(rows);
   }
 
+  // The table as a .mat or HDF5 file (signal/array_file.h): one vector per
+  // column, named as a CSV header names it ("frequency_Hz", "phase_deg"); a
+  // unit the file gives (an HDF5 "units" attribute, a .mat <name>_units) is
+  // the column's unit, as a units row's is. Element i of every vector is step i.
+  FirstHarmonicLevel ParseArrays(ArrayFile& file) {
+    std::vector<HeaderCell> cells;
+    std::vector<const ArrayInfo*> arrays;
+    for (const ArrayInfo& array : file.Arrays()) {
+      if (array.root_attribute || array.kind == ArrayKind::kText) continue;  // metadata, <name>_units
+      cells.push_back({.text = array.name, .name = array.name, .unit = array.unit,
+                       .unit_line = array.unit.empty() ? 0 : 1});
+      arrays.push_back(&array);
+    }
+    if (cells.empty())
+      Fail("", "the " + file.FormatName() + " holds no numeric " + std::string(file.ArrayWord()),
+           "save one vector per column: frequency_Hz, force_N, acceleration_m_s2 (or another response), phase_deg");
+    ReadHeader(cells);
+    std::vector<std::vector<double>> values;
+    for (const Column& c : columns_) {
+      const ArrayInfo& array = *arrays[static_cast<std::size_t>(c.index)];
+      if (array.kind != ArrayKind::kReal)
+        Fail(c.header, "holds " + array.type + " values, not real numbers",
+             "save the column as a vector of double or single precision numbers (amplitude and phase, not complex)");
+      if (!array.IsVector() || array.dims.empty())
+        Fail(c.header, "is a " + array.Shape() + " array, not a vector", "save one vector per column, a value a step");
+      if (!values.empty() && array.NumElements() != values.front().size())
+        Fail(c.header,
+             "holds " + std::to_string(array.NumElements()) + " values but '" + columns_.front().header + "' holds " +
+                 std::to_string(values.front().size()),
+             "give every column one value per frequency step");
+      values.push_back(file.ReadReal(array));
+    }
+    const std::size_t num_steps = values.front().size();
+    if (num_steps < 3)
+      Fail("", "only " + std::to_string(num_steps) + " steps", "a level needs at least 3 frequency steps");
+    std::vector<std::array<double, 8>> rows(num_steps);
+    for (std::size_t i = 0; i < num_steps; ++i)
+      for (std::size_t k = 0; k < columns_.size(); ++k)
+        Store(columns_[k], values[k][i], "element " + std::to_string(i + 1), internal::FormatNumber(values[k][i]),
+              rows[i]);
+    return MakeLevel(rows);
+  }
+
  private:
   [[noreturn]] void Fail(const std::string& column, const std::string& problem, const std::string& fix) const {
     throw InputError(source_, "", column.empty() ? problem : "column '" + column + "': " + problem, fix);
@@ -261,7 +306,8 @@ class TableParser {
   }
 
   double UnitFactor(const Column& column) const {
-    const std::optional<std::string> unit = column.unit.empty() ? std::optional<std::string>("") : NormaliseUnit(column.unit);
+    const std::optional<std::string> unit =
+        column.unit.empty() ? std::optional<std::string>("") : PhasorTableUnit(column.unit);
     auto unknown = [&](const std::string& accepted) {
       Fail(column.header, "unknown unit '" + column.unit + "'", "use one of: " + accepted);
     };
@@ -293,7 +339,7 @@ class TableParser {
     const Column& response = *Main(ColumnRole::kResponse);
     response_quantity_ = response.quantity;
     if (!response_quantity_) {
-      const auto unit = NormaliseUnit(response.unit);
+      const auto unit = PhasorTableUnit(response.unit);
       for (Quantity q : {Quantity::kAcceleration, Quantity::kVelocity, Quantity::kDisplacement})
         if (unit && UnitToSiFactor(q, *unit)) response_quantity_ = q;
       if (!response_quantity_)
@@ -308,7 +354,7 @@ class TableParser {
     excitation_quantity_ = excitation.quantity;
     if (!excitation_quantity_) {
       excitation_quantity_ = Quantity::kForce;
-      const auto unit = NormaliseUnit(excitation.unit);
+      const auto unit = PhasorTableUnit(excitation.unit);
       for (Quantity q : {Quantity::kVoltage, Quantity::kBaseAcceleration})
         if (unit && UnitToSiFactor(q, *unit)) excitation_quantity_ = q;
     }
@@ -340,16 +386,22 @@ class TableParser {
                          table.Format().decimal_mark == ','
                              ? "write a number there with ',' as the decimal mark (as the rest of the file), or drop the row"
                              : "write a number there or drop the row");
-      if (!std::isfinite(value))
-        Fail(c.header, "line " + std::to_string(line_number) + ": '" + cell + "' is not a finite number",
-             "write a number there or drop the row");
-      const int slot = static_cast<int>(c.role) + (c.is_std ? 4 : 0);
-      if ((c.is_std && value < 0) || (!c.is_std && c.role != ColumnRole::kPhase && value <= 0))
-        Fail(c.header, "line " + std::to_string(line_number) + ": " + cell + (c.is_std ? " is negative" : " is not positive"),
-             "frequencies and amplitudes are positive, uncertainties not negative");
-      values[static_cast<std::size_t>(slot)] = value * factor_[static_cast<std::size_t>(slot)];
+      Store(c, value, "line " + std::to_string(line_number), cell, values);
     }
     return values;
+  }
+
+  // A column's value at `where` (a CSV line, a vector's element) checked and
+  // stored in SI into its slot of the row; `cell` is the value as written.
+  void Store(const Column& c, double value, const std::string& where, const std::string& cell,
+             std::array<double, 8>& row) const {
+    if (!std::isfinite(value))
+      Fail(c.header, where + ": '" + cell + "' is not a finite number", "write a number there or drop the row");
+    const int slot = static_cast<int>(c.role) + (c.is_std ? 4 : 0);
+    if ((c.is_std && value < 0) || (!c.is_std && c.role != ColumnRole::kPhase && value <= 0))
+      Fail(c.header, where + ": " + cell + (c.is_std ? " is negative" : " is not positive"),
+           "frequencies and amplitudes are positive, uncertainties not negative");
+    row[static_cast<std::size_t>(slot)] = value * factor_[static_cast<std::size_t>(slot)];
   }
 
   FirstHarmonicLevel MakeLevel(const std::vector<std::array<double, 8>>& rows) const {
@@ -420,6 +472,8 @@ FirstHarmonicLevel ParsePhasorTable(std::string_view text, const std::string& so
 }
 
 FirstHarmonicLevel ReadPhasorTable(const std::filesystem::path& file, const PhasorTableOptions& options) {
+  if (IsArrayFile(file))
+    return TableParser(file.string(), file.stem().string(), options).ParseArrays(*OpenArrayFile(file, file.string()));
   return ParsePhasorTable(ReadTextFile(file, "phasor table", "check the path"), file.string(), file.stem().string(),
                           options);
 }

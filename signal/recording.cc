@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "hb/text_file.h"
+#include "signal/array_recording.h"
 #include "signal/input_error.h"
 #include "signal/internal/channel_defects.h"
 #include "signal/internal/text.h"
@@ -393,12 +394,7 @@ Recording ParseRecording(std::string_view csv_text, const Campaign& campaign, co
     recording.sample_rate_hz = *campaign.sample_rate_hz;
     recording.start_time_s = 0.0;
   }
-  std::vector<QualityFinding> findings = std::move(defects.Findings());
-  for (auto& finding : CheckChannels(samples, recording.channels, recording.sample_rate_hz, recording.start_time_s,
-                                     step.frequency_hz, source, checks))
-    findings.push_back(std::move(finding));
-  recording.findings = GradeFindings(std::move(findings), campaign, source);
-  recording.samples = std::move(samples);
+  defects.Finish(recording, std::move(samples), step, checks);
   return recording;
 }
 
@@ -407,6 +403,7 @@ Recording ReadRecording(const Campaign& campaign, const Step& step, const Record
   const std::filesystem::path path = campaign.StepPath(step);
   const std::string source = path.string();
   if (IsUniversalFile(path)) return RecordingFromUff58(ReadUff58(path), campaign, step, source, checks);
+  if (IsArrayFile(path)) return RecordingFromArrays(*OpenArrayFile(path, source), campaign, step, checks);
   const std::string text =
       ReadTextFile(path, "recording", "check that the file named in campaign.json exists and is readable");
   return ParseRecording(text, campaign, step, source, checks);

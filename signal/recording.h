@@ -1,5 +1,6 @@
 // One step's recording: uniformly sampled channels in SI units, read from a
-// CSV file (or a universal file, signal/uff_recording.h). The text goes
+// CSV file (or a universal file, signal/uff_recording.h, or a MATLAB .mat or
+// HDF5 file, signal/array_recording.h). The text goes
 // through signal/table_reader.h, so the CSV may be an acquisition system's
 // export: ',' ';' or tab separators, a decimal comma (with ';' or tab), a
 // BOM, LF, CRLF or CR line ends, comment lines, quoted headers and units in
@@ -59,7 +60,8 @@ struct Recording {
 };
 
 // Reads and validates campaign.folder/step.file: a universal file (.uff,
-// .unv: signal/uff_recording.h) or else CSV.
+// .unv: signal/uff_recording.h), a MATLAB or HDF5 file (.mat, .h5, .hdf5:
+// signal/array_recording.h) or else CSV.
 Recording ReadRecording(const Campaign& campaign, const Step& step, const RecordingChecks& checks = {});
 
 // Parses CSV text already in memory (source names it in messages) and

@@ -41,7 +41,8 @@ double ValidateTimeColumn(std::span<const double> time_s, double expected_sample
   checks.Validate();
   const std::string& column = printed.column;
   auto line = [&](std::size_t i) {
-    return std::to_string(printed.lines.empty() ? printed.first_line + static_cast<int>(i) : printed.lines[i]);
+    return printed.place + " " +
+           std::to_string(printed.lines.empty() ? printed.first_line + static_cast<int>(i) : printed.lines[i]);
   };
   const std::size_t n = time_s.size();
   if (n < 2) throw InputError(file, column, "fewer than two samples", "record the whole step");
@@ -69,7 +70,7 @@ double ValidateTimeColumn(std::span<const double> time_s, double expected_sample
     }
     if (!(time_s[i] > time_s[i - 1]))
       throw InputError(file, column,
-                       "time does not increase at line " + line(i) + " (t = " + FormatNumber(time_s[i]) +
+                       "time does not increase at " + line(i) + " (t = " + FormatNumber(time_s[i]) +
                            " s after " + FormatNumber(time_s[i - 1]) + " s)",
                        "remove repeated rows and keep the samples in time order");
   }
@@ -84,7 +85,7 @@ double ValidateTimeColumn(std::span<const double> time_s, double expected_sample
   };
   auto non_uniform = [&](std::size_t i, double expected_s, double rate_hz, const std::string& why) {
     return InputError(file, column,
-                      "non-uniform sampling at line " + line(i) + " (t = " + FormatNumber(time_s[i]) +
+                      "non-uniform sampling at " + line(i) + " (t = " + FormatNumber(time_s[i]) +
                           " s where a uniform rate of " + FormatNumber(rate_hz) + " Hz puts " +
                           FormatNumber(expected_s) + " s" + why +
                           "; a sample is missing or the clock jumps)",

@@ -66,6 +66,9 @@ struct PrintedTime {
   std::string column = "time_s";   // the header's name for it, for messages
   int first_line = 2;              // file line of time_s[0] when lines is empty
   std::vector<int> lines;          // file line of each sample, or empty
+  // What messages call a sample's place: a text file's "line", or the
+  // "sample" (0-based, with first_line 0) of a time vector in a .mat or HDF5 file.
+  std::string place = "line";
   // Half a unit of each value's last printed digit [s], computed only when
   // the times are not uniform as printed; empty: the values are exact.
   std::function<std::vector<double>()> rounding_s;

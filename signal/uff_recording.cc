@@ -163,12 +163,7 @@ Recording RecordingFromUff58(const std::vector<Uff58Dataset>& datasets, const Ca
                          FormatNumber(recording.sample_rate_hz) + " Hz, but campaign.json says sample_rate_Hz = " +
                          FormatNumber(*campaign.sample_rate_hz),
                      "correct sample_rate_Hz in campaign.json or export at that rate");
-  std::vector<QualityFinding> findings = std::move(defects.Findings());
-  for (auto& finding : CheckChannels(samples, recording.channels, recording.sample_rate_hz, recording.start_time_s,
-                                     step.frequency_hz, source, checks))
-    findings.push_back(std::move(finding));
-  recording.findings = GradeFindings(std::move(findings), campaign, source);
-  recording.samples = std::move(samples);
+  defects.Finish(recording, std::move(samples), step, checks);
   return recording;
 }
 

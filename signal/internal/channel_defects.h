@@ -1,5 +1,5 @@
 // The channels a recording's reader found defective (signal/recording.h,
-// signal/uff_recording.h). A problem of a channel the analysis uses stops
+// signal/uff_recording.h, signal/array_recording.h). A problem of a channel the analysis uses stops
 // the step (InputError); that of a channel it does not use (not analysed, or
 // ignored in campaign.json) is a finding, graded later
 // (signal/quality_finding.h), and the channel is left out of the recording:
@@ -14,6 +14,7 @@
 #include "signal/campaign.h"
 #include "signal/input_error.h"
 #include "signal/quality_finding.h"
+#include "signal/recording.h"
 
 namespace beamid::signal::internal {
 
@@ -37,6 +38,18 @@ class ChannelDefects {
     findings_.push_back({Severity::kNote, "", std::move(problem), std::move(fix)});
   }
   std::vector<QualityFinding>& Findings() { return findings_; }
+
+  // A reader's last step: the kept channels' samples (SI, one column per
+  // recording.channels) are checked (CheckChannels: too short, clipping,
+  // dropouts, spikes), and those findings graded with the reader's own.
+  void Finish(Recording& recording, Eigen::MatrixXd samples, const Step& step, const RecordingChecks& checks) {
+    std::vector<QualityFinding> findings = std::move(findings_);
+    for (auto& finding : CheckChannels(samples, recording.channels, recording.sample_rate_hz, recording.start_time_s,
+                                       step.frequency_hz, source_, checks))
+      findings.push_back(std::move(finding));
+    recording.findings = GradeFindings(std::move(findings), campaign_, source_);
+    recording.samples = std::move(samples);
+  }
 
  private:
   const Campaign& campaign_;

@@ -45,9 +45,9 @@ BEAMID_REGISTER_COMMAND("backbone", [](CLI::App& app, const GlobalOptions& globa
       "Example: beamid backbone --measured out/base --channel acc2 --result out/result.json -o out/measured");
   sub->add_option("model", request->model_file, "Model file (JSON, see docs/model-file.md)");
   sub->add_option("--measured", measured->inputs,
-                  "Measured input: a campaign folder, a phasor file of beamid extract, or first-harmonic CSV tables "
-                  "or universal files of spectra / frequency responses (one per level, docs/phasor-table.md, "
-                  "docs/uff58.md)");
+                  "Measured input: a campaign folder, a phasor file of beamid extract, or first-harmonic tables "
+                  "(CSV, or .mat / HDF5 files of one vector per column) or universal files of spectra / frequency "
+                  "responses (one per level, docs/phasor-table.md, docs/uff58.md)");
   sub->add_option("--channel", measured->channel,
                   "With --measured: the response channel of a campaign or phasor file (default: the first sensor not "
                   "ignored); of a campaign, the other sensors' problems only warn");

@@ -14,6 +14,7 @@
 #include "hb/file_stem.h"
 #include "hb/errors.h"
 #include "hb/version.h"
+#include "signal/array_file.h"
 #include "signal/campaign.h"
 #include "signal/campaign_extractor.h"
 #include "signal/first_harmonic_level.h"
@@ -35,8 +36,10 @@ std::vector<signal::FirstHarmonicLevel> ReadLevels(const MeasureBackboneRequest&
   namespace fs = std::filesystem;
   const fs::path first = options.inputs.front();
   const bool universal = signal::IsUniversalFile(first);
+  // A .mat or HDF5 file of a level is a first-harmonic table of vectors (signal/phasor_table.h).
+  const bool arrays = signal::IsArrayFile(first);
   const bool tables = first.extension() == ".csv" || first.extension() == ".CSV" || first.extension() == ".txt" ||
-                      universal;
+                      universal || arrays;
   if (!fs::is_directory(first) && options.skip_bad_steps)
     throw InputError("--skip-bad-steps applies to a campaign folder (whose recordings are extracted here), not to " +
                      first.string() + ". Fix: drop --skip-bad-steps, or give the campaign folder");
@@ -46,6 +49,10 @@ std::vector<signal::FirstHarmonicLevel> ReadLevels(const MeasureBackboneRequest&
     throw InputError("--lines-before-header, --units-row and --column apply to first-harmonic CSV tables, not to " +
                      first.string() + ". Fix: drop them; a campaign declares its recordings' layout and columns in "
                      "campaign.json (recording_layout, each channel's column)");
+  if (arrays && (table.layout.lines_before_header > 0 || table.layout.units_row))
+    throw InputError("--lines-before-header and --units-row apply to first-harmonic CSV tables, not to " +
+                     first.string() + ". Fix: drop them; a .mat or HDF5 table's units are its vectors' names or "
+                     "units (docs/phasor-table.md)");
   if (tables) {
     if (!options.channel.empty())
       throw InputError("--channel " + options.channel + ": a first-harmonic table holds one response, named by its "
