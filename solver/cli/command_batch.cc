@@ -3,7 +3,6 @@
 // report). The work is workflow::BatchCampaigns; this parses the options,
 // prints the summary and maps the campaigns' outcome to the exit code: the
 // first failed campaign's class, else 5 when a fit misses its data.
-#include <algorithm>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -56,14 +55,9 @@ void RunBatch(workflow::BatchRequest& request, bool collect_only, const GlobalOp
     ThrowExit(outcome.exit_code, fmt::format("{} of {} fits miss their data beyond the noise (see {}/summary.csv); "
                                              "run beamid diagnose on them",
                                              outcome.misfit, request.campaigns.size(), request.output));
-  for (const workflow::BatchRow& row : outcome.summary.rows)
-    if (row.entry.status == workflow::BatchStatus::kFailed &&
-        std::find(outcome.folders.begin(), outcome.folders.end(), row.folder) != outcome.folders.end())
-      ThrowExit(outcome.exit_code, fmt::format("{} of {} campaigns failed (see {}/summary.csv); the first, {}: {}",
-                                               outcome.failed, request.campaigns.size(), request.output,
-                                               row.entry.campaign, row.entry.message));
-  ThrowExit(outcome.exit_code, fmt::format("{} of {} campaigns failed (see {}/summary.csv)", outcome.failed,
-                                           request.campaigns.size(), request.output));
+  ThrowExit(outcome.exit_code, fmt::format("{} of {} campaigns failed (see {}/summary.csv); the first, {}",
+                                           outcome.failed, request.campaigns.size(), request.output,
+                                           outcome.first_failure));
 }
 
 BEAMID_REGISTER_COMMAND("batch", [](CLI::App& app, const GlobalOptions& global) {

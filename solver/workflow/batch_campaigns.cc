@@ -69,7 +69,8 @@ std::string ExitText(int status) {
 // safe file name, with "-2", "-3", ... where two campaigns of this run share
 // a name or an earlier run's folder holds another campaign.
 std::vector<std::string> EntryFolders(const BatchRequest& request) {
-  std::set<std::string> taken;
+  // Never the summary's own names.
+  std::set<std::string> taken = {std::string(kBatchSummaryCsv), std::string(kBatchIndexHtml)};
   std::vector<std::string> folders;
   for (const std::string& campaign : request.campaigns) {
     const fs::path absolute = Absolute(campaign);
@@ -213,10 +214,13 @@ BatchOutcome BatchCampaigns(const BatchRequest& request, const RunObserver& obse
   }
   const auto failed = std::find_if(entries.begin(), entries.end(),
                                    [](const BatchEntry& e) { return e.status == BatchStatus::kFailed; });
-  if (failed != entries.end())
+  if (failed != entries.end()) {
     out.exit_code = failed->exit_code >= 2 && failed->exit_code <= 4 ? failed->exit_code : 1;
-  else
+    // Its message names the campaign's files; the folder says which row it is.
+    out.first_failure = out.folders[static_cast<std::size_t>(failed - entries.begin())] + ": " + failed->message;
+  } else {
     out.exit_code = out.misfit > 0 ? kExitModelMissesData : 0;
+  }
   out.summary = CollectBatchSummary(request.output, observer);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;

@@ -49,6 +49,7 @@ struct BatchOutcome {
   int fitted = 0, misfit = 0, failed = 0;  // of this run's campaigns
   double seconds = 0.0;
   int exit_code = 0;  // the program's: 0 every campaign fitted within noise; else the first failed one's, else 5
+  std::string first_failure;  // "FOLDER: MESSAGE" of the first failed campaign in the request's order ("": none)
 };
 
 // Validates, runs every campaign (the task "batch", advancing as each

@@ -172,12 +172,17 @@ TEST_F(BatchCommand, EachCampaignIsIdentifyOnItAloneAndTheSummaryHoldsItsNumbers
 TEST_F(BatchCommand, AFailedCampaignIsARowWithTheProgramsMessageAndTheOthersStand) {
   const fs::path out = folder_ / "failing";
   const fs::path missing = folder_ / "no_such_campaign";
-  const ProgramRun run = Beamid("batch " + Campaign(0).string() + " " + missing.string() + " -o " + out.string());
+  // A campaign named as the summary's own files gets a folder of its own.
+  const fs::path named_as_index = folder_ / "index.html";
+  const ProgramRun run = Beamid("batch " + Campaign(0).string() + " " + missing.string() + " " +
+                                named_as_index.string() + " -o " + out.string());
   EXPECT_EQ(run.exit_code, 2) << run.output;
-  EXPECT_THAT(run.output, HasSubstr("1 of 2 campaigns failed"));
+  EXPECT_THAT(run.output, HasSubstr("2 of 3 campaigns failed"));
+  EXPECT_THAT(run.output, HasSubstr("the first, no_such_campaign: "));
   EXPECT_THAT(run.output, HasSubstr("no_such_campaign/campaign.json"));
   const auto rows = SummaryRows(out / "summary.csv");
-  ASSERT_EQ(rows.size(), 2u);
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows.at("index.html-2").at("status"), "failed");
   EXPECT_EQ(rows.at("specimen_0").at("status"), "fitted");
   EXPECT_EQ(rows.at("no_such_campaign").at("status"), "failed");
   EXPECT_EQ(rows.at("no_such_campaign").at("exit_code"), "2");
