@@ -81,6 +81,7 @@ CampaignWriter::CampaignWriter(const SteppedSineSimulation& simulation, const st
                                const CampaignWriterOptions& options)
     : simulation_(simulation),
       directory_(directory),
+      live_(options.live),
       noise_(simulation.scenario().seed),
       truth_steps_(std::make_unique<Json>(Json::array())),
       early_records_(std::make_unique<Json>(Json::array())) {
@@ -91,8 +92,9 @@ CampaignWriter::CampaignWriter(const SteppedSineSimulation& simulation, const st
   if (!options.overwrite && std::filesystem::exists(directory_ / "campaign.json"))
     throw std::invalid_argument(directory_.string() +
                                 ": holds a campaign.json already; choose another directory or pass --overwrite");
-  // campaign.json is the folder's completion mark, written last (Finish):
-  // while the steps are rewritten the folder must not read as a campaign.
+  // campaign.json is the folder's completion mark, written last (Finish;
+  // live, after each step: the steps written so far): while the steps are
+  // rewritten the folder must not read as a campaign of the old steps.
   std::filesystem::remove(directory_ / "campaign.json", error);
   for (const ScenarioLevel& level : s.levels) {
     std::filesystem::create_directories(directory_ / level.label, error);
@@ -171,12 +173,12 @@ void CampaignWriter::Write(const SimulatedStep& step) {
                                {"settle_s", *step.early_record_settle_s}});
   }
   truth_steps_->push_back(std::move(truth_step));
+  // As an acquisition that lists each step once its file is whole.
+  if (live_) WriteFile(directory_ / "campaign.json", CampaignFileToJson(CampaignSoFar()), bytes_written_);
 }
 
-void CampaignWriter::Finish() {
+CampaignFile CampaignWriter::CampaignSoFar() const {
   const Scenario& s = simulation_.scenario();
-  const TimeSimulator& sim = simulation_.simulator();
-
   CampaignFile campaign{.name = s.name,
                         .beam = s.nominal_beam,
                         .excitation = CampaignExcitation(s),
@@ -191,6 +193,13 @@ void CampaignWriter::Finish() {
     if (sensor.mass_kg > 0.0) c.mass_kg = sensor.mass_kg;
     campaign.sensors.push_back(c);
   }
+  return campaign;
+}
+
+void CampaignWriter::Finish() {
+  const Scenario& s = simulation_.scenario();
+  const TimeSimulator& sim = simulation_.simulator();
+  const CampaignFile campaign = CampaignSoFar();
 
   const std::unique_ptr<SupportLaw> law = s.MakeSupportLaw();
   Json parameters = Json::array();

@@ -24,6 +24,10 @@ namespace beamid::hb {
 struct CampaignWriterOptions {
   // Replace an existing campaign.json in the directory (otherwise an error).
   bool overwrite = false;
+  // Rewrite campaign.json after every step, listing the steps written so
+  // far, as an acquisition does while the test runs (a virtual rig that a
+  // live analysis follows); else it is written once, last, by Finish.
+  bool live = false;
 };
 
 class CampaignWriter {
@@ -39,6 +43,8 @@ class CampaignWriter {
   void Write(const SimulatedStep& step);
   // Writes campaign.json and truth.json.
   void Finish();
+  // campaign.json's content for the steps written so far.
+  CampaignFile CampaignSoFar() const;
 
   std::uintmax_t bytes_written() const { return bytes_written_; }
   int clipped_samples() const { return clipped_samples_; }
@@ -46,6 +52,7 @@ class CampaignWriter {
  private:
   const SteppedSineSimulation& simulation_;
   std::filesystem::path directory_;
+  bool live_ = false;
   MeasurementNoise noise_;
   std::vector<CampaignStep> campaign_steps_;
   std::unique_ptr<nlohmann::json> truth_steps_;

@@ -226,7 +226,15 @@ void SteppedSineSimulation::RecordedValues(const Eigen::VectorXd& channels, Eige
 }
 
 void SteppedSineSimulation::Run(const std::function<void(const SimulatedStep&)>& sink) {
-  const ScenarioTiming& timing = scenario_.timing;
+  for (const ScenarioLevel& level : scenario_.levels)
+    for (const double frequency_hz : level.frequencies_hz) sink(Step(level, frequency_hz, scenario_.timing));
+}
+
+SimulatedStep SteppedSineSimulation::Step(const ScenarioLevel& level, double nominal_frequency_hz,
+                                         const ScenarioTiming& timing) {
+  if (timing.sample_rate_hz != scenario_.timing.sample_rate_hz ||
+      timing.daq_clock_error_relative != scenario_.timing.daq_clock_error_relative)
+    throw std::invalid_argument("a step's timing keeps the scenario's sample rate and sample clock");
   // The acquisition counts samples of its own clock: the files' lengths and
   // the transient kept are set in samples at the stated rate, while the
   // settling, physical, is timed at the true one.
@@ -248,146 +256,148 @@ void SteppedSineSimulation::Run(const std::function<void(const SimulatedStep&)>&
   // Fitted for the truth: channels, hidden deflections, θ, M_s.
   std::vector<double> truth_values(num_channels + num_hidden + 2);
   SampleRing ring(transient_capacity, num_channels);
-  double phase = 0.0;
-  int index = 0;
 
-  for (size_t li = 0; li < scenario_.levels.size(); ++li) {
-    const ScenarioLevel& level = scenario_.levels[li];
-    if (li == 0 || timing.restart_each_level) {
-      phase = 0.0;
-      const Drive first = DriveOf(level, level.frequencies_hz.front() * clock);
-      excitation_signal_ = Signal(first, phase);
-      simulator_->Reset(Force_N(first, phase));
-      for (DelayLine& line : delay_lines_) line.Fill(SignalOf(line));
-    }
-    for (size_t si = 0; si < level.frequencies_hz.size(); ++si) {
-      SimulatedStep step;
-      step.index = index++;
-      step.level_index = static_cast<int>(li);
-      step.index_in_level = static_cast<int>(si);
-      step.level = level.label;
-      char name[32];
-      std::snprintf(name, sizeof name, "step_%03d.csv", step.index_in_level);
-      step.file = level.label + "/" + name;
-      step.nominal_frequency_hz = level.frequencies_hz[si];
-      step.frequency_hz = step.nominal_frequency_hz * clock;
-      const Drive drive = DriveOf(level, step.frequency_hz);
-      step.force_amplitude_N = scenario_.BaseExcitation() ? 0.0 : drive.fundamental_gain * drive.amplitude;
-      step.voltage_amplitude_V = level.voltage_amplitude_V;
-      step.base_acceleration_amplitude_m_s2 = level.base_acceleration_amplitude_m_s2;
-      const double omega = kTwoPi * step.frequency_hz;
-      // The beam's loss factor as the real, frequency-independent one at this
-      // step (hb/time_simulator.h), unless the scenario asks for C = (η/ω_ref)·K.
-      if (scenario_.damping_reference_frequency_hz == 0.0) simulator_->MatchLossFactorAt(omega);
-
-      // The generator's phase is continuous across the frequency change.
-      const double phase_start = std::fmod(phase, kTwoPi);
-      long substep = 0;
-      // Switched off (timing.excitation_stop_fraction): the generator's phase
-      // runs on, but the shaker applies nothing and its channel reads 0.
-      bool switched_off = false;
-      auto next_sample = [&] {
-        for (int i = 0; i < substeps_; ++i) {
-          ++substep;
-          phase = phase_start + omega * dt * static_cast<double>(substep);
-          excitation_signal_ = switched_off ? 0.0 : Signal(drive, phase);
-          simulator_->Advance(switched_off ? 0.0 : Force_N(drive, phase));
-          // A delayed channel needs its signal at every integration step.
-          for (DelayLine& line : delay_lines_) line.Push(SignalOf(line));
-        }
-        ChannelValues(channels);
-        RecordedValues(channels, recorded);
-      };
-
-      // Settle.
-      const int window_periods = std::max(2, static_cast<int>(std::ceil(kMinSettleWindow_s * step.frequency_hz)));
-      const int window_samples = std::max(16, static_cast<int>(std::lround(window_periods * true_fs / step.frequency_hz)));
-      long min_samples = std::lround(timing.settle_min_s * true_fs);
-      long max_samples = std::max(min_samples, std::lround(timing.settle_max_s * true_fs));
-      // An early record ignores the settling rule: its file starts after
-      // exactly its settle_s, so it holds the transient (the ring keeps the
-      // last transient_capacity samples of the settling).
-      const EarlyRecord* early = scenario_.EarlyRecordOf(level.label, step.nominal_frequency_hz);
-      if (early) {
-        step.early_record_settle_s = early->settle_s;
-        min_samples = max_samples = std::lround(early->settle_s * true_fs) + transient_capacity;
-      }
-      TimeHarmonicFit window(kTruthHarmonics, num_sensors + 1);
-      Eigen::VectorXcd previous_fundamentals;
-      ring.Clear();
-      long samples = 0;
-      step.settle_change = 1.0;
-      while (samples < max_samples) {
-        next_sample();
-        ++samples;
-        ring.Push(recorded);
-        for (int s = 0; s < num_sensors; ++s) monitored[s] = channels(s + 1);
-        monitored[num_sensors] = simulator_->SupportRotation_rad();
-        window.Add(phase, monitored);
-        if (window.NumSamples() < window_samples) continue;
-        const std::vector<Eigen::VectorXcd> phasors = window.Solve();
-        window.Clear();
-        Eigen::VectorXcd fundamentals(num_sensors + 1);
-        for (int s = 0; s <= num_sensors; ++s) fundamentals(s) = phasors[s](1);
-        if (previous_fundamentals.size() > 0) {
-          double change = 0.0;
-          for (int s = 0; s <= num_sensors; ++s) {
-            const double scale = std::abs(fundamentals(s));
-            if (scale > 0.0) change = std::max(change, std::abs(fundamentals(s) - previous_fundamentals(s)) / scale);
-          }
-          step.settle_change = change;
-          if (!early && samples >= min_samples && change < timing.settle_tolerance) {
-            step.settled = true;
-            break;
-          }
-        }
-        previous_fundamentals = fundamentals;
-      }
-      step.settle_s = static_cast<double>(samples) / true_fs;
-
-      // Record: the tail of the settling, then the steady part, fitted for the truth.
-      step.transient_samples = ring.size();
-      step.recording.resize(step.transient_samples + record_samples, num_channels);
-      ring.CopyTo(step.recording);
-      TimeHarmonicFit truth(kTruthHarmonics, static_cast<int>(truth_values.size()));
-      // The last sample of the file with the force on (the whole file when it never stops).
-      int last_forced_sample = step.transient_samples + record_samples;
-      if (timing.excitation_stop_fraction > 0.0) {
-        // Inside the steady part by the reader's check (a shorter transient only moves it later in the record).
-        const int file_samples = step.transient_samples + record_samples;
-        last_forced_sample = std::min(
-            file_samples - 1, static_cast<int>(std::lround(timing.excitation_stop_fraction * file_samples)));
-        step.excitation_stop_s = last_forced_sample / fs;
-      }
-      for (int i = 0; i < record_samples; ++i) {
-        // File sample n is reached from n − 1; past the stop the force is 0.
-        switched_off = step.transient_samples + i > last_forced_sample;
-        next_sample();
-        step.recording.row(step.transient_samples + i) = recorded.transpose();
-        for (int c = 0; c < num_channels; ++c) truth_values[c] = channels(c);
-        for (int h = 0; h < num_hidden; ++h) truth_values[num_channels + h] = displacement_(num_sensors + h);
-        truth_values[num_channels + num_hidden] = simulator_->SupportRotation_rad();
-        truth_values[num_channels + num_hidden + 1] = simulator_->SupportMoment_Nm();
-        if (step.transient_samples + i <= last_forced_sample) truth.Add(phase, truth_values);
-      }
-      std::vector<Eigen::VectorXcd> phasors = truth.Solve();
-      const std::complex<double> force_fundamental = phasors[0](1);
-      for (Eigen::VectorXcd& p : phasors) ReferenceToFundamental(force_fundamental, p);
-      step.channel_phasors.assign(phasors.begin(), phasors.begin() + num_channels);
-      // The applied force, harmonic by harmonic: the recorded signal times
-      // the amplifier's gain at that harmonic's frequency (g is real, so the
-      // phase reference is the same).
-      step.force_phasors = phasors[0];
-      if (scenario_.BaseExcitation()) step.force_phasors.setZero();
-      if (scenario_.VoltageDrive())
-        for (Eigen::Index k = 0; k < step.force_phasors.size(); ++k)
-          step.force_phasors(k) *= scenario_.amplifier.Gain_N_per_V(k * step.frequency_hz, first_natural_hz_);
-      step.hidden_displacement_phasors.assign(phasors.begin() + num_channels, phasors.begin() + num_channels + num_hidden);
-      step.support_rotation_phasors = phasors[num_channels + num_hidden];
-      step.support_moment_phasors = phasors[num_channels + num_hidden + 1];
-      sink(step);
-    }
+  // A level begins when the label changes: the shaker stopped in between
+  // (restart_each_level). A level run again later goes on numbering its
+  // steps, so that no file of it is written twice.
+  const bool new_level = steps_run_ == 0 || level.label != last_level_;
+  last_level_ = level.label;
+  const int level_index =
+      level_indices_.try_emplace(level.label, static_cast<int>(level_indices_.size())).first->second;
+  int& index_in_level = next_index_in_level_[level.label];
+  if (steps_run_ == 0 || (new_level && timing.restart_each_level)) {
+    phase_ = 0.0;
+    const Drive first = DriveOf(level, nominal_frequency_hz * clock);
+    excitation_signal_ = Signal(first, phase_);
+    simulator_->Reset(Force_N(first, phase_));
+    for (DelayLine& line : delay_lines_) line.Fill(SignalOf(line));
   }
+  double& phase = phase_;
+  SimulatedStep step;
+  step.index = steps_run_++;
+  step.level_index = level_index;
+  step.index_in_level = index_in_level++;
+  step.level = level.label;
+  char name[32];
+  std::snprintf(name, sizeof name, "step_%03d.csv", step.index_in_level);
+  step.file = level.label + "/" + name;
+  step.nominal_frequency_hz = nominal_frequency_hz;
+  step.frequency_hz = step.nominal_frequency_hz * clock;
+  const Drive drive = DriveOf(level, step.frequency_hz);
+  step.force_amplitude_N = scenario_.BaseExcitation() ? 0.0 : drive.fundamental_gain * drive.amplitude;
+  step.voltage_amplitude_V = level.voltage_amplitude_V;
+  step.base_acceleration_amplitude_m_s2 = level.base_acceleration_amplitude_m_s2;
+  const double omega = kTwoPi * step.frequency_hz;
+  // The beam's loss factor as the real, frequency-independent one at this
+  // step (hb/time_simulator.h), unless the scenario asks for C = (η/ω_ref)·K.
+  if (scenario_.damping_reference_frequency_hz == 0.0) simulator_->MatchLossFactorAt(omega);
+
+  // The generator's phase is continuous across the frequency change.
+  const double phase_start = std::fmod(phase, kTwoPi);
+  long substep = 0;
+  // Switched off (timing.excitation_stop_fraction): the generator's phase
+  // runs on, but the shaker applies nothing and its channel reads 0.
+  bool switched_off = false;
+  auto next_sample = [&] {
+    for (int i = 0; i < substeps_; ++i) {
+      ++substep;
+      phase = phase_start + omega * dt * static_cast<double>(substep);
+      excitation_signal_ = switched_off ? 0.0 : Signal(drive, phase);
+      simulator_->Advance(switched_off ? 0.0 : Force_N(drive, phase));
+      // A delayed channel needs its signal at every integration step.
+      for (DelayLine& line : delay_lines_) line.Push(SignalOf(line));
+    }
+    ChannelValues(channels);
+    RecordedValues(channels, recorded);
+  };
+
+  // Settle.
+  const int window_periods = std::max(2, static_cast<int>(std::ceil(kMinSettleWindow_s * step.frequency_hz)));
+  const int window_samples = std::max(16, static_cast<int>(std::lround(window_periods * true_fs / step.frequency_hz)));
+  long min_samples = std::lround(timing.settle_min_s * true_fs);
+  long max_samples = std::max(min_samples, std::lround(timing.settle_max_s * true_fs));
+  // An early record ignores the settling rule: its file starts after
+  // exactly its settle_s, so it holds the transient (the ring keeps the
+  // last transient_capacity samples of the settling).
+  const EarlyRecord* early = scenario_.EarlyRecordOf(level.label, step.nominal_frequency_hz);
+  if (early) {
+    step.early_record_settle_s = early->settle_s;
+    min_samples = max_samples = std::lround(early->settle_s * true_fs) + transient_capacity;
+  }
+  TimeHarmonicFit window(kTruthHarmonics, num_sensors + 1);
+  Eigen::VectorXcd previous_fundamentals;
+  ring.Clear();
+  long samples = 0;
+  step.settle_change = 1.0;
+  while (samples < max_samples) {
+    next_sample();
+    ++samples;
+    ring.Push(recorded);
+    for (int s = 0; s < num_sensors; ++s) monitored[s] = channels(s + 1);
+    monitored[num_sensors] = simulator_->SupportRotation_rad();
+    window.Add(phase, monitored);
+    if (window.NumSamples() < window_samples) continue;
+    const std::vector<Eigen::VectorXcd> phasors = window.Solve();
+    window.Clear();
+    Eigen::VectorXcd fundamentals(num_sensors + 1);
+    for (int s = 0; s <= num_sensors; ++s) fundamentals(s) = phasors[s](1);
+    if (previous_fundamentals.size() > 0) {
+      double change = 0.0;
+      for (int s = 0; s <= num_sensors; ++s) {
+        const double scale = std::abs(fundamentals(s));
+        if (scale > 0.0) change = std::max(change, std::abs(fundamentals(s) - previous_fundamentals(s)) / scale);
+      }
+      step.settle_change = change;
+      if (!early && samples >= min_samples && change < timing.settle_tolerance) {
+        step.settled = true;
+        break;
+      }
+    }
+    previous_fundamentals = fundamentals;
+  }
+  step.settle_s = static_cast<double>(samples) / true_fs;
+
+  // Record: the tail of the settling, then the steady part, fitted for the truth.
+  step.transient_samples = ring.size();
+  step.recording.resize(step.transient_samples + record_samples, num_channels);
+  ring.CopyTo(step.recording);
+  TimeHarmonicFit truth(kTruthHarmonics, static_cast<int>(truth_values.size()));
+  // The last sample of the file with the force on (the whole file when it never stops).
+  int last_forced_sample = step.transient_samples + record_samples;
+  if (timing.excitation_stop_fraction > 0.0) {
+    // Inside the steady part by the reader's check (a shorter transient only moves it later in the record).
+    const int file_samples = step.transient_samples + record_samples;
+    last_forced_sample = std::min(
+        file_samples - 1, static_cast<int>(std::lround(timing.excitation_stop_fraction * file_samples)));
+    step.excitation_stop_s = last_forced_sample / fs;
+  }
+  for (int i = 0; i < record_samples; ++i) {
+    // File sample n is reached from n − 1; past the stop the force is 0.
+    switched_off = step.transient_samples + i > last_forced_sample;
+    next_sample();
+    step.recording.row(step.transient_samples + i) = recorded.transpose();
+    for (int c = 0; c < num_channels; ++c) truth_values[c] = channels(c);
+    for (int h = 0; h < num_hidden; ++h) truth_values[num_channels + h] = displacement_(num_sensors + h);
+    truth_values[num_channels + num_hidden] = simulator_->SupportRotation_rad();
+    truth_values[num_channels + num_hidden + 1] = simulator_->SupportMoment_Nm();
+    if (step.transient_samples + i <= last_forced_sample) truth.Add(phase, truth_values);
+  }
+  std::vector<Eigen::VectorXcd> phasors = truth.Solve();
+  const std::complex<double> force_fundamental = phasors[0](1);
+  for (Eigen::VectorXcd& p : phasors) ReferenceToFundamental(force_fundamental, p);
+  step.channel_phasors.assign(phasors.begin(), phasors.begin() + num_channels);
+  // The applied force, harmonic by harmonic: the recorded signal times
+  // the amplifier's gain at that harmonic's frequency (g is real, so the
+  // phase reference is the same).
+  step.force_phasors = phasors[0];
+  if (scenario_.BaseExcitation()) step.force_phasors.setZero();
+  if (scenario_.VoltageDrive())
+    for (Eigen::Index k = 0; k < step.force_phasors.size(); ++k)
+      step.force_phasors(k) *= scenario_.amplifier.Gain_N_per_V(k * step.frequency_hz, first_natural_hz_);
+  step.hidden_displacement_phasors.assign(phasors.begin() + num_channels, phasors.begin() + num_channels + num_hidden);
+  step.support_rotation_phasors = phasors[num_channels + num_hidden];
+  step.support_moment_phasors = phasors[num_channels + num_hidden + 1];
+  return step;
 }
 
 }  // namespace beamid::hb

@@ -24,6 +24,7 @@
 
 #include <array>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -95,8 +96,19 @@ class SteppedSineSimulation {
 
   // Runs every step in order and hands each to `sink` as soon as it is done
   // (the sink writes files and reports progress). Throws std::runtime_error
-  // if the integrator fails.
+  // if the integrator fails. It is Step() on each level's frequencies in
+  // the scenario's order.
   void Run(const std::function<void(const SimulatedStep&)>& sink);
+
+  // One step on request, as a rig runs the next step a test asks for:
+  // `level`'s drive at `nominal_frequency_hz`, settled by `timing`'s rule
+  // and recorded for its record_s (its sample rate and clock must be the
+  // scenario's). The beam's state and the generator's phase carry over from
+  // the step before, so folds and jumps behave as in a real sweep; a step
+  // whose level label differs from the last step's starts a level, from rest
+  // when timing.restart_each_level. A level's steps are numbered on
+  // (step_000.csv, step_001.csv, ...) also when the test comes back to it.
+  SimulatedStep Step(const ScenarioLevel& level, double nominal_frequency_hz, const ScenarioTiming& timing);
 
  private:
   // The drive of one step: what the excitation channel records (force,
@@ -147,6 +159,14 @@ class SteppedSineSimulation {
   double excitation_signal_ = 0.0;  // the excitation channel's value now (force, voltage or a_b)
   std::vector<DelayLine> delay_lines_;  // one per delayed sensor
   Eigen::VectorXd recorded_gain_;       // per channel: 1 + its gain error
+  // Where the test is (Step): steps run so far, the generator's phase, the
+  // last step's level, each level's index (in order of first use) and its
+  // next step's number.
+  int steps_run_ = 0;
+  double phase_ = 0.0;
+  std::string last_level_;
+  std::map<std::string, int> level_indices_;
+  std::map<std::string, int> next_index_in_level_;
   // Scratch for the simulator's outputs (sensors, then hidden positions).
   mutable Eigen::VectorXd displacement_, velocity_, acceleration_;
 };
