@@ -147,6 +147,9 @@ PeriodicMoment JenkinsSupportLaw::EvaluatePeriodic(const Eigen::VectorXd& theta,
   const Eigen::Index start = arg_max;
   double moment = limit;
   Eigen::RowVectorXd d_moment = Eigen::RowVectorXd::Zero(n);
+  // Written a row per sample: row-major, then stored once (a row of the
+  // column-major result is strided, which cost more than the loop itself).
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows(n, n);
   for (int pass = 0; pass < 2; ++pass) {
     for (Eigen::Index step = 1; step <= n; ++step) {
       const Eigen::Index i = (start + step) % n;
@@ -162,10 +165,11 @@ PeriodicMoment JenkinsSupportLaw::EvaluatePeriodic(const Eigen::VectorXd& theta,
       }
       if (pass == 1) {
         out.moment_Nm[i] = moment;
-        out.d_moment_d_theta.row(i) = d_moment;
+        rows.row(i) = d_moment;
       }
     }
   }
+  out.d_moment_d_theta = rows;
   return out;
 }
 

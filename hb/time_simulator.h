@@ -157,6 +157,10 @@ class TimeSimulator {
   double moment_flexibility_ = 0.0;       // g = Σ φ_θj²·u1_j [rad/(N·m)]
   double moment_rate_flexibility_ = 0.0;  // g_v = Σ φ_θj²·v1_j [rad/(N·m·s)]
   State state_;
+  // Advance's scratch: the modal load at t_n, the step without the support's
+  // moment, and the law's state after the step.
+  Eigen::ArrayXd load_n_, u_free_, v_free_;
+  std::vector<double> law_state_out_;
 };
 
 }  // namespace beamid::hb
