@@ -126,13 +126,13 @@ PeriodicMoment JenkinsSupportLaw::EvaluatePeriodic(const Eigen::VectorXd& theta,
   const double limit = parameters_.slip_moment_Nm;
   PeriodicMoment out;
   out.moment_Nm.resize(n);
-  out.d_moment_d_theta = Eigen::MatrixXd::Zero(n, n);
   out.d_moment_d_theta_rate = Eigen::MatrixXd::Zero(n, n);
 
   Eigen::Index arg_max = 0, arg_min = 0;
   const double theta_max = theta.maxCoeff(&arg_max);
   const double theta_min = theta.minCoeff(&arg_min);
   if (k * (theta_max - theta_min) <= 2.0 * limit) {
+    out.d_moment_d_theta = Eigen::MatrixXd::Zero(n, n);
     const double offset = 0.5 * (theta_max + theta_min);
     out.moment_Nm = k * (theta.array() - offset);
     out.d_moment_d_theta.diagonal().setConstant(k);
@@ -263,9 +263,11 @@ SupportLawResponse CompositeSupportLaw::Evaluate(double theta, double theta_rate
 PeriodicMoment CompositeSupportLaw::EvaluatePeriodic(const Eigen::VectorXd& theta,
                                                      const Eigen::VectorXd& theta_rate) const {
   const Eigen::Index n = theta.size();
-  PeriodicMoment sum{Eigen::VectorXd::Zero(n), Eigen::MatrixXd::Zero(n, n), Eigen::MatrixXd::Zero(n, n)};
-  for (const auto& law : laws_) {
-    const PeriodicMoment part = law->EvaluatePeriodic(theta, theta_rate);
+  if (laws_.empty()) return {Eigen::VectorXd::Zero(n), Eigen::MatrixXd::Zero(n, n), Eigen::MatrixXd::Zero(n, n)};
+  // The first law's matrices are the sum's start: 0 + x is x to the bit.
+  PeriodicMoment sum = laws_.front()->EvaluatePeriodic(theta, theta_rate);
+  for (std::size_t l = 1; l < laws_.size(); ++l) {
+    const PeriodicMoment part = laws_[l]->EvaluatePeriodic(theta, theta_rate);
     sum.moment_Nm += part.moment_Nm;
     sum.d_moment_d_theta += part.d_moment_d_theta;
     sum.d_moment_d_theta_rate += part.d_moment_d_theta_rate;
