@@ -3,10 +3,10 @@
 #include "hb/errors.h"
 
 #include <algorithm>
-#include <utility>
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include <Eigen/Eigenvalues>
 #include <unsupported/Eigen/MatrixFunctions>
