@@ -11,8 +11,8 @@ include(CMakePackageConfigHelpers)
 
 set(BEAMID_INSTALL_INCLUDEDIR ${CMAKE_INSTALL_INCLUDEDIR}/beamid)
 set(BEAMID_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/beamid)
-set(beamid_libraries beamid_hb beamid_signal beamid_estimation beamid_diagnosis beamid_backbone beamid_report
-    beamid_workflow beamid_solver)
+set(beamid_libraries beamid_hb beamid_signal beamid_estimation beamid_diagnosis beamid_live beamid_backbone
+    beamid_report beamid_workflow beamid_solver)
 foreach(library ${beamid_libraries})
   string(REPLACE "beamid_" "" short_name ${library})
   set_target_properties(${library} PROPERTIES EXPORT_NAME ${short_name})

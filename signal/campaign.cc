@@ -179,13 +179,11 @@ Campaign ParseCampaign(std::string_view json_text, const std::filesystem::path& 
   return campaign;
 }
 
-Campaign ReadCampaign(const std::filesystem::path& folder) {
-  const std::filesystem::path file = folder / "campaign.json";
-  Campaign campaign = ParseCampaign(
-      ReadTextFile(file, "campaign description", "give the folder that holds campaign.json (and check read permissions)"),
-      folder, file.string());
+void RequireRecordingsInside(const Campaign& campaign, const std::filesystem::path& source, bool missing_is_error) {
+  const std::string file = source.string();
   std::error_code error;
-  const std::filesystem::path root = std::filesystem::weakly_canonical(std::filesystem::absolute(folder), error);
+  const std::filesystem::path root =
+      std::filesystem::weakly_canonical(std::filesystem::absolute(campaign.folder), error);
   std::set<std::filesystem::path> recordings;
   for (std::size_t i = 0; i < campaign.steps.size(); ++i) {
     const auto path = campaign.StepPath(campaign.steps[i]);
@@ -196,25 +194,33 @@ Campaign ReadCampaign(const std::filesystem::path& folder) {
     const std::filesystem::path resolved = std::filesystem::weakly_canonical(std::filesystem::absolute(path), error);
     const auto [mismatch, unused] = std::mismatch(root.begin(), root.end(), resolved.begin(), resolved.end());
     if (error || mismatch != root.end() || resolved == root)
-      throw InputError(file.string(), "",
-                       where + "'s file \"" + campaign.steps[i].file + "\" lies outside the campaign folder",
+      throw InputError(file, "", where + "'s file \"" + campaign.steps[i].file + "\" lies outside the campaign folder",
                        "keep every recording inside the campaign folder and name it relative to it");
     if (!recordings.insert(resolved).second)
-      throw InputError(file.string(), "",
-                       where + "'s file \"" + campaign.steps[i].file + "\" is named by another step too",
+      throw InputError(file, "", where + "'s file \"" + campaign.steps[i].file + "\" is named by another step too",
                        "give every step its own recording (a step listed twice would count twice in the fit)");
     // A folder, a FIFO or a device named as a recording is said to be one,
     // not "missing": the fix differs.
-    if (const std::string kind = FileKind(path); kind == "missing")
+    if (const std::string kind = FileKind(path); kind == "missing") {
+      if (missing_is_error)
+        throw InputError(path.string(), "",
+                         "recording of " + where + " is missing (named in " + file + ")",
+                         "copy the recording into the campaign folder or correct its \"file\" entry");
+    } else if (!kind.empty()) {
       throw InputError(path.string(), "",
-                       "recording of steps[" + std::to_string(i) + "] is missing (named in " + file.string() + ")",
-                       "copy the recording into the campaign folder or correct its \"file\" entry");
-    else if (!kind.empty())
-      throw InputError(path.string(), "",
-                       "recording of steps[" + std::to_string(i) + "] is " + kind + ", not a file (named in " +
-                           file.string() + ")",
+                       "recording of " + where + " is " + kind + ", not a file (named in " + file + ")",
                        "put the recording itself (a regular file) there or correct its \"file\" entry");
+    }
   }
+}
+
+Campaign ReadCampaign(const std::filesystem::path& folder) {
+  const std::filesystem::path file = folder / "campaign.json";
+  Campaign campaign = ParseCampaign(
+      ReadTextFile(file, "campaign description",
+                   "give the folder that holds campaign.json (and check read permissions)"),
+      folder, file.string());
+  RequireRecordingsInside(campaign, file, true);
   std::vector<std::string> files;
   for (const auto& step : campaign.steps) files.push_back(step.file);
   const CampaignHash hash = HashCampaign(folder, files);

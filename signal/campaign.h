@@ -94,6 +94,13 @@ struct Campaign {
 // of a recording whose bytes are another step's. Throws InputError.
 Campaign ReadCampaign(const std::filesystem::path& folder);
 
+// The checks ReadCampaign makes of the steps' files: each lies inside the
+// campaign folder (links resolved), no two steps name one file, and none is
+// a folder, FIFO or device; a missing file is an error when
+// missing_is_error (a campaign being written lists a step before its file
+// is complete). source names campaign.json in messages. Throws InputError.
+void RequireRecordingsInside(const Campaign& campaign, const std::filesystem::path& source, bool missing_is_error);
+
 // The same validation on campaign.json text already in memory; source names
 // the file in messages. Recording files are not checked.
 Campaign ParseCampaign(std::string_view json_text, const std::filesystem::path& folder,

@@ -2,6 +2,7 @@
 # The folders are the architecture, and their dependencies point one way:
 #   hb (models, error types) ← signal (recordings → phasors) ← solver/,
 #   and inside solver/: estimation ← diagnosis ← report ← workflow ← cli,
+#   diagnosis ← live (a test followed while it runs) ← workflow,
 #   backbone (model-free, on signal only) ← report ← workflow ← cli,
 #   and workflow ← python (the Python module, beside cli).
 # The workflows (the use cases) print nothing and know no command line: no
@@ -28,11 +29,12 @@ forbid signal 'solver/' "signal builds on hb only"
 forbid solver/estimation 'solver/(backbone|diagnosis|report|workflow|cli)/' "estimation builds on hb and signal only"
 forbid solver/backbone 'solver/(estimation|diagnosis|report|workflow|cli)/' "the measured backbone is model-free"
 forbid solver/diagnosis 'solver/(backbone|report|workflow|cli)/' "diagnosis builds on estimation"
+forbid solver/live 'solver/(backbone|report|workflow|cli)/' "the live analysis builds on estimation and diagnosis"
 forbid solver/report 'solver/(workflow|cli)/' "the report is a library the workflows and the cli use"
 forbid solver/workflow 'solver/cli/|CLI/' "a workflow is called by the cli, never the other way"
 forbid solver/estimation 'nlohmann/|fmt/|CLI/' "an estimation header is plain data" '*.h'
 # The Python module (solver/python) stands beside the program, on the workflows.
-for folder in hb signal solver/estimation solver/backbone solver/diagnosis solver/report solver/workflow solver/cli; do
+for folder in hb signal solver/estimation solver/backbone solver/diagnosis solver/live solver/report solver/workflow solver/cli; do
   forbid "$folder" 'solver/python/|pybind11/' "the Python module uses the workflows, never the other way"
 done
 forbid solver/python 'solver/cli/|CLI/' "the Python module calls the workflows as the program does, not the program"

@@ -1,0 +1,110 @@
+// The next step of a running test, chosen for what it teaches. Each level is
+// swept upwards through the band, as a stepped-sine test runs, so that a
+// jump is approached from the side the branch is followed from; the
+// candidates are every frequency ahead of each level's last step on a grid
+// of resolution_hz, at most max_step_hz ahead (beyond, the beam may land
+// on another branch of a fold). For each candidate c the fitted model gives
+// the sensitivities J_c = ∂Y/∂p of the responses it would measure, each
+// whitened by the σ that record length would give (the noise seen so far,
+// a floor and a part proportional to the response, both ∝ 1/√T); the gain
+// is D_s-optimal on the target parameters T:
+//     gain_c = log det Cov_T − log det [(Cov⁻¹ + J_cᵀJ_c)⁻¹]_T,
+// and the step chosen is the one of largest gain per second of rig time
+// (settle + record). Near resonance and near a fold the sensitivities are
+// largest, so the steps grow dense there and stay sparse on the flanks.
+//
+// Settle time: after a change of frequency or level the response's
+// transient decays as e^(−σ_d·t), σ_d = ζ₁ω₁ the first mode's decay rate
+// (the fitted linear model's half-power half-width), from an amplitude of
+// the change of the steady state, |ΔY| = |Y(candidate) − Y(last step)|
+// (the model's prediction against the last step's measurement, the largest
+// relative change over the channels). It has settled to settle_tolerance
+// of |Y| after
+//     t_settle = ln(max(e, |ΔY|/(settle_tolerance·|Y|)))/σ_d,
+// so a small step next to the last one settles sooner than a jump across
+// the band or to another level, and the gain per second says which is
+// worth it.
+#pragma once
+
+#include <cmath>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "solver/estimation/fit_data.h"
+#include "solver/estimation/model_family.h"
+#include "solver/estimation/model_options.h"
+#include "solver/estimation/model_structure.h"
+#include "solver/live/test_plan.h"
+
+namespace beamid::solver {
+
+struct PlannerOptions {
+  std::vector<PlanLevel> levels;  // the force levels the test may use
+  double band_low_hz = 0.0;       // each level's sweep starts here
+  double band_high_hz = 0.0;      // and ends here
+  double resolution_hz = 0.05;    // the candidates' frequency grid
+  double max_step_hz = 1.0;       // the largest step ahead on a level
+  // The parameters whose precision the test is for, and the σ each must
+  // reach (absolute, in its unit); a target without a σ must reach
+  // target_relative_std of its value.
+  std::vector<std::string> targets = {"k1", "k3", "c"};
+  std::map<std::string, double> target_std;
+  double target_relative_std = 0.01;
+  // Nothing measurable remains once the best step would lower log det of
+  // the targets' covariance by less than this [nats].
+  double min_gain = 0.01;
+  int max_steps = 300;
+  double settle_tolerance = 1e-4;  // relative amplitude of the transient left when recording
+  double min_settle_s = 0.2;
+  double max_settle_s = 30.0;
+
+  // Throws InputError naming the field, its value and the allowed range.
+  void Validate() const;
+};
+
+// The fit the plan rests on: its data, model and parameters' covariance.
+struct PlannerFit {
+  const FitData* data = nullptr;
+  const ModelFamily* family = nullptr;
+  const ModelStructure* structure = nullptr;  // values = the fit's
+  ModelOptions model;
+  Eigen::MatrixXd covariance;  // physical parameters, structure order
+  std::vector<double> analysed_s;  // per step of data: the steady record its σ come from
+};
+
+// The fitted linear model's first resonance (the law's k1 and c and the
+// linear parameters applied): the peak of the driving point's response and
+// its half-power half-width σ_d = ζ₁ω₁ [1/s], the decay rate of a
+// transient; NaN when the peak is not found within ±10 % of ω₁.
+struct LinearResonance {
+  double frequency_hz = NAN;
+  double decay_rate_per_s = NAN;
+};
+LinearResonance FirstResonance(const FitData& data, const ModelStructure& structure);
+
+struct CandidateChoice {
+  std::optional<PlannedStep> step;  // nullopt: nothing left worth measuring
+  std::string why_none;
+  int candidates = 0;
+  // The targets' σ expected after the chosen step (structure order of targets).
+  std::vector<double> expected_std;
+};
+
+// `last_hz`: each level's last measured frequency (a level absent: not
+// begun; its first step is band_low_hz). `last_step`: the step of fit.data
+// measured last, the state the rig is in. record_s: the next step's record
+// (the verdicts of the last steps set it); extra_settle_s is added to every
+// settle (a step found unsettled asks for it).
+CandidateChoice ChooseNextStep(const PlannerFit& fit, const std::map<std::string, double>& last_hz, int last_step,
+                               const PlannerOptions& options, double record_s, double extra_settle_s);
+
+// The targets' σ and whether each reached it: the parameters of a fit
+// against the options' targets.
+std::vector<PlanParameter> TargetStatus(const ModelStructure& structure, const Eigen::MatrixXd& covariance,
+                                        const PlannerOptions& options);
+
+}  // namespace beamid::solver

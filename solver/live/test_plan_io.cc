@@ -1,0 +1,100 @@
+#include "solver/live/test_plan_io.h"
+
+#include <nlohmann/json.hpp>
+
+#include "hb/json_field.h"
+#include "hb/strict_json.h"
+#include "hb/text_file.h"
+
+namespace beamid::solver {
+
+namespace {
+constexpr std::string_view kFormatDoc = "docs/test-plan-format.md";
+constexpr std::string_view kFix = "let beamid watch write the plan (docs/test-plan-format.md)";
+}  // namespace
+
+std::string TestPlanJson(const TestPlan& plan) {
+  nlohmann::ordered_json j;
+  j["format"] = kTestPlanFormat;
+  j["sequence"] = plan.sequence;
+  j["done"] = plan.done;
+  j["done_reason"] = plan.done_reason;
+  if (plan.next) {
+    const PlannedStep& s = *plan.next;
+    j["next"] = {{"level", s.level},
+                 {"force_N", s.force_N},
+                 {"frequency_Hz", s.frequency_hz},
+                 {"settle_s", s.settle_s},
+                 {"record_s", s.record_s},
+                 {"repeat", s.repeat},
+                 {"reason", s.reason},
+                 {"expected_gain_nats", s.expected_gain},
+                 {"expected_gain_nats_per_s", s.expected_gain_per_s}};
+  } else {
+    j["next"] = nullptr;
+  }
+  j["steps_analysed"] = plan.steps_analysed;
+  j["rig_time_s"] = plan.rig_time_s;
+  j["parameters"] = nlohmann::ordered_json::array();
+  for (const PlanParameter& p : plan.parameters)
+    j["parameters"].push_back(
+        {{"name", p.name}, {"unit", p.unit}, {"value", p.value}, {"std", p.std}, {"target_std", p.target_std}});
+  j["reduced_chi_square"] = plan.reduced_chi_square;
+  j["fit_verdict"] = plan.fit_verdict;
+  j["warnings"] = plan.warnings;
+  return j.dump(2) + "\n";
+}
+
+void WriteTestPlan(const std::filesystem::path& path, const TestPlan& plan) {
+  WriteTextFileAtomically(path, TestPlanJson(plan));
+}
+
+TestPlan ParseTestPlan(const std::string& text, const std::string& source) {
+  const nlohmann::ordered_json json = ParseStrictJson(text, source, kFormatDoc);
+  const JsonField root(json, "", source, kTestPlanFormat, kFix);
+  root.OnlyKeys({"format", "sequence", "done", "done_reason", "next", "steps_analysed", "rig_time_s", "parameters",
+                 "reduced_chi_square", "fit_verdict", "warnings"});
+  if (root.At("format").String() != kTestPlanFormat) root.At("format").Fail("is not " + std::string(kTestPlanFormat));
+  TestPlan plan;
+  plan.sequence = root.At("sequence").Integer();
+  plan.done = root.At("done").Boolean();
+  plan.done_reason = root.At("done_reason").String();
+  if (!root.At("next").json().is_null()) {
+    const JsonField next = root.At("next");
+    next.OnlyKeys({"level", "force_N", "frequency_Hz", "settle_s", "record_s", "repeat", "reason",
+                   "expected_gain_nats", "expected_gain_nats_per_s"});
+    plan.next = PlannedStep{.level = next.At("level").String(),
+                            .force_N = next.At("force_N").Number(),
+                            .frequency_hz = next.At("frequency_Hz").Number(),
+                            .settle_s = next.At("settle_s").Number(),
+                            .record_s = next.At("record_s").Number(),
+                            .reason = next.At("reason").String(),
+                            .expected_gain = next.At("expected_gain_nats").Number(),
+                            .expected_gain_per_s = next.At("expected_gain_nats_per_s").Number(),
+                            .repeat = next.At("repeat").Boolean()};
+    if (!(plan.next->frequency_hz > 0.0)) next.At("frequency_Hz").Fail("must be positive");
+    if (!(plan.next->settle_s >= 0.0)) next.At("settle_s").Fail("must not be negative");
+    if (!(plan.next->record_s > 0.0)) next.At("record_s").Fail("must be positive");
+    if (!(plan.next->force_N > 0.0)) next.At("force_N").Fail("must be positive");
+  }
+  plan.steps_analysed = root.At("steps_analysed").Integer();
+  plan.rig_time_s = root.At("rig_time_s").Number();
+  for (const JsonField& p : root.At("parameters").Elements()) {
+    p.OnlyKeys({"name", "unit", "value", "std", "target_std"});
+    plan.parameters.push_back({.name = p.At("name").String(),
+                               .unit = p.At("unit").String(),
+                               .value = p.At("value").Number(),
+                               .std = p.At("std").Number(),
+                               .target_std = p.At("target_std").Number()});
+  }
+  plan.reduced_chi_square = root.At("reduced_chi_square").Number();
+  plan.fit_verdict = root.At("fit_verdict").String();
+  plan.warnings = root.At("warnings").Strings();
+  return plan;
+}
+
+TestPlan ReadTestPlan(const std::filesystem::path& path) {
+  return ParseTestPlan(ReadTextFile(path, "test plan", "give the plan file beamid watch writes"), path.string());
+}
+
+}  // namespace beamid::solver
