@@ -40,7 +40,7 @@ struct LiveOptions {
   StepVerdictOptions verdict;
   PlannerOptions planner;
   int min_steps_to_fit = 5;     // usable steps before the first fit
-  double initial_settle_s = 3.0;
+  double initial_settle_s = 6.0;  // from rest, or 1 Hz on, near resonance: ln(1e5)/σ_d of the paper's beam is 5 s
   double initial_record_s = 0.5;
 
   // Throws InputError naming the field, its value and the allowed range.

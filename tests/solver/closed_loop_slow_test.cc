@@ -39,7 +39,7 @@ TEST(ClosedLoopTest, ReachesTheTargetPrecisionWithTheTruthInsideAndStopsByItself
   request.live.planner = {.levels = {{.label = "low", .force_N = 1.0}, {.label = "high", .force_N = 9.0}},
                           .band_low_hz = 50.0,
                           .band_high_hz = 58.0,
-                          .target_relative_std = 0.01,
+                          .target_relative_std = 0.002,
                           .max_steps = 80};
   std::map<std::string, int> analysed;  // by file
   const WatchOutcome outcome =
