@@ -12,7 +12,7 @@ namespace beamid::signal {
 
 void CampaignFollowerOptions::Validate() const {
   checks.Validate();
-  option_checks::RequireInRange("stable_s", stable_s, 0.0, 3600.0);
+  option_checks::RequireInRange("--stable", stable_s, 0.0, 3600.0);
   option_checks::RequireInRange("invalid_looks", invalid_looks, 1, 1000000);
 }
 

@@ -21,8 +21,8 @@ void LiveOptions::Validate() const {
   verdict.Validate();
   planner.Validate();
   RequireInRange("min_steps_to_fit", min_steps_to_fit, 2, 100000);
-  RequireInRange("initial_settle_s", initial_settle_s, planner.min_settle_s, planner.max_settle_s);
-  RequireInRange("initial_record_s", initial_record_s, verdict.min_record_s, verdict.max_record_s);
+  RequireInRange("--settle", initial_settle_s, planner.min_settle_s, planner.max_settle_s);
+  RequireInRange("--record", initial_record_s, verdict.min_record_s, verdict.max_record_s);
 }
 
 namespace {

@@ -24,16 +24,16 @@ void PlannerOptions::Validate() const {
     if (level.label.empty()) throw InputError("levels: a level without a label. Fix: give LABEL=FORCE_N");
     RequireInRange("force of level " + level.label + " [N]", level.force_N, 1e-9, 1e6);
   }
-  RequireInRange("band_low_hz", band_low_hz, 1e-3, 1e6);
-  RequireInRange("band_high_hz", band_high_hz, band_low_hz, 1e6);
-  RequireInRange("resolution_hz", resolution_hz, 1e-6, band_high_hz - band_low_hz + 1.0);
-  RequireInRange("max_step_hz", max_step_hz, resolution_hz, 1e6);
+  RequireInRange("--band LOW", band_low_hz, 1e-3, 1e6);
+  RequireInRange("--band HIGH", band_high_hz, band_low_hz, 1e6);
+  RequireInRange("--resolution", resolution_hz, 1e-6, band_high_hz - band_low_hz + 1.0);
+  RequireInRange("--max-step", max_step_hz, resolution_hz, 1e6);
   if (targets.empty()) throw InputError("targets: none given. Fix: name at least one parameter (k1, k3, c, ...)");
   for (const auto& [name, std] : target_std) RequireInRange("target σ of " + name, std, 0.0, 1e300);
-  RequireInRange("target_relative_std", target_relative_std, 1e-9, 10.0);
+  RequireInRange("--target-relative", target_relative_std, 1e-9, 10.0);
   RequireInRange("min_gain", min_gain, 0.0, 100.0);
-  RequireInRange("max_steps", max_steps, 1, 100000);
-  RequireInRange("settle_tolerance", settle_tolerance, 1e-12, 0.5);
+  RequireInRange("--max-steps", max_steps, 1, 100000);
+  RequireInRange("--settle-tolerance", settle_tolerance, 1e-12, 0.5);
   RequireInRange("min_settle_s", min_settle_s, 0.0, 3600.0);
   RequireInRange("max_settle_s", max_settle_s, min_settle_s, 3600.0);
 }

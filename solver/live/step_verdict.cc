@@ -10,10 +10,10 @@
 namespace beamid::solver {
 
 void StepVerdictOptions::Validate() const {
-  option_checks::RequireInRange("target_relative_std", target_relative_std, 1e-9, 1.0);
+  option_checks::RequireInRange("--phasor-target", target_relative_std, 1e-9, 1.0);
   option_checks::RequireInRange("min_snr_db", min_snr_db, -100.0, 300.0);
   option_checks::RequireInRange("settle_margin", settle_margin, 1.0, 100.0);
-  option_checks::RequireInRange("min_record_s", min_record_s, 1e-3, 3600.0);
+  option_checks::RequireInRange("--min-record", min_record_s, 1e-3, 3600.0);
   option_checks::RequireInRange("max_record_s", max_record_s, min_record_s, 3600.0);
 }
 

@@ -1,6 +1,8 @@
 #include "solver/workflow/watch_campaign.h"
 
 #include <chrono>
+#include <filesystem>
+#include <system_error>
 #include <thread>
 
 #include <fmt/format.h>
@@ -20,6 +22,13 @@ void WatchRequest::Validate() const {
   RequireInRange("--idle-timeout", idle_timeout_s, 0.0, 1e7);
   live.Validate();
   follower.Validate();
+  // An acquisition writes into a folder that exists; waiting for one whose
+  // name was mistyped would wait until the idle timeout. The virtual rig
+  // makes its own.
+  std::error_code error;
+  if (virtual_rig.empty() && !std::filesystem::is_directory(campaign_folder, error))
+    throw InputError(campaign_folder, "", "is no folder",
+                     "create the campaign folder the acquisition writes into (or correct its name) before watching it");
   OutputPaths paths;
   paths.InputFolder(campaign_folder).Input(virtual_rig).Output("--plan", plan_file);
   paths.Check();
