@@ -54,6 +54,16 @@ std::string Sigma(const solver::PlanParameter& p) {
   return text;
 }
 
+std::string DiagnosisLines(const solver::PlanDiagnosis& d) {
+  std::string text = fmt::format("  diagnosis of {} steps ({:.1f} s): {}: {}\n", d.steps, d.seconds, d.verdict,
+                                 fmt::join(d.selected, ", "));
+  if (d.model_extended) text += "  the identification now holds it\n";
+  if (!d.focus_level.empty())
+    text += fmt::format("  measuring where they differ most: {} between {:.2f} and {:.2f} Hz\n", d.focus_level,
+                        d.focus_low_hz, d.focus_high_hz);
+  return text;
+}
+
 void PrintUpdate(const solver::LiveUpdate& update) {
   std::string line = fmt::format("step {:<28}", update.file);
   if (update.verdict) {
@@ -73,6 +83,7 @@ void PrintUpdate(const solver::LiveUpdate& update) {
     if (p.target_std > 0.0) line += "  " + Sigma(p) + "\n";
   if (!plan.parameters.empty()) line += fmt::format("  fit: {}\n", plan.fit_verdict);
   for (const std::string& warning : plan.warnings) line += "  warning: " + warning + "\n";
+  if (update.diagnosed && plan.diagnosis) line += DiagnosisLines(*plan.diagnosis);
   if (plan.next)
     line += fmt::format("  next: {} ({:g} N) at {:.3f} Hz, settle {:.2f} s, record {:.2f} s: {}\n", plan.next->level,
                         plan.next->force_N, plan.next->frequency_hz, plan.next->settle_s, plan.next->record_s,
@@ -139,7 +150,9 @@ void RunWatch(WatchCommandOptions& options, const GlobalOptions& global) {
       summary += fmt::format(" (virtual rig: {} steps, {:.1f} s of settle + record)", outcome.rig_steps,
                              outcome.rig_time_s);
     PrintToStderr(summary + "\n");
+    PrintToStderr("model: " + outcome.plan.model + "\n");
     for (const solver::PlanParameter& p : outcome.plan.parameters) PrintToStderr("  " + Sigma(p) + "\n");
+    if (outcome.plan.diagnosis) PrintToStderr(DiagnosisLines(*outcome.plan.diagnosis));
   }
 }
 
@@ -182,9 +195,14 @@ BEAMID_REGISTER_COMMAND("watch", [](CLI::App& app, const GlobalOptions& global) 
                       "Transient left when recording, relative to the response; sets each settle time")
       ->capture_default_str();
   command->add_option("--min-record", live.verdict.min_record_s, "Shortest record [s]")->capture_default_str();
+  command->add_option("--max-record", live.planner.max_record_s, "Longest record the plan may ask for [s]")
+      ->capture_default_str();
   command->add_option("--phasor-target", live.verdict.target_relative_std,
                       "σ/|X1| a step's worst channel should reach; sets the record length")
       ->capture_default_str();
+  command->add_flag("--modal-loss-factor", live.modal_loss_factor,
+                   "Fit the beam's damping as the modal loss factor (the law of time-domain codes) instead of "
+                   "E(1 + i eta)");
   command->add_option("--stable", request.follower.stable_s, "A file unchanged this long [s] is complete")
       ->capture_default_str();
   command->add_option("--poll", request.poll_s, "Seconds between looks at the folder")->capture_default_str();

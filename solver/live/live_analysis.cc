@@ -10,6 +10,9 @@
 
 #include "hb/errors.h"
 #include "hb/option_checks.h"
+#include "hb/support_law.h"
+#include "solver/diagnosis/candidate_physics.h"
+#include "solver/diagnosis/diagnosis.h"
 
 namespace beamid::solver {
 
@@ -51,7 +54,8 @@ LiveAnalysis::LiveAnalysis(const LiveOptions& options) : options_(options) {
   phasors_.num_harmonics = options_.estimator.num_harmonics;
   structure_ = PolynomialModel({.k1_Nm_rad = 100.0});
   // The beam's own damping is unknown in a real test: fitted, as identify does.
-  structure_.linear.push_back(LossFactor(1e-4));
+  structure_.linear.push_back(options_.modal_loss_factor ? ModalLossFactor(1e-4) : LossFactor(1e-4));
+  model_harmonics_ = options_.harmonics;
   settle_s_ = options_.initial_settle_s;
   record_s_ = options_.initial_record_s;
   LiveUpdate first;
@@ -88,6 +92,8 @@ void LiveAnalysis::Plan(LiveUpdate& update, const std::optional<PlannedStep>& re
   plan.sequence = plan_.sequence + 1;
   plan.steps_analysed = static_cast<int>(phasors_.steps.size());
   plan.rig_time_s = plan_.rig_time_s;
+  plan.model = model_name_;
+  plan.diagnosis = diagnosis_;
   if (fit_) {
     plan.parameters = TargetStatus(structure_, fit_->covariance, options_.planner);
     plan.reduced_chi_square = fit_->reduced_chi_square;
@@ -124,7 +130,7 @@ void LiveAnalysis::Plan(LiveUpdate& update, const std::optional<PlannedStep>& re
     const PlannerFit planner_fit{.data = &data_,
                                  .family = &HarmonicBalanceFamily(),
                                  .structure = &structure_,
-                                 .model = {.num_harmonics = options_.harmonics},
+                                 .model = {.num_harmonics = model_harmonics_},
                                  .covariance = fit_->covariance,
                                  .analysed_s = analysed_s_};
     int last_step = 0;
@@ -132,7 +138,13 @@ void LiveAnalysis::Plan(LiveUpdate& update, const std::optional<PlannedStep>& re
       if (data_.steps[i].level == last_level_ && data_.steps[i].nominal_frequency_hz == last_frequency_hz_)
         last_step = static_cast<int>(i);
     CandidateChoice choice =
-        ChooseNextStep(planner_fit, last_hz_, last_step, options_.planner, record_s_, extra_settle_s_);
+        ChooseNextStep(planner_fit, last_hz_, last_step, options_.planner, record_s_, extra_settle_s_, focus_);
+    if (!choice.step && focus_) {
+      // The band where the causes differ is measured: diagnose again at the
+      // next step, and plan as before meanwhile.
+      focus_.reset();
+      choice = ChooseNextStep(planner_fit, last_hz_, last_step, options_.planner, record_s_, extra_settle_s_);
+    }
     if (choice.step) {
       plan.next = choice.step;
     } else {
@@ -154,22 +166,125 @@ void LiveAnalysis::Refit(const signal::Campaign& campaign, LiveUpdate& update) {
                          .num_fit_harmonics = options_.fit_harmonics,
                          .uncertainty = PhasorUncertainty::kPropagated});
     IdentifyOptions identify;
-    identify.model.num_harmonics = options_.harmonics;
+    identify.model.num_harmonics = model_harmonics_;
     identify.num_starts = 0;
     identify.num_workers = 1;
     // From the previous optimum: a step moves it little, and the direct
     // estimate's start needs ~400 iterations where this needs a few.
-    identify.use_direct_estimate = !fit_.has_value();
-    IdentifyResult result = Identify(data_, structure_, identify);
+    identify.use_direct_estimate = !structure_fitted_;
+    std::optional<IdentifyResult> result;
+    std::string warm_error;
+    try {
+      result = Identify(data_, structure_, identify);
+    } catch (const std::exception& e) {
+      warm_error = e.what();
+    }
+    // A step on a level the model has not seen may move the optimum far
+    // (another branch, physics the model lacks): the previous optimum is
+    // then a poor start, and a fit from the data's own direct estimate, and
+    // from starts around it, may find what it did not.
+    const bool poor = !result || (fit_ && result->reduced_chi_square > 10.0 * std::max(1.0, fit_->reduced_chi_square));
+    if (poor && identify.use_direct_estimate == false &&
+        dynamic_cast<const hb::PolynomialSupportLaw*>(structure_.law.get()) != nullptr) {
+      identify.use_direct_estimate = true;
+      identify.num_starts = 4;
+      identify.num_workers = 0;
+      try {
+        IdentifyResult fresh = Identify(data_, structure_, identify);
+        if (!result || fresh.chi_square < result->chi_square) result = std::move(fresh);
+      } catch (const std::exception&) {
+        if (!result) throw;
+      }
+    }
+    if (!result) throw std::runtime_error(warm_error);
     std::vector<double> values;
-    for (const ParameterEstimate& p : result.parameters) values.push_back(p.value);
+    for (const ParameterEstimate& p : result->parameters) values.push_back(p.value);
     structure_.SetValues(values);
+    structure_fitted_ = true;
     fit_ = std::move(result);
     update.refitted = true;
   } catch (const std::exception& e) {
     update.fit_error = e.what();
   }
   update.fit_s = SecondsSince(start);
+}
+
+void LiveAnalysis::Diagnose(const signal::Campaign& campaign, LiveUpdate& update) {
+  const int steps = static_cast<int>(phasors_.steps.size());
+  const bool misfit = fit_ && !fit_->verdict.within_noise;
+  const bool due = options_.diagnose && misfit && steps >= options_.min_steps_to_diagnose &&
+                   (!diagnosis_ || (steps - diagnosis_->steps >= options_.diagnose_every && !focus_));
+  if (!due) return;
+  const auto start = std::chrono::steady_clock::now();
+  PlanDiagnosis found{.steps = steps};
+  try {
+    const FitData located = MakeFitData(campaign, phasors_,
+                                        {.channels = fit_channels_,
+                                         .num_fit_harmonics = std::max(5, options_.fit_harmonics),
+                                         .uncertainty = PhasorUncertainty::kPropagated});
+    DiagnosisOptions options;
+    options.model_harmonics = options_.harmonics;
+    options.modal_loss_factor = options_.modal_loss_factor;
+    options.num_workers = options_.diagnosis_workers;
+    options.damping_laws = false;
+    // The physics only: a step the recording spoilt is measured again by its
+    // verdict, and with few steps of a level the model cannot follow, each
+    // of them looks like an outlying step.
+    options.measurement_artefacts = false;
+    const DiagnosisResult result = solver::Diagnose(data_, FitData{}, located, options);
+    found.verdict = ToString(result.verdict);
+    found.selected = result.selected;
+    found.summary = result.summary;
+    if (result.verdict == DiagnosisVerdict::kCausesIndistinguishable && result.suggestion) {
+      const MeasurementSuggestion& suggestion = *result.suggestion;
+      const auto most = std::max_element(suggestion.levels.begin(), suggestion.levels.end(),
+                                         [](const LevelShare& a, const LevelShare& b) { return a.share < b.share; });
+      if (most != suggestion.levels.end() && FindLevel(options_.planner, most->level)) {
+        focus_ = PlanFocus{
+            .level = most->level, .low_hz = suggestion.focus_low_hz, .high_hz = suggestion.focus_high_hz};
+        found.focus_level = focus_->level;
+        found.focus_low_hz = focus_->low_hz;
+        found.focus_high_hz = focus_->high_hz;
+      }
+    }
+    const bool named = result.verdict == DiagnosisVerdict::kCauseNamed ||
+                       result.verdict == DiagnosisVerdict::kCombinationNamed;
+    if (named && result.blame == Blame::kModel && model_name_ == "polynomial support") {
+      // The named physics joins the identification: each cause extends the
+      // base as the diagnosis did, at the values of its final fit.
+      ModelStructure extended = structure_;
+      int harmonics = model_harmonics_;
+      for (const std::string& name : result.selected)
+        for (const CandidatePhysics& physics : CandidateLibrary())
+          if (physics.name == name) {
+            const CandidateExtension extension =
+                physics.extend(extended, {.data = &data_, .model_harmonics = harmonics});
+            extended = extension.structure;
+            harmonics = std::max(harmonics, extension.model_harmonics);
+          }
+      std::vector<double> values;
+      std::vector<std::string> names;
+      for (const ParameterEstimate& p : result.final_fit.parameters) {
+        values.push_back(p.value);
+        names.push_back(p.name);
+      }
+      if (names == extended.Names()) {
+        extended.SetValues(values);
+        structure_ = extended;
+        model_harmonics_ = harmonics;
+        model_name_ = "polynomial support with " + fmt::format("{}", fmt::join(result.selected, " and "));
+        found.model_extended = true;
+        Refit(campaign, update);  // from the diagnosis's final fit
+      }
+    }
+  } catch (const std::exception& e) {
+    found.verdict = "failed";
+    found.summary = std::string("the diagnosis failed: ") + e.what();
+  }
+  found.seconds = SecondsSince(start);
+  update.diagnose_s = found.seconds;
+  update.diagnosed = true;
+  diagnosis_ = found;
 }
 
 LiveUpdate LiveAnalysis::Add(const signal::FollowedStep& step, const signal::Campaign& campaign) {
@@ -195,6 +310,16 @@ LiveUpdate LiveAnalysis::Add(const signal::FollowedStep& step, const signal::Cam
     Plan(update, repeat);
     return update;
   };
+  // A step that fails the same way take after take is a property of the
+  // beam or the rig, not bad luck: after max_repeats more takes the test
+  // moves on (leaving the step out, or using it with a warning).
+  const bool last_take = ++failed_takes_[{step.step.level, step.step.frequency_hz}] > options_.max_repeats;
+  const auto leave_out = [&] {
+    double& last = last_hz_.try_emplace(step.step.level, step.step.frequency_hz).first->second;
+    last = std::max(last, step.step.frequency_hz);
+    Plan(update, std::nullopt);
+    return update;
+  };
   if (!level) {
     update.error = "its level \"" + step.step.level + "\" is none of the plan's levels";
     Plan(update, std::nullopt);
@@ -202,7 +327,7 @@ LiveUpdate LiveAnalysis::Add(const signal::FollowedStep& step, const signal::Cam
   }
   if (step.status == signal::FollowedStatus::kFaulty) {
     update.error = step.error;
-    return again(step.error);
+    return last_take ? leave_out() : again(step.error);
   }
   const auto start = std::chrono::steady_clock::now();
   signal::Campaign analysed = campaign;
@@ -213,6 +338,7 @@ LiveUpdate LiveAnalysis::Add(const signal::FollowedStep& step, const signal::Cam
   } catch (const std::exception& e) {
     update.extract_s = SecondsSince(start);
     update.error = e.what();
+    if (last_take) return leave_out();
     // No steady state: most often too short a settle.
     settle_s_ = std::min(options_.planner.max_settle_s, 2.0 * RepeatSettle());
     return again(update.error);
@@ -224,8 +350,11 @@ LiveUpdate LiveAnalysis::Add(const signal::FollowedStep& step, const signal::Cam
       previous = &other;
   update.verdict = JudgeStep(phasors, fit_channels_, options_.verdict, previous);
   update.extract_s = SecondsSince(start);
-  const StepVerdict& verdict = *update.verdict;
-  if (verdict.measure_again) {
+  StepVerdict& verdict = *update.verdict;
+  if (verdict.measure_again && last_take) {
+    for (const std::string& reason : verdict.reasons)
+      verdict.warnings.push_back(fmt::format("used after {} takes although {}", options_.max_repeats + 1, reason));
+  } else if (verdict.measure_again) {
     settle_s_ = std::min(options_.planner.max_settle_s, RepeatSettle() + verdict.extra_settle_s);
     if (phasors.quality.unsettled) extra_settle_s_ += verdict.extra_settle_s;
     std::string why;
@@ -259,6 +388,7 @@ LiveUpdate LiveAnalysis::Add(const signal::FollowedStep& step, const signal::Cam
   last_frequency_hz_ = phasors.nominal_frequency_hz;
   record_s_ = verdict.record_needed_s;
   if (static_cast<int>(phasors_.steps.size()) >= options_.min_steps_to_fit) Refit(analysed, update);
+  Diagnose(analysed, update);
   Plan(update, std::nullopt);
   return update;
 }

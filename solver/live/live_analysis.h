@@ -12,9 +12,20 @@
 // and the change it makes. A step that had not settled is measured again
 // with the verdict's margin more, and every later settle keeps that margin.
 // The record length is what the last step needed for the target phasor σ.
+//
+// When the fit misses the steps beyond their noise (from
+// min_steps_to_diagnose usable steps on, and again every diagnose_every
+// steps while it still does), the diagnosis runs on the steps so far
+// (solver/diagnosis/diagnosis.h): a cause of the model it names is added to
+// the identification (its parameters beside k1..c, the plan's sensitivities
+// from then on those of that model); when two causes fit alike, the plan
+// measures where its measurement suggestion says they differ most (the
+// level and band of most of the expected Δχ²) until that band is measured,
+// then diagnoses again.
 #pragma once
 
 #include <map>
+#include <utility>
 #include <optional>
 #include <string>
 #include <vector>
@@ -40,6 +51,16 @@ struct LiveOptions {
   StepVerdictOptions verdict;
   PlannerOptions planner;
   int min_steps_to_fit = 5;     // usable steps before the first fit
+  int max_repeats = 2;          // takes of a failing step after the first
+  // The beam's damping as the modal loss factor η_m matched per mode at its
+  // driving harmonic (hb/matched_modal_loss.h, the law of time-domain codes,
+  // the simulator's among them) instead of E(1 + iη): the two split the
+  // beam's loss and the support's c differently.
+  bool modal_loss_factor = false;
+  bool diagnose = true;
+  int min_steps_to_diagnose = 8;
+  int diagnose_every = 6;
+  int diagnosis_workers = 0;  // worker processes of the diagnosis's refits (0: one per core)
   double initial_settle_s = 6.0;  // from rest, or 1 Hz on, near resonance: ln(1e5)/σ_d of the paper's beam is 5 s
   double initial_record_s = 0.5;
 
@@ -54,9 +75,11 @@ struct LiveUpdate {
   std::string error;                   // a faulty recording: what is wrong
   std::optional<StepVerdict> verdict;  // when phasors could be extracted
   bool refitted = false;
+  bool diagnosed = false;              // a diagnosis ran after this step (plan.diagnosis)
   std::string fit_error;               // a fit that failed (the plan keeps sweeping)
   TestPlan plan;
   double extract_s = 0.0, fit_s = 0.0, plan_s = 0.0;  // wall time of each part
+  double diagnose_s = 0.0;
 };
 
 class LiveAnalysis {
@@ -80,6 +103,7 @@ class LiveAnalysis {
 
  private:
   void Refit(const signal::Campaign& campaign, LiveUpdate& update);
+  void Diagnose(const signal::Campaign& campaign, LiveUpdate& update);
   void Plan(LiveUpdate& update, const std::optional<PlannedStep>& repeat);
   PlannedStep SweepStep() const;
   double RepeatSettle() const;
@@ -90,8 +114,14 @@ class LiveAnalysis {
   std::vector<double> analysed_s_;  // per phasors_ step
   FitData data_;
   ModelStructure structure_;
+  bool structure_fitted_ = false;  // its values are a fit's: later fits start there
   std::optional<IdentifyResult> fit_;
+  int model_harmonics_ = 5;
+  std::string model_name_ = "polynomial support";
+  std::optional<PlanDiagnosis> diagnosis_;
+  std::optional<PlanFocus> focus_;
   std::map<std::string, double> last_hz_;  // per level: its last usable step
+  std::map<std::pair<std::string, double>, int> failed_takes_;  // per level and frequency
   std::string last_level_;                 // the usable step measured last: the rig's state
   double last_frequency_hz_ = 0.0;
   double settle_s_ = 0.0;        // before the first fit, and for a step measured again

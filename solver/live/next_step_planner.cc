@@ -34,6 +34,7 @@ void PlannerOptions::Validate() const {
   RequireInRange("min_gain", min_gain, 0.0, 100.0);
   RequireInRange("--max-steps", max_steps, 1, 100000);
   RequireInRange("--settle-tolerance", settle_tolerance, 1e-12, 0.5);
+  RequireInRange("--max-record", max_record_s, 1e-3, 3600.0);
   RequireInRange("min_settle_s", min_settle_s, 0.0, 3600.0);
   RequireInRange("max_settle_s", max_settle_s, min_settle_s, 3600.0);
 }
@@ -175,7 +176,8 @@ std::vector<PlanParameter> TargetStatus(const ModelStructure& structure, const E
 }
 
 CandidateChoice ChooseNextStep(const PlannerFit& fit, const std::map<std::string, double>& last_hz, int last_step,
-                               const PlannerOptions& options, double record_s, double extra_settle_s) {
+                               const PlannerOptions& options, double min_record_s, double extra_settle_s,
+                               const std::optional<PlanFocus>& focus) {
   options.Validate();
   const FitData& data = *fit.data;
   const ModelStructure& structure = *fit.structure;
@@ -203,7 +205,15 @@ CandidateChoice ChooseNextStep(const PlannerFit& fit, const std::map<std::string
   for (const PlanLevel& level : options.levels) {
     std::vector<double> frequencies;
     const auto last = last_hz.find(level.label);
-    if (last == last_hz.end()) {
+    if (focus) {
+      if (level.label != focus->level) continue;
+      for (double f = focus->low_hz; f <= focus->high_hz + tolerance_hz; f += options.resolution_hz) {
+        const bool measured = std::any_of(data.steps.begin(), data.steps.end(), [&](const FitStep& step) {
+          return step.level == level.label && std::abs(step.nominal_frequency_hz - f) < 0.5 * options.resolution_hz;
+        });
+        if (!measured) frequencies.push_back(f);
+      }
+    } else if (last == last_hz.end()) {
       const double top = std::min(options.band_high_hz, resonance.frequency_hz);
       for (int m = 0; options.band_low_hz + m * options.resolution_hz <= top + tolerance_hz; ++m)
         frequencies.push_back(options.band_low_hz + m * options.resolution_hz);
@@ -233,7 +243,8 @@ CandidateChoice ChooseNextStep(const PlannerFit& fit, const std::map<std::string
   }
   choice.candidates = static_cast<int>(candidates.steps.size());
   if (candidates.steps.empty()) {
-    choice.why_none = "every level has been swept to the top of the band";
+    choice.why_none = focus ? "every step where the competing causes differ has been measured"
+                            : "every level has been swept to the top of the band";
     return choice;
   }
 
@@ -269,28 +280,35 @@ CandidateChoice ChooseNextStep(const PlannerFit& fit, const std::map<std::string
     const double settle_s =
         std::clamp(std::log(std::max(std::numbers::e, change / options.settle_tolerance)) / decay_per_s,
                    options.min_settle_s, options.max_settle_s) + extra_settle_s;
-    const double cost_s = settle_s + record_s;
+    // Whitened for a record of 1 s; a record of T s scales it by √T.
     Eigen::MatrixXd j = jacobian.middleRows(i * rows_per_step, rows_per_step) * scale.asDiagonal();
     for (int c = 0; c < channels; ++c) {
       const double fundamental = predicted.segment<2>(2 * (c * k_max) + i * rows_per_step).norm();
-      for (int k = 0; k < k_max; ++k) j.middleRows(2 * (c * k_max + k), 2) /= noise.Std(c, k, fundamental, record_s);
+      for (int k = 0; k < k_max; ++k) j.middleRows(2 * (c * k_max + k), 2) /= noise.Std(c, k, fundamental, 1.0);
     }
     if (!j.allFinite()) continue;
-    const Eigen::MatrixXd after = RegularisedInverse(information + j.transpose() * j);
-    const double gain = log_det_now - LogDet(Block(after, targets));
-    const double per_s = gain / cost_s;
-    if (per_s > best_per_s) {
-      best_per_s = per_s;
-      const FitStep& s = candidates.steps[static_cast<std::size_t>(i)];
-      choice.step = PlannedStep{.level = s.level,
-                                .force_N = candidate_force[static_cast<std::size_t>(i)],
-                                .frequency_hz = s.nominal_frequency_hz,
-                                .settle_s = settle_s,
-                                .record_s = record_s,
-                                .expected_gain = gain,
-                                .expected_gain_per_s = per_s};
-      choice.expected_std.clear();
-      for (const int t : targets) choice.expected_std.push_back(std::sqrt(after(t, t)) * scale(t));
+    const Eigen::MatrixXd information_per_s = j.transpose() * j;
+    // The record too is chosen for the gain per second: near resonance,
+    // where a step must settle for seconds, recording a few seconds more
+    // costs little and teaches in proportion.
+    for (double record = min_record_s;; record = std::min(2.0 * record, options.max_record_s)) {
+      const Eigen::MatrixXd after = RegularisedInverse(information + record * information_per_s);
+      const double gain = log_det_now - LogDet(Block(after, targets));
+      const double per_s = gain / (settle_s + record);
+      if (per_s > best_per_s) {
+        best_per_s = per_s;
+        const FitStep& s = candidates.steps[static_cast<std::size_t>(i)];
+        choice.step = PlannedStep{.level = s.level,
+                                  .force_N = candidate_force[static_cast<std::size_t>(i)],
+                                  .frequency_hz = s.nominal_frequency_hz,
+                                  .settle_s = settle_s,
+                                  .record_s = record,
+                                  .expected_gain = gain,
+                                  .expected_gain_per_s = per_s};
+        choice.expected_std.clear();
+        for (const int t : targets) choice.expected_std.push_back(std::sqrt(after(t, t)) * scale(t));
+      }
+      if (record >= options.max_record_s) break;
     }
   }
   if (!choice.step) {
@@ -309,7 +327,8 @@ CandidateChoice ChooseNextStep(const PlannerFit& fit, const std::map<std::string
   for (std::size_t t = 0; t < targets.size(); ++t)
     expected.push_back(fmt::format("σ({}) {:.3g} → {:.3g}", options.targets[t],
                                    std::sqrt(fit.covariance(targets[t], targets[t])), choice.expected_std[t]));
-  choice.step->reason = fmt::format("of {} candidates the most informative per second: {}", choice.candidates,
+  choice.step->reason = fmt::format("of {} candidates{} the most informative per second: {}", choice.candidates,
+                                    focus ? " where the competing causes differ most," : "",
                                     fmt::join(expected, ", "));
   return choice;
 }

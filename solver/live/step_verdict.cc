@@ -72,11 +72,11 @@ StepVerdict JudgeStep(const signal::StepPhasors& step, const std::vector<std::st
   } else {
     verdict.extra_settle_s = options.settle_margin * verdict.transient_s;
   }
-  if (verdict.snr_db < options.min_snr_db) {
-    verdict.measure_again = true;
-    verdict.reasons.push_back(fmt::format("SNR {:.1f} dB below {:.0f} dB: raise the level or record longer",
-                                          verdict.snr_db, options.min_snr_db));
-  }
+  // Not measured again: a low SNR that is the support's own higher harmonics
+  // (friction) would come back at every take; the phasors' σ carry the noise.
+  if (verdict.snr_db < options.min_snr_db)
+    verdict.warnings.push_back(fmt::format("SNR {:.1f} dB below {:.0f} dB ({}): check the sensor, or raise the level",
+                                           verdict.snr_db, options.min_snr_db, verdict.worst_channel));
   const double ratio = verdict.relative_std / options.target_relative_std;
   const double needed = std::isfinite(ratio) ? verdict.analysed_s * ratio * ratio : options.max_record_s;
   verdict.record_needed_s = std::clamp(needed, options.min_record_s, options.max_record_s);

@@ -4,7 +4,9 @@
 //   - settled: the extraction found no transient left in the analysed part
 //     (StepQuality::unsettled false); else it is measured again with a
 //     longer settle;
-//   - SNR: the worst analysed channel's, against min_snr_db;
+//   - SNR: the worst analysed channel's, against min_snr_db (a warning: the
+//     phasors' σ hold the noise, and a residual that is the support's own
+//     harmonics beyond those fitted would come back at every take);
 //   - precision: the worst analysed channel's relative σ of its fundamental,
 //         r = √((σ_re² + σ_im²)/2)/|X_1|,
 //     which falls as 1/√T with the steady record's length T, so the record
@@ -34,7 +36,7 @@ struct StepVerdictOptions {
 };
 
 struct StepVerdict {
-  bool measure_again = false;        // unsettled or too noisy: the same step once more
+  bool measure_again = false;        // unsettled, or no analysed channel: the same step once more
   std::vector<std::string> reasons;  // why measure_again, one sentence each
   std::vector<std::string> warnings; // usable, but look (a jump since the step before)
   std::string worst_channel;         // the channel with the largest relative σ

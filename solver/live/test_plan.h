@@ -43,6 +43,23 @@ struct PlanParameter {
   double target_std = 0.0;  // 0: not a target
 };
 
+// The diagnosis run on the steps so far when the fit missed them beyond
+// their noise (solver/diagnosis/diagnosis.h).
+struct PlanDiagnosis {
+  int steps = 0;                      // usable steps it saw
+  std::string verdict;                // "cause named", "causes indistinguishable", ...
+  std::vector<std::string> selected;  // the cause(s) named; {"none"} when none
+  std::string summary;                // its summary, as diagnosis.json's
+  // The identification now holds the named physics (its parameters beside
+  // k1..c): the fit and the plan go on with it.
+  bool model_extended = false;
+  // Causes indistinguishable: the steps that would tell them apart, where
+  // the plan now measures (empty otherwise).
+  std::string focus_level;
+  double focus_low_hz = 0.0, focus_high_hz = 0.0;
+  double seconds = 0.0;
+};
+
 struct TestPlan {
   int sequence = 0;            // grows by one with every plan written
   bool done = false;
@@ -54,6 +71,8 @@ struct TestPlan {
   double reduced_chi_square = 0.0;        // of the last fit (0 before)
   std::string fit_verdict;                // the last fit's verdict, one sentence
   std::vector<std::string> warnings;      // of the last step or fit
+  std::string model;                      // "polynomial support", or it with the named physics
+  std::optional<PlanDiagnosis> diagnosis; // the last one run
 };
 
 }  // namespace beamid::solver

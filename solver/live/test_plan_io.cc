@@ -42,6 +42,21 @@ std::string TestPlanJson(const TestPlan& plan) {
   j["reduced_chi_square"] = plan.reduced_chi_square;
   j["fit_verdict"] = plan.fit_verdict;
   j["warnings"] = plan.warnings;
+  j["model"] = plan.model;
+  if (plan.diagnosis) {
+    const PlanDiagnosis& d = *plan.diagnosis;
+    j["diagnosis"] = {{"steps", d.steps},
+                      {"verdict", d.verdict},
+                      {"selected", d.selected},
+                      {"summary", d.summary},
+                      {"model_extended", d.model_extended},
+                      {"focus_level", d.focus_level},
+                      {"focus_low_Hz", d.focus_low_hz},
+                      {"focus_high_Hz", d.focus_high_hz},
+                      {"seconds", d.seconds}};
+  } else {
+    j["diagnosis"] = nullptr;
+  }
   return j.dump(2) + "\n";
 }
 
@@ -53,7 +68,7 @@ TestPlan ParseTestPlan(const std::string& text, const std::string& source) {
   const nlohmann::ordered_json json = ParseStrictJson(text, source, kFormatDoc);
   const JsonField root(json, "", source, kTestPlanFormat, kFix);
   root.OnlyKeys({"format", "sequence", "done", "done_reason", "next", "steps_analysed", "rig_time_s", "parameters",
-                 "reduced_chi_square", "fit_verdict", "warnings"});
+                 "reduced_chi_square", "fit_verdict", "warnings", "model", "diagnosis"});
   if (root.At("format").String() != kTestPlanFormat) root.At("format").Fail("is not " + std::string(kTestPlanFormat));
   TestPlan plan;
   plan.sequence = root.At("sequence").Integer();
@@ -90,6 +105,21 @@ TestPlan ParseTestPlan(const std::string& text, const std::string& source) {
   plan.reduced_chi_square = root.At("reduced_chi_square").Number();
   plan.fit_verdict = root.At("fit_verdict").String();
   plan.warnings = root.At("warnings").Strings();
+  plan.model = root.At("model").String();
+  if (!root.At("diagnosis").json().is_null()) {
+    const JsonField d = root.At("diagnosis");
+    d.OnlyKeys({"steps", "verdict", "selected", "summary", "model_extended", "focus_level", "focus_low_Hz",
+                "focus_high_Hz", "seconds"});
+    plan.diagnosis = PlanDiagnosis{.steps = d.At("steps").Integer(),
+                                   .verdict = d.At("verdict").String(),
+                                   .selected = d.At("selected").Strings(),
+                                   .summary = d.At("summary").String(),
+                                   .model_extended = d.At("model_extended").Boolean(),
+                                   .focus_level = d.At("focus_level").String(),
+                                   .focus_low_hz = d.At("focus_low_Hz").Number(),
+                                   .focus_high_hz = d.At("focus_high_Hz").Number(),
+                                   .seconds = d.At("seconds").Number()};
+  }
   return plan;
 }
 

@@ -6,7 +6,9 @@
 // record times. Then `beamid watch` with the simulator as its rig (closed
 // loop) runs until k1, k3 and c reach
 //   - 1 % of their values (BM_GuidedToOnePercent), and
-//   - the σ the uniform campaign gave them (BM_GuidedToUniformSigma),
+//   - the σ the uniform campaign gave them (BM_GuidedToUniformSigma), and
+//     the same with the beam's damping fitted as the simulator's own law,
+//     the modal loss factor (BM_GuidedToUniformSigmaModalLoss),
 // or until it stops by itself; counters: its steps and rig time, the ratio
 // to the uniform campaign's, each target's σ over its goal, the truth's
 // distance in σ, and the update after each step (extract + refit + plan)
@@ -65,7 +67,7 @@ const Uniform& UniformCampaign() {
   return uniform;
 }
 
-void RunGuided(benchmark::State& state, bool to_uniform_sigma) {
+void RunGuided(benchmark::State& state, bool to_uniform_sigma, bool modal_loss_factor = false) {
   const Uniform& uniform = UniformCampaign();
   for (auto _ : state) {
     const fs::path root = fs::temp_directory_path() / "beamid_closed_loop_benchmark_guided";
@@ -79,6 +81,7 @@ void RunGuided(benchmark::State& state, bool to_uniform_sigma) {
     planner.band_low_hz = 50.0;
     planner.band_high_hz = 58.0;
     planner.max_steps = 200;
+    request.live.modal_loss_factor = modal_loss_factor;
     if (to_uniform_sigma)
       for (const auto& [name, truth] : kTruth) planner.target_std[name] = uniform.std.at(name);
     double update_sum = 0.0, update_max = 0.0;
@@ -114,8 +117,10 @@ void RunGuided(benchmark::State& state, bool to_uniform_sigma) {
 
 void BM_GuidedToOnePercent(benchmark::State& state) { RunGuided(state, false); }
 void BM_GuidedToUniformSigma(benchmark::State& state) { RunGuided(state, true); }
+void BM_GuidedToUniformSigmaModalLoss(benchmark::State& state) { RunGuided(state, true, true); }
 
 BENCHMARK(BM_GuidedToOnePercent)->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK(BM_GuidedToUniformSigma)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(BM_GuidedToUniformSigmaModalLoss)->Unit(benchmark::kSecond)->Iterations(1);
 
 }  // namespace

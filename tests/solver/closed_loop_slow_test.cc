@@ -1,19 +1,28 @@
 // The test guided while it runs, in closed loop with the time-domain
 // simulator as the rig (hb/virtual_rig.h) on the paper's set-up: the watch
 // plans each step, the rig runs it and writes it into the folder, the watch
-// reads it like any acquisition's. The loop must stop by itself with k1, k3
-// and c at their target σ and the truth inside their intervals, having
-// read every step the rig wrote exactly once, and most of its steps near
-// resonance, where the uniform sweep spends few.
+// reads it like any acquisition's. Against the uniform campaign of the same
+// set-up (its rig time, its σ from `beamid identify`), the loop must stop
+// by itself with k1, k3 and c at that σ in less than a third of its rig
+// time, the truth inside their intervals, having read every step the rig
+// wrote exactly once. With a concealed effect
+// (friction, an added mass) the diagnosis must name it and the loop go on
+// with it.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
+#include "hb/campaign_writer.h"
+#include "hb/scenario.h"
+#include "hb/stepped_sine.h"
 #include "hb/text_file.h"
 #include "solver/live/test_plan_io.h"
+#include "solver/workflow/identify_campaign.h"
 #include "solver/workflow/watch_campaign.h"
 #include "tests/support/paper_scenario.h"
 #include "tests/support/temp_path.h"
@@ -23,7 +32,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-TEST(ClosedLoopTest, ReachesTheTargetPrecisionWithTheTruthInsideAndStopsByItself) {
+TEST(ClosedLoopTest, ReachesTheUniformCampaignsSigmaInAThirdOfItsRigTimeAndStopsByItself) {
   const fs::path root = beamid::testing::UniqueTempPath("beamid_closed_loop");
   fs::remove_all(root);
   fs::create_directories(root);
@@ -33,47 +42,115 @@ TEST(ClosedLoopTest, ReachesTheTargetPrecisionWithTheTruthInsideAndStopsByItself
         {"label": "low", "force_amplitude_N": 1, "frequencies_Hz": {"start": 50, "stop": 58, "step": 0.25}},
         {"label": "high", "force_amplitude_N": 9, "frequencies_Hz": {"start": 50, "stop": 58, "step": 0.25}}])",
                                          5));
+  // The uniform campaign: 2 levels × 33 steps, settled by the simulator's
+  // rule, identified as `beamid identify` does.
+  double uniform_rig_s = 0.0;
+  {
+    const hb::Scenario scenario = hb::ReadScenario(root / "scenario.json");
+    hb::SteppedSineSimulation simulation(scenario);
+    hb::CampaignWriter writer(simulation, root / "uniform");
+    simulation.Run([&](const hb::SimulatedStep& step) {
+      writer.Write(step);
+      uniform_rig_s += step.settle_s + scenario.timing.record_s;
+    });
+    writer.Finish();
+  }
+  const IdentifyOutcome uniform = IdentifyCampaign({.campaign_folder = (root / "uniform").string(),
+                                                    .damping_envelope = false,
+                                                    .output = (root / "uniform.json").string()});
   WatchRequest request{.campaign_folder = (root / "campaign").string(),
                        .plan_file = (root / "plan.json").string(),
                        .virtual_rig = (root / "scenario.json").string()};
   request.live.planner = {.levels = {{.label = "low", .force_N = 1.0}, {.label = "high", .force_N = 9.0}},
                           .band_low_hz = 50.0,
                           .band_high_hz = 58.0,
-                          .target_relative_std = 0.002,
                           .max_steps = 80};
+  const std::map<std::string, double> truth{{"k1", 150.0}, {"k3", 3e5}, {"c", 0.05}};
+  for (const solver::ParameterEstimate& p : uniform.Result().parameters)
+    if (truth.contains(p.name)) request.live.planner.target_std[p.name] = p.std;
+  // The simulator's own damping law: with E(1 + iη) instead, c carries a
+  // model-form bias of 2–4 of these σ (docs/watch.md).
+  request.live.modal_loss_factor = true;
   std::map<std::string, int> analysed;  // by file
   const WatchOutcome outcome =
       WatchCampaign(request, {}, [&](const solver::LiveUpdate& update) { ++analysed[update.file]; });
   const solver::TestPlan& plan = outcome.plan;
   ASSERT_TRUE(plan.done);
-  EXPECT_NE(plan.done_reason.find("target"), std::string::npos) << plan.done_reason;
+  EXPECT_NE(plan.done_reason.find("every target"), std::string::npos) << plan.done_reason;
   EXPECT_EQ(outcome.steps_handed_out, outcome.rig_steps);
   for (const auto& [file, times] : analysed) EXPECT_EQ(times, 1) << file;
-  const std::map<std::string, double> truth{{"k1", 150.0}, {"k3", 3e5}, {"c", 0.05}};
   for (const solver::PlanParameter& p : plan.parameters) {
     if (!truth.contains(p.name)) continue;
     EXPECT_LE(p.std, p.target_std) << p.name;
     EXPECT_LT(std::abs(p.value - truth.at(p.name)), 3.0 * p.std) << p.name << " = " << p.value << " ± " << p.std;
   }
+  EXPECT_LT(outcome.rig_time_s, uniform_rig_s / 3.0);
   EXPECT_EQ(solver::ReadTestPlan(request.plan_file).sequence, plan.sequence);
-  // Where the steps went: within ±0.5 Hz of each level's largest response
-  // (acc3), against the uniform grid's 0.25 Hz spacing, which puts 5 of its
-  // 33 steps there.
-  std::map<std::string, std::pair<double, double>> peak;  // level: (|X1|, f)
-  for (const signal::StepPhasors& step : outcome.phasors.steps) {
-    const double amplitude = step.Find("acc3")->Harmonic(1).Amplitude();
-    if (amplitude > peak[step.level].first) peak[step.level] = {amplitude, step.nominal_frequency_hz};
-  }
-  int near_resonance = 0;
-  for (const signal::StepPhasors& step : outcome.phasors.steps)
-    if (std::abs(step.nominal_frequency_hz - peak[step.level].second) <= 0.5) ++near_resonance;
-  const int usable = static_cast<int>(outcome.phasors.steps.size());
-  EXPECT_GT(near_resonance, usable / 2) << "of " << usable << " usable steps";
-  EXPECT_LT(outcome.rig_steps, 40);
-  std::printf("closed loop: %d steps (%d usable, %d within 0.5 Hz of a level's peak), rig time %.1f s\n",
-              outcome.rig_steps, usable, near_resonance, outcome.rig_time_s);
+  std::printf("closed loop: %d steps, rig time %.1f s; uniform campaign: %.1f s\n", outcome.rig_steps,
+              outcome.rig_time_s, uniform_rig_s);
   fs::remove_all(root);
 }
+
+// A concealed effect: the simulator's beam holds physics the polynomial
+// support lacks. The loop must find the misfit, have the diagnosis name the
+// effect, identify with it (its own parameters at their truth) and stop
+// with the fit within the noise.
+struct Concealed {
+  std::string scenario;  // under examples/scenarios/
+  std::string cause;
+  std::map<std::string, double> truth;  // the named physics' parameters
+};
+
+class ClosedLoopConcealedTest : public ::testing::TestWithParam<Concealed> {};
+
+TEST_P(ClosedLoopConcealedTest, NamesTheEffectAndIdentifiesWithIt) {
+  const Concealed& concealed = GetParam();
+  const fs::path root = beamid::testing::UniqueTempPath("beamid_closed_loop_concealed");
+  fs::remove_all(root);
+  WatchRequest request{.campaign_folder = (root / "campaign").string(),
+                       .plan_file = (root / "plan.json").string(),
+                       .virtual_rig = "examples/scenarios/" + concealed.scenario};
+  request.live.planner = {.levels = {{"low", 1.0}, {"mid", 4.0}, {"high", 9.0}},
+                          .band_low_hz = 50.0,
+                          .band_high_hz = 58.0,
+                          .max_steps = 60};
+  request.live.diagnosis_workers = 2;
+  fs::create_directories(root);
+  const WatchOutcome outcome = WatchCampaign(request);
+  const solver::TestPlan& plan = outcome.plan;
+  ASSERT_TRUE(plan.diagnosis.has_value()) << "the misfit was never diagnosed";
+  EXPECT_EQ(plan.diagnosis->verdict, "cause named") << plan.diagnosis->summary;
+  EXPECT_EQ(plan.diagnosis->selected, std::vector<std::string>{concealed.cause}) << plan.diagnosis->summary;
+  EXPECT_TRUE(plan.diagnosis->model_extended);
+  EXPECT_EQ(plan.model, "polynomial support with " + concealed.cause);
+  // The plan file says the same to the DAQ script.
+  const solver::TestPlan on_disk = solver::ReadTestPlan(request.plan_file);
+  ASSERT_TRUE(on_disk.diagnosis.has_value());
+  EXPECT_EQ(on_disk.diagnosis->selected, plan.diagnosis->selected);
+  EXPECT_EQ(on_disk.diagnosis->summary, plan.diagnosis->summary);
+  EXPECT_EQ(on_disk.model, plan.model);
+  ASSERT_TRUE(plan.done);
+  EXPECT_NE(plan.done_reason.find("within the noise"), std::string::npos) << plan.done_reason;
+  for (const auto& [name, truth] : concealed.truth) {
+    const auto p = std::find_if(plan.parameters.begin(), plan.parameters.end(),
+                                [&](const solver::PlanParameter& q) { return q.name == name; });
+    ASSERT_NE(p, plan.parameters.end()) << name;
+    EXPECT_LT(std::abs(p->value - truth), 4.0 * p->std) << name << " = " << p->value << " ± " << p->std;
+  }
+  std::printf("%s: %d steps, rig time %.1f s, named at %d steps\n", concealed.cause.c_str(), outcome.rig_steps,
+              outcome.rig_time_s, plan.diagnosis->steps);
+  fs::remove_all(root);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Effects, ClosedLoopConcealedTest,
+    ::testing::Values(Concealed{"paper_friction.json",
+                                "support_friction",
+                                {{"k1", 100.0}, {"jenkins_stiffness", 50.0}, {"jenkins_slip_moment", 0.15}}},
+                      Concealed{"paper_added_mass.json",
+                                "added_mass",
+                                {{"k1", 150.0}, {"added_mass", 0.03}, {"added_mass_position", 0.45}}}),
+    [](const ::testing::TestParamInfo<Concealed>& effect) { return effect.param.cause; });
 
 }  // namespace
 }  // namespace beamid::workflow

@@ -65,7 +65,7 @@ TEST(StepVerdictTest, TheWorstAnalysedChannelSetsTheRecordAndAJumpIsSaid) {
   EXPECT_TRUE(JudgeStep(step, {}, {}, &step).warnings.empty());
 }
 
-TEST(StepVerdictTest, UnsettledOrNoisyStepsAreMeasuredAgainWithALongerSettle) {
+TEST(StepVerdictTest, UnsettledStepsAreMeasuredAgainWithALongerSettleAndNoisyOnesWarned) {
   signal::StepPhasors step = Step(52.0, 1.0, 2.0);
   step.quality.unsettled = true;
   step.quality.unsettled_channel = "acc1";
@@ -77,9 +77,10 @@ TEST(StepVerdictTest, UnsettledOrNoisyStepsAreMeasuredAgainWithALongerSettle) {
   EXPECT_NEAR(v.extra_settle_s, 1.5 * (0.1 + 0.5), 1e-12) << "the whole record was transient";
   step.quality.unsettled = false;
   v = JudgeStep(step, {}, {.min_snr_db = 50.0});
-  EXPECT_TRUE(v.measure_again);
-  EXPECT_NE(v.reasons.at(0).find("SNR"), std::string::npos);
-  EXPECT_FALSE(JudgeStep(step, {"acc1"}, {.min_snr_db = 50.0}).measure_again) << "acc2 is not analysed";
+  EXPECT_FALSE(v.measure_again);
+  ASSERT_EQ(v.warnings.size(), 1u);
+  EXPECT_NE(v.warnings[0].find("SNR 45.0 dB"), std::string::npos) << v.warnings[0];
+  EXPECT_TRUE(JudgeStep(step, {"acc1"}, {.min_snr_db = 50.0}).warnings.empty()) << "acc2 is not analysed";
   EXPECT_TRUE(JudgeStep(step, {"acc3"}, {}).measure_again) << "no analysed channel in the record";
   EXPECT_THROW(JudgeStep(step, {}, {.target_relative_std = 0.0}), InputError);
 }
