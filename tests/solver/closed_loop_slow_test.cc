@@ -15,12 +15,17 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Core>
 #include <gtest/gtest.h>
 
 #include "hb/campaign_writer.h"
 #include "hb/scenario.h"
 #include "hb/stepped_sine.h"
 #include "hb/text_file.h"
+#include "signal/campaign.h"
+#include "solver/estimation/fit_data.h"
+#include "solver/estimation/model_structure.h"
+#include "solver/live/next_step_planner.h"
 #include "solver/live/test_plan_io.h"
 #include "solver/workflow/identify_campaign.h"
 #include "solver/workflow/watch_campaign.h"
@@ -88,6 +93,53 @@ TEST(ClosedLoopTest, ReachesTheUniformCampaignsSigmaInAThirdOfItsRigTimeAndStops
   EXPECT_EQ(solver::ReadTestPlan(request.plan_file).sequence, plan.sequence);
   std::printf("closed loop: %d steps, rig time %.1f s; uniform campaign: %.1f s\n", outcome.rig_steps,
               outcome.rig_time_s, uniform_rig_s);
+
+  // The planner on the loop's own steps and fit: each level goes on upwards
+  // from its last step, at most max_step_hz ahead; told where two causes
+  // differ (a diagnosis's focus), it measures only there, where nothing was
+  // measured yet.
+  const signal::Campaign campaign = signal::ReadCampaign(root / "campaign");
+  const solver::FitData data = solver::MakeFitData(campaign, outcome.phasors,
+                                                   {.uncertainty = solver::PhasorUncertainty::kPropagated});
+  solver::ModelStructure structure = solver::PolynomialModel({.k1_Nm_rad = 100.0});
+  structure.linear.push_back(solver::ModalLossFactor(1e-4));
+  std::vector<double> values;
+  Eigen::VectorXd variances(static_cast<Eigen::Index>(plan.parameters.size()));
+  for (std::size_t i = 0; i < plan.parameters.size(); ++i) {
+    values.push_back(plan.parameters[i].value);
+    variances(static_cast<Eigen::Index>(i)) = plan.parameters[i].std * plan.parameters[i].std;
+  }
+  structure.SetValues(values);
+  const solver::PlannerFit fit{.data = &data,
+                               .family = &solver::HarmonicBalanceFamily(),
+                               .structure = &structure,
+                               .covariance = variances.asDiagonal(),
+                               .analysed_s = std::vector<double>(data.steps.size(), 0.5)};
+  std::map<std::string, double> last_hz;
+  for (const solver::FitStep& step : data.steps)
+    last_hz[step.level] = std::max(last_hz[step.level], step.nominal_frequency_hz);
+  solver::PlannerOptions planner = request.live.planner;
+  planner.min_gain = 0.0;
+  const solver::CandidateChoice ahead =
+      solver::ChooseNextStep(fit, last_hz, static_cast<int>(data.steps.size()) - 1, planner, 0.2, 0.0);
+  ASSERT_TRUE(ahead.step.has_value()) << ahead.why_none;
+  const double from = last_hz.at(ahead.step->level);
+  EXPECT_GT(ahead.step->frequency_hz, from);
+  EXPECT_LE(ahead.step->frequency_hz, from + planner.max_step_hz + 1e-9);
+  const solver::PlanFocus focus{.level = "low", .low_hz = 53.0, .high_hz = 54.0};
+  const solver::CandidateChoice focused =
+      solver::ChooseNextStep(fit, last_hz, static_cast<int>(data.steps.size()) - 1, planner, 0.2, 0.0, focus);
+  ASSERT_TRUE(focused.step.has_value()) << focused.why_none;
+  EXPECT_EQ(focused.step->level, "low");
+  EXPECT_GE(focused.step->frequency_hz, 53.0 - 1e-9);
+  EXPECT_LE(focused.step->frequency_hz, 54.0 + 1e-9);
+  EXPECT_EQ(focused.candidates, 21 - 2) << "53 and 54 Hz were measured by the first sweep";
+  EXPECT_NE(focused.step->reason.find("where the competing causes differ most"), std::string::npos);
+  for (const solver::FitStep& step : data.steps) {
+    if (step.level == "low") {
+      EXPECT_GT(std::abs(step.nominal_frequency_hz - focused.step->frequency_hz), 1e-6);
+    }
+  }
   fs::remove_all(root);
 }
 
