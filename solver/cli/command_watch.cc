@@ -150,8 +150,10 @@ void RunWatch(WatchCommandOptions& options, const GlobalOptions& global) {
       summary += fmt::format(" (virtual rig: {} steps, {:.1f} s of settle + record)", outcome.rig_steps,
                              outcome.rig_time_s);
     PrintToStderr(summary + "\n");
-    PrintToStderr("model: " + outcome.plan.model + "\n");
-    for (const solver::PlanParameter& p : outcome.plan.parameters) PrintToStderr("  " + Sigma(p) + "\n");
+    PrintToStderr("model: " + outcome.plan.model + "; 95 % intervals: " + outcome.plan.intervals + "\n");
+    for (const solver::PlanParameter& p : outcome.plan.parameters)
+      PrintToStderr(fmt::format("  {}  (95 %: {:.6g} … {:.6g}{})\n", Sigma(p), p.lower_95, p.upper_95,
+                                p.depends_on_damping_law ? ", depends on the beam's damping law" : ""));
     if (outcome.plan.diagnosis) PrintToStderr(DiagnosisLines(*outcome.plan.diagnosis));
   }
 }

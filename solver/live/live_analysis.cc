@@ -13,6 +13,7 @@
 #include "hb/support_law.h"
 #include "solver/diagnosis/candidate_physics.h"
 #include "solver/diagnosis/diagnosis.h"
+#include "solver/estimation/damping_laws.h"
 
 namespace beamid::solver {
 
@@ -93,6 +94,7 @@ void LiveAnalysis::Plan(LiveUpdate& update, const std::optional<PlannedStep>& re
   plan.steps_analysed = static_cast<int>(phasors_.steps.size());
   plan.rig_time_s = plan_.rig_time_s;
   plan.model = model_name_;
+  plan.intervals = "statistical (value ± 1.96σ)";
   plan.diagnosis = diagnosis_;
   if (fit_) {
     plan.parameters = TargetStatus(structure_, fit_->covariance, options_.planner);
@@ -153,9 +155,30 @@ void LiveAnalysis::Plan(LiveUpdate& update, const std::optional<PlannedStep>& re
     }
   }
   if (plan.next) plan.rig_time_s += plan.next->settle_s + plan.next->record_s;
+  if (plan.done && fit_ && fit_->verdict.within_noise) AddModelFormIntervals(plan);
   update.plan_s = SecondsSince(start);
   update.plan = plan;
   plan_ = std::move(plan);
+}
+
+void LiveAnalysis::AddModelFormIntervals(TestPlan& plan) const {
+  // The beam's damping law is assumed: refitted under the others, as
+  // `beamid identify` does, the parameters get the intervals that law does
+  // not decide (near resonance, where the plan measures most, the laws split
+  // the beam's loss and the support's c differently).
+  IdentifyOptions identify;
+  identify.model.num_harmonics = model_harmonics_;
+  identify.num_workers = 1;
+  const DampingLawEnvelope envelope = FitDampingLaws(data_, structure_, *fit_, identify);
+  if (envelope.empty()) return;
+  plan.intervals = TotalIntervalParts(envelope);
+  for (PlanParameter& p : plan.parameters)
+    for (const ModelFormInterval& interval : envelope.intervals)
+      if (interval.name == p.name) {
+        p.lower_95 = interval.lower_95;
+        p.upper_95 = interval.upper_95;
+        p.depends_on_damping_law = interval.depends_on_damping_law;
+      }
 }
 
 void LiveAnalysis::Refit(const signal::Campaign& campaign, LiveUpdate& update) {

@@ -3,15 +3,19 @@
 // (step_verdict.h) and, when usable, added to the identification, which is
 // refitted from its previous optimum (the first fit from the direct
 // estimate, as `beamid identify`); then the next step is planned
-// (next_step_planner.h): the same step again when it was faulty, unsettled
-// or too noisy; a plain upward sweep of the first level until a fit is
-// possible; afterwards the most informative step per second of rig time,
-// until the target parameters reach their σ or nothing measurable remains.
+// (next_step_planner.h): the same step again when it was faulty or
+// unsettled (at most max_repeats times; then it is used with a warning, or
+// left out); a plain upward sweep of the first level until a fit is
+// possible; afterwards the most informative step, and its record length,
+// per second of rig time, until the target parameters reach their σ with
+// the fit within the noise, or nothing measurable remains. The last plan's
+// intervals are then the model-form ones over the beam's damping laws, as
+// `beamid identify` gives them (the loss factor law only).
 // Before the first fit every step settles initial_settle_s; afterwards the
 // planner times each candidate's settling by the fitted model's decay rate
 // and the change it makes. A step that had not settled is measured again
 // with the verdict's margin more, and every later settle keeps that margin.
-// The record length is what the last step needed for the target phasor σ.
+// The record is at least what the last step needed for the target phasor σ.
 //
 // When the fit misses the steps beyond their noise (from
 // min_steps_to_diagnose usable steps on, and again every diagnose_every
@@ -25,9 +29,9 @@
 #pragma once
 
 #include <map>
-#include <utility>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "signal/campaign.h"
@@ -107,6 +111,7 @@ class LiveAnalysis {
   void Plan(LiveUpdate& update, const std::optional<PlannedStep>& repeat);
   PlannedStep SweepStep() const;
   double RepeatSettle() const;
+  void AddModelFormIntervals(TestPlan& plan) const;
 
   LiveOptions options_;
   std::vector<std::string> fit_channels_;  // set at the first step
@@ -121,7 +126,7 @@ class LiveAnalysis {
   std::optional<PlanDiagnosis> diagnosis_;
   std::optional<PlanFocus> focus_;
   std::map<std::string, double> last_hz_;  // per level: its last usable step
-  std::map<std::pair<std::string, double>, int> failed_takes_;  // per level and frequency
+  std::map<std::pair<std::string, double>, int> failed_takes_;  // takes per level and frequency
   std::string last_level_;                 // the usable step measured last: the rig's state
   double last_frequency_hz_ = 0.0;
   double settle_s_ = 0.0;        // before the first fit, and for a step measured again

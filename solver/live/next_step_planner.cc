@@ -166,6 +166,8 @@ std::vector<PlanParameter> TargetStatus(const ModelStructure& structure, const E
     PlanParameter p{.name = names[i], .unit = units[i], .value = values[i]};
     const auto row = static_cast<Eigen::Index>(i);
     p.std = row < covariance.rows() ? std::sqrt(std::max(covariance(row, row), 0.0)) : 0.0;
+    p.lower_95 = p.value - 1.96 * p.std;
+    p.upper_95 = p.value + 1.96 * p.std;
     if (std::find(options.targets.begin(), options.targets.end(), names[i]) != options.targets.end()) {
       const auto it = options.target_std.find(names[i]);
       p.target_std = it != options.target_std.end() ? it->second : options.target_relative_std * std::abs(values[i]);

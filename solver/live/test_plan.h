@@ -41,6 +41,13 @@ struct PlanParameter {
   double value = 0.0;
   double std = 0.0;
   double target_std = 0.0;  // 0: not a target
+  // The 95 % interval: value ± 1.96σ, or, once the test is done with the fit
+  // within the noise, the model-form interval over the beam's damping laws
+  // and the harmonic truncation (solver/estimation/damping_laws.h), as
+  // `beamid identify` gives it.
+  double lower_95 = 0.0;
+  double upper_95 = 0.0;
+  bool depends_on_damping_law = false;  // another accepted law's value lies outside value ± 1.96σ
 };
 
 // The diagnosis run on the steps so far when the fit missed them beyond
@@ -72,6 +79,7 @@ struct TestPlan {
   std::string fit_verdict;                // the last fit's verdict, one sentence
   std::vector<std::string> warnings;      // of the last step or fit
   std::string model;                      // "polynomial support", or it with the named physics
+  std::string intervals;                  // what lower_95..upper_95 hold
   std::optional<PlanDiagnosis> diagnosis; // the last one run
 };
 

@@ -37,12 +37,19 @@ std::string TestPlanJson(const TestPlan& plan) {
   j["rig_time_s"] = plan.rig_time_s;
   j["parameters"] = nlohmann::ordered_json::array();
   for (const PlanParameter& p : plan.parameters)
-    j["parameters"].push_back(
-        {{"name", p.name}, {"unit", p.unit}, {"value", p.value}, {"std", p.std}, {"target_std", p.target_std}});
+    j["parameters"].push_back({{"name", p.name},
+                               {"unit", p.unit},
+                               {"value", p.value},
+                               {"std", p.std},
+                               {"target_std", p.target_std},
+                               {"lower_95", p.lower_95},
+                               {"upper_95", p.upper_95},
+                               {"depends_on_damping_law", p.depends_on_damping_law}});
   j["reduced_chi_square"] = plan.reduced_chi_square;
   j["fit_verdict"] = plan.fit_verdict;
   j["warnings"] = plan.warnings;
   j["model"] = plan.model;
+  j["intervals"] = plan.intervals;
   if (plan.diagnosis) {
     const PlanDiagnosis& d = *plan.diagnosis;
     j["diagnosis"] = {{"steps", d.steps},
@@ -68,7 +75,7 @@ TestPlan ParseTestPlan(const std::string& text, const std::string& source) {
   const nlohmann::ordered_json json = ParseStrictJson(text, source, kFormatDoc);
   const JsonField root(json, "", source, kTestPlanFormat, kFix);
   root.OnlyKeys({"format", "sequence", "done", "done_reason", "next", "steps_analysed", "rig_time_s", "parameters",
-                 "reduced_chi_square", "fit_verdict", "warnings", "model", "diagnosis"});
+                 "reduced_chi_square", "fit_verdict", "warnings", "model", "intervals", "diagnosis"});
   if (root.At("format").String() != kTestPlanFormat) root.At("format").Fail("is not " + std::string(kTestPlanFormat));
   TestPlan plan;
   plan.sequence = root.At("sequence").Integer();
@@ -95,17 +102,21 @@ TestPlan ParseTestPlan(const std::string& text, const std::string& source) {
   plan.steps_analysed = root.At("steps_analysed").Integer();
   plan.rig_time_s = root.At("rig_time_s").Number();
   for (const JsonField& p : root.At("parameters").Elements()) {
-    p.OnlyKeys({"name", "unit", "value", "std", "target_std"});
+    p.OnlyKeys({"name", "unit", "value", "std", "target_std", "lower_95", "upper_95", "depends_on_damping_law"});
     plan.parameters.push_back({.name = p.At("name").String(),
                                .unit = p.At("unit").String(),
                                .value = p.At("value").Number(),
                                .std = p.At("std").Number(),
-                               .target_std = p.At("target_std").Number()});
+                               .target_std = p.At("target_std").Number(),
+                               .lower_95 = p.At("lower_95").Number(),
+                               .upper_95 = p.At("upper_95").Number(),
+                               .depends_on_damping_law = p.At("depends_on_damping_law").Boolean()});
   }
   plan.reduced_chi_square = root.At("reduced_chi_square").Number();
   plan.fit_verdict = root.At("fit_verdict").String();
   plan.warnings = root.At("warnings").Strings();
   plan.model = root.At("model").String();
+  plan.intervals = root.At("intervals").String();
   if (!root.At("diagnosis").json().is_null()) {
     const JsonField d = root.At("diagnosis");
     d.OnlyKeys({"steps", "verdict", "selected", "summary", "model_extended", "focus_level", "focus_low_Hz",

@@ -104,6 +104,8 @@ void RunGuided(benchmark::State& state, bool to_uniform_sigma, bool modal_loss_f
       state.counters[p.name + "_std_over_goal"] = p.std / p.target_std;
       state.counters[p.name + "_uniform_std"] = uniform.std.at(p.name);
       state.counters[p.name + "_z"] = (p.value - kTruth.at(p.name)) / p.std;
+      // Inside the last plan's 95 % interval (model-form under E(1 + iη)).
+      state.counters[p.name + "_in_interval"] = p.lower_95 <= kTruth.at(p.name) && kTruth.at(p.name) <= p.upper_95;
     }
     state.counters["targets_reached"] = reached;
     state.counters["within_noise"] = outcome.plan.reduced_chi_square <= 2.0;

@@ -183,11 +183,17 @@ TEST_P(ClosedLoopConcealedTest, NamesTheEffectAndIdentifiesWithIt) {
   EXPECT_EQ(on_disk.model, plan.model);
   ASSERT_TRUE(plan.done);
   EXPECT_NE(plan.done_reason.find("within the noise"), std::string::npos) << plan.done_reason;
+  // The last plan's intervals are the model-form ones over the beam's
+  // damping laws, and hold the truth.
+  EXPECT_NE(plan.intervals.find("damping laws"), std::string::npos) << plan.intervals;
   for (const auto& [name, truth] : concealed.truth) {
     const auto p = std::find_if(plan.parameters.begin(), plan.parameters.end(),
                                 [&](const solver::PlanParameter& q) { return q.name == name; });
     ASSERT_NE(p, plan.parameters.end()) << name;
     EXPECT_LT(std::abs(p->value - truth), 4.0 * p->std) << name << " = " << p->value << " ± " << p->std;
+    EXPECT_LE(p->lower_95, truth) << name;
+    EXPECT_GE(p->upper_95, truth) << name;
+    EXPECT_LE(p->lower_95, p->value - 1.9 * p->std) << name << ": never narrower than the statistical interval";
   }
   std::printf("%s: %d steps, rig time %.1f s, named at %d steps\n", concealed.cause.c_str(), outcome.rig_steps,
               outcome.rig_time_s, plan.diagnosis->steps);
