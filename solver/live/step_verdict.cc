@@ -32,7 +32,8 @@ double RelativeStd(const signal::ChannelPhasors& channel) {
 }  // namespace
 
 StepVerdict JudgeStep(const signal::StepPhasors& step, const std::vector<std::string>& analysed,
-                      const StepVerdictOptions& options, const signal::StepPhasors* previous, double jump_ratio) {
+                      const StepVerdictOptions& options, const signal::StepPhasors* previous, double jump_ratio,
+                      double jump_max_step_hz) {
   options.Validate();
   StepVerdict verdict;
   verdict.analysed_s = step.quality.analysed_duration_s;
@@ -46,7 +47,7 @@ StepVerdict JudgeStep(const signal::StepPhasors& step, const std::vector<std::st
       verdict.relative_std = r;
     }
     verdict.snr_db = std::min(verdict.snr_db, channel.snr_db);
-    if (previous) {
+    if (previous && std::abs(step.nominal_frequency_hz - previous->nominal_frequency_hz) <= jump_max_step_hz) {
       const signal::ChannelPhasors* before = previous->Find(channel.channel);
       if (before && before->Harmonic(1).Amplitude() > 0.0) {
         const double ratio = channel.Harmonic(1).Amplitude() / before->Harmonic(1).Amplitude();

@@ -51,9 +51,11 @@ struct StepVerdict {
 // `analysed` names the response channels the analysis uses (empty: all).
 // `previous`: the step measured before on the same level, or nullptr; a
 // fundamental that changed by more than a factor jump_ratio since is said
-// (a jump, or the branch lost).
+// (a jump, or the branch lost) when the two are at most jump_max_step_hz
+// apart: over a wider step a resonance alone grows that much (the paper's
+// beam 3.5 times from 53 to 54 Hz).
 StepVerdict JudgeStep(const signal::StepPhasors& step, const std::vector<std::string>& analysed,
                       const StepVerdictOptions& options, const signal::StepPhasors* previous = nullptr,
-                      double jump_ratio = 1.5);
+                      double jump_ratio = 1.5, double jump_max_step_hz = 0.25);
 
 }  // namespace beamid::solver

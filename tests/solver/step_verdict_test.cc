@@ -63,6 +63,9 @@ TEST(StepVerdictTest, TheWorstAnalysedChannelSetsTheRecordAndAJumpIsSaid) {
   ASSERT_EQ(v.warnings.size(), 2u);
   EXPECT_NE(v.warnings[0].find("jump"), std::string::npos) << v.warnings[0];
   EXPECT_TRUE(JudgeStep(step, {}, {}, &step).warnings.empty());
+  // 1 Hz apart, a resonance alone may grow that much: no jump said.
+  const signal::StepPhasors far = Step(51.0, 0.45, 1.0);
+  EXPECT_TRUE(JudgeStep(step, {}, {}, &far).warnings.empty());
 }
 
 TEST(StepVerdictTest, UnsettledStepsAreMeasuredAgainWithALongerSettleAndNoisyOnesWarned) {
