@@ -125,13 +125,22 @@ TEST(FreeDecayOnASimulatedCampaign, SteadyStateAndDecayDampingHoldTheModalRatio)
   for (const signal::FirstHarmonicPoint& p : levels.front().points)
     EXPECT_LE(std::abs(l.free_decay_step_frequency_hz - l.quadrature_frequency_hz.value),
               std::abs(p.frequency_hz - l.quadrature_frequency_hz.value) + 1e-12);
-  // The one flag: the half-power natural frequency, which the other modes'
+  // The flags: the half-power natural frequency, which the other modes'
   // share at the sensor skews (predicted +0.12 mHz ± 0.02; it lies +0.16 mHz,
   // 17 σ, off the mode's), and rightly so: it misses the mode's by more
-  // than its σ allows.
-  ASSERT_EQ(l.flags.size(), 1u) << l.flags.front().message;
-  EXPECT_EQ(l.flags.front().kind, LevelFlagKind::kNonlinearCurve) << l.flags.front().message;
-  EXPECT_EQ(l.flags.front().quantity, "half_power_natural_frequency");
+  // than its σ allows. The same skew of the peak frequency is predicted at
+  // +0.028 mHz ± 0.012, at the flag's threshold of twice its uncertainty:
+  // one processor's floating point puts it above, another's below, so it
+  // may be flagged too, as a frequency's skew and never as a ζ's (every ζ
+  // meets the truth, above).
+  ASSERT_FALSE(l.flags.empty());
+  for (const LevelFlag& flag : l.flags) {
+    EXPECT_EQ(flag.kind, LevelFlagKind::kNonlinearCurve) << flag.message;
+    EXPECT_TRUE(flag.quantity == "half_power_natural_frequency" || flag.quantity == "peak_frequency")
+        << flag.message;
+  }
+  EXPECT_TRUE(std::any_of(l.flags.begin(), l.flags.end(),
+                          [](const LevelFlag& f) { return f.quantity == "half_power_natural_frequency"; }));
   EXPECT_GT(std::abs(l.half_power_natural_frequency_hz.value - f1), kSigmas * l.half_power_natural_frequency_hz.std);
 }
 
