@@ -11,12 +11,11 @@
 
 #include <gtest/gtest.h>
 
-#include "hb/campaign_writer.h"
 #include "hb/errors.h"
 #include "hb/scenario.h"
-#include "hb/stepped_sine.h"
 #include "tests/support/file_bytes.h"
 #include "tests/support/paper_scenario.h"
+#include "tests/support/simulated_campaign.h"
 #include "tests/support/temp_path.h"
 
 namespace beamid::signal {
@@ -41,10 +40,7 @@ class CampaignFollowerTest : public ::testing::Test {
         beamid::testing::PaperScenarioJson(
             "follower", R"([{"label": "low", "force_amplitude_N": 1, "frequencies_Hz": [40, 41, 42]}])", 7),
         "follower.json");
-    hb::SteppedSineSimulation simulation(scenario);
-    hb::CampaignWriter writer(simulation, source_);
-    simulation.Run([&](const hb::SimulatedStep& step) { writer.Write(step); });
-    writer.Finish();
+    beamid::testing::SimulateInto(scenario, source_);
     fs::create_directories(live_);
   }
   void TearDown() override {

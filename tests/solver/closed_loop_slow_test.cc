@@ -18,9 +18,7 @@
 #include <Eigen/Core>
 #include <gtest/gtest.h>
 
-#include "hb/campaign_writer.h"
 #include "hb/scenario.h"
-#include "hb/stepped_sine.h"
 #include "hb/text_file.h"
 #include "signal/campaign.h"
 #include "solver/estimation/fit_data.h"
@@ -30,6 +28,7 @@
 #include "solver/workflow/identify_campaign.h"
 #include "solver/workflow/watch_campaign.h"
 #include "tests/support/paper_scenario.h"
+#include "tests/support/simulated_campaign.h"
 #include "tests/support/temp_path.h"
 
 namespace beamid::workflow {
@@ -50,16 +49,9 @@ TEST(ClosedLoopTest, ReachesTheUniformCampaignsSigmaInAThirdOfItsRigTimeAndStops
   // The uniform campaign: 2 levels × 33 steps, settled by the simulator's
   // rule, identified as `beamid identify` does.
   double uniform_rig_s = 0.0;
-  {
-    const hb::Scenario scenario = hb::ReadScenario(root / "scenario.json");
-    hb::SteppedSineSimulation simulation(scenario);
-    hb::CampaignWriter writer(simulation, root / "uniform");
-    simulation.Run([&](const hb::SimulatedStep& step) {
-      writer.Write(step);
-      uniform_rig_s += step.settle_s + scenario.timing.record_s;
-    });
-    writer.Finish();
-  }
+  const hb::Scenario scenario = hb::ReadScenario(root / "scenario.json");
+  for (const hb::SimulatedStep& step : beamid::testing::SimulateInto(scenario, root / "uniform"))
+    uniform_rig_s += step.settle_s + scenario.timing.record_s;
   const IdentifyOutcome uniform = IdentifyCampaign({.campaign_folder = (root / "uniform").string(),
                                                     .damping_envelope = false,
                                                     .output = (root / "uniform.json").string()});

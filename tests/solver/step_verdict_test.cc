@@ -10,14 +10,13 @@
 
 #include <gtest/gtest.h>
 
-#include "hb/campaign_writer.h"
 #include "hb/errors.h"
 #include "hb/scenario.h"
-#include "hb/stepped_sine.h"
 #include "signal/campaign.h"
 #include "signal/phasor_estimator.h"
 #include "signal/recording.h"
 #include "tests/support/paper_scenario.h"
+#include "tests/support/simulated_campaign.h"
 #include "tests/support/temp_path.h"
 
 namespace beamid::solver {
@@ -97,10 +96,7 @@ signal::StepPhasors SimulatedStep(double record_s, int seed) {
   const std::string record = "\"record_s\": 0.4";
   json.replace(json.find(record), record.size(), "\"record_s\": " + std::to_string(record_s));
   const hb::Scenario scenario = hb::ParseScenario(json, "verdict.json");
-  hb::SteppedSineSimulation simulation(scenario);
-  hb::CampaignWriter writer(simulation, folder);
-  simulation.Run([&](const hb::SimulatedStep& step) { writer.Write(step); });
-  writer.Finish();
+  beamid::testing::SimulateInto(scenario, folder);
   const signal::Campaign campaign = signal::ReadCampaign(folder);
   const signal::StepPhasors step = signal::EstimateStepPhasors(signal::ReadRecording(campaign, campaign.steps[0]),
                                                                campaign, campaign.steps[0]);

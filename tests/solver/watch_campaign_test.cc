@@ -9,13 +9,12 @@
 
 #include <gtest/gtest.h>
 
-#include "hb/campaign_writer.h"
 #include "hb/errors.h"
 #include "hb/scenario.h"
-#include "hb/stepped_sine.h"
 #include "solver/live/test_plan_io.h"
 #include "tests/support/file_bytes.h"
 #include "tests/support/paper_scenario.h"
+#include "tests/support/simulated_campaign.h"
 #include "tests/support/temp_path.h"
 
 namespace beamid::workflow {
@@ -36,12 +35,7 @@ TEST(WatchCampaignTest, AFaultyStepIsAskedForAgainAndThePlanFileIsTheLastPlan) {
       beamid::testing::PaperScenarioJson(
           "watch", R"([{"label": "low", "force_amplitude_N": 1, "frequencies_Hz": [40, 41]}])", 3),
       "watch.json");
-  {
-    hb::SteppedSineSimulation simulation(scenario);
-    hb::CampaignWriter writer(simulation, source);
-    simulation.Run([&](const hb::SimulatedStep& step) { writer.Write(step); });
-    writer.Finish();
-  }
+  beamid::testing::SimulateInto(scenario, source);
   fs::create_directories(live);
   WatchRequest request{.campaign_folder = live.string(), .plan_file = plan_file.string()};
   request.follower.stable_s = 0.5;
