@@ -1,21 +1,22 @@
 #include "signal/array_file.h"
 
-#include <fcntl.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
-#include <csignal>
-#include <cstring>
-#include <mutex>
 
 #include "signal/input_error.h"
-#include "signal/internal/array_library_lock.h"
+#include "signal/internal/read_in_child.h"
+#include "signal/internal/text.h"
 
 namespace beamid::signal {
 namespace {
+
+// A child reading a file: the time it may take (a base, plus the file's size at the slowest reading rate), and
+// how many children are forked before a file is called unreadable (read_in_child.h: a child forked from a
+// process with threads may deadlock at once; under AddressSanitizer about one fork in a few hundred does, on
+// the allocator's lock).
+constexpr double kChildBaseTimeoutS = 10.0;
+constexpr double kChildSlowestReadBytesPerS = 10e6;
+constexpr int kChildAttempts = 3;
 
 std::string LowerExtension(const std::filesystem::path& file) {
   std::string extension = file.extension().string();
@@ -27,53 +28,36 @@ std::string LowerExtension(const std::filesystem::path& file) {
 // finds buffer overflows inside libhdf5 1.10 reading a hostile file's
 // attributes): a file is first read in a child process, everything the
 // reader may ask of it (the list, the units, every real array), and only
-// when the child ends well does this process read it. A child that dies is
-// an InputError, never a crash of beamid. Without a process to spare (fork
-// fails) the file is read directly.
+// when the child ends well does this process read it. A child that dies, or
+// runs past its time on every attempt, is an InputError, never a crash or a
+// hang of beamid. Without a process to spare (fork fails) the file is read
+// directly.
 void ReadInChildFirst(const std::filesystem::path& path, const std::string& source, bool mat) {
-  // The child says it read the whole file by one byte through a pipe, before it exits: its exit status may
-  // be a leak checker's (valgrind, LeakSanitizer), which a file has no part in.
-  std::unique_lock lock(internal::ArrayLibraryLock());  // no thread of ours inside matio or HDF5 at the fork
-  int done[2];
-  if (pipe2(done, O_CLOEXEC) != 0) return;  // a program another thread starts does not keep it open
-  const pid_t pid = fork();
-  if (pid < 0) {
-    close(done[0]);
-    close(done[1]);
-    return;
-  }
-  if (pid == 0) {
-    close(done[0]);
-    lock.unlock();  // the child's copy of the lock, held by its one thread
-    try {
-      const auto file = mat ? OpenMatFile(path, source) : OpenHdf5File(path, source);
-      for (const ArrayInfo& array : file->Arrays())
-        if (array.kind == ArrayKind::kReal && array.NumElements() <= kMaxArrayElements) file->ReadReal(array);
-    } catch (...) {
-    }
-    const char byte = 1;
-    [[maybe_unused]] const ssize_t written = write(done[1], &byte, 1);
-    _exit(0);
-  }
-  lock.unlock();
-  close(done[1]);
-  char byte = 0;
-  ssize_t got;
-  while ((got = read(done[0], &byte, 1)) < 0 && errno == EINTR) {
-  }
-  close(done[0]);
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  if (got == 1) return;
-  const std::string how = WIFSIGNALED(status) ? "signal " + std::to_string(WTERMSIG(status)) + ", " +
-                                                    std::string(strsignal(WTERMSIG(status)))
-                                              : "exit code " + std::to_string(WEXITSTATUS(status));
-  throw InputError(source, "",
-                   std::string("the file is damaged: reading it crashed ") +
-                       (mat ? "matio (the MATLAB file library)" : "the HDF5 library") + " in a separate process (" +
-                       how + "), so beamid reads nothing of it",
-                   "save or copy the file again from the acquisition system");
+  // Reading runs at tens of MB/s at the least; the time allowed is far beyond that, so that only a child which
+  // will never finish reaches it.
+  std::error_code error;
+  const std::uintmax_t bytes = std::filesystem::file_size(path, error);
+  const double timeout_s =
+      kChildBaseTimeoutS + (error ? 0.0 : static_cast<double>(bytes) / kChildSlowestReadBytesPerS);
+  const internal::ChildRead read = internal::ReadInChild(
+      [&] {
+        const auto file = mat ? OpenMatFile(path, source) : OpenHdf5File(path, source);
+        for (const ArrayInfo& array : file->Arrays())
+          if (array.kind == ArrayKind::kReal && array.NumElements() <= kMaxArrayElements) file->ReadReal(array);
+      },
+      timeout_s, kChildAttempts);
+  const char* const library = mat ? "matio (the MATLAB file library)" : "the HDF5 library";
+  if (read.outcome == internal::ChildRead::Outcome::kDied)
+    throw InputError(source, "",
+                     std::string("the file is damaged: reading it crashed ") + library + " in a separate process (" +
+                         read.how_it_ended + "), so beamid reads nothing of it",
+                     "save or copy the file again from the acquisition system");
+  if (read.outcome == internal::ChildRead::Outcome::kTimedOut)
+    throw InputError(source, "",
+                     std::string("the file is damaged or hostile: reading it with ") + library +
+                         " in a separate process did not end within " + internal::FormatNumber(timeout_s) +
+                         " s, " + std::to_string(read.attempts) + " times, so beamid reads nothing of it",
+                     "save or copy the file again from the acquisition system");
 }
 
 }  // namespace

@@ -91,8 +91,8 @@ std::unique_ptr<ArrayFile> OpenMatFile(const std::filesystem::path& path, const 
 std::unique_ptr<ArrayFile> OpenHdf5File(const std::filesystem::path& path, const std::string& source);
 // By extension, after the whole file has been read once in a child process
 // (fork): a file that crashes matio or HDF5 there (a hostile or damaged file
-// can) is an InputError, and this process never reads it. What beamid's
-// readers use.
+// can), or keeps it busy past 10 s plus 1 s per 10 MB three times, is an
+// InputError, and this process never reads it. What beamid's readers use.
 std::unique_ptr<ArrayFile> OpenArrayFile(const std::filesystem::path& path, const std::string& source);
 
 }  // namespace beamid::signal
