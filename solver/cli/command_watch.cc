@@ -177,7 +177,9 @@ BEAMID_REGISTER_COMMAND("watch", [](CLI::App& app, const GlobalOptions& global) 
       ->capture_default_str()
       ->check(NonEmptyPath());
   command->add_option("--level", options->levels, "A force level the rig may use: LABEL=FORCE_N (repeatable)");
-  command->add_option("--band", options->band_hz, "The band each level is swept through upwards [Hz]: LOW HIGH")
+  command
+      ->add_option("--band", options->band_hz,
+                   "The band each level is swept through (up, or down for a softening support) [Hz]: LOW HIGH")
       ->expected(2)
       ->check(FiniteRange(1e-3, 1e6));
   command->add_option("--fit", live.fit_channels, "Response channels to fit (default: every sensor not ignored)");

@@ -64,6 +64,15 @@ LiveAnalysis::LiveAnalysis(const LiveOptions& options) : options_(options) {
   plan_ = first.plan;
 }
 
+void LiveAnalysis::NoteSwept(const std::string& level, double frequency_hz) {
+  const SweepDirection planned =
+      plan_.next && plan_.next->level == level ? plan_.next->sweep : SweepDirection::kUp;
+  const auto [sweep, first] = swept_.try_emplace(level, LevelSweep{.last_hz = frequency_hz, .direction = planned});
+  if (first) return;
+  double& last = sweep->second.last_hz;
+  last = sweep->second.direction == SweepDirection::kDown ? std::min(last, frequency_hz) : std::max(last, frequency_hz);
+}
+
 double LiveAnalysis::RepeatSettle() const {
   // The settle the step was planned with (or the bootstrap's), as a floor.
   return std::max(settle_s_, plan_.next ? plan_.next->settle_s : 0.0);
@@ -72,17 +81,21 @@ double LiveAnalysis::RepeatSettle() const {
 PlannedStep LiveAnalysis::SweepStep() const {
   const PlannerOptions& planner = options_.planner;
   for (const PlanLevel& level : planner.levels) {
-    const auto last = last_hz_.find(level.label);
-    const double f = last == last_hz_.end() ? planner.band_low_hz : last->second + planner.max_step_hz;
-    if (f > planner.band_high_hz + 1e-9) continue;
+    const auto last = swept_.find(level.label);
+    const SweepDirection direction = last == swept_.end() ? SweepDirection::kUp : last->second.direction;
+    const bool down = direction == SweepDirection::kDown;
+    const double f = last == swept_.end() ? planner.band_low_hz
+                                          : last->second.last_hz + (down ? -1.0 : 1.0) * planner.max_step_hz;
+    if (f > planner.band_high_hz + 1e-9 || f < planner.band_low_hz - 1e-9) continue;
     return PlannedStep{.level = level.label,
                        .force_N = level.force_N,
                        .frequency_hz = f,
                        .settle_s = settle_s_,
                        .record_s = record_s_,
-                       .reason = fmt::format(
-                           "sweeping {} upwards in steps of {:g} Hz until {} usable steps allow a fit", level.label,
-                           planner.max_step_hz, options_.min_steps_to_fit)};
+                       .reason = fmt::format("sweeping {} {} in steps of {:g} Hz until {} usable steps allow a fit",
+                                             level.label, down ? "downwards" : "upwards", planner.max_step_hz,
+                                             options_.min_steps_to_fit),
+                       .sweep = direction};
   }
   return {};
 }
@@ -134,18 +147,19 @@ void LiveAnalysis::Plan(LiveUpdate& update, const std::optional<PlannedStep>& re
                                  .structure = &structure_,
                                  .model = {.num_harmonics = model_harmonics_},
                                  .covariance = fit_->covariance,
-                                 .analysed_s = analysed_s_};
+                                 .analysed_s = analysed_s_,
+                                 .within_noise = fit_->verdict.within_noise};
     int last_step = 0;
     for (std::size_t i = 0; i < data_.steps.size(); ++i)
       if (data_.steps[i].level == last_level_ && data_.steps[i].nominal_frequency_hz == last_frequency_hz_)
         last_step = static_cast<int>(i);
     CandidateChoice choice =
-        ChooseNextStep(planner_fit, last_hz_, last_step, options_.planner, record_s_, extra_settle_s_, focus_);
+        ChooseNextStep(planner_fit, swept_, last_step, options_.planner, record_s_, extra_settle_s_, focus_);
     if (!choice.step && focus_) {
       // The band where the causes differ is measured: diagnose again at the
       // next step, and plan as before meanwhile.
       focus_.reset();
-      choice = ChooseNextStep(planner_fit, last_hz_, last_step, options_.planner, record_s_, extra_settle_s_);
+      choice = ChooseNextStep(planner_fit, swept_, last_step, options_.planner, record_s_, extra_settle_s_);
     }
     if (choice.step) {
       plan.next = choice.step;
@@ -338,8 +352,7 @@ LiveUpdate LiveAnalysis::Add(const signal::FollowedStep& step, const signal::Cam
   // moves on (leaving the step out, or using it with a warning).
   const bool last_take = ++failed_takes_[{step.step.level, step.step.frequency_hz}] > options_.max_repeats;
   const auto leave_out = [&] {
-    double& last = last_hz_.try_emplace(step.step.level, step.step.frequency_hz).first->second;
-    last = std::max(last, step.step.frequency_hz);
+    NoteSwept(step.step.level, step.step.frequency_hz);
     Plan(update, std::nullopt);
     return update;
   };
@@ -366,10 +379,13 @@ LiveUpdate LiveAnalysis::Add(const signal::FollowedStep& step, const signal::Cam
     settle_s_ = std::min(options_.planner.max_settle_s, 2.0 * RepeatSettle());
     return again(update.error);
   }
+  // The step before on the level's sweep: the nearest below going up, above going down.
+  const auto begun = swept_.find(phasors.level);
+  const double sign = begun != swept_.end() && begun->second.direction == SweepDirection::kDown ? -1.0 : 1.0;
   const signal::StepPhasors* previous = nullptr;
   for (const signal::StepPhasors& other : phasors_.steps)
-    if (other.level == phasors.level && other.nominal_frequency_hz < phasors.nominal_frequency_hz &&
-        (!previous || other.nominal_frequency_hz > previous->nominal_frequency_hz))
+    if (other.level == phasors.level && sign * other.nominal_frequency_hz < sign * phasors.nominal_frequency_hz &&
+        (!previous || sign * other.nominal_frequency_hz > sign * previous->nominal_frequency_hz))
       previous = &other;
   update.verdict = JudgeStep(phasors, fit_channels_, options_.verdict, previous);
   update.extract_s = SecondsSince(start);
@@ -405,8 +421,7 @@ LiveUpdate LiveAnalysis::Add(const signal::FollowedStep& step, const signal::Cam
   while (at < phasors_.steps.size() && before(phasors_.steps[at], analysed_s_[at], phasors, verdict.analysed_s)) ++at;
   phasors_.steps.insert(phasors_.steps.begin() + static_cast<std::ptrdiff_t>(at), phasors);
   analysed_s_.insert(analysed_s_.begin() + static_cast<std::ptrdiff_t>(at), verdict.analysed_s);
-  double& last = last_hz_.try_emplace(phasors.level, phasors.nominal_frequency_hz).first->second;
-  last = std::max(last, phasors.nominal_frequency_hz);
+  NoteSwept(phasors.level, phasors.nominal_frequency_hz);
   last_level_ = phasors.level;
   last_frequency_hz_ = phasors.nominal_frequency_hz;
   record_s_ = verdict.record_needed_s;

@@ -125,7 +125,10 @@ class LiveAnalysis {
   std::string model_name_ = "polynomial support";
   std::optional<PlanDiagnosis> diagnosis_;
   std::optional<PlanFocus> focus_;
-  std::map<std::string, double> last_hz_;  // per level: its last usable step
+  // A step of `level` at `frequency_hz` was measured (or left out): the level's sweep moves past it. A level's
+  // first step sets its way, the one the plan asked for.
+  void NoteSwept(const std::string& level, double frequency_hz);
+  std::map<std::string, LevelSweep> swept_;  // per level begun: its last usable step and its way
   std::map<std::pair<std::string, double>, int> failed_takes_;  // takes per level and frequency
   std::string last_level_;                 // the usable step measured last: the rig's state
   double last_frequency_hz_ = 0.0;

@@ -154,7 +154,68 @@ Eigen::MatrixXd Block(const Eigen::MatrixXd& m, const std::vector<int>& indices)
   return out;
 }
 
+// Steps to predict, without measurements: the data's beam, sensors and
+// channels, unit whitening (the residuals are the predicted phasors).
+FitData CandidateData(const FitData& data) {
+  FitData candidates;
+  candidates.beam = data.beam;
+  candidates.force_position_m = data.force_position_m;
+  candidates.sensor_masses = data.sensor_masses;
+  candidates.channels = data.channels;
+  candidates.num_fit_harmonics = data.num_fit_harmonics;
+  candidates.uncertainty = PhasorUncertainty::kRelativeFloor;
+  return candidates;
+}
+
+void AddCandidate(FitData& candidates, const PlanLevel& level, double frequency_hz, int num_harmonics) {
+  const int channels = static_cast<int>(candidates.channels.size());
+  const int k_max = candidates.num_fit_harmonics;
+  FitStep step;
+  step.level = level.label;
+  step.omega_rad_s = 2.0 * std::numbers::pi * frequency_hz;
+  step.nominal_frequency_hz = frequency_hz;
+  step.force_N = Eigen::VectorXcd::Zero(num_harmonics + 1);
+  step.force_N(1) = level.force_N;
+  step.measured = Eigen::MatrixXcd::Zero(channels, k_max);
+  step.whitening.assign(static_cast<std::size_t>(channels),
+                        std::vector<Eigen::Matrix2d>(static_cast<std::size_t>(k_max), Eigen::Matrix2d::Identity()));
+  step.std_amplitude = Eigen::MatrixXd::Ones(channels, k_max);
+  if (std::find(candidates.levels.begin(), candidates.levels.end(), level.label) == candidates.levels.end())
+    candidates.levels.push_back(level.label);
+  candidates.steps.push_back(std::move(step));
+}
+
 }  // namespace
+
+SweepChoice ChooseSweepDirection(const PlannerFit& fit, const PlanLevel& level, const PlannerOptions& options) {
+  SweepChoice choice;
+  const LinearResonance resonance = FirstResonance(*fit.data, *fit.structure);
+  if (!(resonance.decay_rate_per_s > 0.0)) return choice;
+  choice.linear_peak_hz = resonance.frequency_hz;
+  choice.half_width_hz = resonance.decay_rate_per_s / (2.0 * std::numbers::pi);
+  FitData band = CandidateData(*fit.data);
+  const double tolerance_hz = 1e-6 * options.resolution_hz;
+  for (int m = 0; options.band_low_hz + m * options.resolution_hz <= options.band_high_hz + tolerance_hz; ++m)
+    AddCandidate(band, level, options.band_low_hz + m * options.resolution_hz, fit.model.num_harmonics);
+  const std::unique_ptr<FitProblem> problem = fit.family->MakeProblem(band, *fit.structure, fit.model);
+  const Eigen::VectorXd predicted = problem->WeightedResiduals(problem->FeasiblePoint(fit.structure->Values()));
+  // Every sensor's first harmonic, each relative to its largest: the peak of the mode they share.
+  const int channels = static_cast<int>(band.channels.size());
+  const int k_max = band.num_fit_harmonics;
+  const int n = static_cast<int>(band.steps.size());
+  Eigen::MatrixXd amplitude(n, channels);
+  for (int i = 0; i < n; ++i)
+    for (int c = 0; c < channels; ++c) amplitude(i, c) = predicted.segment<2>(2 * (i * channels + c) * k_max).norm();
+  if (!amplitude.allFinite()) return choice;
+  Eigen::VectorXd score = Eigen::VectorXd::Zero(n);
+  for (int c = 0; c < channels; ++c)
+    if (amplitude.col(c).maxCoeff() > 0.0) score += amplitude.col(c) / amplitude.col(c).maxCoeff();
+  Eigen::Index peak = 0;
+  score.maxCoeff(&peak);
+  choice.peak_hz = band.steps[static_cast<std::size_t>(peak)].nominal_frequency_hz;
+  if (choice.peak_hz < choice.linear_peak_hz - choice.half_width_hz) choice.direction = SweepDirection::kDown;
+  return choice;
+}
 
 std::vector<PlanParameter> TargetStatus(const ModelStructure& structure, const Eigen::MatrixXd& covariance,
                                         const PlannerOptions& options) {
@@ -177,7 +238,7 @@ std::vector<PlanParameter> TargetStatus(const ModelStructure& structure, const E
   return out;
 }
 
-CandidateChoice ChooseNextStep(const PlannerFit& fit, const std::map<std::string, double>& last_hz, int last_step,
+CandidateChoice ChooseNextStep(const PlannerFit& fit, const std::map<std::string, LevelSweep>& swept, int last_step,
                                const PlannerOptions& options, double min_record_s, double extra_settle_s,
                                const std::optional<PlanFocus>& focus) {
   options.Validate();
@@ -187,16 +248,12 @@ CandidateChoice ChooseNextStep(const PlannerFit& fit, const std::map<std::string
   CandidateChoice choice;
 
   // The candidates: on each level, the grid ahead of its last step.
-  FitData candidates;
-  candidates.beam = data.beam;
-  candidates.force_position_m = data.force_position_m;
-  candidates.sensor_masses = data.sensor_masses;
-  candidates.channels = data.channels;
-  candidates.num_fit_harmonics = data.num_fit_harmonics;
-  candidates.uncertainty = PhasorUncertainty::kRelativeFloor;
+  FitData candidates = CandidateData(data);
   const int channels = static_cast<int>(data.channels.size());
   const int k_max = data.num_fit_harmonics;
   std::vector<double> candidate_force;
+  std::vector<SweepDirection> candidate_sweep;
+  std::map<std::string, std::string> sweep_why;  // a level begun downwards: why
   const double tolerance_hz = 1e-6 * options.resolution_hz;
   const LinearResonance resonance = FirstResonance(data, structure);
   if (!(resonance.decay_rate_per_s > 0.0)) {
@@ -206,7 +263,8 @@ CandidateChoice ChooseNextStep(const PlannerFit& fit, const std::map<std::string
   }
   for (const PlanLevel& level : options.levels) {
     std::vector<double> frequencies;
-    const auto last = last_hz.find(level.label);
+    const auto begun = swept.find(level.label);
+    SweepDirection direction = begun != swept.end() ? begun->second.direction : SweepDirection::kUp;
     if (focus) {
       if (level.label != focus->level) continue;
       for (double f = focus->low_hz; f <= focus->high_hz + tolerance_hz; f += options.resolution_hz) {
@@ -215,38 +273,44 @@ CandidateChoice ChooseNextStep(const PlannerFit& fit, const std::map<std::string
         });
         if (!measured) frequencies.push_back(f);
       }
-    } else if (last == last_hz.end()) {
-      const double top = std::min(options.band_high_hz, resonance.frequency_hz);
-      for (int m = 0; options.band_low_hz + m * options.resolution_hz <= top + tolerance_hz; ++m)
-        frequencies.push_back(options.band_low_hz + m * options.resolution_hz);
-      if (frequencies.empty()) frequencies.push_back(options.band_low_hz);
+    } else if (begun == swept.end()) {
+      const SweepChoice sweep = fit.within_noise ? ChooseSweepDirection(fit, level, options) : SweepChoice{};
+      direction = sweep.direction;
+      if (direction == SweepDirection::kDown) {
+        sweep_why[level.label] = fmt::format(
+            "sweeping {} downwards: the fitted support softens, its response there peaks at {:.2f} Hz, below the "
+            "linear resonance at {:.2f} Hz; ",
+            level.label, sweep.peak_hz, sweep.linear_peak_hz);
+        const double bottom = std::max(options.band_low_hz, resonance.frequency_hz);
+        for (int m = 0; options.band_high_hz - m * options.resolution_hz >= bottom - tolerance_hz; ++m)
+          frequencies.push_back(options.band_high_hz - m * options.resolution_hz);
+        if (frequencies.empty()) frequencies.push_back(options.band_high_hz);
+      } else {
+        const double top = std::min(options.band_high_hz, resonance.frequency_hz);
+        for (int m = 0; options.band_low_hz + m * options.resolution_hz <= top + tolerance_hz; ++m)
+          frequencies.push_back(options.band_low_hz + m * options.resolution_hz);
+        if (frequencies.empty()) frequencies.push_back(options.band_low_hz);
+      }
     } else {
+      const double sign = direction == SweepDirection::kDown ? -1.0 : 1.0;
       for (int m = 1;; ++m) {
-        const double f = last->second + m * options.resolution_hz;
-        if (f > options.band_high_hz + tolerance_hz || f - last->second > options.max_step_hz + tolerance_hz) break;
+        const double f = begun->second.last_hz + sign * m * options.resolution_hz;
+        if (f > options.band_high_hz + tolerance_hz || f < options.band_low_hz - tolerance_hz ||
+            m * options.resolution_hz > options.max_step_hz + tolerance_hz)
+          break;
         frequencies.push_back(f);
       }
     }
-    if (!frequencies.empty()) candidates.levels.push_back(level.label);
     for (const double f : frequencies) {
-      FitStep step;
-      step.level = level.label;
-      step.omega_rad_s = 2.0 * std::numbers::pi * f;
-      step.nominal_frequency_hz = f;
-      step.force_N = Eigen::VectorXcd::Zero(fit.model.num_harmonics + 1);
-      step.force_N(1) = level.force_N;
-      step.measured = Eigen::MatrixXcd::Zero(channels, k_max);
-      step.whitening.assign(static_cast<std::size_t>(channels),
-                            std::vector<Eigen::Matrix2d>(static_cast<std::size_t>(k_max), Eigen::Matrix2d::Identity()));
-      step.std_amplitude = Eigen::MatrixXd::Ones(channels, k_max);
-      candidates.steps.push_back(std::move(step));
+      AddCandidate(candidates, level, f, fit.model.num_harmonics);
       candidate_force.push_back(level.force_N);
+      candidate_sweep.push_back(direction);
     }
   }
   choice.candidates = static_cast<int>(candidates.steps.size());
   if (candidates.steps.empty()) {
     choice.why_none = focus ? "every step where the competing causes differ has been measured"
-                            : "every level has been swept to the top of the band";
+                            : "every level has been swept through the band";
     return choice;
   }
 
@@ -306,7 +370,8 @@ CandidateChoice ChooseNextStep(const PlannerFit& fit, const std::map<std::string
                                   .settle_s = settle_s,
                                   .record_s = record,
                                   .expected_gain = gain,
-                                  .expected_gain_per_s = per_s};
+                                  .expected_gain_per_s = per_s,
+                                  .sweep = candidate_sweep[static_cast<std::size_t>(i)]};
         choice.expected_std.clear();
         for (const int t : targets) choice.expected_std.push_back(std::sqrt(after(t, t)) * scale(t));
       }
@@ -329,7 +394,9 @@ CandidateChoice ChooseNextStep(const PlannerFit& fit, const std::map<std::string
   for (std::size_t t = 0; t < targets.size(); ++t)
     expected.push_back(fmt::format("σ({}) {:.3g} → {:.3g}", options.targets[t],
                                    std::sqrt(fit.covariance(targets[t], targets[t])), choice.expected_std[t]));
-  choice.step->reason = fmt::format("of {} candidates{} the most informative per second: {}", choice.candidates,
+  const auto why_sweep = sweep_why.find(choice.step->level);
+  choice.step->reason = fmt::format("{}of {} candidates{} the most informative per second: {}",
+                                    why_sweep != sweep_why.end() ? why_sweep->second : "", choice.candidates,
                                     focus ? " where the competing causes differ most," : "",
                                     fmt::join(expected, ", "));
   return choice;

@@ -1,9 +1,15 @@
 // The next step of a running test, chosen for what it teaches. Each level is
-// swept upwards through the band, as a stepped-sine test runs, so that a
-// jump is approached from the side the branch is followed from; the
-// candidates are every frequency ahead of each level's last step on a grid
-// of resolution_hz, at most max_step_hz ahead (beyond, the beam may land
-// on another branch of a fold). For each candidate c the fitted model gives
+// swept one way through the band, as a stepped-sine test runs: upwards, or
+// downwards when the fitted model's response at that level peaks below the
+// linear resonance by more than its half-power half-width (a softening
+// support), so that a jump is approached from the side the resonant branch
+// is followed from. The way is chosen when the level begins, from a fit
+// within the noise (else upwards), and kept. The candidates are every
+// frequency ahead of each level's last step on a grid of resolution_hz, at
+// most max_step_hz ahead (beyond, the beam may land on another branch of a
+// fold); a level not begun may start anywhere between its end of the band
+// and the linear resonance, where the branch is single. For each candidate c
+// the fitted model gives
 // the sensitivities J_c = ∂Y/∂p of the responses it would measure, each
 // whitened by the σ that record length would give (the noise seen so far,
 // a floor and a part proportional to the response, both ∝ 1/√T); the gain
@@ -44,8 +50,8 @@ namespace beamid::solver {
 
 struct PlannerOptions {
   std::vector<PlanLevel> levels;  // the force levels the test may use
-  double band_low_hz = 0.0;       // each level's sweep starts here
-  double band_high_hz = 0.0;      // and ends here
+  double band_low_hz = 0.0;       // the band each level is swept through
+  double band_high_hz = 0.0;
   double resolution_hz = 0.05;    // the candidates' frequency grid
   double max_step_hz = 1.0;       // the largest step ahead on a level
   // The parameters whose precision the test is for, and the σ each must
@@ -78,6 +84,9 @@ struct PlannerFit {
   ModelOptions model;
   Eigen::MatrixXd covariance;  // physical parameters, structure order
   std::vector<double> analysed_s;  // per step of data: the steady record its σ come from
+  // A fit that misses the data beyond their noise says little of where the
+  // resonance leans: a level begun on it is swept upwards, as is usual.
+  bool within_noise = true;
 };
 
 // The fitted linear model's first resonance (the law's k1 and c and the
@@ -106,14 +115,29 @@ struct PlanFocus {
   double low_hz = 0.0, high_hz = 0.0;
 };
 
-// `last_hz`: each level's last measured frequency (a level absent: not
-// begun; its first step is band_low_hz). `last_step`: the step of fit.data
-// measured last, the state the rig is in. min_record_s: the shortest record
-// the next step may have (what the last step's verdict needs for its phasor
-// target); the record is chosen from min_record_s·2^m up to max_record_s
-// for the gain per second; extra_settle_s is added to every settle (a step
-// found unsettled asks for it).
-CandidateChoice ChooseNextStep(const PlannerFit& fit, const std::map<std::string, double>& last_hz, int last_step,
+// A level begun: the frequency measured last (the highest of an upward
+// sweep, the lowest of a downward one) and the way it goes.
+struct LevelSweep {
+  double last_hz = 0.0;
+  SweepDirection direction = SweepDirection::kUp;
+};
+
+// The way to sweep a level not yet begun, and why (see above).
+struct SweepChoice {
+  SweepDirection direction = SweepDirection::kUp;
+  double peak_hz = NAN;            // the fitted model's response peak at the level's force
+  double linear_peak_hz = NAN;     // the fitted linear model's
+  double half_width_hz = NAN;      // its half-power half-width
+};
+SweepChoice ChooseSweepDirection(const PlannerFit& fit, const PlanLevel& level, const PlannerOptions& options);
+
+// `swept`: each level begun (a level absent is not begun). `last_step`: the
+// step of fit.data measured last, the state the rig is in. min_record_s:
+// the shortest record the next step may have (what the last step's verdict
+// needs for its phasor target); the record is chosen from min_record_s·2^m
+// up to max_record_s for the gain per second; extra_settle_s is added to
+// every settle (a step found unsettled asks for it).
+CandidateChoice ChooseNextStep(const PlannerFit& fit, const std::map<std::string, LevelSweep>& swept, int last_step,
                                const PlannerOptions& options, double min_record_s, double extra_settle_s,
                                const std::optional<PlanFocus>& focus = std::nullopt);
 

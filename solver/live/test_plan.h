@@ -20,6 +20,13 @@ struct PlanLevel {
   double force_N = 0.0;
 };
 
+// Which way a level's frequency is stepped. A hardening support bends the
+// resonance up as the amplitude grows, a softening one down; each is swept
+// towards where the resonance leans, so that the resonant branch of a fold
+// is followed to its end and the jump off it is met there, as a test
+// engineer sweeps it.
+enum class SweepDirection { kUp, kDown };
+
 struct PlannedStep {
   std::string level;
   double force_N = 0.0;
@@ -33,6 +40,7 @@ struct PlannedStep {
   double expected_gain = 0.0;
   double expected_gain_per_s = 0.0;
   bool repeat = false;    // the same step as the last, measured again
+  SweepDirection sweep = SweepDirection::kUp;  // the way this step's level is swept
 };
 
 struct PlanParameter {

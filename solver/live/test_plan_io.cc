@@ -27,6 +27,7 @@ std::string TestPlanJson(const TestPlan& plan) {
                  {"settle_s", s.settle_s},
                  {"record_s", s.record_s},
                  {"repeat", s.repeat},
+                 {"sweep", s.sweep == SweepDirection::kDown ? "down" : "up"},
                  {"reason", s.reason},
                  {"expected_gain_nats", s.expected_gain},
                  {"expected_gain_nats_per_s", s.expected_gain_per_s}};
@@ -83,7 +84,7 @@ TestPlan ParseTestPlan(const std::string& text, const std::string& source) {
   plan.done_reason = root.At("done_reason").String();
   if (!root.At("next").json().is_null()) {
     const JsonField next = root.At("next");
-    next.OnlyKeys({"level", "force_N", "frequency_Hz", "settle_s", "record_s", "repeat", "reason",
+    next.OnlyKeys({"level", "force_N", "frequency_Hz", "settle_s", "record_s", "repeat", "sweep", "reason",
                    "expected_gain_nats", "expected_gain_nats_per_s"});
     plan.next = PlannedStep{.level = next.At("level").String(),
                             .force_N = next.At("force_N").Number(),
@@ -94,6 +95,12 @@ TestPlan ParseTestPlan(const std::string& text, const std::string& source) {
                             .expected_gain = next.At("expected_gain_nats").Number(),
                             .expected_gain_per_s = next.At("expected_gain_nats_per_s").Number(),
                             .repeat = next.At("repeat").Boolean()};
+    // Plans written before levels were swept downwards have no "sweep": every level went up.
+    if (next.Has("sweep")) {
+      const std::string sweep = next.At("sweep").String();
+      if (sweep != "up" && sweep != "down") next.At("sweep").Fail("must be \"up\" or \"down\"");
+      plan.next->sweep = sweep == "down" ? SweepDirection::kDown : SweepDirection::kUp;
+    }
     if (!(plan.next->frequency_hz > 0.0)) next.At("frequency_Hz").Fail("must be positive");
     if (!(plan.next->settle_s >= 0.0)) next.At("settle_s").Fail("must not be negative");
     if (!(plan.next->record_s > 0.0)) next.At("record_s").Fail("must be positive");

@@ -13,11 +13,14 @@ namespace beamid::testing {
 // scenario's "levels" array. settle_max_s 8: near resonance a step needs
 // ~5 s to settle to 1e-5; cut at 4 s every step kept a transient that moved
 // the fit by 2–4 σ (docs/simulator.md, "Accuracy seen by an identification").
-inline std::string PaperScenarioJson(const std::string& name, const std::string& levels_json, int seed) {
+// A negative k3_Nm_rad3 makes the support soften instead.
+inline std::string PaperScenarioJson(const std::string& name, const std::string& levels_json, int seed,
+                                     double k3_Nm_rad3 = 3e5) {
   return R"({"name": ")" + name + R"(",
   "beam": {"length_m": 0.6, "width_m": 0.04, "thickness_m": 0.005, "youngs_modulus_Pa": 2.1e11,
            "density_kg_m3": 7850, "loss_factor": 0.0002},
-  "support": {"polynomial": {"k1_Nm_rad": 150, "k2_Nm_rad2": 0, "k3_Nm_rad3": 3e5, "c_Nms_rad": 0.05}},
+  "support": {"polynomial": {"k1_Nm_rad": 150, "k2_Nm_rad2": 0, "k3_Nm_rad3": )" +
+         std::to_string(k3_Nm_rad3) + R"(, "c_Nms_rad": 0.05}},
   "excitation": {"channel": "force", "position_m": 0.57},
   "sensors": [{"channel": "acc1", "position_m": 0.1}, {"channel": "acc2", "position_m": 0.3},
               {"channel": "acc3", "position_m": 0.57}],
